@@ -1,0 +1,112 @@
+# dflab — plain Makefile.  `make` builds build/dflab and build/libdfl.a.
+# Sources are found by wildcard: drop a .c into src/ (library), experiments/
+# (studies) or tests/ (Criterion tests) and it is built.
+
+CC      ?= cc
+CXX     ?= c++
+PYTHON  ?= /usr/bin/python3
+BUILD   ?= build
+OPT     ?= -O2
+SAN     ?=
+
+EXR_CFLAGS := $(shell pkg-config --cflags OpenEXR 2>/dev/null)
+DEPFLAGS = -MMD -MP
+CPPFLAGS += -Isrc -Iexperiments $(EXR_CFLAGS) -D_POSIX_C_SOURCE=200809L -DIMATH_HALF_NO_LOOKUP_TABLE
+CFLAGS   += -std=c11 -Wall -Wextra $(OPT) -fopenmp $(SAN) -g
+CXXFLAGS += -std=c++17 -Wall -Wextra $(OPT) -fopenmp $(SAN) -g -I/usr/include/eigen3
+LDLIBS   += -linih -lceres -lglog -lOpenEXRCore-3_1 -lz -lm
+LDFLAGS  += -fopenmp $(SAN)
+
+GIT_REV := $(shell git rev-parse --short HEAD 2>/dev/null || echo unknown)
+CPPFLAGS += -DDFL_GIT_REV=\"$(GIT_REV)\"
+
+LIB_C   := $(shell find src -name '*.c' ! -path 'src/cli/*' | sort)
+LIB_CC  := $(shell find src -name '*.cc' | sort)
+EXP_C   := $(shell find experiments -name '*.c' | sort)
+CLI_C   := $(shell find src/cli -name '*.c' | sort)
+TEST_C  := $(shell find tests -name '*.c' ! -path 'tests/bench/*' | sort)
+BENCH_C := $(shell find tests/bench -name '*.c' 2>/dev/null | sort)
+
+LIB_OBJ   := $(LIB_C:%.c=$(BUILD)/%.o) $(LIB_CC:%.cc=$(BUILD)/%.o)
+EXP_OBJ   := $(EXP_C:%.c=$(BUILD)/%.o)
+CLI_OBJ   := $(CLI_C:%.c=$(BUILD)/%.o)
+TEST_OBJ  := $(TEST_C:%.c=$(BUILD)/%.o)
+
+LIB     := $(BUILD)/libdfl.a
+EXPLIB  := $(BUILD)/libdflexp.a
+DFLAB   := $(BUILD)/dflab
+TESTS   := $(BUILD)/dflab-tests
+BENCH   := $(BUILD)/dflab-bench
+
+APT_PKGS := libinih-dev libceres-dev libopenexr-dev libimath-dev libcriterion-dev zlib1g-dev \
+            python3-matplotlib python3-numpy python3-vtk9 openexr pkg-config
+
+.PHONY: all deps test sanitize bench reproduce clean
+all: $(DFLAB) $(LIB)
+
+$(BUILD)/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(CFLAGS) $(DEPFLAGS) -c $< -o $@
+
+$(BUILD)/%.o: %.cc
+	@mkdir -p $(dir $@)
+	$(CXX) $(CPPFLAGS) $(CXXFLAGS) $(DEPFLAGS) -c $< -o $@
+
+$(LIB): $(LIB_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(EXPLIB): $(EXP_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(DFLAB): $(CLI_OBJ) $(EXPLIB) $(LIB)
+	$(CXX) $(LDFLAGS) -o $@ $(CLI_OBJ) $(EXPLIB) $(LIB) $(LDLIBS)
+
+$(TESTS): $(TEST_OBJ) $(EXPLIB) $(LIB)
+	$(CXX) $(LDFLAGS) -o $@ $(TEST_OBJ) $(EXPLIB) $(LIB) $(LDLIBS) -lcriterion
+
+BENCH_OBJ := $(BENCH_C:%.c=$(BUILD)/%.o)
+$(BENCH): $(BENCH_OBJ) $(EXPLIB) $(LIB)
+	$(CXX) $(LDFLAGS) -o $@ $(BENCH_OBJ) $(EXPLIB) $(LIB) $(LDLIBS)
+
+# Installs the Debian packages dflab needs; a no-op when all are present.
+deps:
+	@missing=""; for p in $(APT_PKGS); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'install ok installed' || missing="$$missing $$p"; \
+	done; \
+	if [ -z "$$missing" ]; then echo "deps: all packages present"; \
+	elif [ "$$(id -u)" = 0 ]; then \
+	  echo "deps: installing$$missing"; \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing; \
+	else echo "deps: missing packages; run as root:"; \
+	  echo "  apt-get install -y$$missing"; exit 1; fi
+
+# The test binary runs from the repository root; DFL_PYTHON and DFL_DFLAB
+# let tests call the VTK validator and the CLI.
+test: deps
+	$(MAKE) --no-print-directory $(DFLAB) $(TESTS)
+	DFL_PYTHON=$(PYTHON) DFL_DFLAB=$(abspath $(DFLAB)) $(TESTS) -j2 --timeout 600
+
+sanitize: deps
+	$(MAKE) --no-print-directory BUILD=build-san OPT=-O1 \
+	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
+	  build-san/dflab build-san/dflab-tests
+	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1 \
+	  DFL_PYTHON=$(PYTHON) DFL_DFLAB=$(abspath build-san/dflab) DFL_SANITIZE=1 \
+	  build-san/dflab-tests -j2 --timeout 1200
+
+bench: deps
+	$(MAKE) --no-print-directory OPT=-O3 BUILD=build-bench build-bench/dflab-bench
+	DFL_PYTHON=$(PYTHON) build-bench/dflab-bench
+
+PAPER_CONFIGS := $(sort $(wildcard configs/paper/*.ini))
+reproduce: deps
+	$(MAKE) --no-print-directory $(DFLAB)
+	@set -e; for c in $(PAPER_CONFIGS); do echo "== $$c"; $(DFLAB) run $$c; done
+	$(PYTHON) scripts/report.py --results results --out results/REPORT.md
+
+clean:
+	rm -rf build build-san build-bench
+
+-include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

@@ -1,0 +1,29 @@
+/* The list of studies.  Add a study: define `const dfl_study dfl_study_X`
+ * in its own file under experiments/ and add it to the two lists below. */
+#include <stdio.h>
+#include <string.h>
+
+#include "experiment.h"
+
+extern const dfl_study dfl_study_smoke;
+
+static const dfl_study *const all_studies[] = {
+    &dfl_study_smoke,
+    NULL,
+};
+
+const dfl_study *const *dfl_studies(void) { return all_studies; }
+
+const dfl_study *dfl_study_find(const char *name)
+{
+    for (const dfl_study *const *s = all_studies; *s; s++)
+        if (strcmp((*s)->name, name) == 0) return *s;
+    return NULL;
+}
+
+const char *dfl_study_path(const dfl_study_ctx *ctx, const char *stem, const char *ext, char *buf,
+                           size_t size)
+{
+    snprintf(buf, size, "%s/%s%s.%s", ctx->stage_dir, stem, ctx->tag, ext);
+    return buf;
+}

@@ -1,0 +1,28 @@
+#include "field/field.h"
+
+#include <string.h>
+
+double dfl_field_eval1(const dfl_field *f, const double *x, double *g)
+{
+    double v = 0.0;
+    f->ops->eval(f->ctx, 1, x, &v, g);
+    return v;
+}
+
+dfl_status dfl_field_jet(const dfl_field *f, const double *x, const double *dir, int K,
+                         dfl_jet *out, dfl_err *err)
+{
+    if (!f->ops->jet)
+        return dfl_err_set(err, DFL_E_INPUT, "field '%s' has no exact derivatives (jets)",
+                           f->ops->name);
+    if (K < 0 || K > DFL_JET_MAX)
+        return dfl_err_set(err, DFL_E_INPUT, "jet order %d outside [0, %d]", K, DFL_JET_MAX);
+    return f->ops->jet(f->ctx, x, dir, K, out, err);
+}
+
+void dfl_field_destroy(dfl_field *f)
+{
+    if (!f) return;
+    if (f->ops && f->ops->destroy && f->ctx) f->ops->destroy(f->ctx);
+    memset(f, 0, sizeof *f);
+}

@@ -1,0 +1,50 @@
+/* The common field interface.
+ *
+ * A field is a scalar function u of a point in R^2 or R^3 (dim) that gives
+ * its value and gradient in batches and, optionally, exact derivatives along
+ * a ray through a jet.  Batches keep dispatch out of the per-point loop: the
+ * samplers call eval once per chunk of points, in parallel chunks, so an
+ * eval implementation must only read ctx (thread-safe) and must not allocate.
+ *
+ * Distances are in the units of the configuration; signed distance is
+ * negative inside (bs04's unsigned fields are >= 0 everywhere).
+ */
+#ifndef DFL_FIELD_FIELD_H
+#define DFL_FIELD_FIELD_H
+
+#include <stddef.h>
+
+#include "core/jet.h"
+#include "core/status.h"
+
+typedef struct dfl_field_ops {
+    const char *name;
+    /* Values at m points pts[i*dim + j]; writes val[i] and, when grad is not
+     * NULL, grad[i*dim + j].  Must be thread-safe for a shared ctx. */
+    void (*eval)(const void *ctx, size_t m, const double *pts, double *val, double *grad);
+    /* Jet of s -> u(x + s*dir) at s = 0+ to absolute order K (<= DFL_JET_MAX).
+     * dir need not be unit length.  NULL when the field has no jets. */
+    dfl_status (*jet)(const void *ctx, const double *x, const double *dir, int K, dfl_jet *out,
+                      dfl_err *err);
+    /* Frees ctx.  May be NULL. */
+    void (*destroy)(void *ctx);
+} dfl_field_ops;
+
+typedef struct dfl_field {
+    int dim;                  /* 2 or 3 */
+    const dfl_field_ops *ops;
+    void *ctx;                /* owned by the field; freed by dfl_field_destroy */
+} dfl_field;
+
+/* Value (and gradient when g != NULL) at one point: a convenience for tests
+ * and slow paths, not for hot loops. */
+double dfl_field_eval1(const dfl_field *f, const double *x, double *g);
+
+/* Jet along dir; DFL_E_INPUT if the field has no jets. */
+dfl_status dfl_field_jet(const dfl_field *f, const double *x, const double *dir, int K,
+                         dfl_jet *out, dfl_err *err);
+
+/* Releases ctx and zeroes *f.  f may be NULL or already destroyed. */
+void dfl_field_destroy(dfl_field *f);
+
+#endif

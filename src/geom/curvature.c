@@ -1,0 +1,149 @@
+#include "geom/curvature.h"
+
+#include <assert.h>
+#include <math.h>
+#include <string.h>
+
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static void cross3(const double *a, const double *b, double *c)
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* Eigen-decomposition of the symmetric [[a, b], [b, c]]: lo <= hi, unit
+ * eigenvector (cos th, sin th) of hi, (-sin th, cos th) of lo.  The angle
+ * form stays accurate near umbilics where the eigenvector is arbitrary. */
+static void sym2_eigen(double a, double b, double c, double *lo, double *hi, double *th)
+{
+    double m = 0.5 * (a + c), r = hypot(0.5 * (a - c), b);
+    *lo = m - r;
+    *hi = m + r;
+    *th = 0.5 * atan2(2.0 * b, a - c);
+}
+
+/* Fills k1 <= k2 and directions from the shape operator written in the
+ * orthonormal tangent basis (t1, t2) with t1 x t2 = n. */
+static void finish(const double t1[3], const double t2[3], double a, double b, double c,
+                   dfl_curvature *out)
+{
+    double lo, hi, th;
+    sym2_eigen(a, b, c, &lo, &hi, &th);
+    double cs = cos(th), sn = sin(th);
+    out->k1 = lo;
+    out->k2 = hi;
+    for (int j = 0; j < 3; j++) {
+        out->e2[j] = cs * t1[j] + sn * t2[j];
+        out->e1[j] = -sn * t1[j] + cs * t2[j];
+    }
+    /* (-s t1 + c t2) x (c t1 + s t2) = -n: flip e1 so that e1 x e2 = n */
+    for (int j = 0; j < 3; j++) out->e1[j] = -out->e1[j];
+    out->K = lo * hi;
+    out->H = 0.5 * (lo + hi);
+}
+
+static void tangent_basis(const double n[3], double t1[3], double t2[3])
+{
+    double t[3] = {0, 0, 0};
+    int k = 0;
+    for (int j = 1; j < 3; j++)
+        if (fabs(n[j]) < fabs(n[k])) k = j;
+    t[k] = 1.0;
+    double tn = dot3(t, n);
+    for (int j = 0; j < 3; j++) t1[j] = t[j] - tn * n[j];
+    double l = sqrt(dot3(t1, t1));
+    for (int j = 0; j < 3; j++) t1[j] /= l;
+    cross3(n, t1, t2);
+}
+
+dfl_status dfl_curvature_implicit(const double grad[3], const double hess[9], dfl_curvature *out,
+                                  dfl_err *err)
+{
+    double gn = sqrt(dot3(grad, grad));
+    if (!(gn > 0.0) || !isfinite(gn))
+        return dfl_err_set(err, DFL_E_NUMERIC, "curvature: gradient of g vanishes");
+    for (int j = 0; j < 3; j++) out->n[j] = grad[j] / gn;
+    double t1[3], t2[3], Ht1[3], Ht2[3];
+    tangent_basis(out->n, t1, t2);
+    /* n = grad g/|grad g| => dn = (I - n n^T) Hess g / |grad g| on tangents */
+    for (int i = 0; i < 3; i++) {
+        Ht1[i] = dot3(hess + 3 * i, t1);
+        Ht2[i] = dot3(hess + 3 * i, t2);
+    }
+    double a = dot3(t1, Ht1) / gn, c = dot3(t2, Ht2) / gn;
+    double b = 0.5 * (dot3(t1, Ht2) + dot3(t2, Ht1)) / gn;
+    finish(t1, t2, a, b, c, out);
+    return DFL_OK;
+}
+
+void dfl_fundamental_forms_eval(const double Su[3], const double Sv[3], const double Suu[3],
+                                const double Suv[3], const double Svv[3], const double n[3],
+                                dfl_fundamental_forms *out)
+{
+    out->E = dot3(Su, Su);
+    out->F = dot3(Su, Sv);
+    out->G = dot3(Sv, Sv);
+    out->L = dot3(Suu, n);
+    out->M = dot3(Suv, n);
+    out->N = dot3(Svv, n);
+}
+
+double dfl_gaussian_curvature_ff(const dfl_fundamental_forms *f)
+{
+    return (f->L * f->N - f->M * f->M) / (f->E * f->G - f->F * f->F);
+}
+
+double dfl_mean_curvature_ff(const dfl_fundamental_forms *f)
+{
+    return -(f->E * f->N - 2.0 * f->F * f->M + f->G * f->L) / (2.0 * (f->E * f->G - f->F * f->F));
+}
+
+dfl_status dfl_curvature_parametric(const double Su[3], const double Sv[3], const double Suu[3],
+                                    const double Suv[3], const double Svv[3],
+                                    const double *n_ref, dfl_curvature *out, dfl_err *err)
+{
+    double n[3];
+    cross3(Su, Sv, n);
+    double nn = sqrt(dot3(n, n));
+    if (!(nn > 0.0) || !isfinite(nn))
+        return dfl_err_set(err, DFL_E_NUMERIC, "curvature: singular parametrization (Su x Sv = 0)");
+    double sg = (n_ref && dot3(n, n_ref) < 0.0) ? -1.0 : 1.0;
+    for (int j = 0; j < 3; j++) out->n[j] = sg * n[j] / nn;
+    dfl_fundamental_forms f;
+    dfl_fundamental_forms_eval(Su, Sv, Suu, Suv, Svv, out->n, &f);
+    /* Orthonormal t1 = Su/|Su|, t2 = n x t1.  With B = [Su Sv] = T C,
+     * C = [[|Su|, t1.Sv], [0, t2.Sv]], the Weingarten map -dn has matrix
+     * C^-T II C^-1 in (t1, t2); our kappa are its negatives. */
+    double t1[3], t2[3];
+    double su = sqrt(f.E);
+    for (int j = 0; j < 3; j++) t1[j] = Su[j] / su;
+    cross3(out->n, t1, t2);
+    double c11 = su, c12 = dot3(t1, Sv), c22 = dot3(t2, Sv);
+    assert(c11 > 0.0);
+    /* C^-1 = [[1/c11, -c12/(c11 c22)], [0, 1/c22]] */
+    double i11 = 1.0 / c11, i12 = -c12 / (c11 * c22), i22 = 1.0 / c22;
+    /* W = C^-T II C^-1 with II = [[L, M], [M, N]] */
+    double a = i11 * i11 * f.L;
+    double b = i11 * (i12 * f.L + i22 * f.M);
+    double c = i12 * i12 * f.L + 2.0 * i12 * i22 * f.M + i22 * i22 * f.N;
+    finish(t1, t2, -a, -b, -c, out);
+    return DFL_OK;
+}
+
+double dfl_curvature_implicit2(const double grad[2], const double hess[4])
+{
+    double gn = hypot(grad[0], grad[1]);
+    if (!(gn > 0.0)) return NAN;
+    double t[2] = {-grad[1] / gn, grad[0] / gn};
+    double Ht[2] = {hess[0] * t[0] + hess[1] * t[1], hess[2] * t[0] + hess[3] * t[1]};
+    return (t[0] * Ht[0] + t[1] * Ht[1]) / gn;
+}
+
+double dfl_curvature_curve2(const double d1[2], const double d2[2], const double n[2])
+{
+    double s2 = d1[0] * d1[0] + d1[1] * d1[1];
+    if (!(s2 > 0.0)) return NAN;
+    return -(d2[0] * n[0] + d2[1] * n[1]) / s2;
+}

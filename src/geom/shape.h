@@ -1,0 +1,130 @@
+/* Analytic shapes with exact signed distance functions, and CSG of SDFs.
+ *
+ * A dfl_shape is a region of R^2 or R^3 (dim) with a signed distance
+ * function d: negative inside, zero on the boundary, positive outside, in the
+ * units of its parameters.  Every shape gives d and its gradient in batches
+ * and, where supported, the exact jet of s -> d(x + s dir) at s = 0+ (see
+ * core/jet.h): the jet is taken on the branch of d that is valid for small
+ * s > 0 (at a kink the one-sided derivatives of that side), so jets are exact
+ * also on the boundary and on ties of min/max.
+ *
+ * Gradients: where d is not differentiable (the medial axis, the centre of a
+ * circle, the axis of a cylinder, a box's diagonal planes) eval returns one
+ * of the one-sided gradients, chosen deterministically (at a circle's or a
+ * sphere's centre, on a cylinder's or torus' axis: the first coordinate
+ * direction of the local frame), so |grad d| = 1 holds everywhere for the
+ * exact SDFs.
+ *
+ * Shapes of this module (all exact Euclidean SDFs, except CSG which is the
+ * usual min/max composition and its smooth variants, a bound of the true
+ * distance):
+ *   circle (2D), sphere (3D): |x - c| - r
+ *   torus (3D): centre, axis, major R > 0, minor r > 0 (r < R not required
+ *               for the formula but required here so the torus is a ring)
+ *   cylinder (3D): infinite, around the line through p with direction axis
+ *   plane (2D line / 3D plane): through p with normal n; the side n points to
+ *               is outside (d = (x - p) . n / |n|)
+ *   cone (3D): capped cone (frustum) from a (radius ra) to b (radius rb),
+ *               ra, rb >= 0, not both 0; ra == rb is a capped cylinder
+ *   box (2D/3D): axis-aligned, centre and half sizes > 0
+ *   segment (2D/3D): UNSIGNED distance to the segment ab (>= 0 everywhere)
+ *   csg: union / intersection / difference of two shapes, exact min/max or
+ *        polynomial smooth min/max with smoothing width k > 0
+ *
+ * Ownership: constructors allocate impl; dfl_shape_free releases it.  The
+ * CSG constructor takes ownership of its children (their structs are zeroed).
+ */
+#ifndef DFL_GEOM_SHAPE_H
+#define DFL_GEOM_SHAPE_H
+
+#include <stddef.h>
+
+#include "core/jet.h"
+#include "core/status.h"
+
+typedef struct dfl_shape_ops {
+    const char *kind;
+    /* Signed distance (negative inside) at m points pts[i*dim+j]; grad
+     * (m*dim) may be NULL.  Thread-safe, no allocation. */
+    void (*eval)(const void *impl, size_t m, const double *pts, double *val, double *grad);
+    /* Exact jet of s -> d(x + s dir) at s = 0+ to absolute order K
+     * (0 <= K <= DFL_JET_MAX), or NULL if unsupported.  dir need not be unit
+     * length.  Thread-safe. */
+    dfl_status (*jet)(const void *impl, const double *x, const double *dir, int K, dfl_jet *out,
+                      dfl_err *err);
+    void (*free)(void *impl);
+} dfl_shape_ops;
+
+typedef struct dfl_shape {
+    int dim;                  /* 2 or 3 */
+    const dfl_shape_ops *ops;
+    void *impl;               /* owned; freed by dfl_shape_free */
+} dfl_shape;
+
+/* ---- constructors: DFL_E_INPUT for degenerate parameters (radius <= 0,
+ * zero axis, ...), DFL_E_NOMEM on allocation failure; *out is untouched on
+ * failure. ---- */
+dfl_status dfl_shape_circle(const double c[2], double r, dfl_shape *out, dfl_err *err);
+dfl_status dfl_shape_sphere(const double c[3], double r, dfl_shape *out, dfl_err *err);
+/* Torus around the line through c with direction axis (any length > 0). */
+dfl_status dfl_shape_torus(const double c[3], const double axis[3], double major, double minor,
+                           dfl_shape *out, dfl_err *err);
+/* Infinite circular cylinder of radius r around the line p + t axis. */
+dfl_status dfl_shape_cylinder(const double p[3], const double axis[3], double r, dfl_shape *out,
+                              dfl_err *err);
+/* Half-space {(x - p) . n <= 0} in dim 2 or 3; n any length > 0. */
+dfl_status dfl_shape_plane(int dim, const double *p, const double *n, dfl_shape *out,
+                           dfl_err *err);
+/* Capped cone (frustum) with base disc (a, ra) and top disc (b, rb). */
+dfl_status dfl_shape_cone(const double a[3], const double b[3], double ra, double rb,
+                          dfl_shape *out, dfl_err *err);
+/* Axis-aligned box centre c, half sizes h[j] > 0, dim 2 or 3. */
+dfl_status dfl_shape_box(int dim, const double *c, const double *h, dfl_shape *out,
+                         dfl_err *err);
+/* Unsigned distance to the segment ab (a != b), dim 2 or 3. */
+dfl_status dfl_shape_segment(int dim, const double *a, const double *b, dfl_shape *out,
+                             dfl_err *err);
+
+typedef enum dfl_csg_op {
+    DFL_CSG_UNION = 0,              /* min(a, b) */
+    DFL_CSG_INTERSECTION,           /* max(a, b) */
+    DFL_CSG_DIFFERENCE,             /* max(a, -b): a minus b */
+    DFL_CSG_SMOOTH_UNION,           /* polynomial smooth min, width k */
+    DFL_CSG_SMOOTH_INTERSECTION,    /* -smin(-a, -b) */
+    DFL_CSG_SMOOTH_DIFFERENCE       /* -smin(-a, b) */
+} dfl_csg_op;
+
+/* Smooth min used by the smooth variants (Quilez' quadratic polynomial
+ * smin): h = clamp(1/2 + (b - a)/(2k), 0, 1),
+ * smin = b (1 - h) + a h - k h (1 - h).  Equals min(a, b) when |a - b| >= k,
+ * is C1 everywhere and lies in [min(a,b) - k/4, min(a,b)]. */
+double dfl_csg_smin(double a, double b, double k);
+
+/* CSG node; takes ownership of *a and *b (both zeroed on success AND on
+ * failure, children freed on failure).  Children must have the same dim.
+ * k is ignored for the exact ops and must be > 0 for the smooth ones.
+ * Jets exist if both children have jets. */
+dfl_status dfl_shape_csg(dfl_csg_op op, double k, dfl_shape *a, dfl_shape *b, dfl_shape *out,
+                         dfl_err *err);
+
+/* ---- use ---- */
+/* d at one point (grad, dim doubles, may be NULL).  Convenience, not for
+ * hot loops. */
+double dfl_shape_eval1(const dfl_shape *s, const double *x, double *grad);
+/* Batch evaluation (see dfl_shape_ops.eval). */
+void dfl_shape_eval(const dfl_shape *s, size_t m, const double *pts, double *val, double *grad);
+/* Jet along dir; DFL_E_INPUT if the shape has none or K is out of range. */
+dfl_status dfl_shape_jet(const dfl_shape *s, const double *x, const double *dir, int K,
+                         dfl_jet *out, dfl_err *err);
+/* Footpoint of an SDF input (hvb25): p = x - d(x) grad d(x), then refined by
+ * projections p <- p - d(p) grad d(p) until |d(p)| <= 1e-14 * (1 + |x|) or
+ * 20 steps.  Exact for exact SDFs up to rounding; for CSG and smooth
+ * variants it is an approximation (the shape's d is not a true distance).
+ * Writes p (dim doubles); DFL_E_NUMERIC if the refinement did not reach the
+ * tolerance (p then holds the last iterate). */
+dfl_status dfl_shape_footpoint(const dfl_shape *s, const double *x, double *p, dfl_err *err);
+
+/* Frees impl and zeroes *s.  s may be NULL or already freed. */
+void dfl_shape_free(dfl_shape *s);
+
+#endif

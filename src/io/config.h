@@ -1,0 +1,118 @@
+/* INI configuration with sweeps and typed, checked getters.
+ *
+ * A configuration file is parsed by libinih into (section, key, value, line)
+ * entries; `--set section.key=value` overrides are applied on top.  A value
+ * containing a comma is a sweep axis: dfl_cfg_sweep_* enumerates the
+ * cartesian product of all axes, in file order, last axis fastest, and gives
+ * one single-valued dfl_cfg per sweep point.
+ *
+ * Getters validate type and range and mark the key as used; after a study
+ * has read everything it needs, dfl_cfg_check_used() rejects keys nobody
+ * read ("unknown key"), so a typo never goes unnoticed.  Every message
+ * names file:line, [section] key, what was expected and what was found.
+ *
+ * Syntax of typed values:
+ *   int, double      decimal / C strtod syntax, finite only
+ *   bool             true/false, yes/no, on/off, 1/0
+ *   enum             one of a fixed list of names
+ *   vector           "x y" or "x y z" (blank-separated doubles)
+ *   point list       "x0 y0; x1 y1; ..." (';'-separated vectors of one dim)
+ *   double list      "a b c" (blank-separated), for knots and the like
+ *
+ * Lifetimes: a dfl_cfg owns its strings; pointers returned by getters stay
+ * valid until dfl_cfg_free.  Arrays returned by the list getters are
+ * malloc'ed and owned by the caller.
+ */
+#ifndef DFL_IO_CONFIG_H
+#define DFL_IO_CONFIG_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "core/status.h"
+
+typedef struct dfl_cfg dfl_cfg;
+
+/* Parses path.  DFL_E_INPUT / DFL_E_IO with "path:line: ..." on failure. */
+dfl_status dfl_cfg_load(const char *path, dfl_cfg **out, dfl_err *err);
+/* Parses INI text held in memory; name is used in messages. */
+dfl_status dfl_cfg_parse_string(const char *name, const char *text, dfl_cfg **out, dfl_err *err);
+/* Applies "section.key=value".  The key need not exist in the file. */
+dfl_status dfl_cfg_set(dfl_cfg *c, const char *assignment, dfl_err *err);
+void dfl_cfg_free(dfl_cfg *c);
+
+/* Name of the file the configuration came from (as given). */
+const char *dfl_cfg_path(const dfl_cfg *c);
+
+/* ---- sweeps ---------------------------------------------------------- */
+/* Number of sweep axes and of sweep points (product of axis lengths; 1 when
+ * there is no axis). */
+size_t dfl_cfg_sweep_axes(const dfl_cfg *c);
+size_t dfl_cfg_sweep_points(const dfl_cfg *c);
+/* "section.key" of axis a (static for the life of c). */
+const char *dfl_cfg_sweep_axis_name(const dfl_cfg *c, size_t a);
+/* Single-valued configuration of sweep point i (0 <= i < points).  The
+ * caller frees it.  Used-key marks are shared with nothing. */
+dfl_status dfl_cfg_sweep_point(const dfl_cfg *c, size_t i, dfl_cfg **out, dfl_err *err);
+/* Value of axis a in a point configuration made by dfl_cfg_sweep_point. */
+const char *dfl_cfg_axis_value(const dfl_cfg *point, size_t a);
+
+/* ---- getters (all mark the key used) ---------------------------------- */
+bool dfl_cfg_has(const dfl_cfg *c, const char *sec, const char *key);
+bool dfl_cfg_has_section(const dfl_cfg *c, const char *sec);
+
+/* Raw string; required. */
+dfl_status dfl_cfg_string(const dfl_cfg *c, const char *sec, const char *key, const char **out,
+                          dfl_err *err);
+/* Raw string with default when absent. */
+dfl_status dfl_cfg_string_opt(const dfl_cfg *c, const char *sec, const char *key, const char *def,
+                              const char **out, dfl_err *err);
+
+/* Integer in [lo, hi]; the _opt form returns def when the key is absent. */
+dfl_status dfl_cfg_int(const dfl_cfg *c, const char *sec, const char *key, long lo, long hi,
+                       long *out, dfl_err *err);
+dfl_status dfl_cfg_int_opt(const dfl_cfg *c, const char *sec, const char *key, long def, long lo,
+                           long hi, long *out, dfl_err *err);
+/* Finite double in [lo, hi]. */
+dfl_status dfl_cfg_double(const dfl_cfg *c, const char *sec, const char *key, double lo, double hi,
+                          double *out, dfl_err *err);
+dfl_status dfl_cfg_double_opt(const dfl_cfg *c, const char *sec, const char *key, double def,
+                              double lo, double hi, double *out, dfl_err *err);
+dfl_status dfl_cfg_bool(const dfl_cfg *c, const char *sec, const char *key, bool *out,
+                        dfl_err *err);
+dfl_status dfl_cfg_bool_opt(const dfl_cfg *c, const char *sec, const char *key, bool def,
+                            bool *out, dfl_err *err);
+/* One of names[0..count-1]; *out receives the index. */
+dfl_status dfl_cfg_enum(const dfl_cfg *c, const char *sec, const char *key,
+                        const char *const *names, int count, int *out, dfl_err *err);
+dfl_status dfl_cfg_enum_opt(const dfl_cfg *c, const char *sec, const char *key,
+                            const char *const *names, int count, int def, int *out, dfl_err *err);
+/* Exactly dim blank-separated finite doubles. */
+dfl_status dfl_cfg_vec(const dfl_cfg *c, const char *sec, const char *key, int dim, double *out,
+                       dfl_err *err);
+dfl_status dfl_cfg_vec_opt(const dfl_cfg *c, const char *sec, const char *key, int dim,
+                           const double *def, double *out, dfl_err *err);
+/* Point list of dimension dim, at least min_count points; *out is
+ * malloc'ed (count*dim doubles) and owned by the caller. */
+dfl_status dfl_cfg_points(const dfl_cfg *c, const char *sec, const char *key, int dim,
+                          size_t min_count, double **out, size_t *count, dfl_err *err);
+/* Blank-separated finite doubles, at least min_count; *out malloc'ed. */
+dfl_status dfl_cfg_doubles(const dfl_cfg *c, const char *sec, const char *key, size_t min_count,
+                           double **out, size_t *count, dfl_err *err);
+
+/* Formats "file:line: [sec] key" of an existing key into buf (for messages
+ * about a value that parsed but is unusable, e.g. degenerate geometry). */
+const char *dfl_cfg_where(const dfl_cfg *c, const char *sec, const char *key, char *buf,
+                          size_t size);
+
+/* DFL_E_INPUT naming the first key (in file order) no getter has read. */
+dfl_status dfl_cfg_check_used(const dfl_cfg *c, dfl_err *err);
+/* Same, restricted to section sec (for commands that read only part of a
+ * study config, such as `dflab probe` reading [field] and [shape]). */
+dfl_status dfl_cfg_check_used_in(const dfl_cfg *c, const char *sec, dfl_err *err);
+
+/* Writes the configuration (single-valued or not) as INI text to path,
+ * through a temporary file renamed on success. */
+dfl_status dfl_cfg_write(const dfl_cfg *c, const char *path, dfl_err *err);
+
+#endif

@@ -1,0 +1,205 @@
+/* Cells are stored as text: every value is formatted once when set (%.17g
+ * for doubles), which keeps the table simple and the CSV exact. */
+#include "io/table.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/atomic.h"
+
+struct dfl_table {
+    char **cols;
+    size_t ncols, capcols;
+    char ***rows;      /* rows[i][j]: NULL when absent */
+    size_t *rowcap;    /* allocated cells per row */
+    size_t nrows, caprows;
+    char **pcol, **pval;  /* prefix cells */
+    size_t npre;
+};
+
+static char *dup(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d) memcpy(d, s, n);
+    return d;
+}
+
+dfl_table *dfl_table_new(void) { return calloc(1, sizeof(dfl_table)); }
+
+void dfl_table_free(dfl_table *t)
+{
+    if (!t) return;
+    for (size_t i = 0; i < t->nrows; i++) {
+        for (size_t j = 0; j < t->rowcap[i]; j++) free(t->rows[i][j]);
+        free(t->rows[i]);
+    }
+    free(t->rows);
+    free(t->rowcap);
+    for (size_t j = 0; j < t->ncols; j++) free(t->cols[j]);
+    free(t->cols);
+    dfl_table_prefix_clear(t);
+    free(t);
+}
+
+dfl_status dfl_table_prefix_clear(dfl_table *t)
+{
+    for (size_t i = 0; i < t->npre; i++) {
+        free(t->pcol[i]);
+        free(t->pval[i]);
+    }
+    free(t->pcol);
+    free(t->pval);
+    t->pcol = t->pval = NULL;
+    t->npre = 0;
+    return DFL_OK;
+}
+
+dfl_status dfl_table_prefix_string(dfl_table *t, const char *col, const char *value)
+{
+    char **pc = realloc(t->pcol, (t->npre + 1) * sizeof *pc);
+    if (!pc) return DFL_E_NOMEM;
+    t->pcol = pc;
+    char **pv = realloc(t->pval, (t->npre + 1) * sizeof *pv);
+    if (!pv) return DFL_E_NOMEM;
+    t->pval = pv;
+    t->pcol[t->npre] = dup(col);
+    t->pval[t->npre] = dup(value);
+    if (!t->pcol[t->npre] || !t->pval[t->npre]) {
+        free(t->pcol[t->npre]);
+        free(t->pval[t->npre]);
+        return DFL_E_NOMEM;
+    }
+    t->npre++;
+    return DFL_OK;
+}
+
+static long col_index(dfl_table *t, const char *col, int create)
+{
+    for (size_t j = 0; j < t->ncols; j++)
+        if (strcmp(t->cols[j], col) == 0) return (long)j;
+    if (!create) return -1;
+    if (t->ncols == t->capcols) {
+        size_t cap = t->capcols ? 2 * t->capcols : 16;
+        char **c = realloc(t->cols, cap * sizeof *c);
+        if (!c) return -1;
+        t->cols = c;
+        t->capcols = cap;
+    }
+    t->cols[t->ncols] = dup(col);
+    if (!t->cols[t->ncols]) return -1;
+    return (long)t->ncols++;
+}
+
+static dfl_status set_text(dfl_table *t, const char *col, const char *text)
+{
+    if (t->nrows == 0) return DFL_E_INTERNAL;
+    long j = col_index(t, col, 1);
+    if (j < 0) return DFL_E_NOMEM;
+    size_t i = t->nrows - 1;
+    if ((size_t)j >= t->rowcap[i]) {
+        size_t cap = (size_t)j + 8;
+        char **r = realloc(t->rows[i], cap * sizeof *r);
+        if (!r) return DFL_E_NOMEM;
+        for (size_t k = t->rowcap[i]; k < cap; k++) r[k] = NULL;
+        t->rows[i] = r;
+        t->rowcap[i] = cap;
+    }
+    char *d = dup(text);
+    if (!d) return DFL_E_NOMEM;
+    free(t->rows[i][j]);
+    t->rows[i][j] = d;
+    return DFL_OK;
+}
+
+dfl_status dfl_table_row(dfl_table *t)
+{
+    if (t->nrows == t->caprows) {
+        size_t cap = t->caprows ? 2 * t->caprows : 16;
+        char ***r = realloc(t->rows, cap * sizeof *r);
+        if (!r) return DFL_E_NOMEM;
+        t->rows = r;
+        size_t *rc = realloc(t->rowcap, cap * sizeof *rc);
+        if (!rc) return DFL_E_NOMEM;
+        t->rowcap = rc;
+        t->caprows = cap;
+    }
+    t->rows[t->nrows] = NULL;
+    t->rowcap[t->nrows] = 0;
+    t->nrows++;
+    for (size_t k = 0; k < t->npre; k++) {
+        dfl_status st = set_text(t, t->pcol[k], t->pval[k]);
+        if (st != DFL_OK) return st;
+    }
+    return DFL_OK;
+}
+
+dfl_status dfl_table_set_double(dfl_table *t, const char *col, double v)
+{
+    char buf[64];
+    snprintf(buf, sizeof buf, "%.17g", v);
+    return set_text(t, col, buf);
+}
+
+dfl_status dfl_table_set_int(dfl_table *t, const char *col, long v)
+{
+    char buf[32];
+    snprintf(buf, sizeof buf, "%ld", v);
+    return set_text(t, col, buf);
+}
+
+dfl_status dfl_table_set_string(dfl_table *t, const char *col, const char *v)
+{
+    return set_text(t, col, v);
+}
+
+size_t dfl_table_rows(const dfl_table *t) { return t->nrows; }
+size_t dfl_table_cols(const dfl_table *t) { return t->ncols; }
+const char *dfl_table_col_name(const dfl_table *t, size_t j)
+{
+    return j < t->ncols ? t->cols[j] : NULL;
+}
+
+const char *dfl_table_get(const dfl_table *t, size_t i, const char *col)
+{
+    long j = col_index((dfl_table *)t, col, 0);
+    if (j < 0 || i >= t->nrows) return NULL;
+    if ((size_t)j >= t->rowcap[i] || !t->rows[i][j]) return "";
+    return t->rows[i][j];
+}
+
+/* RFC 4180 quoting for text cells that need it. */
+static void put_cell(FILE *fp, const char *s)
+{
+    if (!strpbrk(s, ",\"\n\r")) {
+        fputs(s, fp);
+        return;
+    }
+    fputc('"', fp);
+    for (; *s; s++) {
+        if (*s == '"') fputc('"', fp);
+        fputc(*s, fp);
+    }
+    fputc('"', fp);
+}
+
+dfl_status dfl_table_write_csv(const dfl_table *t, const char *path, dfl_err *err)
+{
+    dfl_atomic_file af;
+    dfl_status st = dfl_atomic_open(path, &af, err);
+    if (st != DFL_OK) return st;
+    for (size_t j = 0; j < t->ncols; j++) {
+        if (j) fputc(',', af.fp);
+        put_cell(af.fp, t->cols[j]);
+    }
+    fputc('\n', af.fp);
+    for (size_t i = 0; i < t->nrows; i++) {
+        for (size_t j = 0; j < t->ncols; j++) {
+            if (j) fputc(',', af.fp);
+            if (j < t->rowcap[i] && t->rows[i][j]) put_cell(af.fp, t->rows[i][j]);
+        }
+        fputc('\n', af.fp);
+    }
+    return dfl_atomic_commit(&af, err);
+}

@@ -1,0 +1,164 @@
+// Ceres adapter behind the extern "C" API of lsq.h.
+//
+// Why C++ here at all: Ceres' own C API (ceres_solve) takes no options and
+// prints a full report on stdout on every call.  This file keeps Ceres'
+// C++ surface out of the rest of dflab: no exception and no log line may
+// cross the extern "C" boundary.
+
+#include "solve/lsq.h"
+
+#include <ceres/ceres.h>
+#include <glog/logging.h>
+
+#include <cmath>
+#include <exception>
+#include <mutex>
+#include <new>
+
+struct dfl_lsq_ctx {
+    ceres::Context *context;
+};
+
+namespace {
+
+const int kMaxParams = 16;
+const int kMaxResiduals = 64;
+
+// One residual block over one parameter block of size n; forwards to the C
+// callback, which fills a row-major m x n Jacobian, exactly the layout Ceres
+// wants for a single parameter block.
+class CallbackCost : public ceres::CostFunction {
+  public:
+    CallbackCost(int n, int m, dfl_lsq_residual_fn fn, void *user) : fn_(fn), user_(user)
+    {
+        set_num_residuals(m);
+        mutable_parameter_block_sizes()->push_back(n);
+    }
+
+    bool Evaluate(double const *const *parameters, double *residuals,
+                  double **jacobians) const override
+    {
+        double *J = (jacobians && jacobians[0]) ? jacobians[0] : nullptr;
+        return fn_(user_, parameters[0], residuals, J) == 0;
+    }
+
+  private:
+    dfl_lsq_residual_fn fn_;
+    void *user_;
+};
+
+// glog's flag is process-global; set it once, before any solve can log.
+std::once_flag g_glog_once;
+
+void quiet_glog()
+{
+    FLAGS_minloglevel = google::GLOG_FATAL;
+    FLAGS_logtostderr = false;
+    FLAGS_stderrthreshold = google::GLOG_FATAL;
+}
+
+}  // namespace
+
+extern "C" {
+
+void dfl_lsq_options_default(dfl_lsq_options *opt)
+{
+    opt->max_iterations = 100;
+    opt->function_tolerance = 1e-16;
+    opt->gradient_tolerance = 1e-16;
+    opt->parameter_tolerance = 1e-14;
+}
+
+dfl_status dfl_lsq_ctx_new(dfl_lsq_ctx **out, dfl_err *err)
+{
+    try {
+        std::call_once(g_glog_once, quiet_glog);
+        dfl_lsq_ctx *c = new dfl_lsq_ctx;
+        c->context = ceres::Context::Create();
+        *out = c;
+        return DFL_OK;
+    } catch (const std::bad_alloc &) {
+        return dfl_err_set(err, DFL_E_NOMEM, "lsq: out of memory creating the Ceres context");
+    } catch (const std::exception &e) {
+        return dfl_err_set(err, DFL_E_INTERNAL, "lsq: Ceres context: %s", e.what());
+    } catch (...) {
+        return dfl_err_set(err, DFL_E_INTERNAL, "lsq: unknown exception creating the context");
+    }
+}
+
+void dfl_lsq_ctx_free(dfl_lsq_ctx *ctx)
+{
+    if (!ctx) return;
+    try {
+        delete ctx->context;
+        delete ctx;
+    } catch (...) {
+        // nothing sensible to report from a destructor path
+    }
+}
+
+dfl_status dfl_lsq_solve(dfl_lsq_ctx *ctx, int n, int m, dfl_lsq_residual_fn fn, void *user,
+                         const double *lo, const double *hi, const dfl_lsq_options *opt,
+                         double *x, dfl_lsq_result *res, dfl_err *err)
+{
+    if (!ctx || !fn || !x)
+        return dfl_err_set(err, DFL_E_INTERNAL, "lsq: NULL context, callback or x");
+    if (n < 1 || n > kMaxParams || m < 1 || m > kMaxResiduals)
+        return dfl_err_set(err, DFL_E_INPUT, "lsq: sizes n = %d (1..%d), m = %d (1..%d)", n,
+                           kMaxParams, m, kMaxResiduals);
+    dfl_lsq_options o;
+    if (opt)
+        o = *opt;
+    else
+        dfl_lsq_options_default(&o);
+    for (int j = 0; j < n; j++) {
+        double l = lo ? lo[j] : -HUGE_VAL, h = hi ? hi[j] : HUGE_VAL;
+        if (!(l <= h))
+            return dfl_err_set(err, DFL_E_INPUT, "lsq: bound %d empty: [%g, %g]", j, l, h);
+        if (!(x[j] >= l && x[j] <= h))
+            return dfl_err_set(err, DFL_E_INPUT, "lsq: start x[%d] = %g outside [%g, %g]", j,
+                               x[j], l, h);
+    }
+    try {
+        CallbackCost cost(n, m, fn, user);
+        ceres::Problem::Options popt;
+        popt.context = ctx->context;
+        popt.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+        ceres::Problem problem(popt);
+        problem.AddResidualBlock(&cost, nullptr, x);
+        for (int j = 0; j < n; j++) {
+            if (lo && std::isfinite(lo[j])) problem.SetParameterLowerBound(x, j, lo[j]);
+            if (hi && std::isfinite(hi[j])) problem.SetParameterUpperBound(x, j, hi[j]);
+        }
+        ceres::Solver::Options so;
+        so.minimizer_type = ceres::TRUST_REGION;
+        so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+        so.linear_solver_type = ceres::DENSE_QR;
+        so.logging_type = ceres::SILENT;
+        so.minimizer_progress_to_stdout = false;
+        so.max_num_iterations = o.max_iterations;
+        so.function_tolerance = o.function_tolerance;
+        so.gradient_tolerance = o.gradient_tolerance;
+        so.parameter_tolerance = o.parameter_tolerance;
+        so.num_threads = 1;
+        ceres::Solver::Summary summary;
+        ceres::Solve(so, &problem, &summary);
+        if (res) {
+            res->final_cost = summary.final_cost;
+            res->iterations = (int)summary.iterations.size();
+            res->converged = summary.termination_type == ceres::CONVERGENCE;
+        }
+        if (summary.termination_type == ceres::FAILURE)
+            return dfl_err_set(err, DFL_E_NUMERIC, "lsq: Ceres failed: %.300s",
+                               summary.message.c_str());
+        return DFL_OK;
+    } catch (const std::bad_alloc &) {
+        return dfl_err_set(err, DFL_E_NOMEM, "lsq: out of memory");
+    } catch (const std::exception &e) {
+        return dfl_err_set(err, DFL_E_INTERNAL, "lsq: %.300s", e.what());
+    } catch (...) {
+        return dfl_err_set(err, DFL_E_INTERNAL, "lsq: unknown exception");
+    }
+}
+
+}  // extern "C"
