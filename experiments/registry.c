@@ -6,9 +6,11 @@
 #include "experiment.h"
 
 extern const dfl_study dfl_study_smoke;
+extern const dfl_study dfl_study_bs04_polygonization;
 
 static const dfl_study *const all_studies[] = {
     &dfl_study_smoke,
+    &dfl_study_bs04_polygonization,
     NULL,
 };
 

@@ -16,9 +16,16 @@
  *        plus an active set for bounds the gradient pushes against), closed
  *        curves wrap.  Surfaces: the same with the 2x2 Hessian (Newton when
  *        positive definite, first fundamental form otherwise).
- *      ceres: Levenberg-Marquardt on the residual C(t) - x (solve/lsq.h)
- *        with the parameter domain as bounds (closed curves: unbounded, the
- *        residual wraps the parameter).
+ *      ceres: Levenberg-Marquardt (solve/lsq.h) in two phases: first on
+ *        the residual C(t) - x with the parameter domain as bounds (closed
+ *        curves: unbounded, the residual wraps the parameter); LM is
+ *        Gauss-Newton at heart and, with a non-zero residual, stops on its
+ *        cost tolerance ~sqrt(eps) away from the footpoint (much worse near
+ *        a centre of curvature), so it is followed by LM on the footpoint
+ *        condition g'(t) = 0 (zero residual, Jacobian g''), kept only if not
+ *        farther.  Surfaces: bounds the gradient pushes against are made
+ *        explicit (that parameter is held, LM runs on the other one), since
+ *        Ceres' projected steps stall on active bounds.
  *   3. the best refined candidate wins.  Ties within tie_rel (relative to the
  *      distance, plus 1e-14 of the curve's size) between footpoints more
  *      than 1e-7 of the size apart set DFL_FOOT_MEDIAL, and the footpoint
@@ -71,12 +78,13 @@
 #include "geom/shape.h"
 #include "geom/surface.h"
 
-typedef enum dfl_foot_backend { DFL_FOOT_NEWTON = 0, DFL_FOOT_CERES = 1 } dfl_foot_backend;
+/* (named apart from implicit.h's dfl_foot_backend so both headers can be used together) */
+typedef enum dfl_pfoot_backend { DFL_PFOOT_NEWTON = 0, DFL_PFOOT_CERES = 1 } dfl_pfoot_backend;
 
 #define DFL_FOOT_MAX_CAND 16
 
 typedef struct dfl_foot_opts {
-    dfl_foot_backend backend;  /* default newton */
+    dfl_pfoot_backend backend;  /* default newton */
     int samples_per_span;      /* >= 2, default 16 (surfaces: per direction) */
     int candidates;            /* 1..DFL_FOOT_MAX_CAND, default 4 */
     int max_iter;              /* per refinement, default 100 */

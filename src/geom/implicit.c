@@ -88,7 +88,7 @@ static double poly_eval(const poly *P, const double q[3], int order, double gr[3
         for (int a = 0; a < 3; a++) {
             int e = P->e[k][a];
             double ff = 1.0;
-            for (int m = 0; m <= 3; m++) {
+            for (int m = 0; m <= order; m++) {
                 D[a][m] = (e >= m) ? ff * pw[a][e - m] : 0.0;
                 ff *= (double)(e - m);
             }
@@ -180,7 +180,7 @@ static void cross3(const double *a, const double *b, double *c)
 
 /* LU with partial pivoting of a 4x4 matrix in place; 0 if (numerically)
  * singular relative to its largest entry. */
-static int lu4(double A[16], int piv[4])
+static int lu4(double A[16], int piv[4], double tol)
 {
     double amax = 0.0;
     for (int i = 0; i < 16; i++) amax = fmax(amax, fabs(A[i]));
@@ -189,7 +189,7 @@ static int lu4(double A[16], int piv[4])
         int p = k;
         for (int i = k + 1; i < 4; i++)
             if (fabs(A[4 * i + k]) > fabs(A[4 * p + k])) p = i;
-        if (!(fabs(A[4 * p + k]) > 1e-13 * amax)) return 0;
+        if (!(fabs(A[4 * p + k]) > tol * amax)) return 0;
         piv[k] = p;
         if (p != k)
             for (int j = 0; j < 4; j++) {
@@ -207,18 +207,36 @@ static int lu4(double A[16], int piv[4])
 
 static void lu4_solve(const double A[16], const int piv[4], double b[4])
 {
+    /* lu4 swaps whole rows (multipliers included), so L refers to the final
+     * row order: permute b completely before the forward substitution */
     for (int k = 0; k < 4; k++) {
         if (piv[k] != k) {
             double t = b[k];
             b[k] = b[piv[k]];
             b[piv[k]] = t;
         }
-        for (int i = k + 1; i < 4; i++) b[i] -= A[4 * i + k] * b[k];
     }
+    for (int k = 0; k < 4; k++)
+        for (int i = k + 1; i < 4; i++) b[i] -= A[4 * i + k] * b[k];
     for (int i = 3; i >= 0; i--) {
         for (int j = i + 1; j < 4; j++) b[i] -= A[4 * i + j] * b[j];
         b[i] /= A[4 * i + i];
     }
+}
+
+/* Orthonormal t1, t2 with t1 x t2 = n (n unit); deterministic. */
+static void tangent_basis(const double n[3], double t1[3], double t2[3])
+{
+    double t[3] = {0, 0, 0};
+    int k = 0;
+    for (int j = 1; j < 3; j++)
+        if (fabs(n[j]) < fabs(n[k])) k = j;
+    t[k] = 1.0;
+    double tn = dot3(t, n);
+    for (int j = 0; j < 3; j++) t1[j] = t[j] - tn * n[j];
+    double l = sqrt(dot3(t1, t1));
+    for (int j = 0; j < 3; j++) t1[j] /= l;
+    cross3(n, t1, t2);
 }
 
 /* Footpoint system Jacobian [[I + t H, G], [G^T, 0]]. */
@@ -252,7 +270,8 @@ void dfl_implicit_options_default(dfl_implicit_options *opt)
 {
     opt->backend = DFL_FOOT_NEWTON;
     opt->resolution = 64;
-    opt->max_iterations = 50;
+    opt->max_iterations = 100;
+    opt->ceres_max_iterations = 1000;
 }
 
 static void to_local(const dfl_implicit *s, const double x[3], double q[3])
@@ -288,7 +307,7 @@ double dfl_implicit_g(const dfl_implicit *s, const double x[3], double grad[3], 
 {
     double q[3], G[3], H[9];
     to_local(s, x, q);
-    double g = poly_eval(&s->g, q, 2, G, H, NULL);
+    double g = poly_eval(&s->g, q, hess ? 2 : (grad ? 1 : 0), G, H, NULL);
     if (grad) vec_to_world(s, G, grad);
     if (hess) {
         /* H_w = Q^T H_l Q */
@@ -554,30 +573,84 @@ static int accept_foot(const dfl_implicit *s, const double q[3], const double p[
     return fabs(g) / gn <= 1e-11 * s->scale && sqrt(dot3(c, c)) / gn <= 1e-9 * (s->scale + un);
 }
 
+/* Newton on the surface: minimizes f(p) = |p - q|^2 / 2 over g(p) = 0 with
+ * the Riemannian Newton step in the tangent plane and the projection onto
+ * g = 0 as retraction.  In the tangent basis (t1, t2) at p with outward n,
+ * grad f = -P (q - p) and Hess f = I + d W, d = (q - p).n, W = dn (the
+ * shape operator, t_i^T Hess g t_j / |grad g|), whose eigenvalues 1 + k_i d
+ * are the SDF's Hessian denominators.
+ * Why not Newton on the square system (p - q + t grad g, g) = 0: near the
+ * medial axis (close to a torus' axis a circle of footpoints nearly ties)
+ * that Jacobian is nearly singular along the circle and a straight
+ * tangential step leaves the curved valley, so Newton and LM crawl.  Here a
+ * tangential step is followed by the projection, so the ill-conditioned
+ * direction converges like Newton on a 1D function.  Negative or tiny
+ * eigenvalues (near the far footpoint, focal points) are replaced by their
+ * absolute values / a floor, and steps are halved until f decreases. */
 static int newton_foot(const dfl_implicit *s, const double q[3], const double p0[3],
                        double maxstep, double p[3])
 {
-    double G[3], H[9], J[16], F[4];
-    int piv[4];
+    double G[3], H[9];
     memcpy(p, p0, 3 * sizeof *p);
-    g_local(s, p, G, NULL);
-    double t = (dot3(q, G) - dot3(p, G)) / dot3(G, G);
+    if (!project(s, p)) return 0;
+    double f = 0.5 * dist2_to(p, q);
     for (int it = 0; it < s->opt.max_iterations; it++) {
-        double g = g_local(s, p, G, H);
-        for (int a = 0; a < 3; a++) F[a] = -(p[a] - q[a] + t * G[a]);
-        F[3] = -g;
-        foot_jacobian(G, H, t, J);
-        if (!lu4(J, piv)) return 0;
-        lu4_solve(J, piv, F);
-        double step = sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]);
-        double sc = step > maxstep ? maxstep / step : 1.0;
-        for (int a = 0; a < 3; a++) p[a] += sc * F[a];
-        t += sc * F[3];
-        if (!isfinite(p[0] + p[1] + p[2] + t)) return 0;
-        /* quadratic convergence: a step this small leaves an error far below
-         * rounding; near focal points (linear convergence) it still stops
-         * within a few ulps of scale */
-        if (step <= 1e-13 * s->scale) break;
+        g_local(s, p, G, H);
+        double gn = sqrt(dot3(G, G));
+        if (!(gn > 0.0)) return 0;
+        double n[3] = {G[0] / gn, G[1] / gn, G[2] / gn}, t1[3], t2[3];
+        tangent_basis(n, t1, t2);
+        double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+        double d = dot3(u, n);
+        double gr[2] = {-dot3(t1, u), -dot3(t2, u)};
+        double Ht1[3], Ht2[3];
+        for (int i = 0; i < 3; i++) {
+            Ht1[i] = dot3(H + 3 * i, t1);
+            Ht2[i] = dot3(H + 3 * i, t2);
+        }
+        double a = 1.0 + d * dot3(t1, Ht1) / gn, c = 1.0 + d * dot3(t2, Ht2) / gn;
+        double b = d * 0.5 * (dot3(t1, Ht2) + dot3(t2, Ht1)) / gn;
+        /* eigen-decomposition of [[a, b], [b, c]] */
+        double mm = 0.5 * (a + c), rr = hypot(0.5 * (a - c), b), th = 0.5 * atan2(2.0 * b, a - c);
+        double lam[2] = {mm + rr, mm - rr};
+        double ev[2][2] = {{cos(th), sin(th)}, {-sin(th), cos(th)}};
+        double v2[2] = {0.0, 0.0};
+        for (int k = 0; k < 2; k++) {
+            double l = fmax(fabs(lam[k]), 1e-12);
+            double c_k = (ev[k][0] * gr[0] + ev[k][1] * gr[1]) / l;
+            v2[0] -= c_k * ev[k][0];
+            v2[1] -= c_k * ev[k][1];
+        }
+        double v[3];
+        for (int j = 0; j < 3; j++) v[j] = v2[0] * t1[j] + v2[1] * t2[j];
+        double step = sqrt(dot3(v, v));
+        if (!(step > 0.0)) break;
+        if (step <= 1e-6 * s->scale) {
+            /* Quadratic basin: f = |p - q|^2/2 resolves the tangential
+             * position only to sqrt(eps), so a decrease test would stop
+             * early; take the full step, whose error is O(step^2). */
+            double pt[3] = {p[0] + v[0], p[1] + v[1], p[2] + v[2]};
+            if (!project(s, pt)) break;
+            memcpy(p, pt, sizeof pt);
+            f = 0.5 * dist2_to(p, q);
+            if (step <= 1e-12 * s->scale) break;
+            continue;
+        }
+        double lamb = step > maxstep ? maxstep / step : 1.0;
+        int moved = 0;
+        for (int ls = 0; ls < 50; ls++, lamb *= 0.5) {
+            double pt[3] = {p[0] + lamb * v[0], p[1] + lamb * v[1], p[2] + lamb * v[2]};
+            if (!project(s, pt)) continue;
+            double ft = 0.5 * dist2_to(pt, q);
+            if (ft < f) {
+                memcpy(p, pt, sizeof pt);
+                f = ft;
+                moved = 1;
+                break;
+            }
+        }
+        /* no decrease at any step length: give the acceptance test the say */
+        if (!moved) break;
     }
     return accept_foot(s, q, p);
 }
@@ -623,7 +696,7 @@ static int ceres_foot(const dfl_implicit *s, const double q[3], const double p0[
     lsq_user U = {s, q};
     dfl_lsq_options opt;
     dfl_lsq_options_default(&opt);
-    opt.max_iterations = s->opt.max_iterations;
+    opt.max_iterations = s->opt.ceres_max_iterations;
     dfl_lsq_result res;
     if (dfl_lsq_solve(s->lsq, 3, 4, foot_residual, &U, lo, hi, &opt, p, &res, NULL) != DFL_OK)
         return 0;
@@ -715,7 +788,7 @@ dfl_status dfl_implicit_jet(const dfl_implicit *s, const dfl_footpoint *foot, co
     g_local(s, p, G, H);
     double t = foot->t;
     foot_jacobian(G, H, t, J);
-    if (!lu4(J, piv))
+    if (!lu4(J, piv, 1e-13))
         return dfl_err_set(err, DFL_E_NUMERIC,
                            "implicit jet at (%g, %g, %g): singular footpoint system (focal point)",
                            x[0], x[1], x[2]);
@@ -822,8 +895,8 @@ dfl_status dfl_implicit_new(int nterms, const dfl_monomial *terms, const double 
     if (o2.resolution < 8 || o2.resolution > 1024)
         return dfl_err_set(err, DFL_E_INPUT, "implicit: resolution %d outside [8, 1024]",
                            o2.resolution);
-    if (o2.max_iterations < 1)
-        return dfl_err_set(err, DFL_E_INPUT, "implicit: max_iterations must be >= 1");
+    if (o2.max_iterations < 1 || o2.ceres_max_iterations < 1)
+        return dfl_err_set(err, DFL_E_INPUT, "implicit: iteration limits must be >= 1");
     for (int a = 0; a < 3; a++)
         if (!(lo[a] < hi[a]) || !isfinite(lo[a]) || !isfinite(hi[a]))
             return dfl_err_set(err, DFL_E_INPUT, "implicit: empty bounding box on axis %d", a);

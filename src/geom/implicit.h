@@ -15,8 +15,10 @@
  * DFL_IMPLICIT_MAX_STARTS, the nearest kept).
  *
  * Backends (one interface, chosen by dfl_implicit_options.backend):
- *   NEWTON  in-house Newton on the square system F(p, t) = (p - x + t grad g,
- *           g) with Jacobian [[I + t H, grad g], [grad g^T, 0]]; no allocation.
+ *   NEWTON  in-house Riemannian Newton on the surface: minimizes |p - x|^2/2
+ *           over g = 0 with tangent-plane Newton steps (Hessian I + d W, W
+ *           the shape operator) and projection onto g = 0 as retraction;
+ *           no allocation.  Robust where a circle of footpoints nearly ties.
  *   CERES   Levenberg-Marquardt (src/solve/lsq.h) on the residuals
  *           (g(p), grad g(p) x (p - x)) with p boxed in x +- (D0 + 2 h)
  *           (the footpoint lies in the ball of radius D0 around x, and
@@ -58,7 +60,9 @@ typedef enum dfl_foot_backend {
 typedef struct dfl_implicit_options {
     dfl_foot_backend backend;   /* default NEWTON */
     int resolution;             /* sample grid nodes along the longest bbox side; default 64, >= 8 */
-    int max_iterations;         /* per start; default 50 */
+    int max_iterations;         /* Newton steps per start; default 100 */
+    int ceres_max_iterations;   /* LM iterations per start; default 1000 (LM crawls
+                                   along the curved valley near the medial axis) */
 } dfl_implicit_options;
 
 void dfl_implicit_options_default(dfl_implicit_options *opt);

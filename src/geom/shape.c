@@ -21,16 +21,29 @@ static int finite_vec(int n, const double *a)
     return 1;
 }
 
+/* Drops coefficients above absolute order K (keeps at least one). */
+static void jet_truncate(dfl_jet *a, int K)
+{
+    if (a->zero) return;
+    int keep = K - a->v + 1;
+    if (keep >= 1 && a->n > keep) a->n = keep;
+}
+
 /* Jet of s -> sqrt(q0 + q1 s + q2 s^2) to order K.  The polynomial is exact,
  * so the jet module's valuation makes the centre/axis cases (q0 = q1 = 0)
- * exact too: sqrt of a series starting at s^2 starts at s. */
+ * exact too: sqrt of a series starting at s^2 starts at s.  Halving the
+ * valuation costs one order of relative precision, so the polynomial is
+ * taken one order further (it is exact anyway) and the result cut back to K
+ * (at K = DFL_JET_MAX that one order is lost). */
 static dfl_status jet_sqrt_quad(double q0, double q1, double q2, int K, dfl_jet *out,
                                 dfl_err *err)
 {
     double a[3] = {q0, q1, q2};
     dfl_jet q;
-    dfl_jet_poly(a, 3, K, &q);
-    return dfl_jet_sqrt(&q, out, err);
+    dfl_jet_poly(a, 3, K < DFL_JET_MAX ? K + 1 : K, &q);
+    dfl_status st = dfl_jet_sqrt(&q, out, err);
+    if (st == DFL_OK) jet_truncate(out, K);
+    return st;
 }
 
 /* ---- circle / sphere ----------------------------------------------------- */
@@ -496,6 +509,11 @@ static dfl_status segment_jet(const void *impl, const double *x, const double *d
         w0[j] = u[j] - t0 * sg->e[j];
         w1[j] = dir[j] - t1 * sg->e[j];
     }
+    /* A point on the segment up to rounding is on it: the distance has a
+     * kink there, and only an exactly zero offset gives the jet module the
+     * valuation that makes the one-sided jet |w1| s exact. */
+    if (dot(n, w0, w0) <= 1e-28 * (dot(n, u, u) + sg->ee))
+        for (int j = 0; j < n; j++) w0[j] = 0.0;
     return jet_sqrt_quad(dot(n, w0, w0), 2.0 * dot(n, w0, w1), dot(n, w1, w1), K, out, err);
 }
 

@@ -1,0 +1,127 @@
+/* bs04 joining operations (sec. 2.2 and 4.2) on non-negative part fields
+ * h_1..h_n (h_i = 0 exactly on part i), in values + gradients and in jets.
+ *
+ * R-equivalence of order p (eq. 6), for n parts (associative):
+ *     u = (sum_i h_i^(-p))^(-1/p) = h_min (sum_i (h_min / h_i)^p)^(-1/p),
+ * evaluated in the second form (ratios <= 1: nothing overflows, nothing
+ * divides by zero; u = 0 when some h_i = 0).  du/dh_i = (u / h_i)^(p+1).
+ * At an interior point of part i (h_i = s, the others positive):
+ *     u = h_i (1 + h_i^p C)^(-1/p) = h_i - h_i^(p+1) C / p + ...,
+ * C = sum_(j != i) h_j^(-p): normalized to order p exactly (d^(p+1)u/ds^(p+1)
+ * = -(p+1)! C / p != 0) when h_i is normalized to order >= p.
+ *
+ * R-conjunction of order p (eq. 7), a left fold in part order (it is not
+ * associative, bs04 sec. 2.2):  u = ((h_1 ^ h_2) ^ h_3) ^ ... with
+ *     a ^ b = a + b - (a^p + b^p)^(1/p)
+ *           = lo - hi ((1 + (lo/hi)^p)^(1/p) - 1),  lo = min, hi = max,
+ * the second form without cancellation (log1p / expm1).  For a = s, b > 0:
+ * a ^ b = a - a^p b^(1-p) / p + ...: normalized to order p - 1.  p must be
+ * >= 2: for p = 1 and non-negative arguments a ^ b = 0 identically.
+ *
+ * Corrected R-equivalence (eq. 20) with q_v = |x - v| for shared vertices v:
+ *     u = (sum_i h_i^(-p) - sum_v q_v^(-p))^(-1/p).
+ * In the hatched sector of a vertex (closest point of both adjacent parts
+ * is v) exact distances give h_i = h_j = q_v and u = q_v: |grad u| = 1
+ * where eq. 6 gives 2^(-1/p).  Eq. 20 relies on h_i <= q_v for the parts
+ * i, j adjacent to v (true for exact distances: the distance to a part is
+ * at most the distance to its end point).  Trimmed fields break it beyond
+ * the end points: h = q (1 + c q/d + ...) there (trim.h), so
+ * (h_i/q)^(-p) + (h_j/q)^(-p) - 1 ~ 2 exp(-p c q/d) - 1 turns negative at
+ * q/d ~ ln 2/(p c) (6% of the segment for p = 12): u blows up or is
+ * undefined.  dflab therefore subtracts, per vertex,
+ *     qt_v^(-p),  qt_v = max(q_v, h_i, h_j)          (guard)
+ * which is q_v^(-p) whenever h_i, h_j <= q_v (always for exact distances:
+ * eq. 20 verbatim) and otherwise removes no more than one adjacent part
+ * contributes; on open polylines S = sum h^-p - sum qt^-p >= h_min^(-p)
+ * (each vertex term is charged to one part), so u <= h_min.  On closed
+ * polylines S >= 0 only, so u is also floored:
+ *     u = (max(S, (2 h_min)^(-p)))^(-1/p)  (u <= 2 h_min).
+ * The guard is continuous but not differentiable where h_i = q_v (only
+ * where trimming errors occur); the floor binds only far from the set.
+ * Jets: exact along rays with the valuation rules of core/jet.h; a part
+ * whose jet is zero (the ray runs inside the part) makes u zero.
+ */
+#ifndef DFL_RFUNC_JOIN_H
+#define DFL_RFUNC_JOIN_H
+
+#include <stddef.h>
+
+#include "core/jet.h"
+#include "core/status.h"
+
+typedef enum dfl_rfunc_join {
+    DFL_RFUNC_REQUIV = 0,         /* eq. 6 */
+    DFL_RFUNC_RCONJ,              /* eq. 7, left fold */
+    DFL_RFUNC_REQUIV_CORRECTED    /* eq. 20 with the floor above */
+} dfl_rfunc_join;
+
+/* Largest supported order p (integer powers by repeated squaring). */
+#define DFL_RFUNC_P_MAX 64
+
+/* Config name: "requiv", "rconj", "requiv_corrected". */
+const char *dfl_rfunc_join_name(dfl_rfunc_join join);
+
+/* Checks p against the join: DFL_E_INPUT unless 1 <= p <= DFL_RFUNC_P_MAX,
+ * and p >= 2 for R-conjunction. */
+dfl_status dfl_rfunc_join_check(dfl_rfunc_join join, int p, dfl_err *err);
+
+/* x^p for integer p >= 0 by repeated squaring (no pow()). */
+double dfl_rfunc_ipow(double x, int p);
+
+/* eq. 14: partial derivatives of eq. 6 (two arguments) in polar coordinates
+ * of the (h1, h2) plane, h1 = rho cos(phi), h2 = rho sin(phi), phi in
+ * [0, pi/2]:  F1 = dF/dh1 = sin^(p+1) / (cos^p + sin^p)^((p+1)/p),
+ *             F2 = dF/dh2 = cos^(p+1) / (cos^p + sin^p)^((p+1)/p).
+ * eq. 13 then bounds |grad u| between |F1 - F2| and F1 + F2 when
+ * |grad h1| = |grad h2| = 1. */
+void dfl_rfunc_requiv_partials_polar(double phi, int p, double *F1, double *F2);
+
+/* Two-argument joins with partial derivatives (pointers may be NULL);
+ * arguments >= 0. */
+double dfl_rfunc_requiv2(double h1, double h2, int p, double *F1, double *F2);
+double dfl_rfunc_rconj2(double a, double b, int p, double *Fa, double *Fb);
+
+/* Streaming accumulator: add the parts in order (and, for the corrected
+ * join, the vertex distances in any order), then read u and its gradient.
+ * No allocation; dim <= 3. */
+typedef struct dfl_rfunc_acc {
+    dfl_rfunc_join join;
+    int p, dim, grad;
+    int zero;            /* some h_i == 0: u = 0 */
+    int qzero;           /* some q_v == 0 while no h_i == 0 */
+    int nh;              /* parts added */
+    double m;            /* scale: running min of all h and q */
+    double S, Sq;        /* sum (m/h_i)^p, sum (m/q_v)^p */
+    double V[3], Vq[3];  /* sum (m/h)^(p+1) grad h, same for q */
+    double hmin, ghmin[3];
+    double u, gu[3];     /* R-conjunction fold state */
+} dfl_rfunc_acc;
+
+/* grad != 0: gradients are accumulated (then every add needs one). */
+void dfl_rfunc_acc_begin(dfl_rfunc_acc *acc, dfl_rfunc_join join, int p, int dim, int grad);
+void dfl_rfunc_acc_add(dfl_rfunc_acc *acc, double h, const double *gh);
+/* Corrected join only: the guarded distance qt >= 0 of a shared vertex
+ * (dfl_rfunc_guard). */
+void dfl_rfunc_acc_add_q(dfl_rfunc_acc *acc, double q, const double *gq);
+
+/* The corrected join's guard qt = max(q, hi, hj) of a vertex with adjacent
+ * parts i, j; its gradient (dim doubles) is that of the maximum (g may be
+ * NULL; the input gradients may then be NULL too). */
+double dfl_rfunc_guard(int dim, double q, const double *gq, double hi, const double *ghi,
+                       double hj, const double *ghj, double *g);
+/* The same on jets: the larger branch as s -> 0+. */
+void dfl_rfunc_guard_jet(const dfl_jet *q, const dfl_jet *hi, const dfl_jet *hj, dfl_jet *out);
+/* 1 when u is already known to be 0 (remaining parts can be skipped). */
+int dfl_rfunc_acc_is_zero(const dfl_rfunc_acc *acc);
+/* u (and gradient into gu when accumulated; gu may be NULL).  Needs at
+ * least one part.  u = 0 and gradient 0 on the zero set. */
+double dfl_rfunc_acc_end(const dfl_rfunc_acc *acc, double *gu);
+
+/* Jet of the join from the parts' jets h[0..n-1] (n >= 1) and, for the
+ * corrected join, the guarded vertex distances' jets q[0..nq-1] (ignored
+ * otherwise).  DFL_E_NUMERIC if coefficients overflow (a ray through one
+ * part within ~1e-25 of another one). */
+dfl_status dfl_rfunc_join_jet(dfl_rfunc_join join, int p, size_t n, const dfl_jet *h,
+                              size_t nq, const dfl_jet *q, dfl_jet *out, dfl_err *err);
+
+#endif

@@ -1,0 +1,332 @@
+#include "rfunc/rfield.h"
+
+#include <assert.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rfunc/region.h"
+
+typedef enum part_kind { PART_SEGMENT, PART_TRIANGLE, PART_POINT, PART_REGION } part_kind;
+
+typedef struct part {
+    part_kind kind;
+    union {
+        dfl_rfunc_seg seg;
+        dfl_rfunc_tri tri;
+        dfl_rfunc_point pt;
+        dfl_rfunc_region reg;
+    } u;
+} part;
+
+/* A shared vertex of the corrected join; lo < hi are its adjacent parts.
+ * The eval loop handles it right after part hi, when h_hi is at hand and
+ * h_lo is either the previous part, the first one, or re-evaluated. */
+typedef struct vertex {
+    double x[3];
+    size_t lo, hi;
+} vertex;
+
+struct dfl_rfield {
+    int dim;
+    dfl_rfunc_join join;
+    int p;
+    part *parts;
+    size_t n, cap;
+    vertex *verts;  /* sorted by hi at finish */
+    size_t nv, vcap;
+    size_t *vstart; /* n + 1 offsets into verts by hi (after finish) */
+};
+
+dfl_status dfl_rfield_new(int dim, dfl_rfunc_join join, int p, dfl_rfield **out, dfl_err *err)
+{
+    if (dim != 2 && dim != 3)
+        return dfl_err_set(err, DFL_E_INPUT, "rfunc field: dimension %d (expected 2 or 3)", dim);
+    dfl_status st = dfl_rfunc_join_check(join, p, err);
+    if (st != DFL_OK) return st;
+    dfl_rfield *r = calloc(1, sizeof *r);
+    if (!r) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    r->dim = dim;
+    r->join = join;
+    r->p = p;
+    *out = r;
+    return DFL_OK;
+}
+
+void dfl_rfield_free(dfl_rfield *r)
+{
+    if (!r) return;
+    for (size_t i = 0; i < r->n; i++)
+        if (r->parts[i].kind == PART_REGION) dfl_rfunc_region_free(&r->parts[i].u.reg);
+    free(r->parts);
+    free(r->verts);
+    free(r->vstart);
+    free(r);
+}
+
+size_t dfl_rfield_count(const dfl_rfield *r) { return r->n; }
+
+static dfl_status push(dfl_rfield *r, const part *pt, dfl_err *err)
+{
+    if (r->n == r->cap) {
+        size_t cap = r->cap ? 2 * r->cap : 16;
+        part *np = realloc(r->parts, cap * sizeof *np);
+        if (!np) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+        r->parts = np;
+        r->cap = cap;
+    }
+    r->parts[r->n++] = *pt;
+    return DFL_OK;
+}
+
+dfl_status dfl_rfield_add_segment(dfl_rfield *r, const double *a, const double *b,
+                                  dfl_rfunc_trim trim, dfl_err *err)
+{
+    part pt;
+    memset(&pt, 0, sizeof pt);
+    pt.kind = PART_SEGMENT;
+    dfl_status st = dfl_rfunc_seg_init(r->dim, a, b, trim, &pt.u.seg, err);
+    if (st != DFL_OK) return st;
+    return push(r, &pt, err);
+}
+
+dfl_status dfl_rfield_add_triangle(dfl_rfield *r, const double *A, const double *B,
+                                   const double *C, const dfl_rfunc_tri_opts *o, dfl_err *err)
+{
+    if (r->dim != 3)
+        return dfl_err_set(err, DFL_E_INPUT, "rfunc field: triangles need dimension 3");
+    part pt;
+    memset(&pt, 0, sizeof pt);
+    pt.kind = PART_TRIANGLE;
+    dfl_status st = dfl_rfunc_tri_init(A, B, C, o, &pt.u.tri, err);
+    if (st != DFL_OK) return st;
+    return push(r, &pt, err);
+}
+
+dfl_status dfl_rfield_add_point(dfl_rfield *r, const double *c, dfl_err *err)
+{
+    part pt;
+    memset(&pt, 0, sizeof pt);
+    pt.kind = PART_POINT;
+    dfl_status st = dfl_rfunc_point_init(r->dim, c, &pt.u.pt, err);
+    if (st != DFL_OK) return st;
+    return push(r, &pt, err);
+}
+
+dfl_status dfl_rfield_add_region(dfl_rfield *r, const double *v, size_t n, dfl_err *err)
+{
+    if (r->dim != 2)
+        return dfl_err_set(err, DFL_E_INPUT, "rfunc field: polygon regions need dimension 2");
+    part pt;
+    memset(&pt, 0, sizeof pt);
+    pt.kind = PART_REGION;
+    dfl_status st = dfl_rfunc_region_init(v, n, &pt.u.reg, err);
+    if (st != DFL_OK) return st;
+    st = push(r, &pt, err);
+    if (st != DFL_OK) dfl_rfunc_region_free(&pt.u.reg);
+    return st;
+}
+
+dfl_status dfl_rfield_add_vertex(dfl_rfield *r, const double *v, size_t i, size_t j,
+                                 dfl_err *err)
+{
+    vertex vx;
+    memset(&vx, 0, sizeof vx);
+    for (int k = 0; k < r->dim; k++) {
+        if (!isfinite(v[k])) return dfl_err_set(err, DFL_E_INPUT, "vertex: non-finite coordinate");
+        vx.x[k] = v[k];
+    }
+    if (i == j) return dfl_err_set(err, DFL_E_INPUT, "vertex: adjacent parts must differ");
+    vx.lo = i < j ? i : j;
+    vx.hi = i < j ? j : i;
+    if (r->nv == r->vcap) {
+        size_t cap = r->vcap ? 2 * r->vcap : 16;
+        vertex *nv = realloc(r->verts, cap * sizeof *nv);
+        if (!nv) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+        r->verts = nv;
+        r->vcap = cap;
+    }
+    r->verts[r->nv++] = vx;
+    return DFL_OK;
+}
+
+/* ---- field ops --------------------------------------------------------- */
+
+static double part_eval(const part *pt, const double *x, double *g)
+{
+    switch (pt->kind) {
+    case PART_SEGMENT: return dfl_rfunc_seg_eval(&pt->u.seg, x, g);
+    case PART_TRIANGLE: return dfl_rfunc_tri_eval(&pt->u.tri, x, g);
+    case PART_POINT: return dfl_rfunc_point_eval(&pt->u.pt, x, g);
+    case PART_REGION: return dfl_rfunc_region_eval(&pt->u.reg, x, g);
+    }
+    assert(0);
+    return NAN;
+}
+
+static dfl_status part_jet(const part *pt, const double *x, const double *dir, int K,
+                           dfl_jet *out, dfl_err *err)
+{
+    switch (pt->kind) {
+    case PART_SEGMENT: return dfl_rfunc_seg_jet(&pt->u.seg, x, dir, K, out, err);
+    case PART_TRIANGLE: return dfl_rfunc_tri_jet(&pt->u.tri, x, dir, K, out, err);
+    case PART_POINT: return dfl_rfunc_point_jet(&pt->u.pt, x, dir, K, out, err);
+    case PART_REGION: return dfl_rfunc_region_jet(&pt->u.reg, x, dir, K, out, err);
+    }
+    return dfl_err_set(err, DFL_E_INTERNAL, "rfunc field: unknown part kind");
+}
+
+static double vertex_q(int dim, const vertex *v, const double *x, double *g)
+{
+    double w[3] = {0, 0, 0};
+    for (int j = 0; j < dim; j++) w[j] = x[j] - v->x[j];
+    const double q = dim == 2 ? hypot(w[0], w[1]) : hypot(hypot(w[0], w[1]), w[2]);
+    if (g)
+        for (int j = 0; j < dim; j++) g[j] = q > 0.0 ? w[j] / q : 0.0;
+    return q;
+}
+
+static void rfield_eval(const void *ctx, size_t m, const double *pts, double *val, double *grad)
+{
+    const dfl_rfield *r = ctx;
+    const int dim = r->dim, want = grad != NULL;
+    const int corrected = r->join == DFL_RFUNC_REQUIV_CORRECTED;
+    for (size_t i = 0; i < m; i++) {
+        const double *x = pts + i * (size_t)dim;
+        dfl_rfunc_acc acc;
+        /* current, previous and first part, for the vertex guards */
+        double h = 0, hprev = 0, hfirst = 0;
+        double g[3] = {0, 0, 0}, gprev[3] = {0, 0, 0}, gfirst[3] = {0, 0, 0};
+        dfl_rfunc_acc_begin(&acc, r->join, r->p, dim, want);
+        for (size_t k = 0; k < r->n && !dfl_rfunc_acc_is_zero(&acc); k++) {
+            if (k > 0) {
+                hprev = h;
+                memcpy(gprev, g, sizeof g);
+            }
+            h = part_eval(&r->parts[k], x, want ? g : NULL);
+            if (k == 0) {
+                hfirst = h;
+                memcpy(gfirst, g, sizeof g);
+            }
+            dfl_rfunc_acc_add(&acc, h, want ? g : NULL);
+            if (!corrected) continue;
+            for (size_t iv = r->vstart[k]; iv < r->vstart[k + 1]; iv++) {
+                const vertex *v = &r->verts[iv];
+                double gq[3], glo[3], gt[3];
+                double hlo;
+                const double *gl = glo;
+                if (v->lo + 1 == k) {
+                    hlo = hprev;
+                    gl = gprev;
+                } else if (v->lo == 0) {
+                    hlo = hfirst;
+                    gl = gfirst;
+                } else {
+                    hlo = part_eval(&r->parts[v->lo], x, want ? glo : NULL);
+                }
+                const double q = vertex_q(dim, v, x, want ? gq : NULL);
+                const double qt = dfl_rfunc_guard(dim, q, gq, hlo, gl, h, g, want ? gt : NULL);
+                dfl_rfunc_acc_add_q(&acc, qt, want ? gt : NULL);
+            }
+        }
+        val[i] = dfl_rfunc_acc_end(&acc, want ? grad + i * (size_t)dim : NULL);
+    }
+}
+
+static dfl_status rfield_jet(const void *ctx, const double *x, const double *dir, int K,
+                             dfl_jet *out, dfl_err *err)
+{
+    const dfl_rfield *r = ctx;
+    const size_t nq = r->join == DFL_RFUNC_REQUIV_CORRECTED ? r->nv : 0;
+    dfl_jet *jets = malloc((r->n + nq) * sizeof *jets);
+    if (!jets) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    dfl_status st = DFL_OK;
+    for (size_t k = 0; k < r->n && st == DFL_OK; k++)
+        st = part_jet(&r->parts[k], x, dir, K, &jets[k], err);
+    for (size_t k = 0; k < nq && st == DFL_OK; k++) {
+        const vertex *v = &r->verts[k];
+        dfl_rfunc_point pt;
+        dfl_jet q;
+        st = dfl_rfunc_point_init(r->dim, v->x, &pt, err);
+        if (st == DFL_OK) st = dfl_rfunc_point_jet(&pt, x, dir, K, &q, err);
+        if (st == DFL_OK) dfl_rfunc_guard_jet(&q, &jets[v->lo], &jets[v->hi], &jets[r->n + k]);
+    }
+    if (st == DFL_OK)
+        st = dfl_rfunc_join_jet(r->join, r->p, r->n, jets, nq, jets + r->n, out, err);
+    free(jets);
+    return st;
+}
+
+static void rfield_destroy(void *ctx) { dfl_rfield_free(ctx); }
+
+static const dfl_field_ops rfield_ops = {"rfunc", rfield_eval, rfield_jet, rfield_destroy};
+
+dfl_status dfl_rfield_finish(dfl_rfield **r, dfl_field *out, dfl_err *err)
+{
+    dfl_rfield *f = *r;
+    *r = NULL;
+    if (!f) return dfl_err_set(err, DFL_E_INTERNAL, "rfunc field: no builder");
+    dfl_status st = DFL_OK;
+    if (f->n == 0) st = dfl_err_set(err, DFL_E_INPUT, "rfunc field: no parts");
+    for (size_t i = 0; i < f->nv && st == DFL_OK; i++)
+        if (f->verts[i].hi >= f->n)
+            st = dfl_err_set(err, DFL_E_INPUT, "rfunc field: vertex %zu names part %zu of %zu",
+                             i + 1, f->verts[i].hi + 1, f->n);
+    /* Counting sort of the vertices by their later part. */
+    vertex *sorted = NULL;
+    if (st == DFL_OK) {
+        f->vstart = calloc(f->n + 1, sizeof *f->vstart);
+        sorted = malloc((f->nv ? f->nv : 1) * sizeof *sorted);
+        if (!f->vstart || !sorted) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    }
+    if (st != DFL_OK) {
+        free(sorted);
+        dfl_rfield_free(f);
+        return st;
+    }
+    for (size_t i = 0; i < f->nv; i++) f->vstart[f->verts[i].hi + 1]++;
+    for (size_t k = 0; k < f->n; k++) f->vstart[k + 1] += f->vstart[k];
+    for (size_t i = 0; i < f->nv; i++) {
+        size_t *slot = &f->vstart[f->verts[i].hi];
+        sorted[(*slot)++] = f->verts[i];
+    }
+    /* The fill advanced vstart[k] to the start of k+1: shift back. */
+    for (size_t k = f->n; k > 0; k--) f->vstart[k] = f->vstart[k - 1];
+    f->vstart[0] = 0;
+    free(f->verts);
+    f->verts = sorted;
+    f->vcap = f->nv;
+    out->dim = f->dim;
+    out->ops = &rfield_ops;
+    out->ctx = f;
+    return DFL_OK;
+}
+
+dfl_status dfl_rfield_polyline(int dim, const double *v, size_t n, bool closed,
+                               dfl_rfunc_join join, int p, dfl_rfunc_trim trim, dfl_field *out,
+                               dfl_err *err)
+{
+    if (n < (closed ? 3u : 2u))
+        return dfl_err_set(err, DFL_E_INPUT, "polyline: %zu vertices (need at least %d%s)", n,
+                           closed ? 3 : 2, closed ? " when closed" : "");
+    dfl_rfield *r;
+    dfl_status st = dfl_rfield_new(dim, join, p, &r, err);
+    if (st != DFL_OK) return st;
+    const size_t nseg = closed ? n : n - 1;
+    for (size_t i = 0; i < nseg && st == DFL_OK; i++) {
+        st = dfl_rfield_add_segment(r, v + i * (size_t)dim, v + ((i + 1) % n) * (size_t)dim, trim,
+                                    err);
+        if (st != DFL_OK)
+            dfl_err_prefix(err, "polyline segment %zu (vertices %zu and %zu)", i + 1, i + 1,
+                           (i + 1) % n + 1);
+    }
+    /* Vertex i joins segments i-1 and i (vertex 0 of a closed polyline:
+     * the closing segment n-1 and segment 0). */
+    for (size_t i = closed ? 0 : 1; i < (closed ? n : n - 1) && st == DFL_OK; i++)
+        st = dfl_rfield_add_vertex(r, v + i * (size_t)dim, i == 0 ? n - 1 : i - 1, i, err);
+    if (st != DFL_OK) {
+        dfl_rfield_free(r);
+        return st;
+    }
+    return dfl_rfield_finish(&r, out, err);
+}

@@ -1,0 +1,47 @@
+/* Small helpers shared by the rfunc tests (header-only, static). */
+#ifndef DFL_TESTS_RFUNC_UTIL_H
+#define DFL_TESTS_RFUNC_UTIL_H
+
+#include <math.h>
+#include <stdint.h>
+
+#include "core/jet.h"
+#include "field/field.h"
+
+#define TU_PI 3.14159265358979323846
+
+/* Deterministic uniform numbers in [lo, hi) (splitmix64). */
+static inline double tu_uniform(uint64_t *state, double lo, double hi)
+{
+    uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return lo + (hi - lo) * ((double)(z >> 11) * 0x1.0p-53);
+}
+
+/* Central finite-difference gradient with step hstep. */
+static inline void tu_fd_grad(const dfl_field *f, const double *x, double hstep, double *g)
+{
+    for (int j = 0; j < f->dim; j++) {
+        double xp[3] = {x[0], x[1], f->dim == 3 ? x[2] : 0.0};
+        double xm[3] = {x[0], x[1], f->dim == 3 ? x[2] : 0.0};
+        xp[j] += hstep;
+        xm[j] -= hstep;
+        /* The actual step after rounding of the coordinates. */
+        const double hh = xp[j] - xm[j];
+        g[j] = (dfl_field_eval1(f, xp, NULL) - dfl_field_eval1(f, xm, NULL)) / hh;
+    }
+}
+
+static inline double tu_norm(int dim, const double *v)
+{
+    double s = 0.0;
+    for (int j = 0; j < dim; j++) s += v[j] * v[j];
+    return sqrt(s);
+}
+
+/* Taylor coefficient of s^k (d_k / k!). */
+static inline double tu_coeff(const dfl_jet *j, int k) { return dfl_jet_coeff(j, k); }
+
+#endif
