@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """Writes results/REPORT.md from the results directories of `make reproduce`.
 
-Each results/<name>/ holding a manifest.json is one study run.  A renderer in
-scripts/sections/<study>.py (function render(ctx) -> markdown) writes its
-section: tables beside the paper's values (results/reference/), figures as
-PNG in results/figures/.  Studies without a renderer get their CSV as a table.
+Each results/<name>/ holding a manifest.json is one study run.  A module
+scripts/sections/<study>.py renders its section: render(ctx) -> markdown, with
+tables beside the paper's values (ctx.ref("bs04_facts.csv")) and figures as
+PNG (ctx.figure(fig, stem)); an optional list ASSUMPTIONS names the settings
+the paper leaves open, gathered per paper.  Studies without a module get
+their CSV as a table.
 Every figure and table names the config it came from."""
 import argparse
 import importlib
@@ -105,22 +107,28 @@ def main():
         if p not in groups:
             continue
         out += [f"## {TITLES.get(p, p)}", ""]
-        try:
-            mod = importlib.import_module(f"sections.{p}")
-        except ModuleNotFoundError:
-            mod = None
-        if mod and hasattr(mod, "assumptions"):
-            out += ["### Assumptions", "", mod.assumptions().strip(), ""]
+        assumptions = []
+        body = []
         for r in groups[p]:
-            out += [f"### {r.name} (`{r.config}`, study `{r.study}`)", ""]
+            body += [f"### {r.name} (`{r.config}`, study `{r.study}`)", ""]
             try:
-                fn = getattr(mod, "render_" + r.study, None) if mod else None
-                out.append((fn or generic)(r))
+                try:
+                    mod = importlib.import_module(f"sections.{r.study}")
+                except ModuleNotFoundError:
+                    mod = None
+                for line in getattr(mod, "ASSUMPTIONS", []):
+                    if line not in assumptions:
+                        assumptions.append(line)
+                body.append((getattr(mod, "render", None) or generic)(r))
             except Exception:  # a broken section must not hide the others
                 failures += 1
-                out += ["```", traceback.format_exc(), "```"]
-            out.append(f"Wall time: {r.manifest.get('total_wall_seconds', 0):.2f} s; "
-                       f"dflab {r.manifest.get('version')} ({r.manifest.get('git_revision')}).\n")
+                body += ["```", traceback.format_exc(), "```"]
+            body.append(f"Wall time: {r.manifest.get('total_wall_seconds', 0):.2f} s; "
+                        f"dflab {r.manifest.get('version')} ({r.manifest.get('git_revision')}).\n")
+        if assumptions:
+            out += ["### Assumptions (settings the paper leaves open)", ""]
+            out += [f"- {a}" for a in assumptions] + [""]
+        out += body
     tmp = a.out + ".tmp"
     with open(tmp, "w") as fp:
         fp.write("\n".join(out) + "\n")

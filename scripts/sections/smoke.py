@@ -2,7 +2,7 @@
 import dflio
 
 
-def render_smoke(ctx):
+def render(ctx):
     rows = ctx.csv()
     cols = [c for c in ("grid.n", "dim", "nodes", "l1", "mse", "rms", "linf", "graddefect_mean",
                         "l1_band", "linf_band") if c in rows[0]]
