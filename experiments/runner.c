@@ -87,9 +87,9 @@ dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
     if (!study) {
         char w[600];
         dfl_cfg_where(cfg, "study", "name", w, sizeof w);
-        dfl_cfg_free(cfg);
-        return dfl_err_set(err, DFL_E_INPUT, "%s: unknown study '%s' (see `dflab list`)", w,
-                           study_name);
+        dfl_err_set(err, DFL_E_INPUT, "%s: unknown study '%s' (see `dflab list`)", w, study_name);
+        dfl_cfg_free(cfg); /* study_name points into cfg */
+        return DFL_E_INPUT;
     }
 
     char stem[512], outdir[4096], stage[4200];
