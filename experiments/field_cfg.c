@@ -2,10 +2,7 @@
 
 #include "field/exact.h"
 #include "geom/shape.h"
-#if __has_include("rfunc_cfg.h")
 #include "rfunc_cfg.h"
-#define HAVE_RFUNC 1
-#endif
 #include "shape_cfg.h"
 
 dfl_status dfl_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *out, dfl_err *err)
@@ -22,9 +19,5 @@ dfl_status dfl_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *ou
         if (st != DFL_OK) dfl_shape_free(&shape);
         return st;
     }
-#ifdef HAVE_RFUNC
     return dfl_rfunc_field_from_cfg(cfg, sec, out, err);
-#else
-    return dfl_err_set(err, DFL_E_INPUT, "[%s] kind = rfunc: not available in this build", sec);
-#endif
 }

@@ -24,7 +24,11 @@ static dfl_status get_pos(const dfl_cfg *cfg, const char *sec, const char *key, 
 {
     dfl_status st = dfl_cfg_double(cfg, sec, key, -HUGE_VAL, HUGE_VAL, out, err);
     if (st != DFL_OK) return st;
-    if (!(*out > 0.0)) return bad_value(cfg, sec, key, "expected a number > 0", err);
+    if (!(*out > 0.0)) {
+        char why[96];
+        snprintf(why, sizeof why, "expected a number > 0, got %g", *out);
+        return bad_value(cfg, sec, key, why, err);
+    }
     return DFL_OK;
 }
 

@@ -774,10 +774,11 @@ static void csg_eval(const void *impl, size_t m, const double *pts, double *val,
                 else if (h >= 1.0) { v = a; wa = 1; wb = 0; }
                 else {
                     v = b * (1.0 - h) + a * h - k * h * (1.0 - h);
-                    /* dv = (1-h) db + h da + dh (a - b - k + 2kh), dh = (db - da)/(2k) */
-                    double cdh = (a - b - k + 2.0 * k * h) / (2.0 * k);
-                    wa = h - cdh;
-                    wb = 1.0 - h + cdh;
+                    /* dv = (1-h) db + h da + dh (a - b - k + 2kh), and with
+                     * h = 1/2 + (b - a)/(2k) the last factor vanishes: the
+                     * polynomial smin is stationary in h */
+                    wa = h;
+                    wb = 1.0 - h;
                 }
             }
             val[i0 + i] = so * v;
@@ -916,6 +917,40 @@ dfl_status dfl_shape_footpoint(const dfl_shape *s, const double *x, double *p, d
     return dfl_err_set(err, DFL_E_NUMERIC,
                        "footpoint of shape '%s': |d(p)| = %g after 20 projections", s->ops->kind,
                        fabs(d));
+}
+
+dfl_status dfl_shape_derivs_at(const dfl_shape *s, const double *x, dfl_shape_derivs *out,
+                               dfl_err *err)
+{
+    const int n = s->dim;
+    memset(out, 0, sizeof *out);
+    out->d = dfl_shape_eval1(s, x, out->g);
+    dfl_jet j;
+    double D2[3];
+    dfl_status st;
+    for (int i = 0; i < n; i++) {
+        double e[3] = {0, 0, 0};
+        e[i] = 1.0;
+        if ((st = dfl_shape_jet(s, x, e, 2, &j, err)) != DFL_OK) return st;
+        D2[i] = out->H[i * n + i] = dfl_jet_deriv(&j, 2);
+    }
+    for (int i = 0; i < n; i++)
+        for (int k = i + 1; k < n; k++) {
+            double e[3] = {0, 0, 0};
+            e[i] = e[k] = 1.0;
+            if ((st = dfl_shape_jet(s, x, e, 2, &j, err)) != DFL_OK) return st;
+            out->H[i * n + k] = out->H[k * n + i] = 0.5 * (dfl_jet_deriv(&j, 2) - D2[i] - D2[k]);
+        }
+    if (n == 3) {
+        static const double E[4][3] = {{1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
+        double acc = 0.0;
+        for (int m = 0; m < 4; m++) {
+            if ((st = dfl_shape_jet(s, x, E[m], 3, &j, err)) != DFL_OK) return st;
+            acc += E[m][0] * E[m][1] * E[m][2] * dfl_jet_deriv(&j, 3);
+        }
+        out->dxyz = acc / 24.0;
+    }
+    return DFL_OK;
 }
 
 void dfl_shape_free(dfl_shape *s)

@@ -124,6 +124,23 @@ dfl_status dfl_shape_jet(const dfl_shape *s, const double *x, const double *dir,
  * tolerance (p then holds the last iterate). */
 dfl_status dfl_shape_footpoint(const dfl_shape *s, const double *x, double *p, dfl_err *err);
 
+/* Hermite data of the SDF at x (sjp10, hvb25): value, gradient, Hessian and,
+ * in 3D, the mixed third derivative d_xyz, all exact (from jets by
+ * polarization: H_ij = (D2_{e_i+e_j} - D2_{e_i} - D2_{e_j}) / 2 and
+ * d_xyz = 1/24 sum_{e in (1,1,1),(1,1,-1),(1,-1,1),(-1,1,1)} e1 e2 e3 D3_e).
+ * Meaningful where d is C3 around x (off the medial axis and off the
+ * boundaries between closest-feature regions); at a kink the one-sided
+ * values of the jets' directions are mixed.  DFL_E_INPUT if the shape has
+ * no jets. */
+typedef struct dfl_shape_derivs {
+    double d;
+    double g[3];       /* dim entries used */
+    double H[9];       /* dim x dim, row-major, symmetric */
+    double dxyz;       /* 3D only (0 in 2D) */
+} dfl_shape_derivs;
+dfl_status dfl_shape_derivs_at(const dfl_shape *s, const double *x, dfl_shape_derivs *out,
+                               dfl_err *err);
+
 /* Frees impl and zeroes *s.  s may be NULL or already freed. */
 void dfl_shape_free(dfl_shape *s);
 

@@ -88,14 +88,19 @@ double dfl_rfunc_rconj2(double a, double b, int p, double *Fa, double *Fb)
     const int a_hi = a >= b;
     const double hi = a_hi ? a : b, lo = a_hi ? b : a;
     const double r = lo / hi;
-    const double lw = log1p(dfl_rfunc_ipow(r, p)) / p; /* log w, w = (1 + r^p)^(1/p) */
-    const double F = lo - hi * expm1(lw);
-    /* dF/da = 1 - (a / N)^(p-1), N = hi w: for hi, 1 - w^(1-p) = -expm1((1-p) log w);
-     * for lo, 1 - (r / w)^(p-1). */
-    const double d_hi = -expm1((1.0 - p) * lw);
-    const double d_lo = 1.0 - dfl_rfunc_ipow(r * exp(-lw), p - 1);
-    if (Fa) *Fa = a_hi ? d_hi : d_lo;
-    if (Fb) *Fb = a_hi ? d_lo : d_hi;
+    /* w - 1 = (1 + r^p)^(1/p) - 1 = expm1(log1p(r^p) / p): no cancellation in
+     * F = lo - hi (w - 1) when r^p is tiny. */
+    const double wm1 = expm1(log1p(dfl_rfunc_ipow(r, p)) / p);
+    const double F = lo - hi * wm1;
+    if (Fa || Fb) {
+        /* dF/da = 1 - (a / N)^(p-1), N = hi w: 1 - w^(1-p) for hi, 1 - (r/w)^(p-1)
+         * for lo.  Absolute accuracy ~ p eps is what a gradient needs. */
+        const double iw = 1.0 / (1.0 + wm1);
+        const double d_hi = 1.0 - dfl_rfunc_ipow(iw, p - 1);
+        const double d_lo = 1.0 - dfl_rfunc_ipow(r * iw, p - 1);
+        if (Fa) *Fa = a_hi ? d_hi : d_lo;
+        if (Fb) *Fb = a_hi ? d_lo : d_hi;
+    }
     return F;
 }
 

@@ -36,8 +36,11 @@
  * (each vertex term is charged to one part), so u <= h_min.  On closed
  * polylines S >= 0 only, so u is also floored:
  *     u = (max(S, (2 h_min)^(-p)))^(-1/p)  (u <= 2 h_min).
- * The guard is continuous but not differentiable where h_i = q_v (only
- * where trimming errors occur); the floor binds only far from the set.
+ * (S reaches 0 e.g. at the centre of a fine regular polygon whose trimmed
+ * fields all exceed the vertex distances).  The guard is continuous but not
+ * differentiable where h_i = q_v, which only happens where trimming errors
+ * occur; in the hatched sector itself trimmed fields give qt = max(h_i, h_j)
+ * and u = min(h_i, h_j), so |grad u| = 1 + O(q/d) instead of exactly 1.
  * Jets: exact along rays with the valuation rules of core/jet.h; a part
  * whose jet is zero (the ray runs inside the part) makes u zero.
  */
@@ -52,7 +55,7 @@
 typedef enum dfl_rfunc_join {
     DFL_RFUNC_REQUIV = 0,         /* eq. 6 */
     DFL_RFUNC_RCONJ,              /* eq. 7, left fold */
-    DFL_RFUNC_REQUIV_CORRECTED    /* eq. 20 with the floor above */
+    DFL_RFUNC_REQUIV_CORRECTED    /* eq. 20 with the guard and floor above */
 } dfl_rfunc_join;
 
 /* Largest supported order p (integer powers by repeated squaring). */

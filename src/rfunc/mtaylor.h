@@ -48,9 +48,8 @@ void dfl_mt_scale(const dfl_mt *a, double k, dfl_mt *out);
 /* out = a * b truncated at out->deg (<= min(a->deg, b->deg)); out must
  * not alias a or b. */
 void dfl_mt_mul(const dfl_mt *a, const dfl_mt *b, dfl_mt *out);
-/* out = a^e for real e; needs a's constant term > 0 (or e a non-negative
- * integer... not needed here).  Graded Miller recurrence: with a = a0 (1 +
- * g), the homogeneous parts b_d of b = a^e obey
+/* out = a^e for real e; needs a's constant term > 0.  Graded Miller
+ * recurrence: with a = a0 (1 + g), the homogeneous parts b_d of b = a^e obey
  *   d b_d = sum_{j=1..d} ((e + 1) j - d) g_j b_(d-j)
  * (the univariate recurrence in t for a(t delta), where t^d picks the
  * degree-d part).  DFL_E_NUMERIC if a's constant term is not positive.

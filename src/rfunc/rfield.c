@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "rfunc/region.h"
+#include "rfunc/trim.h"
 
 typedef enum part_kind { PART_SEGMENT, PART_TRIANGLE, PART_POINT, PART_REGION } part_kind;
 
@@ -180,7 +181,7 @@ static double vertex_q(int dim, const vertex *v, const double *x, double *g)
 {
     double w[3] = {0, 0, 0};
     for (int j = 0; j < dim; j++) w[j] = x[j] - v->x[j];
-    const double q = dim == 2 ? hypot(w[0], w[1]) : hypot(hypot(w[0], w[1]), w[2]);
+    const double q = dim == 2 ? dfl_rfunc_hyp(w[0], w[1]) : dfl_rfunc_hyp(dfl_rfunc_hyp(w[0], w[1]), w[2]);
     if (g)
         for (int j = 0; j < dim; j++) g[j] = q > 0.0 ? w[j] / q : 0.0;
     return q;

@@ -102,7 +102,7 @@ static double carrier(const dfl_rfunc_seg *s, const double *wa, double *hgF)
     }
     const double s1 = dot(3, wa, s->n1), s2 = dot(3, wa, s->n2);
     for (int j = 0; j < 3; j++) hgF[j] = s1 * s->n1[j] + s2 * s->n2[j];
-    return hypot(s1, s2);
+    return dfl_rfunc_hyp(s1, s2);
 }
 
 double dfl_rfunc_seg_line(const dfl_rfunc_seg *s, const double *x, double *grad)

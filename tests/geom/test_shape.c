@@ -673,3 +673,35 @@ Test(shape, rejects_degenerate_input)
     cr_assert_eq(dfl_shape_csg(DFL_CSG_SMOOTH_UNION, 0, &a, &b, &s, &err), DFL_E_INPUT);
     cr_assert(strstr(err.msg, "k"));
 }
+
+/* Hermite data of a sphere: H = (I - n n^T)/|u|, d_xyz = 3 u_x u_y u_z/|u|^5
+ * (differentiate x/|u| in y, then -x y/|u|^3 in z); of a circle likewise. */
+Test(shape, hermite_derivatives_closed_form)
+{
+    dfl_shape s;
+    cr_assert_eq(dfl_shape_sphere(C3, R3, &s, NULL), DFL_OK);
+    for (int t = 0; t < 20; t++) {
+        double x[3] = {urand(-1, 1), urand(-1, 1), urand(-1, 1)};
+        double u[3] = {x[0] - C3[0], x[1] - C3[1], x[2] - C3[2]}, l = sqrt(dot(3, u, u));
+        dfl_shape_derivs D;
+        cr_assert_eq(dfl_shape_derivs_at(&s, x, &D, NULL), DFL_OK);
+        cr_assert(fabs(D.d - (l - R3)) < 1e-15);
+        for (int i = 0; i < 3; i++) {
+            cr_assert(fabs(D.g[i] - u[i] / l) < 1e-15);
+            for (int j = 0; j < 3; j++) {
+                double want = ((i == j) - u[i] * u[j] / (l * l)) / l;
+                cr_assert(fabs(D.H[3 * i + j] - want) < 1e-13 * (1 + fabs(want)), "H%d%d", i, j);
+            }
+        }
+        double want = 3 * u[0] * u[1] * u[2] / pow(l, 5);
+        cr_assert(fabs(D.dxyz - want) < 1e-12 * (1 + fabs(want)), "%.17g vs %.17g", D.dxyz, want);
+    }
+    dfl_shape_free(&s);
+    cr_assert_eq(dfl_shape_circle(C2, R2, &s, NULL), DFL_OK);
+    double x[2] = {0.4, 0.9}, u[2] = {x[0] - C2[0], x[1] - C2[1]}, l = hypot(u[0], u[1]);
+    dfl_shape_derivs D;
+    cr_assert_eq(dfl_shape_derivs_at(&s, x, &D, NULL), DFL_OK);
+    cr_assert(fabs(D.H[1] + u[0] * u[1] / (l * l * l)) < 1e-14);
+    cr_assert(fabs(D.H[0] - u[1] * u[1] / (l * l * l)) < 1e-14);
+    dfl_shape_free(&s);
+}
