@@ -17,8 +17,13 @@ CXXFLAGS += -std=c++17 -Wall -Wextra $(OPT) -fopenmp $(SAN) -g -I/usr/include/ei
 LDLIBS   += -linih -lceres -lglog -lOpenEXRCore-3_1 -lz -lm
 LDFLAGS  += -fopenmp $(SAN)
 
-GIT_REV := $(shell git rev-parse --short HEAD 2>/dev/null || echo unknown)
-CPPFLAGS += -DDFL_GIT_REV=\"$(GIT_REV)\"
+# The git revision goes into one generated header, rewritten only when it
+# changes, so that -MMD recompiles just the files that print it.
+GIT_REV := $(shell git rev-parse --short HEAD 2>/dev/null || echo unknown)$(shell git diff --quiet HEAD 2>/dev/null || echo +dirty)
+VERSION_H := $(BUILD)/gen/dfl_version.h
+$(shell mkdir -p $(BUILD)/gen && echo '#define DFL_GIT_REV "$(GIT_REV)"' > $(VERSION_H).new && \
+  (cmp -s $(VERSION_H).new $(VERSION_H) || mv $(VERSION_H).new $(VERSION_H)); rm -f $(VERSION_H).new)
+CPPFLAGS += -I$(BUILD)/gen
 
 LIB_C   := $(shell find src -name '*.c' ! -path 'src/cli/*' | sort)
 LIB_CC  := $(shell find src -name '*.cc' | sort)

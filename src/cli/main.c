@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "core/jet.h"
+#include "dfl_version.h"
 #include "experiment.h"
 #include "io/manifest.h"
 #include "probe.h"

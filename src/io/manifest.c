@@ -11,9 +11,7 @@
 
 #include "io/atomic.h"
 
-#ifndef DFL_GIT_REV
-#define DFL_GIT_REV "unknown"
-#endif
+#include "dfl_version.h"
 
 typedef struct kv {
     char *k, *v;
