@@ -120,7 +120,7 @@ dfl_status dfl_foot_opts_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_foot_
     if ((st = dfl_cfg_int_opt(cfg, sec, "candidates", o.candidates, 1, DFL_FOOT_MAX_CAND, &cand,
                               err)))
         return st;
-    o.backend = b == 1 ? DFL_PFOOT_CERES : DFL_PFOOT_NEWTON;
+    o.backend = b == 1 ? DFL_FOOT_CERES : DFL_FOOT_NEWTON;
     o.samples_per_span = (int)samples;
     o.candidates = (int)cand;
     *out = o;

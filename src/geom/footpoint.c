@@ -16,7 +16,7 @@
 
 void dfl_foot_opts_default(dfl_foot_opts *o)
 {
-    o->backend = DFL_PFOOT_NEWTON;
+    o->backend = DFL_FOOT_NEWTON;
     o->samples_per_span = 16;
     o->candidates = 4;
     o->max_iter = 100;
@@ -25,7 +25,7 @@ void dfl_foot_opts_default(dfl_foot_opts *o)
 
 dfl_status dfl_foot_opts_check(const dfl_foot_opts *o, dfl_err *err)
 {
-    if (o->backend != DFL_PFOOT_NEWTON && o->backend != DFL_PFOOT_CERES)
+    if (o->backend != DFL_FOOT_NEWTON && o->backend != DFL_FOOT_CERES)
         return dfl_err_set(err, DFL_E_INPUT, "backend: expected newton or ceres");
     if (o->samples_per_span < 2 || o->samples_per_span > 10000)
         return dfl_err_set(err, DFL_E_INPUT, "samples_per_span = %d: expected 2..10000",
@@ -135,7 +135,7 @@ dfl_status dfl_curve_locator_new(const dfl_bspline *c, const dfl_foot_opts *opt,
     assert(k == L->ns);
     for (size_t i = 0; i < L->ns; i++) dfl_bspline_eval(c, L->ts[i], 0, L->ps + i * (size_t)c->dim);
     L->size = cp_extent(c->dim, c->n, c->cp);
-    if (o.backend == DFL_PFOOT_CERES && (st = dfl_lsq_ctx_new(&L->lsq, err)) != DFL_OK) {
+    if (o.backend == DFL_FOOT_CERES && (st = dfl_lsq_ctx_new(&L->lsq, err)) != DFL_OK) {
         dfl_curve_locator_free(L);
         return st;
     }
@@ -342,7 +342,7 @@ static int curve_search(const dfl_curve_locator *L, const double *x, dfl_curve_f
     for (int q = 0; q < tk.n; q++) {
         dfl_curve_foot f;
         double t0 = L->ts[tk.i[q]];
-        if (L->o.backend == DFL_PFOOT_CERES) {
+        if (L->o.backend == DFL_FOOT_CERES) {
             *st = curve_ceres(L, x, t0, &f, err);
             if (*st != DFL_OK) return 0;
         } else {
@@ -487,7 +487,7 @@ dfl_status dfl_surface_locator_new(const dfl_surface_set *s, const dfl_foot_opts
             }
     }
     L->size = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
-    if (o.backend == DFL_PFOOT_CERES && (st = dfl_lsq_ctx_new(&L->lsq, err)) != DFL_OK) {
+    if (o.backend == DFL_FOOT_CERES && (st = dfl_lsq_ctx_new(&L->lsq, err)) != DFL_OK) {
         dfl_surface_locator_free(L);
         return st;
     }
@@ -797,7 +797,7 @@ dfl_status dfl_surface_footpoint(const dfl_surface_locator *L, const double x[3]
         const dfl_surface *sp = &s->patch[p];
         double u = L->us[p][tk.i[q]], v = L->vs[p][tk.j[q]];
         dfl_surface_foot f;
-        if (L->o.backend == DFL_PFOOT_CERES) {
+        if (L->o.backend == DFL_FOOT_CERES) {
             dfl_status st = surface_ceres(L, sp, x, u, v, &f, err);
             if (st != DFL_OK) return st;
         } else {

@@ -74,17 +74,16 @@
 
 #include "core/jet.h"
 #include "core/status.h"
+#include "geom/foot_backend.h"
 #include "geom/bspline.h"
 #include "geom/shape.h"
 #include "geom/surface.h"
 
-/* (named apart from implicit.h's dfl_foot_backend so both headers can be used together) */
-typedef enum dfl_pfoot_backend { DFL_PFOOT_NEWTON = 0, DFL_PFOOT_CERES = 1 } dfl_pfoot_backend;
 
 #define DFL_FOOT_MAX_CAND 16
 
 typedef struct dfl_foot_opts {
-    dfl_pfoot_backend backend;  /* default newton */
+    dfl_foot_backend backend;  /* default newton */
     int samples_per_span;      /* >= 2, default 16 (surfaces: per direction) */
     int candidates;            /* 1..DFL_FOOT_MAX_CAND, default 4 */
     int max_iter;              /* per refinement, default 100 */

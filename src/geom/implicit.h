@@ -46,16 +46,13 @@
 
 #include "core/jet.h"
 #include "core/status.h"
+#include "geom/foot_backend.h"
 #include "geom/shape.h"
 
 #define DFL_IMPLICIT_MAX_TERMS 96
 #define DFL_IMPLICIT_MAX_DEGREE 12
 #define DFL_IMPLICIT_MAX_STARTS 16
 
-typedef enum dfl_foot_backend {
-    DFL_FOOT_NEWTON = 0,
-    DFL_FOOT_CERES = 1
-} dfl_foot_backend;
 
 typedef struct dfl_implicit_options {
     dfl_foot_backend backend;   /* default NEWTON */

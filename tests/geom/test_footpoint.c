@@ -149,7 +149,7 @@ Test(footpoint, newton_and_ceres_agree_on_hard_cases)
     dfl_foot_opts on, oc;
     dfl_foot_opts_default(&on);
     dfl_foot_opts_default(&oc);
-    oc.backend = DFL_PFOOT_CERES;
+    oc.backend = DFL_FOOT_CERES;
     dfl_curve_locator *A, *B;
     dfl_err err;
     cr_assert_eq(dfl_curve_locator_new(&c, &on, &A, &err), DFL_OK, "%s", err.msg);
@@ -233,7 +233,7 @@ Test(footpoint, open_curve_ends_and_ceres)
     make_S(&c);
     dfl_foot_opts oc;
     dfl_foot_opts_default(&oc);
-    oc.backend = DFL_PFOOT_CERES;
+    oc.backend = DFL_FOOT_CERES;
     dfl_curve_locator *A, *B;
     cr_assert_eq(dfl_curve_locator_new(&c, NULL, &A, NULL), DFL_OK);
     cr_assert_eq(dfl_curve_locator_new(&c, &oc, &B, NULL), DFL_OK);
@@ -325,7 +325,7 @@ Test(footpoint, surface_matches_brute_force_and_ceres)
     make_two_patch(&s);
     dfl_foot_opts oc;
     dfl_foot_opts_default(&oc);
-    oc.backend = DFL_PFOOT_CERES;
+    oc.backend = DFL_FOOT_CERES;
     dfl_surface_locator *A, *B;
     dfl_err err;
     cr_assert_eq(dfl_surface_locator_new(&s, NULL, &A, &err), DFL_OK, "%s", err.msg);
