@@ -9,28 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Re-labels a library error with the location of key. */
-static dfl_status at_key(const dfl_cfg *cfg, const char *sec, const char *key, dfl_status st,
-                         dfl_err *err)
-{
-    char w[600];
-    dfl_cfg_where(cfg, sec, key, w, sizeof w);
-    dfl_err_prefix(err, "%s", w);
-    return st;
-}
-
-/* Number of values in the first point of a point list: the dimension. */
-static int first_point_dim(const char *v)
-{
-    int n = 0, in = 0;
-    for (const char *s = v; *s && *s != ';'; s++) {
-        int sp = isspace((unsigned char)*s);
-        if (!sp && !in) n++;
-        in = !sp;
-    }
-    return n;
-}
-
 dfl_status dfl_curve_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_bspline *out,
                               dfl_err *err)
 {
@@ -43,7 +21,7 @@ dfl_status dfl_curve_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_bspline *
         return st;
     if ((st = dfl_cfg_bool_opt(cfg, sec, "closed", false, &closed, err))) return st;
     if ((st = dfl_cfg_string(cfg, sec, "control", &raw, err))) return st;
-    int dim = first_point_dim(raw);
+    int dim = dfl_cfg_point_dim(raw);
     if (dim != 2 && dim != 3)
         return dfl_err_set(err, DFL_E_INPUT,
                            "%s: expected points of 2 (planar) or 3 (space curve) numbers, the "
@@ -54,7 +32,7 @@ dfl_status dfl_curve_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_bspline *
     if ((st = dfl_cfg_points(cfg, sec, "control", dim, 2, &cp, &ncp, err))) return st;
     if ((st = dfl_bspline_check_control(dim, (int)order, ncp, cp, closed, err))) {
         free(cp);
-        return at_key(cfg, sec, "control", st, err);
+        return dfl_cfg_err_at(cfg, sec, "control", st, err);
     }
     if (dfl_cfg_has(cfg, sec, "knots")) {
         if ((st = dfl_cfg_doubles(cfg, sec, "knots", 1, &knots, &nk, err))) {
@@ -64,7 +42,7 @@ dfl_status dfl_curve_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_bspline *
         if ((st = dfl_bspline_check_knots((int)order, ncp, knots, nk, closed, err))) {
             free(cp);
             free(knots);
-            return at_key(cfg, sec, "knots", st, err);
+            return dfl_cfg_err_at(cfg, sec, "knots", st, err);
         }
     }
     dfl_bspline c;
@@ -72,7 +50,7 @@ dfl_status dfl_curve_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_bspline *
     else st = dfl_bspline_init(dim, (int)order, ncp, cp, knots, nk, &c, err);
     free(cp);
     free(knots);
-    if (st != DFL_OK) return at_key(cfg, sec, "control", st, err);
+    if (st != DFL_OK) return dfl_cfg_err_at(cfg, sec, "control", st, err);
     /* a regular parametrization is needed for normals and footpoints */
     double ext = 0.0;
     for (int j = 0; j < dim; j++) {
@@ -176,11 +154,11 @@ dfl_status dfl_surface_from_cfg(const dfl_cfg *cfg, const char *sec, const char 
             (st = dfl_cfg_doubles(cfg, sec, "knots_v", 1, &V, &nV, err)))
             goto fail;
         if (U && (st = dfl_bspline_check_knots((int)ku, (size_t)nu, U, nU, 0, err))) {
-            at_key(cfg, sec, "knots_u", st, err);
+            dfl_cfg_err_at(cfg, sec, "knots_u", st, err);
             goto fail;
         }
         if (V && (st = dfl_bspline_check_knots((int)kv, (size_t)nv, V, nV, 0, err))) {
-            at_key(cfg, sec, "knots_v", st, err);
+            dfl_cfg_err_at(cfg, sec, "knots_v", st, err);
             goto fail;
         }
     }
@@ -198,7 +176,7 @@ dfl_status dfl_surface_from_cfg(const dfl_cfg *cfg, const char *sec, const char 
         if (st != DFL_OK) {
             free_patches(patches, (size_t)p);
             if (npatch > 1) dfl_err_prefix(err, "patch %ld", p);
-            at_key(cfg, sec, "control", st, err);
+            dfl_cfg_err_at(cfg, sec, "control", st, err);
             goto fail;
         }
     }
@@ -275,7 +253,7 @@ dfl_status dfl_param_shape_from_cfg(const dfl_cfg *cfg, const char *sec, const c
         int sgn = mode == 1 || (mode == 0 && closed2d);
         dfl_shape sh;
         if ((st = dfl_shape_param_curve(&c, &o, sgn, &sh, err)))
-            return at_key(cfg, sec, "control", st, err);
+            return dfl_cfg_err_at(cfg, sec, "control", st, err);
         *out = sh;
         return DFL_OK;
     }

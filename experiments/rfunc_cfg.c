@@ -12,27 +12,6 @@
 #include "geom/polygonize.h"
 #include "rfunc/rfield.h"
 
-static dfl_status at_key(const dfl_cfg *cfg, const char *sec, const char *key, dfl_status st,
-                         dfl_err *err)
-{
-    char w[600];
-    dfl_cfg_where(cfg, sec, key, w, sizeof w);
-    dfl_err_prefix(err, "%s", w);
-    return st;
-}
-
-/* Number of values in the first point of a point list. */
-static int first_point_dim(const char *v)
-{
-    int n = 0, in = 0;
-    for (const char *s = v; *s && *s != ';'; s++) {
-        const int sp = isspace((unsigned char)*s);
-        if (!sp && !in) n++;
-        in = !sp;
-    }
-    return n;
-}
-
 /* Polyline of the curve section named by [sec] curve, polygonized to eps.
  * *pts is malloc'ed; a closed curve (first point == last) drops the
  * repeated point and sets *closed. */
@@ -65,7 +44,7 @@ static dfl_status curve_polyline(const dfl_cfg *cfg, const char *sec, int *dim, 
     memset(&pl, 0, sizeof pl);
     st = dfl_polygonize_curve(&c, eps, 0, &pl, err);
     dfl_bspline_free(&c);
-    if (st != DFL_OK) return at_key(cfg, sec, "eps", st, err);
+    if (st != DFL_OK) return dfl_cfg_err_at(cfg, sec, "eps", st, err);
     size_t np = pl.n;
     *closed = false;
     if (np >= 4 && memcmp(pl.pts, pl.pts + (np - 1) * (size_t)pl.dim,
@@ -98,7 +77,7 @@ dfl_status dfl_rfunc_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_fie
     if ((st = dfl_cfg_int_opt(cfg, sec, "p", 2, 1, DFL_RFUNC_P_MAX, &p, err))) return st;
     if ((st = dfl_cfg_enum_opt(cfg, sec, "trim", trims, 4, 0, &trim, err))) return st;
     if ((st = dfl_rfunc_join_check((dfl_rfunc_join)join, (int)p, err)))
-        return at_key(cfg, sec, "p", st, err);
+        return dfl_cfg_err_at(cfg, sec, "p", st, err);
 
     const bool has_v = dfl_cfg_has(cfg, sec, "vertices"), has_c = dfl_cfg_has(cfg, sec, "curve");
     if (has_v == has_c)
@@ -115,7 +94,7 @@ dfl_status dfl_rfunc_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_fie
         const char *raw;
         if ((st = dfl_cfg_bool_opt(cfg, sec, "closed", false, &closed, err))) return st;
         if ((st = dfl_cfg_string(cfg, sec, "vertices", &raw, err))) return st;
-        dim = first_point_dim(raw);
+        dim = dfl_cfg_point_dim(raw);
         if (dim != 2 && dim != 3)
             return dfl_err_set(err, DFL_E_INPUT,
                                "%s: expected vertices of 2 or 3 numbers, the first has %d",
@@ -128,6 +107,6 @@ dfl_status dfl_rfunc_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_fie
     st = dfl_rfield_polyline(dim, pts, n, closed, (dfl_rfunc_join)join, (int)p,
                              (dfl_rfunc_trim)trim, out, err);
     free(pts);
-    if (st != DFL_OK) return at_key(cfg, sec, key, st, err);
+    if (st != DFL_OK) return dfl_cfg_err_at(cfg, sec, key, st, err);
     return DFL_OK;
 }

@@ -4,14 +4,8 @@
 #include <math.h>
 #include <string.h>
 
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+#include "core/vec.h"
 
-static void cross3(const double *a, const double *b, double *c)
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 /* Eigen-decomposition of the symmetric [[a, b], [b, c]]: lo <= hi, unit
  * eigenvector (cos th, sin th) of hi, (-sin th, cos th) of lo.  The angle
@@ -44,36 +38,22 @@ static void finish(const double t1[3], const double t2[3], double a, double b, d
     out->H = 0.5 * (lo + hi);
 }
 
-static void tangent_basis(const double n[3], double t1[3], double t2[3])
-{
-    double t[3] = {0, 0, 0};
-    int k = 0;
-    for (int j = 1; j < 3; j++)
-        if (fabs(n[j]) < fabs(n[k])) k = j;
-    t[k] = 1.0;
-    double tn = dot3(t, n);
-    for (int j = 0; j < 3; j++) t1[j] = t[j] - tn * n[j];
-    double l = sqrt(dot3(t1, t1));
-    for (int j = 0; j < 3; j++) t1[j] /= l;
-    cross3(n, t1, t2);
-}
-
 dfl_status dfl_curvature_implicit(const double grad[3], const double hess[9], dfl_curvature *out,
                                   dfl_err *err)
 {
-    double gn = sqrt(dot3(grad, grad));
+    double gn = sqrt(dfl_vec3_dot(grad, grad));
     if (!(gn > 0.0) || !isfinite(gn))
         return dfl_err_set(err, DFL_E_NUMERIC, "curvature: gradient of g vanishes");
     for (int j = 0; j < 3; j++) out->n[j] = grad[j] / gn;
     double t1[3], t2[3], Ht1[3], Ht2[3];
-    tangent_basis(out->n, t1, t2);
+    dfl_vec3_tangent_basis(out->n, t1, t2);
     /* n = grad g/|grad g| => dn = (I - n n^T) Hess g / |grad g| on tangents */
     for (int i = 0; i < 3; i++) {
-        Ht1[i] = dot3(hess + 3 * i, t1);
-        Ht2[i] = dot3(hess + 3 * i, t2);
+        Ht1[i] = dfl_vec3_dot(hess + 3 * i, t1);
+        Ht2[i] = dfl_vec3_dot(hess + 3 * i, t2);
     }
-    double a = dot3(t1, Ht1) / gn, c = dot3(t2, Ht2) / gn;
-    double b = 0.5 * (dot3(t1, Ht2) + dot3(t2, Ht1)) / gn;
+    double a = dfl_vec3_dot(t1, Ht1) / gn, c = dfl_vec3_dot(t2, Ht2) / gn;
+    double b = 0.5 * (dfl_vec3_dot(t1, Ht2) + dfl_vec3_dot(t2, Ht1)) / gn;
     finish(t1, t2, a, b, c, out);
     return DFL_OK;
 }
@@ -82,12 +62,12 @@ void dfl_fundamental_forms_eval(const double Su[3], const double Sv[3], const do
                                 const double Suv[3], const double Svv[3], const double n[3],
                                 dfl_fundamental_forms *out)
 {
-    out->E = dot3(Su, Su);
-    out->F = dot3(Su, Sv);
-    out->G = dot3(Sv, Sv);
-    out->L = dot3(Suu, n);
-    out->M = dot3(Suv, n);
-    out->N = dot3(Svv, n);
+    out->E = dfl_vec3_dot(Su, Su);
+    out->F = dfl_vec3_dot(Su, Sv);
+    out->G = dfl_vec3_dot(Sv, Sv);
+    out->L = dfl_vec3_dot(Suu, n);
+    out->M = dfl_vec3_dot(Suv, n);
+    out->N = dfl_vec3_dot(Svv, n);
 }
 
 double dfl_gaussian_curvature_ff(const dfl_fundamental_forms *f)
@@ -105,11 +85,11 @@ dfl_status dfl_curvature_parametric(const double Su[3], const double Sv[3], cons
                                     const double *n_ref, dfl_curvature *out, dfl_err *err)
 {
     double n[3];
-    cross3(Su, Sv, n);
-    double nn = sqrt(dot3(n, n));
+    dfl_vec3_cross(Su, Sv, n);
+    double nn = sqrt(dfl_vec3_dot(n, n));
     if (!(nn > 0.0) || !isfinite(nn))
         return dfl_err_set(err, DFL_E_NUMERIC, "curvature: singular parametrization (Su x Sv = 0)");
-    double sg = (n_ref && dot3(n, n_ref) < 0.0) ? -1.0 : 1.0;
+    double sg = (n_ref && dfl_vec3_dot(n, n_ref) < 0.0) ? -1.0 : 1.0;
     for (int j = 0; j < 3; j++) out->n[j] = sg * n[j] / nn;
     dfl_fundamental_forms f;
     dfl_fundamental_forms_eval(Su, Sv, Suu, Suv, Svv, out->n, &f);
@@ -119,8 +99,8 @@ dfl_status dfl_curvature_parametric(const double Su[3], const double Sv[3], cons
     double t1[3], t2[3];
     double su = sqrt(f.E);
     for (int j = 0; j < 3; j++) t1[j] = Su[j] / su;
-    cross3(out->n, t1, t2);
-    double c11 = su, c12 = dot3(t1, Sv), c22 = dot3(t2, Sv);
+    dfl_vec3_cross(out->n, t1, t2);
+    double c11 = su, c12 = dfl_vec3_dot(t1, Sv), c22 = dfl_vec3_dot(t2, Sv);
     assert(c11 > 0.0);
     /* C^-1 = [[1/c11, -c12/(c11 c22)], [0, 1/c22]] */
     double i11 = 1.0 / c11, i12 = -c12 / (c11 * c22), i22 = 1.0 / c22;

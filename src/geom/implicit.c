@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/vec.h"
+
 #include "solve/lsq.h"
 
 /* ---- sparse polynomials in three variables ------------------------------ */
@@ -169,14 +171,6 @@ static void poly_eval_ser(const poly *P, const ser X[3], int K, ser *out)
 
 /* ---- small dense algebra ------------------------------------------------- */
 
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-static void cross3(const double *a, const double *b, double *c)
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 /* LU with partial pivoting of a 4x4 matrix in place; 0 if (numerically)
  * singular relative to its largest entry. */
@@ -224,21 +218,6 @@ static void lu4_solve(const double A[16], const int piv[4], double b[4])
     }
 }
 
-/* Orthonormal t1, t2 with t1 x t2 = n (n unit); deterministic. */
-static void tangent_basis(const double n[3], double t1[3], double t2[3])
-{
-    double t[3] = {0, 0, 0};
-    int k = 0;
-    for (int j = 1; j < 3; j++)
-        if (fabs(n[j]) < fabs(n[k])) k = j;
-    t[k] = 1.0;
-    double tn = dot3(t, n);
-    for (int j = 0; j < 3; j++) t1[j] = t[j] - tn * n[j];
-    double l = sqrt(dot3(t1, t1));
-    for (int j = 0; j < 3; j++) t1[j] /= l;
-    cross3(n, t1, t2);
-}
-
 /* Footpoint system Jacobian [[I + t H, G], [G^T, 0]]. */
 static void foot_jacobian(const double G[3], const double H[9], double t, double J[16])
 {
@@ -277,12 +256,12 @@ void dfl_implicit_options_default(dfl_implicit_options *opt)
 static void to_local(const dfl_implicit *s, const double x[3], double q[3])
 {
     double d[3] = {x[0] - s->o[0], x[1] - s->o[1], x[2] - s->o[2]};
-    for (int i = 0; i < 3; i++) q[i] = dot3(s->Q + 3 * i, d);
+    for (int i = 0; i < 3; i++) q[i] = dfl_vec3_dot(s->Q + 3 * i, d);
 }
 
 static void vec_to_local(const dfl_implicit *s, const double v[3], double q[3])
 {
-    for (int i = 0; i < 3; i++) q[i] = dot3(s->Q + 3 * i, v);
+    for (int i = 0; i < 3; i++) q[i] = dfl_vec3_dot(s->Q + 3 * i, v);
 }
 
 static void vec_to_world(const dfl_implicit *s, const double q[3], double v[3])
@@ -373,7 +352,7 @@ static int project(const dfl_implicit *s, double q[3])
     for (int it = 0; it < 40; it++) {
         double G[3];
         double g = g_local(s, q, G, NULL);
-        double gg = dot3(G, G);
+        double gg = dfl_vec3_dot(G, G);
         if (!(gg > 0.0)) return 0;
         double step = g / gg;
         for (int a = 0; a < 3; a++) q[a] -= step * G[a];
@@ -392,7 +371,7 @@ static dfl_status make_samples(dfl_implicit *s, dfl_err *err)
     }
     double h = emax / (res - 1);
     s->h = h;
-    s->scale = sqrt(dot3(ext, ext));
+    s->scale = sqrt(dfl_vec3_dot(ext, ext));
     int n[3];
     for (int a = 0; a < 3; a++) n[a] = (int)ceil(ext[a] / h) + 1;
     size_t cap = 1024, ns = 0;
@@ -404,12 +383,12 @@ static dfl_status make_samples(dfl_implicit *s, dfl_err *err)
                 double node[3] = {s->lo[0] + i * h, s->lo[1] + j * h, s->lo[2] + k * h};
                 double G[3];
                 double g = g_local(s, node, G, NULL);
-                double gn = sqrt(dot3(G, G));
+                double gn = sqrt(dfl_vec3_dot(G, G));
                 if (!(gn > 0.0) || fabs(g) > 1.5 * h * gn) continue;
                 double q[3] = {node[0], node[1], node[2]};
                 if (!project(s, q)) continue;
                 double dq[3] = {q[0] - node[0], q[1] - node[1], q[2] - node[2]};
-                if (dot3(dq, dq) > 9.0 * h * h) continue;
+                if (dfl_vec3_dot(dq, dq) > 9.0 * h * h) continue;
                 if (ns == cap) {
                     cap *= 2;
                     double *nb = realloc(buf, cap * 3 * sizeof *nb);
@@ -482,7 +461,7 @@ typedef struct start_set {
 static double dist2_to(const double *a, const double *b)
 {
     double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-    return dot3(d, d);
+    return dfl_vec3_dot(d, d);
 }
 
 static double nearest_sample(const dfl_implicit *s, const double q[3])
@@ -565,12 +544,12 @@ static int accept_foot(const dfl_implicit *s, const double q[3], const double p[
 {
     double G[3];
     double g = g_local(s, p, G, NULL);
-    double gn = sqrt(dot3(G, G));
+    double gn = sqrt(dfl_vec3_dot(G, G));
     if (!(gn > 0.0)) return 0;
     double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, c[3];
-    cross3(u, G, c);
-    double un = sqrt(dot3(u, u));
-    return fabs(g) / gn <= 1e-11 * s->scale && sqrt(dot3(c, c)) / gn <= 1e-9 * (s->scale + un);
+    dfl_vec3_cross(u, G, c);
+    double un = sqrt(dfl_vec3_dot(u, u));
+    return fabs(g) / gn <= 1e-11 * s->scale && sqrt(dfl_vec3_dot(c, c)) / gn <= 1e-9 * (s->scale + un);
 }
 
 /* Newton on the surface: minimizes f(p) = |p - q|^2 / 2 over g(p) = 0 with
@@ -596,20 +575,20 @@ static int newton_foot(const dfl_implicit *s, const double q[3], const double p0
     double f = 0.5 * dist2_to(p, q);
     for (int it = 0; it < s->opt.max_iterations; it++) {
         g_local(s, p, G, H);
-        double gn = sqrt(dot3(G, G));
+        double gn = sqrt(dfl_vec3_dot(G, G));
         if (!(gn > 0.0)) return 0;
         double n[3] = {G[0] / gn, G[1] / gn, G[2] / gn}, t1[3], t2[3];
-        tangent_basis(n, t1, t2);
+        dfl_vec3_tangent_basis(n, t1, t2);
         double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-        double d = dot3(u, n);
-        double gr[2] = {-dot3(t1, u), -dot3(t2, u)};
+        double d = dfl_vec3_dot(u, n);
+        double gr[2] = {-dfl_vec3_dot(t1, u), -dfl_vec3_dot(t2, u)};
         double Ht1[3], Ht2[3];
         for (int i = 0; i < 3; i++) {
-            Ht1[i] = dot3(H + 3 * i, t1);
-            Ht2[i] = dot3(H + 3 * i, t2);
+            Ht1[i] = dfl_vec3_dot(H + 3 * i, t1);
+            Ht2[i] = dfl_vec3_dot(H + 3 * i, t2);
         }
-        double a = 1.0 + d * dot3(t1, Ht1) / gn, c = 1.0 + d * dot3(t2, Ht2) / gn;
-        double b = d * 0.5 * (dot3(t1, Ht2) + dot3(t2, Ht1)) / gn;
+        double a = 1.0 + d * dfl_vec3_dot(t1, Ht1) / gn, c = 1.0 + d * dfl_vec3_dot(t2, Ht2) / gn;
+        double b = d * 0.5 * (dfl_vec3_dot(t1, Ht2) + dfl_vec3_dot(t2, Ht1)) / gn;
         /* eigen-decomposition of [[a, b], [b, c]] */
         double mm = 0.5 * (a + c), rr = hypot(0.5 * (a - c), b), th = 0.5 * atan2(2.0 * b, a - c);
         double lam[2] = {mm + rr, mm - rr};
@@ -623,7 +602,7 @@ static int newton_foot(const dfl_implicit *s, const double q[3], const double p0
         }
         double v[3];
         for (int j = 0; j < 3; j++) v[j] = v2[0] * t1[j] + v2[1] * t2[j];
-        double step = sqrt(dot3(v, v));
+        double step = sqrt(dfl_vec3_dot(v, v));
         if (!(step > 0.0)) break;
         if (step <= 1e-6 * s->scale) {
             /* Quadratic basin: f = |p - q|^2/2 resolves the tangential
@@ -669,7 +648,7 @@ static int foot_residual(void *user, const double *p, double *r, double *Jr)
     double g = g_local(U->s, p, G, H);
     double u[3] = {p[0] - U->q[0], p[1] - U->q[1], p[2] - U->q[2]};
     r[0] = g;
-    cross3(G, u, r + 1);
+    dfl_vec3_cross(G, u, r + 1);
     if (Jr) {
         double Gx[9] = {0, -G[2], G[1], G[2], 0, -G[0], -G[1], G[0], 0};
         double ux[9] = {0, -u[2], u[1], u[2], 0, -u[0], -u[1], u[0], 0};
@@ -747,14 +726,14 @@ dfl_status dfl_implicit_footpoint_with(const dfl_implicit *s, dfl_foot_backend b
     double G[3];
     g_local(s, p, G, NULL);
     double gx = g_local(s, q, NULL, NULL);
-    double gn = sqrt(dot3(G, G));
+    double gn = sqrt(dfl_vec3_dot(G, G));
     double nl[3] = {G[0] / gn, G[1] / gn, G[2] / gn};
     double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
     to_world(s, p, out->p);
     vec_to_world(s, nl, out->n);
     out->d = (gx < 0.0 ? -1.0 : 1.0) * cd[best];
     if (gx == 0.0) out->d = 0.0;
-    out->t = dot3(u, G) / (gn * gn);
+    out->t = dfl_vec3_dot(u, G) / (gn * gn);
     out->medial = medial;
     out->converged = nc;
     return DFL_OK;
@@ -919,7 +898,7 @@ dfl_status dfl_implicit_new(int nterms, const dfl_monomial *terms, const double 
     if (Q) {
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++) {
-                double v = dot3(Q + 3 * i, Q + 3 * j) - (i == j);
+                double v = dfl_vec3_dot(Q + 3 * i, Q + 3 * j) - (i == j);
                 if (fabs(v) > 1e-12) {
                     free(s);
                     return dfl_err_set(err, DFL_E_INPUT, "implicit: frame is not orthonormal");
@@ -947,11 +926,11 @@ static void frame_rows(const double w[3], double Q[9])
     for (int j = 1; j < 3; j++)
         if (fabs(w[j]) < fabs(w[k])) k = j;
     t[k] = 1.0;
-    double tw = dot3(t, w), u[3], v[3];
+    double tw = dfl_vec3_dot(t, w), u[3], v[3];
     for (int j = 0; j < 3; j++) u[j] = t[j] - tw * w[j];
-    double un = sqrt(dot3(u, u));
+    double un = sqrt(dfl_vec3_dot(u, u));
     for (int j = 0; j < 3; j++) u[j] /= un;
-    cross3(w, u, v);
+    dfl_vec3_cross(w, u, v);
     memcpy(Q, u, sizeof u);
     memcpy(Q + 3, v, sizeof v);
     memcpy(Q + 6, w, 3 * sizeof *w);
@@ -972,7 +951,7 @@ dfl_status dfl_implicit_torus(const double c[3], const double axis[3], double R,
     if (!(R > 0.0) || !(r > 0.0) || !(r < R) || !isfinite(R))
         return dfl_err_set(err, DFL_E_INPUT, "implicit torus: need 0 < minor < major, got %g, %g",
                            r, R);
-    double an = sqrt(dot3(axis, axis));
+    double an = sqrt(dfl_vec3_dot(axis, axis));
     if (!(an > 0.0) || !isfinite(an))
         return dfl_err_set(err, DFL_E_INPUT, "implicit torus: axis is the zero vector");
     double w[3] = {axis[0] / an, axis[1] / an, axis[2] / an}, Q[9];

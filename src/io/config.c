@@ -843,6 +843,26 @@ dfl_status dfl_cfg_check_used(const dfl_cfg *c, dfl_err *err)
     return DFL_OK;
 }
 
+dfl_status dfl_cfg_err_at(const dfl_cfg *c, const char *sec, const char *key, dfl_status st,
+                          dfl_err *err)
+{
+    char w[600];
+    dfl_cfg_where(c, sec, key, w, sizeof w);
+    dfl_err_prefix(err, "%s", w);
+    return st;
+}
+
+int dfl_cfg_point_dim(const char *value)
+{
+    int n = 0, in = 0;
+    for (const char *s = value; *s && *s != ';'; s++) {
+        int sp = isspace((unsigned char)*s);
+        if (!sp && !in) n++;
+        in = !sp;
+    }
+    return n;
+}
+
 dfl_status dfl_cfg_check_used_in(const dfl_cfg *c, const char *sec, dfl_err *err)
 {
     for (size_t i = 0; i < c->n; i++) {

@@ -105,6 +105,16 @@ dfl_status dfl_cfg_doubles(const dfl_cfg *c, const char *sec, const char *key, s
 const char *dfl_cfg_where(const dfl_cfg *c, const char *sec, const char *key, char *buf,
                           size_t size);
 
+/* Prefixes the message in err with "file:line: [sec] key" (for a library
+ * error about a value that parsed, e.g. degenerate geometry) and returns
+ * st, so that callers can write `return dfl_cfg_err_at(...)`. */
+dfl_status dfl_cfg_err_at(const dfl_cfg *c, const char *sec, const char *key, dfl_status st,
+                          dfl_err *err);
+
+/* Number of blank-separated values in the first point of a point-list
+ * value ("x y; ..." -> 2): tells 2D from 3D lists before parsing them. */
+int dfl_cfg_point_dim(const char *value);
+
 /* DFL_E_INPUT naming the first key (in file order) no getter has read. */
 dfl_status dfl_cfg_check_used(const dfl_cfg *c, dfl_err *err);
 /* Same, restricted to section sec (for commands that read only part of a
