@@ -83,7 +83,7 @@ deps:
 	if [ -z "$$missing" ]; then echo "deps: all packages present"; \
 	elif [ "$$(id -u)" = 0 ]; then \
 	  echo "deps: installing$$missing"; \
-	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing; \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing; \
 	else echo "deps: missing packages; run as root:"; \
 	  echo "  apt-get install -y$$missing"; exit 1; fi
 
