@@ -6,11 +6,33 @@
 #include "experiment.h"
 
 extern const dfl_study dfl_study_smoke;
+extern const dfl_study dfl_study_bs04_gradbounds;
+extern const dfl_study dfl_study_bs04_corrected;
+extern const dfl_study dfl_study_bs04_normalization;
+extern const dfl_study dfl_study_bs04_fields;
+extern const dfl_study dfl_study_bs04_recursive;
 extern const dfl_study dfl_study_bs04_polygonization;
+extern const dfl_study dfl_study_bs04_bulging;
+extern const dfl_study dfl_study_bs04_scurve;
+extern const dfl_study dfl_study_bs04_spacecurves;
+extern const dfl_study dfl_study_bs04_triangle;
+extern const dfl_study dfl_study_bs04_triedge;
+extern const dfl_study dfl_study_bs04_surface;
 
 static const dfl_study *const all_studies[] = {
     &dfl_study_smoke,
+    &dfl_study_bs04_gradbounds,
+    &dfl_study_bs04_corrected,
+    &dfl_study_bs04_normalization,
+    &dfl_study_bs04_fields,
+    &dfl_study_bs04_recursive,
     &dfl_study_bs04_polygonization,
+    &dfl_study_bs04_bulging,
+    &dfl_study_bs04_scurve,
+    &dfl_study_bs04_spacecurves,
+    &dfl_study_bs04_triangle,
+    &dfl_study_bs04_triedge,
+    &dfl_study_bs04_surface,
     NULL,
 };
 

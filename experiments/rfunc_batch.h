@@ -1,0 +1,103 @@
+/* A fast, vectorized evaluator for the commonest bs04 field: a 2D polyline
+ * of segments with the disk trim of eq. 4, joined by R-equivalence of
+ * order p (eq. 6), value and gradient.  It computes the same function as
+ * rfunc/rfield.h's dfl_rfield_polyline(2, ..., DFL_RFUNC_REQUIV, p,
+ * DFL_RFUNC_TRIM_DISK) (to rounding, ~1e-13 relative) and exists for
+ * throughput: `make bench` measures it against a naive scalar loop and
+ * numpy (tests/bench/bench_rfunc.c).  It lives in experiments/ because
+ * src/rfunc is owned elsewhere; rfield could adopt it for all-segment 2D
+ * fields.
+ *
+ * Formulas (per segment a-b, d = |b - a|, unit normal
+ * n = (b_y - a_y, -(b_x - a_x))/d, w = x - a, v = x - b):
+ *     f = w . n                    (eq. 2, signed line function)
+ *     -t = (w . v)/d               (disk trim of eq. 3: t = ((d/2)^2 - |x - c|^2)/d)
+ *     mt = max(-t, 0) = (|t| - t)/2
+ *     h^2 = f^2 + mt^2             (eq. 4)
+ *     h grad h = f n + mt (w + v)/d
+ * and the join
+ *     S = sum h_i^-p,   V = sum h_i^-(p+2) (h_i grad h_i),
+ *     u = S^(-1/p),     grad u = u^(p+1) V
+ * (du/dh_i = (u/h_i)^(p+1), so grad u = sum (u/h_i)^(p+1) grad h_i).
+ * Even p need only 1/h^2 (one division).  Odd p need 1/h, which comes
+ * from a Newton iteration for the reciprocal square root of h^2: ISO C's
+ * errno semantics keep gcc from vectorizing sqrt() without
+ * -fno-math-errno.
+ *
+ * Fallback.  The unscaled sums overflow near the polyline (h^-p) and
+ * underflow far from it; a point whose sums are not comfortably inside the
+ * double range (or that lies on the polyline, where u = 0 and the gradient
+ * is 0 by the library's convention) is re-evaluated by the library's
+ * scaled accumulator (rfunc/join.h).  That path is per point and rare.
+ *
+ * Thread safety: a batch is read-only after creation; eval allocates
+ * nothing and may run concurrently.  Ownership: _new allocates, _free
+ * releases (the field wrapper owns its batch).
+ */
+#ifndef DFL_EXPERIMENTS_RFUNC_BATCH_H
+#define DFL_EXPERIMENTS_RFUNC_BATCH_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "core/status.h"
+#include "field/field.h"
+
+typedef struct dfl_rfunc_batch dfl_rfunc_batch;
+
+/* The polyline v[0..n-1] (2n coordinates; closed adds the segment
+ * v[n-1] -> v[0]) with R-equivalence of order p, 1 <= p <= DFL_RFUNC_P_MAX.
+ * Orders 1..8 and 12 run specialized vector code, other orders a generic
+ * loop.  DFL_E_INPUT as dfl_rfield_polyline (n < 2, n < 3 when closed,
+ * repeated consecutive vertices, bad p, non-finite coordinates);
+ * DFL_E_NOMEM. */
+dfl_status dfl_rfunc_batch_new(const double *v, size_t n, bool closed, int p,
+                               dfl_rfunc_batch **out, dfl_err *err);
+void dfl_rfunc_batch_free(dfl_rfunc_batch *b);
+
+size_t dfl_rfunc_batch_segments(const dfl_rfunc_batch *b);
+int dfl_rfunc_batch_order(const dfl_rfunc_batch *b);
+
+/* Fast path: u at m points pts[2i], pts[2i+1] into val[i] and, when grad
+ * is not NULL, its gradient into grad[2i], grad[2i+1].  Serial (callers
+ * parallelize over points, e.g. dfl_field_sample). */
+void dfl_rfunc_batch_eval(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
+                          double *grad);
+
+/* The naive baseline for the benchmark: a plain scalar loop that calls a
+ * (non-inlined) function per segment and uses pow() for every power, with
+ * no scaling (so it overflows where the fast path falls back; fine at the
+ * benchmark's distances).  Where some h_i = 0 it returns 0 and gradient
+ * 0, like the library; its trim, written about the centre c as
+ * (d/2)^2 - |x - c|^2, is 0 only to rounding at the end points, so there u
+ * is of the order of the rounding of the coordinates.  grad may be NULL. */
+void dfl_rfunc_batch_eval_naive(const dfl_rfunc_batch *b, size_t m, const double *pts,
+                                double *val, double *grad);
+
+/* The field of the library (rfield) for the same polyline: the reference
+ * and the fallback.  Borrowed; lives as long as b. */
+const dfl_field *dfl_rfunc_batch_reference(const dfl_rfunc_batch *b);
+
+/* Points of the last fast eval that took the fallback are not tracked;
+ * this counts, for m points, how many would (a diagnostic for tests and the
+ * benchmark; serial, no allocation). */
+size_t dfl_rfunc_batch_fallbacks(const dfl_rfunc_batch *b, size_t m, const double *pts);
+
+/* The polyline as a dfl_field (dim 2) whose eval is the fast path and whose
+ * jets are the library's.  Errors as dfl_rfunc_batch_new. */
+dfl_status dfl_rfunc_batch_field(const double *v, size_t n, bool closed, int p, dfl_field *out,
+                                 dfl_err *err);
+
+/* Vector width in doubles of the code the CPU dispatch selected for the
+ * fast path (8: AVX-512, 4: AVX2, 2: SSE2), for flop-rate analysis. */
+int dfl_rfunc_batch_simd_width(void);
+
+/* Operations per segment evaluation of the fast path (value + gradient):
+ * multiplications, additions/subtractions and divisions (|.| is a logic
+ * operation and not counted), from the per-line counts in rfunc_batch.c.
+ * The benchmark uses them to place the measured rate against the peak. */
+void dfl_rfunc_batch_ops(int p, int *mul, int *add, int *div);
+/* mul + add + div of dfl_rfunc_batch_ops. */
+int dfl_rfunc_batch_flops(int p);
+
+#endif

@@ -1,0 +1,265 @@
+/* The fast (vectorized) and naive evaluators of experiments/rfunc_batch.h
+ * against each other and against a brute-force sum over the library's
+ * per-segment fields (rfunc/segment.h), which is how eq. 6 is defined.
+ *
+ * Tolerance.  Values: 1e-12 relative.  Gradients: the sum
+ * grad u = sum_i (u/h_i)^(p+1) grad h_i cancels where the contributions
+ * point in different directions (at the centre of a closed polyline it is
+ * 0 by symmetry), so its rounding error scales with the sum of absolute
+ * contributions  s = sum_i (u/h_i)^(p+1) |grad h_i|  (>= |grad u|), not
+ * with |grad u|: the gradient agrees to 1e-12 s.  That is the
+ * "1e-12 relative" of the brief, measured against the quantity that
+ * bounds the rounding. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#include "field/sample.h"
+#include "rfunc/join.h"
+#include "rfunc/segment.h"
+#include "rfunc_batch.h"
+
+static double uni(uint64_t *s, double lo, double hi)
+{
+    uint64_t z = (*s += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return lo + (hi - lo) * ((double)(z >> 11) * 0x1.0p-53);
+}
+
+/* A wobbly spiral polyline of n vertices inside [0, 1]^2. */
+static double *spiral(size_t n)
+{
+    double *v = malloc(2 * n * sizeof *v);
+    for (size_t i = 0; i < n; i++) {
+        const double t = (double)i / (double)(n - 1);
+        const double r = 0.1 + 0.35 * t + 0.02 * sin(40 * t);
+        v[2 * i] = 0.5 + r * cos(9 * t);
+        v[2 * i + 1] = 0.5 + r * sin(9 * t);
+    }
+    return v;
+}
+
+/* Brute force from the library's segment fields: u, grad u and s (above). */
+static double brute(const double *v, size_t n, int closed, int p, const double *x, double *g,
+                    double *s)
+{
+    const size_t ns = closed ? n : n - 1;
+    double *h = malloc(ns * sizeof *h), *gh = malloc(2 * ns * sizeof *gh);
+    double S = 0;
+    for (size_t k = 0; k < ns; k++) {
+        dfl_rfunc_seg seg;
+        cr_assert_eq(dfl_rfunc_seg_init(2, v + 2 * k, v + 2 * ((k + 1) % n), DFL_RFUNC_TRIM_DISK,
+                                        &seg, NULL),
+                     DFL_OK);
+        h[k] = dfl_rfunc_seg_eval(&seg, x, gh + 2 * k);
+        cr_assert(h[k] > 0);
+        S += pow(h[k], -p);
+    }
+    const double u = pow(S, -1.0 / p);
+    g[0] = g[1] = *s = 0;
+    for (size_t k = 0; k < ns; k++) {
+        const double c = pow(u / h[k], p + 1);
+        g[0] += c * gh[2 * k];
+        g[1] += c * gh[2 * k + 1];
+        *s += c * hypot(gh[2 * k], gh[2 * k + 1]);
+    }
+    free(h);
+    free(gh);
+    return u;
+}
+
+static void agree(double u, const double *g, double ur, const double *gr, double s,
+                  const char *what, const double *x)
+{
+    cr_assert(fabs(u - ur) <= 1e-12 * ur, "%s at (%.17g, %.17g): u %.17g vs %.17g", what, x[0],
+              x[1], u, ur);
+    for (int j = 0; j < 2; j++)
+        cr_assert(fabs(g[j] - gr[j]) <= 1e-12 * s,
+                  "%s at (%.17g, %.17g): grad[%d] %.17g vs %.17g (s = %g)", what, x[0], x[1], j,
+                  g[j], gr[j], s);
+}
+
+static void compare_random(size_t nv, int closed, int p, uint64_t seed)
+{
+    double *v = spiral(nv);
+    dfl_rfunc_batch *b;
+    dfl_err err;
+    cr_assert_eq(dfl_rfunc_batch_new(v, nv, closed, p, &b, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(dfl_rfunc_batch_segments(b), closed ? nv : nv - 1);
+    enum { M = 157 }; /* not a multiple of the block sizes */
+    double pts[2 * M], uf[M], gf[2 * M], un[M], gn[2 * M], ul[M], gl[2 * M];
+    uint64_t rng = seed;
+    for (int i = 0; i < M; i++) {
+        pts[2 * i] = uni(&rng, -0.3, 1.3);
+        pts[2 * i + 1] = uni(&rng, -0.3, 1.3);
+    }
+    /* the fast path itself must be what is compared, not its fallback */
+    cr_assert_eq(dfl_rfunc_batch_fallbacks(b, M, pts), 0);
+    dfl_rfunc_batch_eval(b, M, pts, uf, gf);
+    dfl_rfunc_batch_eval_naive(b, M, pts, un, gn);
+    const dfl_field *ref = dfl_rfunc_batch_reference(b);
+    ref->ops->eval(ref->ctx, M, pts, ul, gl);
+    for (int i = 0; i < M; i++) {
+        double gb[2], s;
+        const double ub = brute(v, nv, closed, p, pts + 2 * i, gb, &s);
+        agree(uf[i], gf + 2 * i, ub, gb, s, "fast vs brute force", pts + 2 * i);
+        agree(un[i], gn + 2 * i, ub, gb, s, "naive vs brute force", pts + 2 * i);
+        agree(uf[i], gf + 2 * i, un[i], gn + 2 * i, s, "fast vs naive", pts + 2 * i);
+        agree(uf[i], gf + 2 * i, ul[i], gl + 2 * i, s, "fast vs library rfield", pts + 2 * i);
+    }
+    /* value-only calls give the same values */
+    double uv[M];
+    dfl_rfunc_batch_eval(b, M, pts, uv, NULL);
+    for (int i = 0; i < M; i++) cr_assert_eq(uv[i], uf[i]);
+    dfl_rfunc_batch_free(b);
+    free(v);
+}
+
+Test(rfunc_batch, fast_naive_and_brute_force_agree)
+{
+    /* specialized orders, the generic order 13, open and closed, a segment
+     * count that is not a multiple of the vector block */
+    const int ps[] = {1, 2, 3, 7, 12, 13};
+    for (size_t i = 0; i < sizeof ps / sizeof *ps; i++) {
+        compare_random(61, 0, ps[i], 17 + i);
+        compare_random(40, 1, ps[i], 91 + i);
+    }
+}
+
+Test(rfunc_batch, on_and_near_the_polyline)
+{
+    const size_t nv = 25;
+    double *v = spiral(nv);
+    const int ps[] = {2, 7};
+    for (int ip = 0; ip < 2; ip++) {
+        dfl_rfunc_batch *b;
+        cr_assert_eq(dfl_rfunc_batch_new(v, nv, 0, ps[ip], &b, NULL), DFL_OK);
+        const dfl_field *ref = dfl_rfunc_batch_reference(b);
+        for (size_t k = 0; k + 1 < nv; k++) {
+            /* vertex and midpoint: u = 0, gradient 0 (the library's convention) */
+            double x[2][2] = {{v[2 * k], v[2 * k + 1]},
+                              {0.5 * (v[2 * k] + v[2 * k + 2]), 0.5 * (v[2 * k + 1] + v[2 * k + 3])}};
+            for (int w = 0; w < 2; w++) {
+                double u, g[2], un, gn[2];
+                dfl_rfunc_batch_eval(b, 1, x[w], &u, g);
+                dfl_rfunc_batch_eval_naive(b, 1, x[w], &un, gn);
+                double ul = dfl_field_eval1(ref, x[w], NULL);
+                /* the naive trim (d/2)^2 - |x - c|^2 is 0 only to rounding at
+                 * the end points (the library's (x - a).(x - b) is exactly
+                 * 0): its u is 0 to the rounding of the coordinates */
+                cr_assert(un <= 4e-16, "k %zu: naive u %g", k, un);
+                if (w == 0) {
+                    /* a vertex is the exact start of segment k: h = 0 */
+                    cr_assert(ul == 0.0, "k %zu: library u %g", k, ul);
+                    cr_assert(u == 0.0 && g[0] == 0.0 && g[1] == 0.0, "k %zu: u %g", k, u);
+                } else {
+                    /* a rounded midpoint is on the segment only to rounding
+                     * (~eps |x|, |x| <= 1), computed differently by each */
+                    cr_assert(u <= 4e-16 && ul <= 4e-16, "k %zu: %g vs %g", k, u, ul);
+                }
+            }
+        }
+        /* far away (h^-12 underflows for p = 12, not for 2 and 7: compare) */
+        double far[2] = {3e30, -1e30}, u, g[2], gl[2];
+        dfl_rfunc_batch_eval(b, 1, far, &u, g);
+        const double ul = dfl_field_eval1(ref, far, gl);
+        /* seen from far away all segments pull the same way: no
+         * cancellation, the gradient (~2|x - c|/d, huge for the disk trim's
+         * h ~ |x - c|^2/d) agrees relatively */
+        const double gn = hypot(gl[0], gl[1]);
+        cr_assert(fabs(u - ul) <= 1e-12 * ul && fabs(g[0] - gl[0]) <= 1e-12 * gn &&
+                      fabs(g[1] - gl[1]) <= 1e-12 * gn,
+                  "p %d: u %.17g vs %.17g, grad %.17g %.17g vs %.17g %.17g", ps[ip], u, ul, g[0],
+                  g[1], gl[0], gl[1]);
+        dfl_rfunc_batch_free(b);
+    }
+    /* 1e-170 off a segment (representable only near the origin): h^2 ~
+     * 1e-340 is subnormal, the sums overflow, and the fallback must give
+     * the library's value, which is the distance itself */
+    const double L[6] = {0, 0, 1, 0, 1, 1};
+    for (int ip = 0; ip < 2; ip++) {
+        dfl_rfunc_batch *bl;
+        cr_assert_eq(dfl_rfunc_batch_new(L, 3, 0, ps[ip], &bl, NULL), DFL_OK);
+        const double y[3][2] = {{0.5, 1e-170}, {0.5, -1e-170}, {-1e-170, 0}};
+        for (int w = 0; w < 3; w++) {
+            cr_assert_eq(dfl_rfunc_batch_fallbacks(bl, 1, y[w]), 1);
+            double u, g[2], gl[2];
+            dfl_rfunc_batch_eval(bl, 1, y[w], &u, g);
+            const double ul = dfl_field_eval1(dfl_rfunc_batch_reference(bl), y[w], gl);
+            cr_assert(u == ul && g[0] == gl[0] && g[1] == gl[1], "%d: %g vs %g", w, u, ul);
+            cr_assert(fabs(u - 1e-170) <= 1e-185, "%d: u = %g", w, u);
+        }
+        dfl_rfunc_batch_free(bl);
+    }
+    dfl_rfunc_batch *b;
+    cr_assert_eq(dfl_rfunc_batch_new(v, nv, 0, 12, &b, NULL), DFL_OK);
+    double far[2] = {3e30, -1e30}, u, g[2], gl[2];
+    cr_assert_eq(dfl_rfunc_batch_fallbacks(b, 1, far), 1);
+    dfl_rfunc_batch_eval(b, 1, far, &u, g);
+    const double ul = dfl_field_eval1(dfl_rfunc_batch_reference(b), far, gl);
+    cr_assert(fabs(u - ul) <= 1e-12 * ul);
+    /* eq. 6 bounds: n^(-1/p) min h_i <= u <= min h_i (n = 24 segments) */
+    double hmin = INFINITY;
+    for (size_t k = 0; k + 1 < nv; k++) {
+        dfl_rfunc_seg seg;
+        cr_assert_eq(dfl_rfunc_seg_init(2, v + 2 * k, v + 2 * k + 2, DFL_RFUNC_TRIM_DISK, &seg,
+                                        NULL),
+                     DFL_OK);
+        hmin = fmin(hmin, dfl_rfunc_seg_eval(&seg, far, NULL));
+    }
+    cr_assert(u <= hmin * (1 + 1e-12) && u >= pow(24.0, -1.0 / 12) * hmin * (1 - 1e-12),
+              "u %g, min h %g", u, hmin);
+    dfl_rfunc_batch_free(b);
+    free(v);
+}
+
+Test(rfunc_batch, field_wrapper_and_sampler)
+{
+    const size_t nv = 30;
+    double *v = spiral(nv);
+    dfl_field f;
+    dfl_err err;
+    cr_assert_eq(dfl_rfunc_batch_field(v, nv, 1, 7, &f, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(f.dim, 2);
+    dfl_grid g = {2, {37, 29, 1}, {-0.2, -0.1, 0}, {1.2, 1.1, 0}};
+    const size_t m = dfl_grid_size(&g);
+    double *u = malloc(m * sizeof *u), *gu = malloc(2 * m * sizeof *gu);
+    cr_assert_eq(dfl_field_sample(&f, &g, 2, u, gu, &err), DFL_OK, "%s", err.msg);
+    for (size_t i = 0; i < m; i++) {
+        double x[2], g1[2];
+        dfl_grid_node(&g, i, x);
+        const double u1 = dfl_field_eval1(&f, x, g1);
+        cr_assert(u1 == u[i] && g1[0] == gu[2 * i] && g1[1] == gu[2 * i + 1]);
+    }
+    /* jets come from the library: first derivative = grad . dir */
+    double x[2] = {0.31, 0.77}, dir[2] = {0.6, -0.8}, g1[2];
+    const double u1 = dfl_field_eval1(&f, x, g1);
+    dfl_jet jt;
+    cr_assert_eq(dfl_field_jet(&f, x, dir, 2, &jt, &err), DFL_OK, "%s", err.msg);
+    cr_assert(fabs(dfl_jet_coeff(&jt, 0) - u1) <= 1e-12 * u1);
+    cr_assert(fabs(dfl_jet_deriv(&jt, 1) - (g1[0] * dir[0] + g1[1] * dir[1])) <= 1e-10);
+    free(u);
+    free(gu);
+    dfl_field_destroy(&f);
+    free(v);
+}
+
+Test(rfunc_batch, bad_input)
+{
+    const double one[2] = {0, 0};
+    const double rep[6] = {0, 0, 1, 1, 1, 1};
+    const double ok[4] = {0, 0, 1, 1};
+    dfl_rfunc_batch *b = NULL;
+    dfl_err err;
+    cr_expect_eq(dfl_rfunc_batch_new(one, 1, 0, 2, &b, &err), DFL_E_INPUT);
+    cr_expect_eq(dfl_rfunc_batch_new(ok, 2, 1, 2, &b, &err), DFL_E_INPUT);
+    cr_expect_eq(dfl_rfunc_batch_new(rep, 3, 0, 2, &b, &err), DFL_E_INPUT);
+    cr_expect_eq(dfl_rfunc_batch_new(ok, 2, 0, 0, &b, &err), DFL_E_INPUT);
+    cr_expect_eq(dfl_rfunc_batch_new(ok, 2, 0, DFL_RFUNC_P_MAX + 1, &b, &err), DFL_E_INPUT);
+    cr_expect_null(b);
+    const int w = dfl_rfunc_batch_simd_width();
+    cr_expect(w == 2 || w == 4 || w == 8, "width %d", w);
+}
