@@ -14,7 +14,8 @@
  * max r (the bulge), min r, mean r, the maxima over side / end-cap /
  * joint rays (joint rays start at the polygon's vertices, where bs04's
  * normalization is lost), and mean r on the flattest and most curved thirds
- * of the curve, the latter split into its conouter and coninner sides.
+ * of the curve, the latter split into the inner side of the turns (towards
+ * the centre of curvature: bs04's "convex sector", angle < pi) and the outer.
  *
  * Theory (join.h, bs04 eq. 6): at a joint of two collinear parts whose
  * fields both equal the distance to their carrier line there (strip trims

@@ -14,8 +14,8 @@
  *     the level set u = delta against the true offset d = delta along the
  *     curve's normal rays (curveprobe.h): offset_* = (s - delta) / delta,
  *     s the first crossing of u = delta; mean, max, min, and the means on
- *     the flattest and most curved thirds of the curve (split into conouter
- *     and coninner sides).
+ *     the flattest and most curved thirds of the curve (split into the
+ *     inner and outer sides of the turns).
  * "Widening" (bs04 Sec. 2.4: "the widening of the distance field near the
  * flatter sections of the curve with the increase of segments") is measured
  * as widening = offset_flat_mean - offset_curved_mean: how much farther out,

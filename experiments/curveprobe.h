@@ -15,8 +15,8 @@
  *   JOINT +N and -N at given parameters (the vertices of a polygonization:
  *         where bs04's parts are joined).
  * Each ray records the signed curvature kappa at its origin (dT/ds = kappa
- * N, so a ray with side = +1 (v = +N) points to the coninner side iff
- * kappa > 0) and side = +1 / -1 (CAP: 0).  Tangents at knots are the
+ * N, so a ray with side = +1 (v = +N) points to the inner side of the
+ * turn, towards the centre of curvature, iff kappa > 0) and side = +1 / -1 (CAP: 0).  Tangents at knots are the
  * right-sided ones (left-sided at t1).
  *
  * Displacement along a ray.  For an exact distance d to C, o + delta v lies
@@ -114,9 +114,10 @@ dfl_status dfl_curveprobe_on_branch(const dfl_field *exact, const dfl_rayset *rs
  * sublevel sets of two arms of the curve have merged).  branch may be NULL
  * (no such test).  `merged` = (unresolved + beyond) / valid.  Groups: flat
  * = SIDE rays with |kappa| <= kflat, curved = SIDE rays with |kappa| >
- * kcurved (empty when the curve has constant |kappa|), conouter / coninner =
+ * kcurved (empty when the curve has constant |kappa|), outer / inner =
  * curved rays whose direction points away from / towards the centre of
- * curvature.  Empty groups give NAN; argmax = (size_t)-1 when no ray
+ * curvature (bs04 Sec. 2.3 calls the inner side of a joint, where the
+ * angle between the segments is < pi, the "convex sector").  Empty groups give NAN; argmax = (size_t)-1 when no ray
  * enters. */
 typedef struct dfl_ray_stats {
     size_t valid;         /* valid rays (resolved or not) */

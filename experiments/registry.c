@@ -18,6 +18,7 @@ extern const dfl_study dfl_study_bs04_spacecurves;
 extern const dfl_study dfl_study_bs04_triangle;
 extern const dfl_study dfl_study_bs04_triedge;
 extern const dfl_study dfl_study_bs04_surface;
+extern const dfl_study dfl_study_bs04_hetero;
 
 static const dfl_study *const all_studies[] = {
     &dfl_study_smoke,
@@ -33,6 +34,7 @@ static const dfl_study *const all_studies[] = {
     &dfl_study_bs04_triangle,
     &dfl_study_bs04_triedge,
     &dfl_study_bs04_surface,
+    &dfl_study_bs04_hetero,
     NULL,
 };
 

@@ -34,7 +34,7 @@ def _disk_joint(p, delta):
     return math.sqrt(y2) / delta - 1
 
 
-def _isolines(ctx, rows, case, levels, stem, title):
+def _isolines(ctx, rows, case, levels, stem, title, xlim=None, ylim=None):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -51,7 +51,8 @@ def _isolines(ctx, rows, case, levels, stem, title):
     n = len(panels)
     cols = 3
     rws = (n + cols - 1) // cols
-    fig, axs = plt.subplots(rws, cols, figsize=(3.3 * cols, 3.3 * rws))
+    aspect = (ylim[1] - ylim[0]) / (xlim[1] - xlim[0]) if xlim and ylim else 1.0
+    fig, axs = plt.subplots(rws, cols, figsize=(3.3 * cols, (3.3 * aspect + 0.5) * rws))
     axs = np.atleast_1d(axs).ravel()
     ref = None
     for ax, (name, fn, arr) in zip(axs, panels):
@@ -69,13 +70,17 @@ def _isolines(ctx, rows, case, levels, stem, title):
             ax.contour(x, y, ref, levels=levels, colors="0.75", linewidths=0.6)
         ax.contour(x, y, v, levels=levels, colors="C0" if fn != exact else "k", linewidths=0.8)
         ax.set_aspect("equal")
+        if xlim:
+            ax.set_xlim(*xlim)
+        if ylim:
+            ax.set_ylim(*ylim)
         ax.set_xticks([])
         ax.set_yticks([])
         ax.set_title(name, fontsize=8)
     for ax in axs[n:]:
         ax.set_visible(False)
-    fig.suptitle(f"{title}: isolines of u (blue) over the exact distance's (grey)\n{ctx.config}",
-                 fontsize=8)
+    fig.suptitle(f"{title}: isolines of u (blue) over the exact distance's (grey), levels "
+                 f"{levels[0]:g}:{levels[1] - levels[0]:g}:{levels[-1]:g}\n{ctx.config}", fontsize=8)
     return ctx.figure(fig, stem)
 
 
@@ -143,8 +148,9 @@ def render(ctx):
         md += (". bs04's statement that bulging is visible at p = 2, 7, 12 but diminishes with p "
                "is reproduced quantitatively: the joint bulge is 2^(1/p) − 1 = 41 %, 10 %, 6 % of "
                "δ for small δ.\n\n")
-        md += _isolines(ctx, rows, col[0], np.arange(0.1, 2.0, 0.1), "isolines_collinear",
-                        f"Fig. 6 ({col[0]})") + "\n\n"
+        for c in col:
+            md += _isolines(ctx, rows, c, np.arange(0.05, 0.85, 0.05), f"isolines_{c}",
+                            f"Fig. 6 ({c})", (-1.9, 1.9), (-1.1, 1.1)) + "\n\n"
 
     # --- W curve (Fig. 2) ---
     wc = [c for c in cases if not c.startswith("collinear")]

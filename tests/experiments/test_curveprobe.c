@@ -145,7 +145,7 @@ Test(curveprobe, valid_and_on_branch_on_a_parabola)
     cr_assert_eq(dfl_field_exact_new(&sh, &ex, NULL), DFL_OK);
     dfl_rayset rs;
     cr_assert_eq(dfl_curveprobe_rays(&c, 3, 0, NULL, 0, &rs, NULL), DFL_OK);
-    /* rays 2, 3: from the vertex (0, 0) up (coninner side) and down */
+    /* rays 2, 3: from the vertex (0, 0) up (inner side) and down */
     cr_assert_float_eq(rs.o[4], 0.0, 1e-14);
     int ok[6];
     /* (0, 0.25): nearest point of y = x^2 is the vertex (radius of
@@ -155,7 +155,7 @@ Test(curveprobe, valid_and_on_branch_on_a_parabola)
     /* (0, 1): min_x x^2 + (x^2 - 1)^2 = 3/4 at x^2 = 1/2: d = 0.866 < 1 */
     cr_assert_eq(dfl_curveprobe_valid(&ex, &rs, 1.0, 1e-9, 1, ok, NULL), DFL_OK);
     cr_expect(!ok[2], "above the centre of curvature");
-    cr_expect(ok[3], "conouter side");
+    cr_expect(ok[3], "outer side");
     double s[6] = {0.1, 0.1, 0.25, 0.8, 1.0, NAN};
     cr_assert_eq(dfl_curveprobe_on_branch(&ex, &rs, s, 1e-9, 2, ok, NULL), DFL_OK);
     cr_expect(ok[2] && ok[3] && !ok[5]);
