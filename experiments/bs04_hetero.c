@@ -242,8 +242,10 @@ static dfl_status hetero_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
     if (!st) st = dfl_bs04_put_metrics(table, "_band", &inb);
     if (!st) st = dfl_bs04_put_gradstat(table, "_band", &gs);
     if (!st) st = dfl_table_set_double(table, "delta", k.delta);
-    if (!st) st = dfl_table_set_double(table, "boundary_ratio_err", fmax(br.ratio, fmax(bs.ratio, bp.ratio)));
-    if (!st) st = dfl_table_set_double(table, "boundary_grad_err", fmax(br.grad, fmax(bs.grad, bp.grad)));
+    const double rmax = fmax(br.ratio, fmax(bs.ratio, bp.ratio));
+    const double gmax = fmax(br.grad, fmax(bs.grad, bp.grad));
+    if (!st) st = dfl_table_set_double(table, "boundary_ratio_err", rmax);
+    if (!st) st = dfl_table_set_double(table, "boundary_grad_err", gmax);
     if (!st) st = dfl_table_set_double(table, "boundary_ratio_err_region", br.ratio);
     if (!st) st = dfl_table_set_double(table, "boundary_grad_err_region", br.grad);
     if (!st) st = dfl_table_set_double(table, "boundary_ratio_err_segment", bs.ratio);

@@ -36,7 +36,8 @@ void dfl_bs04_gradstat(size_t m, int dim, const double *grad, const unsigned cha
     for (size_t i = 0; i < m; i++) {
         if (mask && !mask[i]) continue;
         double q = 0;
-        for (int j = 0; j < dim; j++) q += grad[i * (size_t)dim + (size_t)j] * grad[i * (size_t)dim + (size_t)j];
+        const double *g = grad + i * (size_t)dim;
+        for (int j = 0; j < dim; j++) q += g[j] * g[j];
         q = sqrt(q);
         mn = fmin(mn, q);
         mx = fmax(mx, q);

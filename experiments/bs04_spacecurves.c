@@ -108,7 +108,11 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
                                dfl_cfg_where(cfg, "study", "paper_segments", w, sizeof w),
                                k->ncurves);
     }
-    if (k->volume && (st = dfl_grid_from_cfg(cfg, "grid", 3, &k->grid, err))) return st;
+    /* [grid] is read whenever present, so that volume = false does not turn
+     * its keys into "unknown key" errors */
+    if ((k->volume || dfl_cfg_has_section(cfg, "grid")) &&
+        (st = dfl_grid_from_cfg(cfg, "grid", 3, &k->grid, err)))
+        return st;
     if ((st = dfl_slices_from_cfg(cfg, "study", k->slices, MAX_SLICES, &k->nslices, err)))
         return st;
     return dfl_field_out_from_cfg(cfg, &k->out, err);
@@ -219,7 +223,10 @@ static dfl_status do_curve(const keys *k, int c, const dfl_bspline *curve, const
         if (!st) st = put_field(table, "", m, u, gu, d, k->band, err);
         snprintf(stem, sizeof stem, "%s_volume", name);
         if (!st) st = dfl_field_out_write(ctx, stem, &k->grid, u, gu, d, &k->out, err);
-        if (!st) st = dfl_table_set_string(table, "volume_vti", k->out.vti ? dfl_bs04_base(dfl_study_path(ctx, stem, "vti", path, sizeof path)) : "");
+        if (!st && k->out.vti)
+            st = dfl_table_set_string(
+                table, "volume_vti",
+                dfl_bs04_base(dfl_study_path(ctx, stem, "vti", path, sizeof path)));
         free(u), free(gu), free(d);
         u = gu = d = NULL;
         if (st) goto done;

@@ -209,7 +209,9 @@ static dfl_status surf_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     if (!st) st = dfl_table_set_double(table, "bound", M.bound);
     if (!st) st = dfl_table_set_string(table, "join", dfl_rfunc_join_name(k.join));
     if (!st) st = dfl_table_set_int(table, "p", k.p);
-    if (!st) st = dfl_table_set_string(table, "tri_trim", k.o.trim == DFL_RFUNC_TRI_PRISM ? "prism" : "conditional");
+    if (!st)
+        st = dfl_table_set_string(table, "tri_trim",
+                                  k.o.trim == DFL_RFUNC_TRI_PRISM ? "prism" : "conditional");
     if (!st) st = dfl_bs04_vtp_trimesh(dfl_study_path(ctx, "mesh", "vtp", path, sizeof path),
                                        M.nverts, M.verts, M.ntris, M.tris, k.compress, err);
     if (!st) st = dfl_table_set_string(table, "mesh_vtp", dfl_bs04_base(path));

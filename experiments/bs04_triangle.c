@@ -31,20 +31,22 @@
  *
  * Keys ([study]):
  *   triangle = x y z; x y z; x y z   vertices A, B, C
- *   vertex   = 0                     which vertex (0, 1, 2) the sphere is around
+ *   vertices = 0 1 2                 vertices (0, 1, 2) the spheres are around
+ *                                    (default all three)
  *   tri_trim = conditional | prism   trim volume (tri3d.h); a = 0.2, k = 2
  *                                    (eq. 15-16), smooth = false (eq. 4)
- *   radius   = 1e-2                  sphere radius (> 0)
+ *   radii    = 1e-2 1e-3             sphere radii (> 0; up to 8; default 1e-2)
  *   samples  = 4000                  Fibonacci points on the sphere (>= 10)
  *   theory_samples = 100000          angles for the closed form
  *   slices, slice_n, slice_lo, slice_hi   section planes of h (Fig. 9c)
  *   compress = true                  [output] see field_out.h
- * Rows: vertex, tri_trim, radius, alpha_deg, grad_min/mean/max (sphere),
+ * Rows (one per vertex and radius): vertex, tri_trim, radius, alpha_deg, grad_min/mean/max (sphere),
  * tgrad_min/max (|grad t| on the sphere), plane_grad_min/max (exterior
  * arc of the in-plane circle), theory_plane_min/max (closed form above),
  * theory_sphere_min/max (prism only: min(1, .), max(1, .)), argmin/argmax
  * directions (unit vectors from the vertex), files.
- * Files: sphere<tag>.vtp (the sphere samples with point data grad_norm),
+ * Files: sphere_v<vertex>_r<radius index><tag>.vtp (the sphere samples with
+ * point data grad_norm),
  * triangle_slice<k><tag>.vti/.exr.
  */
 #include <math.h>
@@ -60,12 +62,15 @@
 #include "slice.h"
 
 #define MAX_SLICES 4
+#define MAX_RADII 8
+#define PI 3.14159265358979323846
 
 typedef struct keys {
     double v[9];
-    long vertex;
+    int vertices[3], nvert;
     dfl_rfunc_tri_opts o;
-    double radius;
+    double radii[MAX_RADII];
+    int nradii;
     long samples, theory_samples;
     dfl_slice slices[MAX_SLICES];
     int nslices;
@@ -93,7 +98,24 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
     }
     memcpy(k->v, pts, sizeof k->v);
     free(pts);
-    if ((st = dfl_cfg_int_opt(cfg, "study", "vertex", 0, 0, 2, &k->vertex, err))) return st;
+    double *list = NULL;
+    size_t nl = 0;
+    if (!dfl_cfg_has(cfg, "study", "vertices")) {
+        k->nvert = 3;
+        for (int i = 0; i < 3; i++) k->vertices[i] = i;
+    } else if ((st = dfl_cfg_doubles(cfg, "study", "vertices", 1, &list, &nl, err))) {
+        return st;
+    }
+    for (size_t i = 0; i < nl; i++) {
+        const int vi = (int)list[i];
+        if (nl > 3 || (double)vi != list[i] || vi < 0 || vi > 2) {
+            free(list);
+            return dfl_err_set(err, DFL_E_INPUT, "%s: expected up to 3 vertex indices 0, 1, 2",
+                               dfl_cfg_where(cfg, "study", "vertices", w, sizeof w));
+        }
+        k->vertices[k->nvert++] = vi;
+    }
+    free(list);
     if ((st = dfl_cfg_enum_opt(cfg, "study", "tri_trim", trims, 2, 1, &trim, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "a", 0.2, 1e-12, 1e12, &a, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "k", 2, 2, 64, &kk, err))) return st;
@@ -108,8 +130,22 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
         dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "triangle", w, sizeof w));
         return st;
     }
-    if ((st = dfl_cfg_double_opt(cfg, "study", "radius", 1e-2, 1e-12, 1e6, &k->radius, err)))
+    nl = 0;
+    if (!dfl_cfg_has(cfg, "study", "radii")) {
+        k->nradii = 1;
+        k->radii[0] = 1e-2;
+    } else if ((st = dfl_cfg_doubles(cfg, "study", "radii", 1, &list, &nl, err))) {
         return st;
+    }
+    for (size_t i = 0; i < nl; i++) {
+        if (nl > MAX_RADII || !(list[i] > 0.0)) {
+            free(list);
+            return dfl_err_set(err, DFL_E_INPUT, "%s: expected up to %d radii > 0",
+                               dfl_cfg_where(cfg, "study", "radii", w, sizeof w), MAX_RADII);
+        }
+        k->radii[k->nradii++] = list[i];
+    }
+    free(list);
     if ((st = dfl_cfg_int_opt(cfg, "study", "samples", 4000, 10, 10000000, &k->samples, err)))
         return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "theory_samples", 100000, 100, 100000000,
@@ -164,30 +200,22 @@ static frame vertex_frame(const double *v, int vi)
     return f;
 }
 
-static dfl_status tri_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
-                          dfl_err *err)
+/* One row: |grad h| on the sphere of radius r around vertex vi. */
+static dfl_status do_sphere(const keys *k, const dfl_rfunc_tri *tri, int vi, int ri,
+                            const dfl_study_ctx *ctx, dfl_table *table, dfl_err *err)
 {
-    keys k;
-    dfl_field fld = {0};
-    double *sph = NULL, *gn = NULL;
+    const frame fr = vertex_frame(k->v, vi);
+    const double r = k->radii[ri];
+    const size_t N = (size_t)k->samples;
     char path[4400], stem[64];
-    dfl_status st = read_keys(cfg, &k, err);
-    if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
-    if (st != DFL_OK) return st;
-    dfl_rfunc_tri tri;
-    if ((st = dfl_rfunc_tri_init(k.v, k.v + 3, k.v + 6, &k.o, &tri, err))) return st;
-    const frame fr = vertex_frame(k.v, (int)k.vertex);
-    const double r = k.radius;
-
-    /* sphere: Fibonacci points (uniform in area) */
-    const size_t N = (size_t)k.samples;
-    sph = malloc(3 * N * sizeof *sph);
-    gn = malloc(N * sizeof *gn);
+    dfl_status st = DFL_OK;
+    double *sph = malloc(3 * N * sizeof *sph), *gn = malloc(N * sizeof *gn);
     if (!sph || !gn) {
         st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
         goto done;
     }
-    const double golden = 3.14159265358979323846 * (3.0 - sqrt(5.0));
+    /* sphere: Fibonacci points (uniform in area) */
+    const double golden = PI * (3.0 - sqrt(5.0));
     double gmin = INFINITY, gmax = -INFINITY, gsum = 0, tmin = INFINITY, tmax = -INFINITY;
     double dmin[3] = {0, 0, 0}, dmax[3] = {0, 0, 0};
     size_t cnt = 0;
@@ -197,8 +225,8 @@ static dfl_status tri_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
         const double d[3] = {rr * cos(ph), rr * sin(ph), z};
         double *x = sph + 3 * i, g[3], gt[3];
         for (int j = 0; j < 3; j++) x[j] = fr.A[j] + r * d[j];
-        const double h = dfl_rfunc_tri_eval(&tri, x, g);
-        (void)dfl_rfunc_tri_trim_eval(&tri, x, gt);
+        const double h = dfl_rfunc_tri_eval(tri, x, g);
+        (void)dfl_rfunc_tri_trim_eval(tri, x, gt);
         gn[i] = sqrt(dot3(g, g));
         const double tn = sqrt(dot3(gt, gt));
         tmin = fmin(tmin, tn);
@@ -211,29 +239,30 @@ static dfl_status tri_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
     }
     /* the exterior arc of the in-plane circle, and the closed form */
     double pmin = INFINITY, pmax = -INFINITY, qmin = INFINITY, qmax = -INFINITY;
-    const double two_pi = 2.0 * 3.14159265358979323846;
     for (size_t i = 0; i < N; i++) {
-        const double th = fr.alpha + (two_pi - fr.alpha) * ((double)i + 0.5) / (double)N;
+        const double th = fr.alpha + (2 * PI - fr.alpha) * ((double)i + 0.5) / (double)N;
         double x[3], g[3];
         for (int j = 0; j < 3; j++) x[j] = fr.A[j] + r * (cos(th) * fr.e1[j] + sin(th) * fr.e2[j]);
-        (void)dfl_rfunc_tri_eval(&tri, x, g);
+        (void)dfl_rfunc_tri_eval(tri, x, g);
         const double q = sqrt(dot3(g, g));
         pmin = fmin(pmin, q);
         pmax = fmax(pmax, q);
     }
-    for (long i = 0; i < k.theory_samples; i++) {
+    for (long i = 0; i < k->theory_samples; i++) {
         const double th =
-            fr.alpha + (two_pi - fr.alpha) * ((double)i + 0.5) / (double)k.theory_samples;
+            fr.alpha + (2 * PI - fr.alpha) * ((double)i + 0.5) / (double)k->theory_samples;
         const double q = plane_theory(fr.alpha, th);
         qmin = fmin(qmin, q);
         qmax = fmax(qmax, q);
     }
 
     st = dfl_table_row(table);
-    if (!st) st = dfl_table_set_int(table, "vertex", k.vertex);
-    if (!st) st = dfl_table_set_string(table, "tri_trim", k.o.trim == DFL_RFUNC_TRI_PRISM ? "prism" : "conditional");
+    if (!st) st = dfl_table_set_int(table, "vertex", vi);
+    if (!st)
+        st = dfl_table_set_string(table, "tri_trim",
+                                  k->o.trim == DFL_RFUNC_TRI_PRISM ? "prism" : "conditional");
     if (!st) st = dfl_table_set_double(table, "radius", r);
-    if (!st) st = dfl_table_set_double(table, "alpha_deg", fr.alpha * 180.0 / 3.14159265358979323846);
+    if (!st) st = dfl_table_set_double(table, "alpha_deg", fr.alpha * 180.0 / PI);
     if (!st) st = dfl_table_set_int(table, "samples", (long)cnt);
     if (!st) st = dfl_table_set_double(table, "grad_min", gmin);
     if (!st) st = dfl_table_set_double(table, "grad_mean", gsum / (double)cnt);
@@ -244,18 +273,41 @@ static dfl_status tri_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
     if (!st) st = dfl_table_set_double(table, "plane_grad_max", pmax);
     if (!st) st = dfl_table_set_double(table, "theory_plane_min", qmin);
     if (!st) st = dfl_table_set_double(table, "theory_plane_max", qmax);
-    if (!st && k.o.trim == DFL_RFUNC_TRI_PRISM) {
+    if (!st && k->o.trim == DFL_RFUNC_TRI_PRISM) {
         st = dfl_table_set_double(table, "theory_sphere_min", fmin(1.0, qmin));
         if (!st) st = dfl_table_set_double(table, "theory_sphere_max", fmax(1.0, qmax));
     }
     /* directions in the vertex frame (e1, e2, n) */
-    const char *cols[6] = {"argmin_e1", "argmin_e2", "argmin_n", "argmax_e1", "argmax_e2", "argmax_n"};
+    const char *cols[6] = {"argmin_e1", "argmin_e2", "argmin_n",
+                           "argmax_e1", "argmax_e2", "argmax_n"};
     const double vals[6] = {dot3(dmin, fr.e1), dot3(dmin, fr.e2), dot3(dmin, fr.n),
                             dot3(dmax, fr.e1), dot3(dmax, fr.e2), dot3(dmax, fr.n)};
     for (int c = 0; c < 6 && !st; c++) st = dfl_table_set_double(table, cols[c], vals[c]);
-    if (!st) st = dfl_bs04_vtp_points(dfl_study_path(ctx, "sphere", "vtp", path, sizeof path), N,
-                                      sph, "grad_norm", gn, k.compress, err);
+    snprintf(stem, sizeof stem, "sphere_v%d_r%d", vi, ri);
+    if (!st)
+        st = dfl_bs04_vtp_points(dfl_study_path(ctx, stem, "vtp", path, sizeof path), N, sph,
+                                 "grad_norm", gn, k->compress, err);
     if (!st) st = dfl_table_set_string(table, "sphere_vtp", dfl_bs04_base(path));
+done:
+    free(sph);
+    free(gn);
+    return st;
+}
+
+static dfl_status tri_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
+                          dfl_err *err)
+{
+    keys k;
+    dfl_field fld = {0};
+    char stem[64];
+    dfl_status st = read_keys(cfg, &k, err);
+    if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
+    if (st != DFL_OK) return st;
+    dfl_rfunc_tri tri;
+    if ((st = dfl_rfunc_tri_init(k.v, k.v + 3, k.v + 6, &k.o, &tri, err))) return st;
+    for (int a = 0; a < k.nvert && !st; a++)
+        for (int b = 0; b < k.nradii && !st; b++)
+            st = do_sphere(&k, &tri, k.vertices[a], b, ctx, table, err);
     if (st) goto done;
 
     /* section planes of the triangle's field */
@@ -280,8 +332,6 @@ done:
     if (st != DFL_OK && err && err->code == DFL_OK)
         dfl_err_set(err, st, "bs04_triangle: cannot fill the table");
     dfl_field_destroy(&fld);
-    free(sph);
-    free(gn);
     return st;
 }
 

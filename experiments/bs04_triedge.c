@@ -185,7 +185,9 @@ static dfl_status edge_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
 
     st = dfl_table_row(table);
     if (!st) st = dfl_table_set_double(table, "dihedral", k.theta * 180.0 / PI);
-    if (!st) st = dfl_table_set_string(table, "tri_trim", k.o.trim == DFL_RFUNC_TRI_PRISM ? "prism" : "conditional");
+    if (!st)
+        st = dfl_table_set_string(table, "tri_trim",
+                                  k.o.trim == DFL_RFUNC_TRI_PRISM ? "prism" : "conditional");
     if (!st) st = dfl_table_set_string(table, "join", dfl_rfunc_join_name(k.join));
     if (!st) st = dfl_table_set_int(table, "p", k.p);
     if (!st) st = dfl_table_set_double(table, "radius", k.radius);

@@ -1,9 +1,11 @@
 /* Why the kernel looks the way it does:
  *
- *  - Structure of arrays (a, b, n, 1/2d, 1/2d^2) and a fixed block of LANES
- *    segments with one accumulator per lane: the lane loop vectorizes
+ *  - Vector lanes are points: a block of LANES points runs through all
+ *    segments, whose data (structure of arrays: a, b, n, 1/2d, 1/2d^2) is
+ *    broadcast, with one accumulator per lane.  The lane loop vectorizes
  *    without reassociating a reduction (ISO C forbids that; gcc would need
- *    -ffast-math), and the lanes are summed once per point.
+ *    -ffast-math), each point sums its segments in order, and the segment
+ *    data is loaded once per block instead of once per point.
  *  - No branch, no sqrt, no libm call in the lane loop: max(-t, 0) is
  *    (|t| - t)/2; even p need 1/h^2 only (one division); odd p need 1/h,
  *    a Newton iteration for 1/sqrt(h^2) from the classic exponent-halving
@@ -140,28 +142,26 @@ DFL_INLINE void seg_term(double x, double y, const dfl_rfunc_batch *b, size_t k,
 DFL_INLINE void sums_p(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out,
                        const int p)
 {
-    const size_t n = b->n, nb = n / LANES * LANES;
-    for (size_t i = 0; i < m; i++) {
-        const double x = pts[2 * i], y = pts[2 * i + 1];
-        double S[LANES] = {0}, Vx[LANES] = {0}, Vy[LANES] = {0};
-        for (size_t k0 = 0; k0 < nb; k0 += LANES) {
+    const size_t n = b->n;
+    for (size_t i0 = 0; i0 < m; i0 += LANES) {
+        const size_t c = m - i0 < LANES ? m - i0 : LANES;
+        double X[LANES], Y[LANES], S[LANES] = {0}, Vx[LANES] = {0}, Vy[LANES] = {0};
+        /* a short last block repeats its last point in the spare lanes */
+        for (size_t l = 0; l < LANES; l++) {
+            const size_t i = i0 + (l < c ? l : c - 1);
+            X[l] = pts[2 * i];
+            Y[l] = pts[2 * i + 1];
+        }
+        for (size_t k = 0; k < n; k++) {
 #pragma omp simd
-            for (int l = 0; l < LANES; l++) {
-                const size_t k = k0 + (size_t)l;
-                seg_term(x, y, b, k, p, &S[l], &Vx[l], &Vy[l]);
-            }
+            for (int l = 0; l < LANES; l++)
+                seg_term(X[l], Y[l], b, k, p, &S[l], &Vx[l], &Vy[l]);
         }
-        for (size_t k = nb; k < n; k++)
-            seg_term(x, y, b, k, p, &S[0], &Vx[0], &Vy[0]);
-        double s = 0, vx = 0, vy = 0;
-        for (int l = 0; l < LANES; l++) {
-            s += S[l];
-            vx += Vx[l];
-            vy += Vy[l];
+        for (size_t l = 0; l < c; l++) {
+            out[3 * (i0 + l)] = S[l];
+            out[3 * (i0 + l) + 1] = Vx[l];
+            out[3 * (i0 + l) + 2] = Vy[l];
         }
-        out[3 * i] = s;
-        out[3 * i + 1] = vx;
-        out[3 * i + 2] = vy;
     }
 }
 
@@ -198,8 +198,9 @@ void dfl_rfunc_batch_ops(int p, int *mul, int *add, int *div)
 {
     /* the per-line counts in seg_term; rsqrt_newton: 0.5 x, then 3 mul and
      * 1 sub per step */
-    *mul = 2 + 2 + 1 + 1 + 2 + 2 + 2 + 1 + 2;
-    *add = 2 + 2 + 1 + 1 + 1 + 2 + 2 + 1 + 2;
+    /*        x-a  x-b   f  -td  max  mt  mi  h^2  gx  gy   q   S   V */
+    *mul = 0 + 0 + 2 + 2 + 0 + 1 + 1 + 2 + 2 + 2 + 1 + 0 + 2;
+    *add = 2 + 2 + 1 + 1 + 1 + 0 + 0 + 1 + 2 + 2 + 0 + 1 + 2;
     *div = 0;
     if (p & 1) {
         *mul += 13 + 1 + (p == 1 ? 0 : ipow_muls(p / 2) + 1);
@@ -260,11 +261,15 @@ void dfl_rfunc_batch_eval(const dfl_rfunc_batch *b, size_t m, const double *pts,
 
 size_t dfl_rfunc_batch_fallbacks(const dfl_rfunc_batch *b, size_t m, const double *pts)
 {
+    double s[3 * SCRATCH];
     size_t cnt = 0;
-    for (size_t i = 0; i < m; i++) {
-        double s[3], u, g[2];
-        sums(b, 1, pts + 2 * i, s);
-        cnt += !accept(b->p, s, &u, g);
+    for (size_t i = 0; i < m; i += SCRATCH) {
+        const size_t c = m - i < SCRATCH ? m - i : SCRATCH;
+        sums(b, c, pts + 2 * i, s);
+        for (size_t j = 0; j < c; j++) {
+            double u, g[2];
+            cnt += !accept(b->p, s + 3 * j, &u, g);
+        }
     }
     return cnt;
 }

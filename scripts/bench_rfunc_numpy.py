@@ -47,7 +47,7 @@ def ipow(a, k):
     return r if r is not None else np.ones_like(a)
 
 
-def field(a, b, p, x, y, block=16):
+def field(a, b, p, x, y, block=8):
     """u and grad u at the points (x, y) (1D arrays)."""
     ux, uy = b[:, 0] - a[:, 0], b[:, 1] - a[:, 1]
     d = np.hypot(ux, uy)

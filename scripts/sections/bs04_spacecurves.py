@@ -80,7 +80,7 @@ def render(ctx):
         tag = ""
         if "_pt" in r.get("vtp", ""):
             tag = "_pt" + r["vtp"].split("_pt")[-1].split(".")[0]
-        fig, axs = plt.subplots(n, 3, figsize=(11, 3.3 * n), squeeze=False)
+        fig, axs = plt.subplots(n, 3, figsize=(11, 3.3 * n), squeeze=False, constrained_layout=True)
         for s in range(n):
             fn = f"{r['curve']}_slice{s}{tag}.vti"
             if not sc.exists(ctx, fn):

@@ -12,10 +12,6 @@ ASSUMPTIONS = [
 ]
 
 
-def _tag(i, n):
-    return f"_pt{i:03d}" if n > 1 else ""
-
-
 def _sphere(path):
     from vtkmodules.util.numpy_support import vtk_to_numpy
     from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
@@ -67,12 +63,11 @@ def render(ctx):
            "differ only slightly off it (the conditional trim raises the mean).\n\n")
     # figure: |grad h| over the sphere of vertex 0 at the smallest radius, both trims
     rmin = min(dflio.num(r["radius"]) for r in rows)
-    pick = [(i, r) for i, r in enumerate(rows)
-            if int(float(r["vertex"])) == 0 and dflio.num(r["radius"]) == rmin]
+    pick = [r for r in rows if int(float(r["vertex"])) == 0 and dflio.num(r["radius"]) == rmin]
     if pick:
-        fig, axs = plt.subplots(1, len(pick), figsize=(5.5 * len(pick), 3.4), squeeze=False)
-        for ax, (i, r) in zip(axs[0], pick):
-            fn = ctx.path(f"sphere{_tag(i, len(rows))}.vtp")
+        fig, axs = plt.subplots(1, len(pick), figsize=(5.5 * len(pick), 3.4), squeeze=False, constrained_layout=True)
+        for ax, r in zip(axs[0], pick):
+            fn = ctx.path(r["sphere_vtp"])
             pts, g = _sphere(fn)
             c = pts - pts.mean(axis=0)
             az = np.degrees(np.arctan2(c[:, 1], c[:, 0]))
@@ -89,16 +84,19 @@ def render(ctx):
     # figure: the field on the section planes (first sweep point of each trim)
     seen = set()
     panels = []
-    for i, r in enumerate(rows):
+    for r in rows:
         if r["tri_trim"] in seen:
             continue
         seen.add(r["tri_trim"])
+        tag = ""
+        if "_pt" in r["sphere_vtp"]:
+            tag = "_pt" + r["sphere_vtp"].split("_pt")[-1].split(".")[0]
         k = 0
-        while sc.exists(ctx, f"triangle_slice{k}{_tag(i, len(rows))}.vti"):
-            panels.append((r["tri_trim"], ctx.path(f"triangle_slice{k}{_tag(i, len(rows))}.vti")))
+        while sc.exists(ctx, f"triangle_slice{k}{tag}.vti"):
+            panels.append((r["tri_trim"], ctx.path(f"triangle_slice{k}{tag}.vti")))
             k += 1
     if panels:
-        fig, axs = plt.subplots(2, len(panels), figsize=(3.6 * len(panels), 6.2), squeeze=False)
+        fig, axs = plt.subplots(2, len(panels), figsize=(3.6 * len(panels), 6.2), squeeze=False, constrained_layout=True)
         for j, (trim, fn) in enumerate(panels):
             img, ext, lab = sc.slice_image(fn)
             sc.show(axs[0][j], fig, img["value"], ext, lab, f"h, trim {trim}", iso=img["value"])
