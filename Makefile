@@ -98,6 +98,7 @@ sanitize: deps
 	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
 	  build-san/dflab build-san/dflab-tests
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1 \
+	  LSAN_OPTIONS=suppressions=$(abspath tests/lsan.supp) \
 	  DFL_PYTHON=$(PYTHON) DFL_DFLAB=$(abspath build-san/dflab) DFL_SANITIZE=1 \
 	  build-san/dflab-tests -j2 --timeout 1200
 

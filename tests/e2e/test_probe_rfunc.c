@@ -48,13 +48,13 @@ Test(e2e_probe_rfunc, orders_for_every_join_trim_p, .timeout = 60)
                     cr_expect_float_eq(e2e_csv_get(path, row, "d1"), 1.0, 1e-12, "%s %s p=%d",
                                        joins[j], trims[t], p);
                     for (int k = 2; k <= m; k++) {
-                        char col[8];
+                        char col[16];
                         snprintf(col, sizeof col, "d%d", k);
                         double dk = e2e_csv_get(path, row, col);
                         cr_expect(fabs(dk) < 1e-9, "%s %s p=%d: %s = %g", joins[j], trims[t], p,
                                   col, dk);
                     }
-                    char col[8];
+                    char col[16];
                     snprintf(col, sizeof col, "d%d", m + 1);
                     double next = e2e_csv_get(path, row, col);
                     cr_expect(fabs(next) > 1e-6, "%s %s p=%d: %s = %g should be non-zero",

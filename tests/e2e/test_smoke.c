@@ -190,7 +190,7 @@ Test(e2e_smoke, probe_jets)
     cr_expect_float_eq(e2e_csv_get(path, 0, "d4"), -3 / (r * r * r), 1e-8);
     cr_expect_float_eq(e2e_csv_get(path, 1, "d1"), 1.0, 1e-12);
     for (int k = 2; k <= 4; k++) {
-        char col[8];
+        char col[16];
         snprintf(col, sizeof col, "d%d", k);
         cr_expect(fabs(e2e_csv_get(path, 1, col)) < 1e-10, "%s = %g", col, e2e_csv_get(path, 1, col));
     }
