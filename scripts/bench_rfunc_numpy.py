@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """numpy version of the bs04 field that tests/bench/bench_rfunc.c times.
 
-The same formulas as experiments/rfunc_batch.c (2D polyline, disk trim of
+The same formulas as src/rfunc/batch.c (2D polyline, disk trim of
 eq. 4, R-equivalence of order p, value + gradient):
 
     w = x - a, v = x - b, d = |b - a|, n = (b_y - a_y, -(b_x - a_x)) / d

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "rfunc/batch.h"
 #include "rfunc/region.h"
 #include "rfunc/trim.h"
 
@@ -37,6 +38,8 @@ struct dfl_rfield {
     vertex *verts;  /* sorted by hi at finish */
     size_t nv, vcap;
     size_t *vstart; /* n + 1 offsets into verts by hi (after finish) */
+    bool fast;             /* builder option: use the batch evaluator if eligible */
+    dfl_rfunc_batch *batch; /* eval's fast path (after finish), or NULL */
 };
 
 dfl_status dfl_rfield_new(int dim, dfl_rfunc_join join, int p, dfl_rfield **out, dfl_err *err)
@@ -50,6 +53,7 @@ dfl_status dfl_rfield_new(int dim, dfl_rfunc_join join, int p, dfl_rfield **out,
     r->dim = dim;
     r->join = join;
     r->p = p;
+    r->fast = true;
     *out = r;
     return DFL_OK;
 }
@@ -62,10 +66,13 @@ void dfl_rfield_free(dfl_rfield *r)
     free(r->parts);
     free(r->verts);
     free(r->vstart);
+    dfl_rfunc_batch_free(r->batch);
     free(r);
 }
 
 size_t dfl_rfield_count(const dfl_rfield *r) { return r->n; }
+
+void dfl_rfield_set_fast(dfl_rfield *r, bool on) { r->fast = on; }
 
 static dfl_status push(dfl_rfield *r, const part *pt, dfl_err *err)
 {
@@ -190,6 +197,12 @@ static double vertex_q(int dim, const vertex *v, const double *x, double *g)
 static void rfield_eval(const void *ctx, size_t m, const double *pts, double *val, double *grad)
 {
     const dfl_rfield *r = ctx;
+    if (r->batch) {
+        /* The whole chunk at once: the batch is read-only and allocates
+         * nothing (stack scratch), so concurrent calls are safe. */
+        dfl_rfunc_batch_eval(r->batch, m, pts, val, grad);
+        return;
+    }
     const int dim = r->dim, want = grad != NULL;
     const int corrected = r->join == DFL_RFUNC_REQUIV_CORRECTED;
     for (size_t i = 0; i < m; i++) {
@@ -262,6 +275,41 @@ static void rfield_destroy(void *ctx) { dfl_rfield_free(ctx); }
 
 static const dfl_field_ops rfield_ops = {"rfunc", rfield_eval, rfield_jet, rfield_destroy};
 
+bool dfl_rfield_is_fast(const dfl_field *f)
+{
+    return f->ops == &rfield_ops && ((const dfl_rfield *)f->ctx)->batch != NULL;
+}
+
+/* The case rfunc/batch.h computes: 2D, R-equivalence, disk-trimmed
+ * segments only, forming a chain (segment k starts exactly where k-1
+ * ends).  Then the segments are those of the open polyline a_0, ..., a_{n-1},
+ * b_{n-1} (a closed polyline is the open one with b_{n-1} = a_0, and the
+ * R-equivalence ignores the vertices), which the batch is built from:
+ * NULL (no error) when the field is not eligible. */
+static dfl_status build_batch(const dfl_rfield *f, dfl_rfunc_batch **out, dfl_err *err)
+{
+    *out = NULL;
+    /* One segment: the join is the identity, which the per-point path
+     * keeps exactly (u = h, tests/rfunc/test_segment.c) and the batch only
+     * to rounding; there is nothing to vectorize over either. */
+    if (!f->fast || f->dim != 2 || f->join != DFL_RFUNC_REQUIV || f->n < 2) return DFL_OK;
+    for (size_t k = 0; k < f->n; k++) {
+        const part *pt = &f->parts[k];
+        if (pt->kind != PART_SEGMENT || pt->u.seg.trim != DFL_RFUNC_TRIM_DISK) return DFL_OK;
+        if (k > 0) {
+            const double *e = f->parts[k - 1].u.seg.b, *a = pt->u.seg.a;
+            if (e[0] != a[0] || e[1] != a[1]) return DFL_OK;
+        }
+    }
+    double *v = malloc(2 * (f->n + 1) * sizeof *v);
+    if (!v) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    for (size_t k = 0; k < f->n; k++) memcpy(v + 2 * k, f->parts[k].u.seg.a, 2 * sizeof *v);
+    memcpy(v + 2 * f->n, f->parts[f->n - 1].u.seg.b, 2 * sizeof *v);
+    dfl_status st = dfl_rfunc_batch_new(v, f->n + 1, false, f->p, out, err);
+    free(v);
+    return st;
+}
+
 dfl_status dfl_rfield_finish(dfl_rfield **r, dfl_field *out, dfl_err *err)
 {
     dfl_rfield *f = *r;
@@ -280,6 +328,7 @@ dfl_status dfl_rfield_finish(dfl_rfield **r, dfl_field *out, dfl_err *err)
         sorted = malloc((f->nv ? f->nv : 1) * sizeof *sorted);
         if (!f->vstart || !sorted) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
     }
+    if (st == DFL_OK) st = build_batch(f, &f->batch, err);
     if (st != DFL_OK) {
         free(sorted);
         dfl_rfield_free(f);
@@ -307,12 +356,20 @@ dfl_status dfl_rfield_polyline(int dim, const double *v, size_t n, bool closed,
                                dfl_rfunc_join join, int p, dfl_rfunc_trim trim, dfl_field *out,
                                dfl_err *err)
 {
+    return dfl_rfield_polyline_opts(dim, v, n, closed, join, p, trim, true, out, err);
+}
+
+dfl_status dfl_rfield_polyline_opts(int dim, const double *v, size_t n, bool closed,
+                                    dfl_rfunc_join join, int p, dfl_rfunc_trim trim, bool fast,
+                                    dfl_field *out, dfl_err *err)
+{
     if (n < (closed ? 3u : 2u))
         return dfl_err_set(err, DFL_E_INPUT, "polyline: %zu vertices (need at least %d%s)", n,
                            closed ? 3 : 2, closed ? " when closed" : "");
-    dfl_rfield *r;
+    dfl_rfield *r = NULL;
     dfl_status st = dfl_rfield_new(dim, join, p, &r, err);
     if (st != DFL_OK) return st;
+    dfl_rfield_set_fast(r, fast);
     const size_t nseg = closed ? n : n - 1;
     for (size_t i = 0; i < nseg && st == DFL_OK; i++) {
         st = dfl_rfield_add_segment(r, v + i * (size_t)dim, v + ((i + 1) % n) * (size_t)dim, trim,

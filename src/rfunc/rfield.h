@@ -14,6 +14,15 @@
  * everywhere.  eval is serial, allocation-free and thread-safe; jets
  * allocate one array of n part jets per call.
  *
+ * Fast path.  A field that is exactly a 2D polyline of at least two
+ * segments (its parts are segments, all with the disk trim, each starting
+ * where the previous one ends; open or closed) joined by R-equivalence
+ * evaluates through the vectorized evaluator of rfunc/batch.h (one call
+ * per batch of points), which agrees with the per-point
+ * accumulator to rounding (1e-12 relative; gradients relative to the sum
+ * of absolute contributions) and falls back to it where its unscaled sums
+ * are not trustworthy.  Jets and every other field use the per-point code.
+ *
  * Ownership: the builder (dfl_rfield_new) collects parts; dfl_rfield_finish
  * moves everything into the field (freed by dfl_field_destroy) and frees the
  * builder, on success and on failure.
@@ -51,6 +60,15 @@ dfl_status dfl_rfield_add_region(dfl_rfield *r, const double *v, size_t n, dfl_e
 dfl_status dfl_rfield_add_vertex(dfl_rfield *r, const double *v, size_t i, size_t j,
                                  dfl_err *err);
 
+/* Switches the fast path (see above) on (the default) or off for the field
+ * this builder finishes into; off forces the per-point accumulator (tests,
+ * the benchmark's baseline, and rfunc/batch.h's own reference field). */
+void dfl_rfield_set_fast(dfl_rfield *r, bool on);
+
+/* Whether f is an rfield whose eval runs the fast path (false for any
+ * other field). */
+bool dfl_rfield_is_fast(const dfl_field *f);
+
 /* Number of parts added so far. */
 size_t dfl_rfield_count(const dfl_rfield *r);
 
@@ -66,5 +84,9 @@ dfl_status dfl_rfield_finish(dfl_rfield **r, dfl_field *out, dfl_err *err);
 dfl_status dfl_rfield_polyline(int dim, const double *v, size_t n, bool closed,
                                dfl_rfunc_join join, int p, dfl_rfunc_trim trim, dfl_field *out,
                                dfl_err *err);
+/* dfl_rfield_polyline with the fast path on or off (dfl_rfield_set_fast). */
+dfl_status dfl_rfield_polyline_opts(int dim, const double *v, size_t n, bool closed,
+                                    dfl_rfunc_join join, int p, dfl_rfunc_trim trim, bool fast,
+                                    dfl_field *out, dfl_err *err);
 
 #endif

@@ -25,7 +25,7 @@
  *  - target_clones compiles the kernel for AVX-512, AVX2 and the baseline
  *    and lets the loader pick (the Makefile builds for baseline x86-64).
  */
-#include "rfunc_batch.h"
+#include "rfunc/batch.h"
 
 #include <assert.h>
 #include <float.h>
@@ -339,8 +339,8 @@ dfl_status dfl_rfunc_batch_new(const double *v, size_t n, bool closed, int p,
 {
     dfl_field ref = {0};
     /* The library validates everything (counts, p, degenerate segments). */
-    dfl_status st = dfl_rfield_polyline(2, v, n, closed, DFL_RFUNC_REQUIV, p, DFL_RFUNC_TRIM_DISK,
-                                        &ref, err);
+    dfl_status st = dfl_rfield_polyline_opts(2, v, n, closed, DFL_RFUNC_REQUIV, p,
+                                             DFL_RFUNC_TRIM_DISK, false, &ref, err);
     if (st != DFL_OK) return st;
     dfl_rfunc_batch *b = calloc(1, sizeof *b);
     const size_t ns = closed ? n : n - 1;
@@ -358,7 +358,13 @@ dfl_status dfl_rfunc_batch_new(const double *v, size_t n, bool closed, int p,
     for (int j = 0; j < 8; j++) *arr[j] = mem + (size_t)j * ns;
     for (size_t k = 0; k < ns; k++) {
         const double *a = v + 2 * k, *e = v + 2 * ((k + 1) % n);
-        const double d = hypot(e[0] - a[0], e[1] - a[1]);
+        /* d and the normal exactly as rfunc/segment.c computes them (not
+         * hypot): then f = (x - a) . n is bitwise the library's, and u
+         * agrees with rfield's per-point path to rounding even where f is
+         * itself a rounding residue (points on a segment up to the
+         * rounding of their coordinates, 1e-9 off it). */
+        const double dx = e[0] - a[0], dy = e[1] - a[1];
+        const double d = sqrt(dx * dx + dy * dy);
         b->ax[k] = a[0];
         b->ay[k] = a[1];
         b->bx[k] = e[0];

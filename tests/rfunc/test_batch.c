@@ -1,4 +1,4 @@
-/* The fast (vectorized) and naive evaluators of experiments/rfunc_batch.h
+/* The fast (vectorized) and naive evaluators of rfunc/batch.h
  * against each other and against a brute-force sum over the library's
  * per-segment fields (rfunc/segment.h), which is how eq. 6 is defined.
  *
@@ -18,7 +18,7 @@
 #include "field/sample.h"
 #include "rfunc/join.h"
 #include "rfunc/segment.h"
-#include "rfunc_batch.h"
+#include "rfunc/batch.h"
 
 static double uni(uint64_t *s, double lo, double hi)
 {

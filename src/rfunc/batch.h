@@ -4,9 +4,9 @@
  * rfunc/rfield.h's dfl_rfield_polyline(2, ..., DFL_RFUNC_REQUIV, p,
  * DFL_RFUNC_TRIM_DISK) (to rounding, ~1e-13 relative) and exists for
  * throughput: `make bench` measures it against a naive scalar loop and
- * numpy (tests/bench/bench_rfunc.c).  It lives in experiments/ because
- * src/rfunc is owned elsewhere; rfield could adopt it for all-segment 2D
- * fields.
+ * numpy (tests/bench/bench_rfunc.c).  rfield.h's fields use it as their
+ * eval whenever they are exactly such a polyline (rfield.c), so the
+ * studies and `dflab probe` sample through it.
  *
  * Formulas (per segment a-b, d = |b - a|, unit normal
  * n = (b_y - a_y, -(b_x - a_x))/d, w = x - a, v = x - b):
@@ -34,8 +34,8 @@
  * nothing and may run concurrently.  Ownership: _new allocates, _free
  * releases (the field wrapper owns its batch).
  */
-#ifndef DFL_EXPERIMENTS_RFUNC_BATCH_H
-#define DFL_EXPERIMENTS_RFUNC_BATCH_H
+#ifndef DFL_RFUNC_BATCH_H
+#define DFL_RFUNC_BATCH_H
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -74,7 +74,8 @@ void dfl_rfunc_batch_eval(const dfl_rfunc_batch *b, size_t m, const double *pts,
 void dfl_rfunc_batch_eval_naive(const dfl_rfunc_batch *b, size_t m, const double *pts,
                                 double *val, double *grad);
 
-/* The field of the library (rfield) for the same polyline: the reference
+/* The library's per-point field (rfield built with the fast path off, so
+ * it does not recurse into a batch) for the same polyline: the reference
  * and the fallback.  Borrowed; lives as long as b. */
 const dfl_field *dfl_rfunc_batch_reference(const dfl_rfunc_batch *b);
 
@@ -94,7 +95,7 @@ int dfl_rfunc_batch_simd_width(void);
 
 /* Operations per segment evaluation of the fast path (value + gradient):
  * multiplications, additions/subtractions and divisions (|.| is a logic
- * operation and not counted), from the per-line counts in rfunc_batch.c.
+ * operation and not counted), from the per-line counts in batch.c.
  * The benchmark uses them to place the measured rate against the peak. */
 void dfl_rfunc_batch_ops(int p, int *mul, int *add, int *div);
 /* mul + add + div of dfl_rfunc_batch_ops. */
