@@ -299,7 +299,6 @@ static dfl_status tri_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
 {
     keys k;
     dfl_field fld = {0};
-    char stem[64];
     dfl_status st = read_keys(cfg, &k, err);
     if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
     if (st != DFL_OK) return st;
@@ -318,16 +317,7 @@ static dfl_status tri_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
         goto done;
     }
     if ((st = dfl_rfield_finish(&rf, &fld, err))) goto done;
-    for (int s = 0; s < k.nslices && st == DFL_OK; s++) {
-        const size_t m = dfl_slice_size(&k.slices[s]);
-        double *u = malloc(m * sizeof *u), *gu = malloc(3 * m * sizeof *gu);
-        if (!u || !gu) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-        if (!st) st = dfl_slice_sample(&fld, &k.slices[s], ctx->threads, u, gu, err);
-        snprintf(stem, sizeof stem, "triangle_slice%d", s);
-        if (!st) st = dfl_slice_write(ctx, stem, &k.slices[s], u, gu, NULL, &k.out, err);
-        free(u);
-        free(gu);
-    }
+    st = dfl_bs04_write_slices(ctx, &fld, k.slices, k.nslices, "triangle_slice", &k.out, err);
 done:
     if (st != DFL_OK && err && err->code == DFL_OK)
         dfl_err_set(err, st, "bs04_triangle: cannot fill the table");

@@ -136,7 +136,7 @@ static dfl_status edge_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
 {
     keys k;
     dfl_field f = {0};
-    char path[4400], stem[64];
+    char path[4400];
     dfl_status st = read_keys(cfg, &k, err);
     if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
     if (st != DFL_OK) return st;
@@ -211,16 +211,8 @@ static dfl_status edge_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     const size_t tris[6] = {0, 1, 2, 0, 1, 3};
     st = dfl_bs04_vtp_trimesh(dfl_study_path(ctx, "triangles", "vtp", path, sizeof path), 4, verts,
                               2, tris, k.compress, err);
-    for (int s = 0; s < k.nslices && st == DFL_OK; s++) {
-        const size_t m = dfl_slice_size(&k.slices[s]);
-        double *u = malloc(m * sizeof *u), *gu = malloc(3 * m * sizeof *gu);
-        if (!u || !gu) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-        if (!st) st = dfl_slice_sample(&f, &k.slices[s], ctx->threads, u, gu, err);
-        snprintf(stem, sizeof stem, "edge_slice%d", s);
-        if (!st) st = dfl_slice_write(ctx, stem, &k.slices[s], u, gu, NULL, &k.out, err);
-        free(u);
-        free(gu);
-    }
+    if (st == DFL_OK)
+        st = dfl_bs04_write_slices(ctx, &f, k.slices, k.nslices, "edge_slice", &k.out, err);
 done:
     if (st != DFL_OK && err && err->code == DFL_OK)
         dfl_err_set(err, st, "bs04_triedge: cannot fill the table");

@@ -54,6 +54,14 @@ static double d2(int n, const double *a, const double *b)
     return s;
 }
 
+/* Rounding of g = |P - x|^2 / 2 at the point P (n coordinates): |r| times
+ * the rounding of P and x, plus g's own.  The Newton step controls of
+ * curves and surfaces accept a step that stays within it. */
+static double g_noise(int n, const double *P, const double *x, double g)
+{
+    return 4e-15 * (g + sqrt(2.0 * g) * (sqrt(dot3(n, P, P)) + sqrt(dot3(n, x, x)))) + 1e-300;
+}
+
 static double cp_extent(int dim, size_t n, const double *cp)
 {
     double ext = 0.0;
@@ -176,9 +184,7 @@ static void curve_newton(const dfl_bspline *c, const double *x, double t, int ma
          * that keeps g within rounding and reduces |g'| is accepted too */
         int ok = 0;
         double tn = t, gn = g;
-        /* rounding of g: |r| times the rounding of C and x, plus g's own */
-        const double noise = 4e-15 * (g + sqrt(2.0 * g) * (sqrt(dot3(dim, D, D)) +
-                                                          sqrt(dot3(dim, x, x)))) + 1e-300;
+        const double noise = g_noise(dim, D, x, g);
         for (int h = 0; h < 60; h++) {
             tn = c->closed ? dfl_bspline_wrap(c, t + step) : fmin(c->t1, fmax(c->t0, t + step));
             dfl_bspline_eval(c, tn, 2, Dn);
@@ -565,8 +571,7 @@ static void surface_newton(const dfl_surface *s, const double *x, double u, doub
          * of g while reducing the free part of the gradient */
         int ok = 0;
         double un = u, vn = v, gn = g;
-        const double noise =
-            4e-15 * (g + sqrt(2.0 * g) * (sqrt(dot3(3, D, D)) + sqrt(dot3(3, x, x)))) + 1e-300;
+        const double noise = g_noise(3, D, x, g);
         const double pg = (fu ? gu * gu : 0.0) + (fv ? gv * gv : 0.0);
         for (int h = 0; h < 60; h++) {
             un = clampd(u + du, s->u0, s->u1);

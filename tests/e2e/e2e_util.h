@@ -25,5 +25,28 @@ const char *e2e_python(void);
 double e2e_csv_get(const char *path, size_t row, const char *col);
 /* Number of data rows of a CSV file. */
 long e2e_csv_rows(const char *path);
+/* Text of column col in data row `row` (0-based) of a CSV file without
+ * quoting (malloc'ed, caller frees; NULL when the file, column or row is
+ * absent). */
+char *e2e_csv_cell(const char *path, long row, const char *col);
+
+/* Contents of dir/err.txt as left by e2e_dflab (malloc'ed; NULL if absent). */
+char *e2e_err_text(const char *dir);
+/* Runs `dflab run <cfg> --out <dir>/res --quiet <extra>` (extra may be NULL)
+ * in dir; out receives <dir>/res.  Returns the exit status (see e2e_dflab). */
+int e2e_run_cfg(const char *dir, const char *cfg, const char *extra, char *out, size_t size);
+/* e2e_run_cfg in a fresh temporary directory; asserts (Criterion, fatal)
+ * exit status 0, reporting stderr.  out receives the results directory. */
+void e2e_run_ok(const char *cfg, const char *extra, char *out, size_t size);
+/* e2e_run_cfg in a fresh temporary directory for input that must be
+ * rejected; expects (Criterion, non-fatal) exit status 2, `want` in stderr
+ * and no results directory left behind. */
+void e2e_run_expect_fail(const char *cfg, const char *extra, const char *want);
+/* Compares [sec] of config file cfg with [shape] of shape_file, key by key
+ * (Criterion): the first nrequired keys must be present in both (fatal);
+ * every key must be present in both or in neither; present values must be
+ * equal as strings. */
+void e2e_expect_same_section(const char *cfg, const char *sec, const char *shape_file,
+                             const char *const *keys, int nkeys, int nrequired);
 
 #endif

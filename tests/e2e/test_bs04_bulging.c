@@ -27,38 +27,6 @@
 
 #define CFG "configs/paper/bs04_bulging.ini"
 
-/* string cell of a CSV with a header row (no quoting in these tables) */
-static char *cell(const char *path, long row, const char *col)
-{
-    char *all = e2e_slurp(path);
-    if (!all) return NULL;
-    char *save = NULL, *line = strtok_r(all, "\n", &save);
-    int ci = -1, k = 0;
-    for (char *p = line, *q; p; p = q ? q + 1 : NULL, k++) {
-        q = strchr(p, ',');
-        size_t len = q ? (size_t)(q - p) : strlen(p);
-        if (strlen(col) == len && strncmp(p, col, len) == 0) ci = k;
-    }
-    char *out = NULL;
-    for (long r = 0; (line = strtok_r(NULL, "\n", &save)); r++) {
-        if (r != row) continue;
-        char *p = line;
-        for (int j = 0; j < ci && p; j++) {
-            p = strchr(p, ',');
-            if (p) p++;
-        }
-        if (p && ci >= 0) {
-            size_t len = strcspn(p, ",");
-            out = malloc(len + 1);
-            memcpy(out, p, len);
-            out[len] = '\0';
-        }
-        break;
-    }
-    free(all);
-    return out;
-}
-
 #define NSIDE 101
 #define NCAP 8
 #define STEPS 128
@@ -68,19 +36,14 @@ Test(e2e_bs04_bulging, collinear_closed_forms_and_bounds, .timeout = 120)
 {
     char dir[256], out[512], args[2048], path[700];
     e2e_tmpdir(dir, sizeof dir);
-    snprintf(out, sizeof out, "%s/res", dir);
     snprintf(args, sizeof args,
-             "run " CFG " --out %s --quiet --set 'study.p=2, 12' --set study.rounds=10"
+             "--set 'study.p=2, 12' --set study.rounds=10"
              " --set study.steps=%d --set study.smax=%g"
              " --set collinear_disk.rays=%d --set collinear_strip.rays=%d --set W_fig2.rays=201"
              " --set collinear_disk.cap_rays=%d --set collinear_strip.cap_rays=%d"
              " --set W_fig2.cap_rays=8 --set grid_collinear.n=41 --set grid_W.n=41",
-             out, STEPS, SMAX, NSIDE, NSIDE, NCAP, NCAP);
-    int rc = e2e_dflab(dir, args);
-    snprintf(path, sizeof path, "%s/err.txt", dir);
-    char *msg = e2e_slurp(path);
-    cr_assert_eq(rc, 0, "dflab run failed: %s", msg);
-    free(msg);
+             STEPS, SMAX, NSIDE, NSIDE, NCAP, NCAP);
+    e2e_run_ok(CFG, args, out, sizeof out);
     /* 2 orders x (5 + 5 + 4 offsets) */
     snprintf(path, sizeof path, "%s/bs04_bulging.csv", out);
     cr_assert_eq(e2e_csv_rows(path), 28);
@@ -97,7 +60,7 @@ Test(e2e_bs04_bulging, collinear_closed_forms_and_bounds, .timeout = 120)
 
     double joint_by_p[2][2] = {{0}};  /* [strip?][p index] at delta = 0.1 */
     for (long r = 0; r < 28; r++) {
-        char *cs = cell(path, r, "case");
+        char *cs = e2e_csv_cell(path, r, "case");
         cr_assert_not_null(cs);
         const double p = e2e_csv_get(path, (size_t)r, "p");
         const double delta = e2e_csv_get(path, (size_t)r, "delta");
@@ -183,24 +146,12 @@ Test(e2e_bs04_bulging, collinear_closed_forms_and_bounds, .timeout = 120)
 
 Test(e2e_bs04_bulging, W_section_equals_the_shape_config)
 {
-    dfl_cfg *study, *shape;
-    dfl_err err;
-    cr_assert_eq(dfl_cfg_load(CFG, &study, &err), DFL_OK, "%s", err.msg);
-    cr_assert_eq(dfl_cfg_load("configs/shapes/W.ini", &shape, &err), DFL_OK, "%s", err.msg);
     const char *keys[3] = {"kind", "order", "control"};
-    for (int k = 0; k < 3; k++) {
-        const char *a, *b;
-        cr_assert_eq(dfl_cfg_string(study, "W", keys[k], &a, &err), DFL_OK, "%s", err.msg);
-        cr_assert_eq(dfl_cfg_string(shape, "shape", keys[k], &b, &err), DFL_OK, "%s", err.msg);
-        cr_expect_str_eq(a, b, "[W] %s differs from configs/shapes/W.ini", keys[k]);
-    }
-    dfl_cfg_free(shape);
-    dfl_cfg_free(study);
+    e2e_expect_same_section(CFG, "W", "configs/shapes/W.ini", keys, 3, 3);
 }
 
 Test(e2e_bs04_bulging, bad_input_exits_2_without_files)
 {
-    char dir[256], out[512], args[1024], path[700];
     const char *sets[][2] = {
         {"study.p=0", "study.p: expected an integer in [1, 64]"},
         {"study.cases=nope", "no section [nope]"},
@@ -212,15 +163,8 @@ Test(e2e_bs04_bulging, bad_input_exits_2_without_files)
         {"collinear.colour=red", "collinear.colour: unknown key"},
     };
     for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++) {
-        e2e_tmpdir(dir, sizeof dir);
-        snprintf(out, sizeof out, "%s/res", dir);
-        snprintf(args, sizeof args, "run " CFG " --out %s --quiet --set '%s'", out, sets[i][0]);
-        int rc = e2e_dflab(dir, args);
-        snprintf(path, sizeof path, "%s/err.txt", dir);
-        char *msg = e2e_slurp(path);
-        cr_expect_eq(rc, 2, "%s: exit %d, %s", sets[i][0], rc, msg);
-        cr_expect(msg && strstr(msg, sets[i][1]), "%s: message '%s'", sets[i][0], msg);
-        cr_expect_eq(e2e_count_entries(out), -1, "%s left %s behind", sets[i][0], out);
-        free(msg);
+        char extra[512];
+        snprintf(extra, sizeof extra, "--set '%s'", sets[i][0]);
+        e2e_run_expect_fail(CFG, extra, sets[i][1]);
     }
 }

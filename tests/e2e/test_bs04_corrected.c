@@ -22,19 +22,13 @@
 
 Test(e2e_bs04_corrected, sector_defects_and_images, .timeout = 60)
 {
-    char dir[256], out[512], args[2048], csv[700], path[800];
+    char dir[256], out[512], csv[700], path[800];
     e2e_tmpdir(dir, sizeof dir);
-    snprintf(out, sizeof out, "%s/res", dir);
-    snprintf(args, sizeof args,
-             "run " CFG " --out %s --quiet --set 'study.alpha=90, 180' --set 'study.p=2, 7'"
-             " --set 'study.parts=exact, disk' --set grid.n=41 --set study.sector_nr=10"
-             " --set study.sector_nt=5",
-             out);
-    int rc = e2e_dflab(dir, args);
-    snprintf(path, sizeof path, "%s/err.txt", dir);
-    char *msg = e2e_slurp(path);
-    cr_assert_eq(rc, 0, "dflab run failed: %s", msg);
-    free(msg);
+    e2e_run_ok(CFG,
+               "--set 'study.alpha=90, 180' --set 'study.p=2, 7'"
+               " --set 'study.parts=exact, disk' --set grid.n=41 --set study.sector_nr=10"
+               " --set study.sector_nt=5",
+               out, sizeof out);
     snprintf(csv, sizeof csv, "%s/bs04_corrected.csv", out);
     /* points: alpha x p x parts (last fastest); rows: requiv, corrected */
     cr_assert_eq(e2e_csv_rows(csv), 16);
@@ -143,19 +137,11 @@ Test(e2e_bs04_corrected, bad_input_exits_2_without_files)
         {"study.colour=red", "study.colour"},
     };
     for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++) {
-        char dir[256], out[512], args[1024], path[700];
-        e2e_tmpdir(dir, sizeof dir);
-        snprintf(out, sizeof out, "%s/res", dir);
-        snprintf(args, sizeof args,
-                 "run " CFG " --out %s --quiet --set study.alpha=90 --set study.p=2"
+        char extra[512];
+        snprintf(extra, sizeof extra,
+                 "--set study.alpha=90 --set study.p=2"
                  " --set study.parts=exact --set '%s'",
-                 out, sets[i][0]);
-        int rc = e2e_dflab(dir, args);
-        snprintf(path, sizeof path, "%s/err.txt", dir);
-        char *msg = e2e_slurp(path);
-        cr_expect_eq(rc, 2, "%s: exit %d, %s", sets[i][0], rc, msg);
-        cr_expect(msg && strstr(msg, sets[i][1]), "%s: message '%s'", sets[i][0], msg);
-        cr_expect_eq(e2e_count_entries(out), -1, "%s left %s behind", sets[i][0], out);
-        free(msg);
+                 sets[i][0]);
+        e2e_run_expect_fail(CFG, extra, sets[i][1]);
     }
 }

@@ -17,7 +17,6 @@
 
 #include "e2e_util.h"
 #include "io/config.h"
-#include "order_util.h"
 
 #define CFG "configs/paper/bs04_fields.ini"
 
@@ -68,16 +67,12 @@ static int trim_index(const char *name)
 
 Test(e2e_bs04_fields, values_gradients_and_theory_columns, .timeout = 60)
 {
-    char dir[256], out[512], csv[700], path[700];
+    char dir[256], out[512], csv[700];
     e2e_tmpdir(dir, sizeof dir);
     const int N = 31;
     char extra[128];
     snprintf(extra, sizeof extra, "--set grid.n=%d", N);
-    int rc = ou_run(dir, CFG, extra, out, sizeof out);
-    snprintf(path, sizeof path, "%s/err.txt", dir);
-    char *msg = e2e_slurp(path);
-    cr_assert_eq(rc, 0, "dflab failed: %s", msg);
-    free(msg);
+    e2e_run_ok(CFG, extra, out, sizeof out);
     snprintf(csv, sizeof csv, "%s/bs04_fields.csv", out);
     cr_assert_eq(e2e_csv_rows(csv), 9, "3 trims x (a, b, join)");
     /* 9 .vti + 9 .exr + csv + config + manifest */
@@ -103,8 +98,8 @@ Test(e2e_bs04_fields, values_gradients_and_theory_columns, .timeout = 60)
     dfl_cfg_free(cfg);
 
     for (long r = 0; r < 9; r++) {
-        char *field = ou_cell(csv, r, "field"), *trim = ou_cell(csv, r, "trim");
-        char *vti = ou_cell(csv, r, "vti");
+        char *field = e2e_csv_cell(csv, r, "field"), *trim = e2e_csv_cell(csv, r, "trim");
+        char *vti = e2e_csv_cell(csv, r, "vti");
         const int fi = strcmp(field, "a") == 0 ? 0 : strcmp(field, "b") == 0 ? 1 : 2;
         const int it = trim_index(trim);
         char what[64];
@@ -189,15 +184,6 @@ Test(e2e_bs04_fields, bad_input_exits_2_without_files)
         {"--set grid.n=1", "grid.n"},
         {"--set study.trim=square", "study.trim"},
     };
-    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++) {
-        char dir[256], out[512], path[700];
-        e2e_tmpdir(dir, sizeof dir);
-        int rc = ou_run(dir, CFG, sets[i][0], out, sizeof out);
-        snprintf(path, sizeof path, "%s/err.txt", dir);
-        char *msg = e2e_slurp(path);
-        cr_expect_eq(rc, 2, "%s: exit %d, %s", sets[i][0], rc, msg);
-        cr_expect(msg && strstr(msg, sets[i][1]), "%s: message '%s'", sets[i][0], msg);
-        cr_expect_eq(e2e_count_entries(out), -1, "%s left %s behind", sets[i][0], out);
-        free(msg);
-    }
+    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++)
+        e2e_run_expect_fail(CFG, sets[i][0], sets[i][1]);
 }

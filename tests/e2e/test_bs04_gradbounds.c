@@ -22,32 +22,6 @@
 #define CFG "configs/paper/bs04_gradbounds.ini"
 #define PI 3.14159265358979323846
 
-/* String cell (no quoting in these tables). */
-static void csv_str(const char *path, long row, const char *col, char *out, size_t size)
-{
-    out[0] = '\0';
-    char *all = e2e_slurp(path);
-    if (!all) return;
-    char *save = NULL, *line = strtok_r(all, "\n", &save);
-    int ci = -1, k = 0;
-    for (char *p = line, *q; p; p = q ? q + 1 : NULL, k++) {
-        q = strchr(p, ',');
-        size_t len = q ? (size_t)(q - p) : strlen(p);
-        if (strlen(col) == len && strncmp(p, col, len) == 0) ci = k;
-    }
-    for (long r = 0; ci >= 0 && (line = strtok_r(NULL, "\n", &save)); r++) {
-        if (r != row) continue;
-        char *p = line;
-        for (int j = 0; j < ci && p; j++) {
-            p = strchr(p, ',');
-            if (p) p++;
-        }
-        if (p) snprintf(out, size, "%.*s", (int)strcspn(p, ","), p);
-        break;
-    }
-    free(all);
-}
-
 /* u from first principles: exact distances to the segments from O along
  * (1, 0) and (cos a, sin a) (length 1), joined with pow(). */
 static double segd(double ex, double ey, double x, double y)
@@ -89,26 +63,22 @@ static double brute_min(int rconj, int p, double a, double r, double *tmin)
 
 Test(e2e_bs04_gradbounds, bounds_minimum_and_fig5, .timeout = 60)
 {
-    char dir[256], out[512], args[2048], csv[700], path[800];
-    e2e_tmpdir(dir, sizeof dir);
-    snprintf(out, sizeof out, "%s/res", dir);
-    snprintf(args, sizeof args,
-             "run " CFG " --out %s --quiet --set 'study.alpha=60, 180, 270' --set 'study.p=2, 12'"
-             " --set 'study.parts=exact, disk' --set study.samples=720"
-             " --set study.profile_alpha=60 --set study.profile_samples=72",
-             out);
-    int rc = e2e_dflab(dir, args);
-    snprintf(path, sizeof path, "%s/err.txt", dir);
-    char *msg = e2e_slurp(path);
-    cr_assert_eq(rc, 0, "dflab run failed: %s", msg);
-    free(msg);
+    char out[512], csv[700];
+    e2e_run_ok(CFG,
+               "--set 'study.alpha=60, 180, 270' --set 'study.p=2, 12'"
+               " --set 'study.parts=exact, disk' --set study.samples=720"
+               " --set study.profile_alpha=60 --set study.profile_samples=72",
+               out, sizeof out);
     snprintf(csv, sizeof csv, "%s/bs04_gradbounds.csv", out);
     /* 3 alpha x 2 p x 2 joins x 2 parts, 2 radii each */
     cr_assert_eq(e2e_csv_rows(csv), 48);
     for (long row = 0; row < 48; row++) {
         char parts[32], join[32];
-        csv_str(csv, row, "parts", parts, sizeof parts);
-        csv_str(csv, row, "join", join, sizeof join);
+        char *ps = e2e_csv_cell(csv, row, "parts"), *js = e2e_csv_cell(csv, row, "join");
+        snprintf(parts, sizeof parts, "%s", ps ? ps : "");
+        snprintf(join, sizeof join, "%s", js ? js : "");
+        free(ps);
+        free(js);
         const int exact = strcmp(parts, "exact") == 0, rconj = strcmp(join, "rconj") == 0;
         cr_assert(exact || strcmp(parts, "disk") == 0, "row %ld parts '%s'", row, parts);
         const double alpha = e2e_csv_get(csv, row, "alpha");
@@ -206,19 +176,11 @@ Test(e2e_bs04_gradbounds, bad_input_exits_2_without_files)
         {"study.colour=red", "study.colour"},
     };
     for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++) {
-        char dir[256], out[512], args[1024], path[700];
-        e2e_tmpdir(dir, sizeof dir);
-        snprintf(out, sizeof out, "%s/res", dir);
-        snprintf(args, sizeof args,
-                 "run " CFG " --out %s --quiet --set study.alpha=90 --set study.p=2"
+        char extra[512];
+        snprintf(extra, sizeof extra,
+                 "--set study.alpha=90 --set study.p=2"
                  " --set study.join=rconj --set study.parts=exact --set '%s'",
-                 out, sets[i][0]);
-        int rc = e2e_dflab(dir, args);
-        snprintf(path, sizeof path, "%s/err.txt", dir);
-        char *msg = e2e_slurp(path);
-        cr_expect_eq(rc, 2, "%s: exit %d, %s", sets[i][0], rc, msg);
-        cr_expect(msg && strstr(msg, sets[i][1]), "%s: message '%s'", sets[i][0], msg);
-        cr_expect_eq(e2e_count_entries(out), -1, "%s left %s behind", sets[i][0], out);
-        free(msg);
+                 sets[i][0]);
+        e2e_run_expect_fail(CFG, extra, sets[i][1]);
     }
 }

@@ -11,6 +11,7 @@
 
 #include "bs04_space_e2e.h"
 #include "geom/polygonize.h"
+#include "io/config.h"
 #include "rfunc/region.h"
 #include "rfunc/rfield.h"
 #include "rfunc/segment.h"

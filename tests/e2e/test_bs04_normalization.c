@@ -15,7 +15,6 @@
 
 #include "e2e_util.h"
 #include "io/config.h"
-#include "order_util.h"
 
 #define CFG "configs/paper/bs04_normalization.ini"
 
@@ -67,13 +66,8 @@ static int trim_index(const char *name)
 
 Test(e2e_bs04_norm, table_matches_theory, .timeout = 60)
 {
-    char dir[256], out[512], csv[700], path[700];
-    e2e_tmpdir(dir, sizeof dir);
-    int rc = ou_run(dir, CFG, "--set 'field.p=1, 2, 3, 6, 7, 12'", out, sizeof out);
-    snprintf(path, sizeof path, "%s/err.txt", dir);
-    char *msg = e2e_slurp(path);
-    cr_assert_eq(rc, 0, "dflab failed: %s", msg);
-    free(msg);
+    char out[512], csv[700];
+    e2e_run_ok(CFG, "--set 'field.p=1, 2, 3, 6, 7, 12'", out, sizeof out);
     snprintf(csv, sizeof csv, "%s/bs04_normalization.csv", out);
     const long rows = e2e_csv_rows(csv);
     cr_assert_eq(rows, 3 * 6 * 3, "one row per sweep point");
@@ -94,8 +88,8 @@ Test(e2e_bs04_norm, table_matches_theory, .timeout = 60)
 
     int seen_rconj1 = 0;
     for (long r = 0; r < rows; r++) {
-        char *join = ou_cell(csv, r, "join"), *trim = ou_cell(csv, r, "trim");
-        char *status = ou_cell(csv, r, "status");
+        char *join = e2e_csv_cell(csv, r, "join"), *trim = e2e_csv_cell(csv, r, "trim");
+        char *status = e2e_csv_cell(csv, r, "status");
         const int p = (int)e2e_csv_get(csv, (size_t)r, "p");
         cr_expect_eq(p, (int)e2e_csv_get(csv, (size_t)r, "field.p"), "the swept key");
         const int it = trim_index(trim);
@@ -192,22 +186,17 @@ Test(e2e_bs04_norm, table_matches_theory, .timeout = 60)
  * eq. 5; along the normal at an end point 2 (disk) or every order (strip). */
 Test(e2e_bs04_norm, single_segment_trim_limits, .timeout = 30)
 {
-    char dir[256], out[512], csv[700], path[700];
-    e2e_tmpdir(dir, sizeof dir);
-    int rc = ou_run(dir, CFG,
-                    "--set 'field.vertices=0.1 0.2; 0.8 0.6' --set field.join=requiv"
-                    " --set field.p=3 --set study.K=12",
-                    out, sizeof out);
-    snprintf(path, sizeof path, "%s/err.txt", dir);
-    char *msg = e2e_slurp(path);
-    cr_assert_eq(rc, 0, "dflab failed: %s", msg);
-    free(msg);
+    char out[512], csv[700];
+    e2e_run_ok(CFG,
+               "--set 'field.vertices=0.1 0.2; 0.8 0.6' --set field.join=requiv"
+               " --set field.p=3 --set study.K=12",
+               out, sizeof out);
     snprintf(csv, sizeof csv, "%s/bs04_normalization.csv", out);
     cr_assert_eq(e2e_csv_rows(csv), 3);
     const double a[2] = {0.1, 0.2}, b[2] = {0.8, 0.6};
     const seg2 s = seg_make(a, b);
     for (long r = 0; r < 3; r++) {
-        char *trim = ou_cell(csv, r, "trim");
+        char *trim = e2e_csv_cell(csv, r, "trim");
         const int it = trim_index(trim);
         if (it == 1) {
             cr_expect_eq((int)e2e_csv_get(csv, (size_t)r, "measured_order"), 6);
@@ -231,14 +220,8 @@ Test(e2e_bs04_norm, single_segment_trim_limits, .timeout = 30)
  * ends), the sums telescope and u = h_i along the end's normal. */
 Test(e2e_bs04_norm, corrected_end_cancellation, .timeout = 30)
 {
-    char dir[256], out[512], csv[700], path[700];
-    e2e_tmpdir(dir, sizeof dir);
-    int rc = ou_run(dir, CFG, "--set field.join=requiv_corrected --set field.p=2", out,
-                    sizeof out);
-    snprintf(path, sizeof path, "%s/err.txt", dir);
-    char *msg = e2e_slurp(path);
-    cr_assert_eq(rc, 0, "dflab failed: %s", msg);
-    free(msg);
+    char out[512], csv[700];
+    e2e_run_ok(CFG, "--set field.join=requiv_corrected --set field.p=2", out, sizeof out);
     snprintf(csv, sizeof csv, "%s/bs04_normalization.csv", out);
     for (long r = 0; r < e2e_csv_rows(csv); r++) {
         const double mo = e2e_csv_get(csv, (size_t)r, "end_normal_order_min");
@@ -257,15 +240,6 @@ Test(e2e_bs04_norm, bad_input_exits_2_without_files)
         {"--set 'field.vertices=0 0; 0 0'", "field.vertices"},
         {"--set study.colour=red", "study.colour"},
     };
-    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++) {
-        char dir[256], out[512], path[700];
-        e2e_tmpdir(dir, sizeof dir);
-        int rc = ou_run(dir, CFG, sets[i][0], out, sizeof out);
-        snprintf(path, sizeof path, "%s/err.txt", dir);
-        char *msg = e2e_slurp(path);
-        cr_expect_eq(rc, 2, "%s: exit %d, %s", sets[i][0], rc, msg);
-        cr_expect(msg && strstr(msg, sets[i][1]), "%s: message '%s'", sets[i][0], msg);
-        cr_expect_eq(e2e_count_entries(out), -1, "%s left %s behind", sets[i][0], out);
-        free(msg);
-    }
+    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++)
+        e2e_run_expect_fail(CFG, sets[i][0], sets[i][1]);
 }

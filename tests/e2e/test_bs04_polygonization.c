@@ -17,38 +17,6 @@
 
 #define CFG "configs/paper/bs04_polygonization.ini"
 
-static char *csv_cell(const char *path, long row, const char *col)
-{
-    /* string cell of a CSV with a header row (no quoting needed here) */
-    char *all = e2e_slurp(path);
-    if (!all) return NULL;
-    char *save = NULL, *line = strtok_r(all, "\n", &save);
-    int ci = -1, k = 0;
-    for (char *p = line, *q; p; p = q ? q + 1 : NULL, k++) {
-        q = strchr(p, ',');
-        size_t len = q ? (size_t)(q - p) : strlen(p);
-        if (strlen(col) == len && strncmp(p, col, len) == 0) ci = k;
-    }
-    char *out = NULL;
-    for (long r = 0; (line = strtok_r(NULL, "\n", &save)); r++) {
-        if (r != row) continue;
-        char *p = line;
-        for (int j = 0; j < ci && p; j++) {
-            p = strchr(p, ',');
-            if (p) p++;
-        }
-        if (p && ci >= 0) {
-            size_t len = strcspn(p, ",");
-            out = malloc(len + 1);
-            memcpy(out, p, len);
-            out[len] = '\0';
-        }
-        break;
-    }
-    free(all);
-    return out;
-}
-
 static void load_curve(const char *path, const char *sec, dfl_bspline *c)
 {
     dfl_cfg *cfg;
@@ -60,15 +28,9 @@ static void load_curve(const char *path, const char *sec, dfl_bspline *c)
 
 Test(e2e_bs04_poly, study_rows_files_and_growth, .timeout = 300)
 {
-    char dir[256], out[512], args[1024], path[700];
+    char dir[256], out[512], path[700];
     e2e_tmpdir(dir, sizeof dir);
-    snprintf(out, sizeof out, "%s/res", dir);
-    snprintf(args, sizeof args, "run " CFG " --out %s --quiet", out);
-    int rc = e2e_dflab(dir, args);
-    snprintf(path, sizeof path, "%s/err.txt", dir);
-    char *msg = e2e_slurp(path);
-    cr_assert_eq(rc, 0, "dflab run failed: %s", msg);
-    free(msg);
+    e2e_run_ok(CFG, NULL, out, sizeof out);
     /* 5 eps x 2 curves: 10 rows, 10 polylines + csv + config + manifest */
     snprintf(path, sizeof path, "%s/bs04_polygonization.csv", out);
     cr_assert_eq(e2e_csv_rows(path), 10);
@@ -79,7 +41,7 @@ Test(e2e_bs04_poly, study_rows_files_and_growth, .timeout = 300)
     load_curve("configs/shapes/W.ini", "shape", &W);
     double prev[2] = {0, 0};
     for (long r = 0; r < 10; r++) {
-        char *curve = csv_cell(path, r, "curve");
+        char *curve = e2e_csv_cell(path, r, "curve");
         cr_assert_not_null(curve);
         int isS = strcmp(curve, "S") == 0;
         cr_assert(isS || strcmp(curve, "W") == 0, "curve %s", curve);
@@ -113,7 +75,7 @@ Test(e2e_bs04_poly, study_rows_files_and_growth, .timeout = 300)
             cr_expect_float_eq(e2e_csv_get(path, (size_t)r, "paper_fit_exponent"), k, 1e-12);
         }
         /* the .vtp through VTK's reader: point count, z = 0, points on the curve */
-        char *vtp = csv_cell(path, r, "vtp");
+        char *vtp = e2e_csv_cell(path, r, "vtp");
         cr_assert_not_null(vtp);
         char cmd[2048], pyout[700];
         snprintf(pyout, sizeof pyout, "%s/py.txt", dir);
@@ -152,25 +114,9 @@ Test(e2e_bs04_poly, study_rows_files_and_growth, .timeout = 300)
 
 Test(e2e_bs04_poly, study_sections_equal_the_shape_configs)
 {
-    const char *names[2] = {"S", "W"};
-    dfl_cfg *study;
-    dfl_err err;
-    cr_assert_eq(dfl_cfg_load(CFG, &study, &err), DFL_OK, "%s", err.msg);
-    for (int i = 0; i < 2; i++) {
-        char p[256];
-        snprintf(p, sizeof p, "configs/shapes/%s.ini", names[i]);
-        dfl_cfg *shape;
-        cr_assert_eq(dfl_cfg_load(p, &shape, &err), DFL_OK, "%s", err.msg);
-        const char *keys[3] = {"kind", "order", "control"};
-        for (int k = 0; k < 3; k++) {
-            const char *a, *b;
-            cr_assert_eq(dfl_cfg_string(study, names[i], keys[k], &a, &err), DFL_OK, "%s", err.msg);
-            cr_assert_eq(dfl_cfg_string(shape, "shape", keys[k], &b, &err), DFL_OK, "%s", err.msg);
-            cr_expect_str_eq(a, b, "[%s] %s differs from %s", names[i], keys[k], p);
-        }
-        dfl_cfg_free(shape);
-    }
-    dfl_cfg_free(study);
+    const char *keys[3] = {"kind", "order", "control"};
+    e2e_expect_same_section(CFG, "S", "configs/shapes/S.ini", keys, 3, 3);
+    e2e_expect_same_section(CFG, "W", "configs/shapes/W.ini", keys, 3, 3);
 }
 
 /* every shipped shape config builds through the [shape] dispatcher */
@@ -248,7 +194,6 @@ Test(e2e_bs04_poly, bad_shape_input)
 
 Test(e2e_bs04_poly, bad_study_input_exits_2_without_files)
 {
-    char dir[256], out[512], args[1024], path[700];
     const char *sets[][2] = {
         {"--set study.eps=0", "study.eps: expected eps > 0"},
         {"--set study.eps=-1e-3", "study.eps"},
@@ -259,17 +204,9 @@ Test(e2e_bs04_poly, bad_study_input_exits_2_without_files)
         {"--set W.colour=red", "W.colour"},
     };
     for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++) {
-        e2e_tmpdir(dir, sizeof dir);
-        snprintf(out, sizeof out, "%s/res", dir);
         /* the --set value has a blank for knots: keep it one argument */
-        snprintf(args, sizeof args, "run " CFG " --out %s --quiet --set '%s'", out,
-                 sets[i][0] + 6);
-        int rc = e2e_dflab(dir, args);
-        snprintf(path, sizeof path, "%s/err.txt", dir);
-        char *msg = e2e_slurp(path);
-        cr_expect_eq(rc, 2, "%s: exit %d, %s", sets[i][0], rc, msg);
-        cr_expect(msg && strstr(msg, sets[i][1]), "%s: message '%s'", sets[i][0], msg);
-        cr_expect_eq(e2e_count_entries(out), -1, "%s left %s behind", sets[i][0], out);
-        free(msg);
+        char extra[512];
+        snprintf(extra, sizeof extra, "--set '%s'", sets[i][0] + 6);
+        e2e_run_expect_fail(CFG, extra, sets[i][1]);
     }
 }

@@ -15,7 +15,6 @@
 #include <string.h>
 
 #include "e2e_util.h"
-#include "order_util.h"
 
 #define CFG "configs/paper/bs04_recursive.ini"
 
@@ -44,7 +43,7 @@ static double brute_dist(double a, double b, const double *x)
 
 Test(e2e_bs04_recursive, orders_slopes_and_fields, .timeout = 60)
 {
-    char dir[256], out[512], csv[700], path[700];
+    char dir[256], out[512], csv[700];
     e2e_tmpdir(dir, sizeof dir);
     const int N = 25;
     const double A = 1.0, B = 0.5, LO = -1.3, HI = 1.3;
@@ -52,11 +51,7 @@ Test(e2e_bs04_recursive, orders_slopes_and_fields, .timeout = 60)
     snprintf(extra, sizeof extra,
              "--set grid.n=%d --set 'study.m=1, 2, 3, 4' --set implicit.b=%g --set study.points=16",
              N, B);
-    int rc = ou_run(dir, CFG, extra, out, sizeof out);
-    snprintf(path, sizeof path, "%s/err.txt", dir);
-    char *msg = e2e_slurp(path);
-    cr_assert_eq(rc, 0, "dflab failed: %s", msg);
-    free(msg);
+    e2e_run_ok(CFG, extra, out, sizeof out);
     snprintf(csv, sizeof csv, "%s/bs04_recursive.csv", out);
     cr_assert_eq(e2e_csv_rows(csv), 4);
     for (long r = 0; r < 4; r++) {
@@ -78,7 +73,7 @@ Test(e2e_bs04_recursive, orders_slopes_and_fields, .timeout = 60)
         cr_expect_eq(e2e_csv_get(csv, (size_t)r, "nonfinite_nodes"), 0);
 
         /* the image through VTK */
-        char *vti = ou_cell(csv, r, "vti");
+        char *vti = e2e_csv_cell(csv, r, "vti");
         char cmd[2048], txt[700];
         snprintf(txt, sizeof txt, "%s/vti_%ld.txt", dir, r);
         snprintf(cmd, sizeof cmd,
@@ -138,15 +133,6 @@ Test(e2e_bs04_recursive, bad_input_exits_2_without_files)
         {"--set implicit.kind=circle", "implicit.kind"},
         {"--set implicit.a=0", "implicit.a"},
     };
-    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++) {
-        char dir[256], out[512], path[700];
-        e2e_tmpdir(dir, sizeof dir);
-        int rc = ou_run(dir, CFG, sets[i][0], out, sizeof out);
-        snprintf(path, sizeof path, "%s/err.txt", dir);
-        char *msg = e2e_slurp(path);
-        cr_expect_eq(rc, 2, "%s: exit %d, %s", sets[i][0], rc, msg);
-        cr_expect(msg && strstr(msg, sets[i][1]), "%s: message '%s'", sets[i][0], msg);
-        cr_expect_eq(e2e_count_entries(out), -1, "%s left %s behind", sets[i][0], out);
-        free(msg);
-    }
+    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++)
+        e2e_run_expect_fail(CFG, sets[i][0], sets[i][1]);
 }

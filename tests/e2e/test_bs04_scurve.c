@@ -28,46 +28,14 @@
 #define STEPS 32
 #define SMAX 8.0
 
-static int is_join(const char *path, long row, const char *want)
-{
-    /* the join column: find it textually (long format, no quoting) */
-    char *all = e2e_slurp(path);
-    cr_assert_not_null(all);
-    char *save = NULL, *line = strtok_r(all, "\n", &save);
-    int ci = -1, k = 0;
-    for (char *p = line, *q; p; p = q ? q + 1 : NULL, k++) {
-        q = strchr(p, ',');
-        size_t len = q ? (size_t)(q - p) : strlen(p);
-        if (len == 4 && strncmp(p, "join", 4) == 0) ci = k;
-    }
-    int res = 0;
-    for (long r = 0; (line = strtok_r(NULL, "\n", &save)); r++) {
-        if (r != row) continue;
-        char *p = line;
-        for (int j = 0; j < ci && p; j++) {
-            p = strchr(p, ',');
-            if (p) p++;
-        }
-        res = p && strncmp(p, want, strlen(want)) == 0 && (p[strlen(want)] == ',' || !p[strlen(want)]);
-    }
-    free(all);
-    return res;
-}
-
 Test(e2e_bs04_scurve, curve_bound_bands_and_offsets, .timeout = 120)
 {
-    char dir[256], out[512], args[1024], path[700];
-    e2e_tmpdir(dir, sizeof dir);
-    snprintf(out, sizeof out, "%s/res", dir);
+    char out[512], args[1024], path[700];
     snprintf(args, sizeof args,
-             "run " CFG " --out %s --quiet --set field.eps=1e-2 --set study.rays=51"
+             "--set field.eps=1e-2 --set study.rays=51"
              " --set study.cap_rays=4 --set grid.n=%d --set study.steps=%d --set study.smax=%g",
-             out, GN, STEPS, SMAX);
-    int rc = e2e_dflab(dir, args);
-    snprintf(path, sizeof path, "%s/err.txt", dir);
-    char *msg = e2e_slurp(path);
-    cr_assert_eq(rc, 0, "dflab run failed: %s", msg);
-    free(msg);
+             GN, STEPS, SMAX);
+    e2e_run_ok(CFG, args, out, sizeof out);
     snprintf(path, sizeof path, "%s/bs04_scurve.csv", out);
     const long nrows = e2e_csv_rows(path);
     cr_assert_eq(nrows, 2 * 5, "2 joins x 5 offsets");
@@ -99,8 +67,11 @@ Test(e2e_bs04_scurve, curve_bound_bands_and_offsets, .timeout = 120)
         }
     long prev_count = -1;
     for (long r = 0; r < nrows; r++) {
-        const int req = is_join(path, r, "requiv");
-        cr_expect(req || is_join(path, r, "rconj"), "row %ld join", r);
+        char *join = e2e_csv_cell(path, r, "join");
+        cr_assert_not_null(join, "row %ld: no join cell", r);
+        const int req = strcmp(join, "requiv") == 0;
+        cr_expect(req || strcmp(join, "rconj") == 0, "row %ld join", r);
+        free(join);
         cr_expect_eq(e2e_csv_get(path, (size_t)r, "segments"), N);
         cr_expect_float_eq(e2e_csv_get(path, (size_t)r, "bound"), pl.bound, 1e-15);
         cr_expect_float_eq(e2e_csv_get(path, (size_t)r, "seg_min"), lmin, 1e-14);
@@ -143,24 +114,12 @@ Test(e2e_bs04_scurve, curve_bound_bands_and_offsets, .timeout = 120)
 
 Test(e2e_bs04_scurve, S_section_equals_the_shape_config)
 {
-    dfl_cfg *study, *shape;
-    dfl_err err;
-    cr_assert_eq(dfl_cfg_load(CFG, &study, &err), DFL_OK, "%s", err.msg);
-    cr_assert_eq(dfl_cfg_load("configs/shapes/S.ini", &shape, &err), DFL_OK, "%s", err.msg);
     const char *keys[3] = {"kind", "order", "control"};
-    for (int k = 0; k < 3; k++) {
-        const char *a, *b;
-        cr_assert_eq(dfl_cfg_string(study, "S", keys[k], &a, &err), DFL_OK, "%s", err.msg);
-        cr_assert_eq(dfl_cfg_string(shape, "shape", keys[k], &b, &err), DFL_OK, "%s", err.msg);
-        cr_expect_str_eq(a, b, "[S] %s differs from configs/shapes/S.ini", keys[k]);
-    }
-    dfl_cfg_free(shape);
-    dfl_cfg_free(study);
+    e2e_expect_same_section(CFG, "S", "configs/shapes/S.ini", keys, 3, 3);
 }
 
 Test(e2e_bs04_scurve, bad_input_exits_2_without_files)
 {
-    char dir[256], out[512], args[1024], path[700];
     const char *sets[][2] = {
         {"field.kind=exact", "needs kind = rfunc with a curve"},
         {"study.levels=0", "study.levels: expected offsets > 0"},
@@ -170,15 +129,8 @@ Test(e2e_bs04_scurve, bad_input_exits_2_without_files)
         {"study.colour=red", "study.colour: unknown key"},
     };
     for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++) {
-        e2e_tmpdir(dir, sizeof dir);
-        snprintf(out, sizeof out, "%s/res", dir);
-        snprintf(args, sizeof args, "run " CFG " --out %s --quiet --set '%s'", out, sets[i][0]);
-        int rc = e2e_dflab(dir, args);
-        snprintf(path, sizeof path, "%s/err.txt", dir);
-        char *msg = e2e_slurp(path);
-        cr_expect_eq(rc, 2, "%s: exit %d, %s", sets[i][0], rc, msg);
-        cr_expect(msg && strstr(msg, sets[i][1]), "%s: message '%s'", sets[i][0], msg);
-        cr_expect_eq(e2e_count_entries(out), -1, "%s left %s behind", sets[i][0], out);
-        free(msg);
+        char extra[512];
+        snprintf(extra, sizeof extra, "--set '%s'", sets[i][0]);
+        e2e_run_expect_fail(CFG, extra, sets[i][1]);
     }
 }

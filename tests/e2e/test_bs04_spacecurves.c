@@ -10,6 +10,7 @@
 #include "bs04_space_e2e.h"
 #include "curve_cfg.h"
 #include "geom/polygonize.h"
+#include "io/config.h"
 #include "rfunc/rfield.h"
 
 #define CFG "configs/paper/bs04_spacecurves.ini"
@@ -33,7 +34,7 @@ Test(e2e_bs04_spacecurves, counts_and_slice_metrics, .timeout = 60)
     const char *files[2] = {"configs/shapes/space1.ini", "configs/shapes/space2.ini"};
     const long paper[2] = {56, 90}; /* bs04 Sec. 3.1 */
     for (long r = 0; r < 2; r++) {
-        char *name = bs_cell(csv, r, "curve");
+        char *name = e2e_csv_cell(csv, r, "curve");
         cr_assert_str_eq(name, r == 0 ? "space1" : "space2");
         free(name);
         dfl_bspline c;
@@ -93,8 +94,8 @@ Test(e2e_bs04_spacecurves, counts_and_slice_metrics, .timeout = 60)
 Test(e2e_bs04_spacecurves, sections_equal_the_shape_configs)
 {
     const char *keys[] = {"kind", "order", "control", "closed", "knots"};
-    bs_same_section(CFG, "space1", "configs/shapes/space1.ini", keys, 5);
-    bs_same_section(CFG, "space2", "configs/shapes/space2.ini", keys, 5);
+    e2e_expect_same_section(CFG, "space1", "configs/shapes/space1.ini", keys, 5, 0);
+    e2e_expect_same_section(CFG, "space2", "configs/shapes/space2.ini", keys, 5, 0);
 }
 
 Test(e2e_bs04_spacecurves, bad_input)

@@ -11,6 +11,7 @@
 #include "bs04_space_e2e.h"
 #include "curve_cfg.h"
 #include "geom/polygonize.h"
+#include "io/config.h"
 #include "rfunc/rfield.h"
 #include "rfunc/tri3d.h"
 
@@ -99,7 +100,7 @@ Test(e2e_bs04_surface, section_equals_the_shape_config)
 {
     const char *keys[] = {"kind", "order_u", "order_v", "nu", "nv", "control", "knots_u",
                           "knots_v"};
-    bs_same_section(CFG, "surface", "configs/shapes/surface.ini", keys, 8);
+    e2e_expect_same_section(CFG, "surface", "configs/shapes/surface.ini", keys, 8, 0);
 }
 
 Test(e2e_bs04_surface, bad_input)

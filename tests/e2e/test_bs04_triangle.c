@@ -11,6 +11,7 @@
 #include <stdlib.h>
 
 #include "bs04_space_e2e.h"
+#include "io/config.h"
 #include "rfunc/tri3d.h"
 
 #define CFG "configs/paper/bs04_triangle.ini"
@@ -98,7 +99,7 @@ Test(e2e_bs04_triangle, vertex_gradient_vs_theory, .timeout = 60)
     }
     double plane[2][2];
     for (long r = 0; r < 2; r++) {
-        char *trim = bs_cell(csv, r, "tri_trim");
+        char *trim = e2e_csv_cell(csv, r, "tri_trim");
         const int prism = strcmp(trim, "prism") == 0;
         cr_assert_str_eq(trim, r == 0 ? "prism" : "conditional");
         free(trim);
