@@ -309,14 +309,8 @@ static dfl_status run_case(const bulge_keys *k, bulge_case *c, const dfl_study_c
     snprintf(ustem, sizeof ustem, "%s_u", c->name);
     snprintf(dstem, sizeof dstem, "%s_exact", c->name);
     dfl_study_path(ctx, ustem, "vti", upath, sizeof upath);
-    {
-        /* the exact image is written once, at the first sweep point */
-        dfl_study_ctx first = *ctx;
-        char tag[32] = "";
-        if (ctx->npoints > 1) snprintf(tag, sizeof tag, "_pt%03d", 0);
-        first.tag = tag;
-        dfl_study_path(&first, dstem, "vti", dpath, sizeof dpath);
-    }
+    /* the exact image is written once, at the first sweep point */
+    dfl_study_path_at(ctx, 0, dstem, "vti", dpath, sizeof dpath);
     for (size_t l = 0; l < c->nlevels && st == DFL_OK; l++) {
         const double delta = c->levels[l];
         const dfl_cross_opts co = {k->smax * delta, (int)k->steps, (int)k->rounds};

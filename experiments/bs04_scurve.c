@@ -238,14 +238,8 @@ static dfl_status scurve_run_point(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
     snprintf(ustem, sizeof ustem, "%s_u", k.curve_sec ? k.curve_sec : "curve");
     snprintf(dstem, sizeof dstem, "%s_exact", k.curve_sec ? k.curve_sec : "curve");
     dfl_study_path(ctx, ustem, "vti", upath, sizeof upath);
-    {
-        /* the exact image is written once, at the first sweep point */
-        dfl_study_ctx first = *ctx;
-        char tag[32] = "";
-        if (ctx->npoints > 1) snprintf(tag, sizeof tag, "_pt%03d", 0);
-        first.tag = tag;
-        dfl_study_path(&first, dstem, "vti", dpath, sizeof dpath);
-    }
+    /* the exact image is written once, at the first sweep point */
+    dfl_study_path_at(ctx, 0, dstem, "vti", dpath, sizeof dpath);
     const double C = st == DFL_OK ? curve_bound_factor(&k, r.pl.bound, seg_min, closed) : NAN;
     for (size_t l = 0; l < k.nlevels && st == DFL_OK; l++) {
         const double delta = k.levels[l];

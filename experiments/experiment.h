@@ -36,6 +36,13 @@ typedef struct dfl_study {
 /* "<stage_dir>/<stem><tag>.<ext>" into buf; returns buf. */
 const char *dfl_study_path(const dfl_study_ctx *ctx, const char *stem, const char *ext, char *buf,
                            size_t size);
+/* The same name as sweep point `point` would give it: for files written
+ * once per run (e.g. a reference image shared by all sweep points). */
+const char *dfl_study_path_at(const dfl_study_ctx *ctx, size_t point, const char *stem,
+                              const char *ext, char *buf, size_t size);
+/* The file-name tag of sweep point `point` of `npoints`: "" when the run
+ * has one point, else "_ptNNN".  The runner and dfl_study_path_at use it. */
+const char *dfl_study_tag(size_t point, size_t npoints, char *buf, size_t size);
 
 /* NULL-terminated list of all studies; lookup by name (NULL if unknown). */
 const dfl_study *const *dfl_studies(void);

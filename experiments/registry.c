@@ -53,3 +53,21 @@ const char *dfl_study_path(const dfl_study_ctx *ctx, const char *stem, const cha
     snprintf(buf, size, "%s/%s%s.%s", ctx->stage_dir, stem, ctx->tag, ext);
     return buf;
 }
+
+const char *dfl_study_tag(size_t point, size_t npoints, char *buf, size_t size)
+{
+    if (npoints > 1)
+        snprintf(buf, size, "_pt%03zu", point);
+    else if (size)
+        buf[0] = '\0';
+    return buf;
+}
+
+const char *dfl_study_path_at(const dfl_study_ctx *ctx, size_t point, const char *stem,
+                              const char *ext, char *buf, size_t size)
+{
+    char tag[32];
+    dfl_study_tag(point, ctx->npoints, tag, sizeof tag);
+    snprintf(buf, size, "%s/%s%s.%s", ctx->stage_dir, stem, tag, ext);
+    return buf;
+}

@@ -142,8 +142,8 @@ dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
                 ll += (size_t)snprintf(label + ll, sizeof label - ll, "%s%s=%s", a ? " " : "",
                                        dfl_cfg_sweep_axis_name(cfg, a), dfl_cfg_axis_value(pt, a));
         }
-        char tag[32] = "";
-        if (np > 1) snprintf(tag, sizeof tag, "_pt%03zu", i);
+        char tag[32];
+        dfl_study_tag(i, np, tag, sizeof tag);
         dfl_study_ctx ctx = {.stage_dir = stage, .tag = tag, .point = i, .npoints = np,
                              .threads = o->threads};
         if (!o->quiet)
