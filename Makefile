@@ -1,6 +1,12 @@
 # dflab — plain Makefile.  `make` builds build/dflab and build/libdfl.a.
 # Sources are found by wildcard: drop a .c into src/ (library), experiments/
 # (studies) or tests/ (Criterion tests) and it is built.
+#
+# Include paths enforce the dependency direction: library objects (src/
+# except src/cli) see only src/, so a study header included from the
+# library fails to compile; experiments, the CLI and tests also see
+# experiments/ (and tests see tests/).  `make check-layout` (run by
+# `make test`) rejects any src/ file that names experiments/ or tests/.
 
 CC      ?= cc
 CXX     ?= c++
@@ -11,7 +17,7 @@ SAN     ?=
 
 EXR_CFLAGS := $(shell pkg-config --cflags OpenEXR 2>/dev/null)
 DEPFLAGS = -MMD -MP
-CPPFLAGS += -Isrc -Iexperiments $(EXR_CFLAGS) -D_POSIX_C_SOURCE=200809L -DIMATH_HALF_NO_LOOKUP_TABLE
+CPPFLAGS += -Isrc $(EXR_CFLAGS) -D_POSIX_C_SOURCE=200809L -DIMATH_HALF_NO_LOOKUP_TABLE
 CFLAGS   += -std=c11 -Wall -Wextra $(OPT) -fopenmp $(SAN) -g
 CXXFLAGS += -std=c++17 -Wall -Wextra $(OPT) -fopenmp $(SAN) -g -I/usr/include/eigen3
 LDLIBS   += -linih -lceres -lglog -lOpenEXRCore-3_1 -lz -lm
@@ -36,6 +42,11 @@ LIB_OBJ   := $(LIB_C:%.c=$(BUILD)/%.o) $(LIB_CC:%.cc=$(BUILD)/%.o)
 EXP_OBJ   := $(EXP_C:%.c=$(BUILD)/%.o)
 CLI_OBJ   := $(CLI_C:%.c=$(BUILD)/%.o)
 TEST_OBJ  := $(TEST_C:%.c=$(BUILD)/%.o)
+BENCH_OBJ := $(BENCH_C:%.c=$(BUILD)/%.o)
+
+# Study-level code may include experiments/ headers; the library may not.
+$(EXP_OBJ) $(CLI_OBJ): CPPFLAGS += -Iexperiments
+$(TEST_OBJ) $(BENCH_OBJ): CPPFLAGS += -Iexperiments -Itests
 
 LIB     := $(BUILD)/libdfl.a
 EXPLIB  := $(BUILD)/libdflexp.a
@@ -46,7 +57,7 @@ BENCH   := $(BUILD)/dflab-bench
 APT_PKGS := libinih-dev libceres-dev libopenexr-dev libimath-dev libcriterion-dev zlib1g-dev \
             python3-matplotlib python3-numpy python3-vtk9 openexr pkg-config
 
-.PHONY: all deps test sanitize bench reproduce clean
+.PHONY: all deps test sanitize bench reproduce clean check-layout
 all: $(DFLAB) $(LIB)
 
 $(BUILD)/%.o: %.c
@@ -71,7 +82,6 @@ $(DFLAB): $(CLI_OBJ) $(EXPLIB) $(LIB)
 $(TESTS): $(TEST_OBJ) $(EXPLIB) $(LIB)
 	$(CXX) $(LDFLAGS) -o $@ $(TEST_OBJ) $(EXPLIB) $(LIB) $(LDLIBS) -lcriterion
 
-BENCH_OBJ := $(BENCH_C:%.c=$(BUILD)/%.o)
 $(BENCH): $(BENCH_OBJ) $(EXPLIB) $(LIB)
 	$(CXX) $(LDFLAGS) -o $@ $(BENCH_OBJ) $(EXPLIB) $(LIB) $(LDLIBS)
 
@@ -87,9 +97,16 @@ deps:
 	else echo "deps: missing packages; run as root:"; \
 	  echo "  apt-get install -y$$missing"; exit 1; fi
 
+# src/ is the library: it must not reach into experiments/ or tests/ (src/cli,
+# the top of the dependency chain, is the one exception).
+check-layout:
+	@bad=$$(grep -rnE '#[[:space:]]*include[[:space:]]*"[^"]*(experiments|tests|harness|cfg|bs04|sjp10|hvb25|smoke)/' src --exclude-dir=cli || true); \
+	if [ -n "$$bad" ]; then echo "check-layout: src/ includes study code:"; echo "$$bad"; exit 1; fi; \
+	echo "check-layout: src/ includes no study code"
+
 # The test binary runs from the repository root; DFL_PYTHON and DFL_DFLAB
 # let tests call the VTK validator and the CLI.
-test: deps
+test: deps check-layout
 	$(MAKE) --no-print-directory $(DFLAB) $(TESTS)
 	DFL_PYTHON=$(PYTHON) DFL_DFLAB=$(abspath $(DFLAB)) $(TESTS) -j2 --timeout 600
 
@@ -106,7 +123,8 @@ bench: deps
 	$(MAKE) --no-print-directory OPT=-O3 BUILD=build-bench build-bench/dflab-bench
 	DFL_PYTHON=$(PYTHON) build-bench/dflab-bench
 
-PAPER_CONFIGS := $(sort $(wildcard configs/paper/*.ini))
+# One folder per paper under configs/paper/; results/<config name>/ each.
+PAPER_CONFIGS := $(sort $(wildcard configs/paper/*/*.ini))
 reproduce: deps
 	$(MAKE) --no-print-directory $(DFLAB)
 	@set -e; for c in $(PAPER_CONFIGS); do echo "== $$c"; $(DFLAB) run $$c; done

@@ -6,10 +6,10 @@
 
 #include "core/jet.h"
 #include "dfl_version.h"
-#include "experiment.h"
+#include "harness/experiment.h"
 #include "io/manifest.h"
-#include "probe.h"
-#include "runner.h"
+#include "harness/probe.h"
+#include "harness/runner.h"
 
 static const char *const usage_main =
     "usage: dflab <command> [options]\n"
@@ -200,9 +200,10 @@ static void list_configs_for(const char *study)
 
 static int cmd_list(void)
 {
-    for (const dfl_study *const *s = dfl_studies(); *s; s++) {
-        printf("%-28s %s\n", (*s)->name, (*s)->summary);
-        list_configs_for((*s)->name);
+    for (size_t i = 0; i < dfl_study_count(); i++) {
+        const dfl_study *s = dfl_study_at(i);
+        printf("%-28s %s\n", s->name, s->summary);
+        list_configs_for(s->name);
     }
     return 0;
 }

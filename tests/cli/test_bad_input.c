@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../e2e/e2e_util.h"
+#include "util/e2e_util.h"
 
 #define SMOKE_HEAD "[study]\nname = smoke\n"
 #define SHAPE "[shape]\nkind = circle\ncenter = 0.5 0.5\nradius = 0.3\n"

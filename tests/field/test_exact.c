@@ -12,7 +12,7 @@
 #include "geom/implicit.h"
 #include "geom/shape.h"
 #include "io/config.h"
-#include "shape_cfg.h"
+#include "cfg/shape_cfg.h"
 
 Test(exact, forwards_the_shape)
 {

@@ -1,0 +1,356 @@
+/* bs04 Fig. 6 and Fig. 2: bulging of the level sets of R-function fields of
+ * polygonized curves near the joining points, against the order p and the
+ * offset delta.
+ *
+ * Bulge measure (curveprobe.h).  For an offset delta, rays leave the exact
+ * curve C along its normals (and around its end points); a ray from o in
+ * direction v is kept when o + delta v lies on the true offset {d = delta}
+ * (d(o + delta v) >= delta (1 - valid_tol)), and along it the first
+ * crossing s of the level set {u = delta} is found by bracketing and
+ * subdivision.  The ray's bulge is r = (s - delta) / delta: the distance,
+ * along the true gradient, from the true offset curve to the level set of
+ * u, in units of delta (r > 0: the level set of u lies outside the true
+ * offset, u grows too slowly; r < 0: inside).  The study reports
+ * max r (the bulge), min r, mean r, the maxima over side / end-cap /
+ * joint rays (joint rays start at the polygon's vertices, where bs04's
+ * normalization is lost), and mean r on the flattest and most curved thirds
+ * of the curve, the latter split into the inner side of the turns (towards
+ * the centre of curvature: bs04's "convex sector", angle < pi) and the outer.
+ *
+ * Theory (join.h, bs04 eq. 6): at a joint of two collinear parts whose
+ * fields both equal the distance to their carrier line there (strip trims
+ * at the joint; disk trims to first order in delta / segment length),
+ * u = (2 h^-p)^(-1/p) = 2^(-1/p) h, so the level set u = delta is at
+ * s = 2^(1/p) delta: r -> 2^(1/p) - 1 (0.414, 0.260, 0.149, 0.104, 0.059 for
+ * p = 2, 3, 5, 7, 12).  Column joint_limit holds this value for R-equivalence
+ * (NAN for the other joins).
+ *
+ * Keys.  [study]
+ *   cases     = <section> ...   blank-separated case sections (below)
+ *   p         = integer 1..64   order of the join (a comma list sweeps it)
+ *   smax      = 8               crossings are searched in [0, smax delta]
+ *   steps     = 128             bracketing samples per ray
+ *   rounds    = 6               16-fold refinements (final bracket
+ *                               smax delta / steps / 16^rounds)
+ *   valid_tol = 1e-6            relative tolerance of the offset test
+ * A case section:
+ *   curve    = <section>        kind = bspline_curve (order 2 for a
+ *                               polyline): the exact set C, polygonized
+ *                               with eps; its footpoint keys (backend,
+ *                               samples, candidates) serve the exact distance
+ *   eps      = 1e-3             polygonization bound (> 0)
+ *   join     = requiv | rconj | requiv_corrected   (default requiv)
+ *   trim     = disk | disk_smooth | strip | strip_smooth   (default disk)
+ *   levels   = d1 d2 ...        offsets delta (> 0)
+ *   rays     = 801              ray origins along C (2 rays each)
+ *   cap_rays = 64               rays around each end point (open curves)
+ *   grid     = <section>        [grid]-style section for the images and
+ *                               the band statistics
+ * [output] vti, exr, compress, half (field_out.h).
+ * Rows: one per case and delta.  Files per case: <case>_u<tag>.vti/.exr (u,
+ * with the exact distance as reference and error = u - d) and, at the first
+ * sweep point, <case>_exact<tag>.vti/.exr (the exact distance).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "field/bandstats.h"
+#include "cfg/curve_cfg.h"
+#include "field/curveprobe.h"
+#include "harness/experiment.h"
+#include "field/exact.h"
+#include "field/sample.h"
+#include "harness/field_out.h"
+#include "geom/polygonize.h"
+#include "cfg/grid_cfg.h"
+#include "rfunc/rfield.h"
+
+#define MAX_CASES 8
+#define NAME_LEN 64
+
+typedef struct bulge_case {
+    char name[NAME_LEN];
+    const char *curve_sec;
+    double eps;
+    int join, trim;
+    double *levels;
+    size_t nlevels;
+    long rays, cap_rays;
+    dfl_grid grid;
+    dfl_bspline curve;   /* owned */
+    dfl_shape shape;     /* exact distance; moved into a field when used */
+    int have_curve, have_shape;
+} bulge_case;
+
+typedef struct bulge_keys {
+    int ncases;
+    bulge_case c[MAX_CASES];
+    long p;
+    double smax, valid_tol;
+    long steps, rounds;
+    dfl_field_out_opts out;
+} bulge_keys;
+
+static void keys_free(bulge_keys *k)
+{
+    for (int i = 0; i < k->ncases; i++) {
+        free(k->c[i].levels);
+        if (k->c[i].have_curve) dfl_bspline_free(&k->c[i].curve);
+        if (k->c[i].have_shape) dfl_shape_free(&k->c[i].shape);
+    }
+}
+
+static dfl_status read_case(const dfl_cfg *cfg, bulge_case *c, dfl_err *err)
+{
+    static const char *const joins[] = {"requiv", "rconj", "requiv_corrected"};
+    static const char *const trims[] = {"disk", "disk_smooth", "strip", "strip_smooth"};
+    const char *sec = c->name, *kind, *gsec;
+    char w[600];
+    dfl_status st;
+    if (!dfl_cfg_has_section(cfg, sec))
+        return dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s]",
+                           dfl_cfg_where(cfg, "study", "cases", w, sizeof w), sec);
+    if ((st = dfl_cfg_string(cfg, sec, "curve", &c->curve_sec, err))) return st;
+    if (!dfl_cfg_has_section(cfg, c->curve_sec))
+        return dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s]",
+                           dfl_cfg_where(cfg, sec, "curve", w, sizeof w), c->curve_sec);
+    if ((st = dfl_cfg_string(cfg, c->curve_sec, "kind", &kind, err))) return st;
+    if (strcmp(kind, "bspline_curve") != 0)
+        return dfl_err_set(err, DFL_E_INPUT, "%s: expected bspline_curve, got '%s'",
+                           dfl_cfg_where(cfg, c->curve_sec, "kind", w, sizeof w), kind);
+    if ((st = dfl_curve_from_cfg(cfg, c->curve_sec, &c->curve, err))) return st;
+    c->have_curve = 1;
+    if (c->curve.dim != 2)
+        return dfl_err_set(err, DFL_E_INPUT, "%s: a planar curve is required",
+                           dfl_cfg_where(cfg, c->curve_sec, "control", w, sizeof w));
+    if ((st = dfl_param_shape_from_cfg(cfg, c->curve_sec, "bspline_curve", &c->shape, err)))
+        return st;
+    c->have_shape = 1;
+    if ((st = dfl_cfg_double(cfg, sec, "eps", 1e-300, 1e300, &c->eps, err))) return st;
+    if ((st = dfl_cfg_enum_opt(cfg, sec, "join", joins, 3, 0, &c->join, err))) return st;
+    if ((st = dfl_cfg_enum_opt(cfg, sec, "trim", trims, 4, 0, &c->trim, err))) return st;
+    if ((st = dfl_cfg_doubles(cfg, sec, "levels", 1, &c->levels, &c->nlevels, err))) return st;
+    for (size_t i = 0; i < c->nlevels; i++)
+        if (!(c->levels[i] > 0.0))
+            return dfl_err_set(err, DFL_E_INPUT, "%s: expected offsets > 0, got %g",
+                               dfl_cfg_where(cfg, sec, "levels", w, sizeof w), c->levels[i]);
+    if ((st = dfl_cfg_int_opt(cfg, sec, "rays", 801, 2, 1000000, &c->rays, err))) return st;
+    if ((st = dfl_cfg_int_opt(cfg, sec, "cap_rays", 64, 0, 100000, &c->cap_rays, err))) return st;
+    if ((st = dfl_cfg_string(cfg, sec, "grid", &gsec, err))) return st;
+    if (!dfl_cfg_has_section(cfg, gsec))
+        return dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s]",
+                           dfl_cfg_where(cfg, sec, "grid", w, sizeof w), gsec);
+    return dfl_grid_from_cfg(cfg, gsec, 2, &c->grid, err);
+}
+
+static dfl_status read_keys(const dfl_cfg *cfg, bulge_keys *k, dfl_err *err)
+{
+    const char *list;
+    char w[600];
+    dfl_status st;
+    memset(k, 0, sizeof *k);
+    if ((st = dfl_cfg_string(cfg, "study", "cases", &list, err))) return st;
+    for (const char *s = list; *s;) {
+        while (*s == ' ' || *s == '\t') s++;
+        if (!*s) break;
+        const size_t len = strcspn(s, " \t");
+        if (k->ncases == MAX_CASES || len >= NAME_LEN)
+            return dfl_err_set(err, DFL_E_INPUT,
+                               "%s: expected at most %d section names of < %d characters",
+                               dfl_cfg_where(cfg, "study", "cases", w, sizeof w), MAX_CASES,
+                               NAME_LEN);
+        memcpy(k->c[k->ncases].name, s, len);
+        k->c[k->ncases].name[len] = '\0';
+        k->ncases++;
+        s += len;
+    }
+    if (k->ncases == 0)
+        return dfl_err_set(err, DFL_E_INPUT, "%s: expected at least one case section",
+                           dfl_cfg_where(cfg, "study", "cases", w, sizeof w));
+    if ((st = dfl_cfg_int(cfg, "study", "p", 1, DFL_RFUNC_P_MAX, &k->p, err))) return st;
+    if ((st = dfl_cfg_double_opt(cfg, "study", "smax", 8.0, 1.0, 1e6, &k->smax, err))) return st;
+    if ((st = dfl_cfg_int_opt(cfg, "study", "steps", 128, 1, DFL_CROSS_MAX_STEPS, &k->steps, err)))
+        return st;
+    if ((st = dfl_cfg_int_opt(cfg, "study", "rounds", 6, 0, 40, &k->rounds, err))) return st;
+    if ((st = dfl_cfg_double_opt(cfg, "study", "valid_tol", 1e-6, 0.0, 0.5, &k->valid_tol, err)))
+        return st;
+    for (int i = 0; i < k->ncases; i++) {
+        if ((st = read_case(cfg, &k->c[i], err))) return st;
+        if ((st = dfl_rfunc_join_check((dfl_rfunc_join)k->c[i].join, (int)k->p, err)))
+            return dfl_err_prefix(err, "%s (join %s of [%s])",
+                                  dfl_cfg_where(cfg, "study", "p", w, sizeof w),
+                                  dfl_rfunc_join_name((dfl_rfunc_join)k->c[i].join), k->c[i].name);
+    }
+    return dfl_field_out_from_cfg(cfg, &k->out, err);
+}
+
+/* The R-function field of c's polygonization and the vertex parameters of
+ * its joints (interior vertices; every vertex of a closed curve). */
+static dfl_status build_field(const bulge_case *c, int p, dfl_polyline *pl, dfl_field *u,
+                              size_t *nseg, dfl_err *err)
+{
+    dfl_status st = dfl_polygonize_curve(&c->curve, c->eps, 0, pl, err);
+    if (st != DFL_OK) return dfl_err_prefix(err, "[%s] eps", c->name);
+    size_t n = pl->n;
+    const int dim = pl->dim;
+    const int closed = n >= 4 && memcmp(pl->pts, pl->pts + (n - 1) * (size_t)dim,
+                                        (size_t)dim * sizeof *pl->pts) == 0;
+    *nseg = n - 1;
+    if (closed) n--;
+    st = dfl_rfield_polyline(dim, pl->pts, n, closed, (dfl_rfunc_join)c->join, p,
+                             (dfl_rfunc_trim)c->trim, u, err);
+    if (st != DFL_OK) return dfl_err_prefix(err, "[%s]", c->name);
+    return DFL_OK;
+}
+
+typedef struct case_run {
+    dfl_field u, exact;
+    dfl_polyline pl;
+    dfl_rayset rays;
+    double *uv, *ug, *dv, *dg, *s;
+    int *valid, *branch;
+} case_run;
+
+static void run_free(case_run *r)
+{
+    dfl_field_destroy(&r->u);
+    dfl_field_destroy(&r->exact);
+    dfl_polyline_free(&r->pl);
+    dfl_curveprobe_free(&r->rays);
+    free(r->uv), free(r->ug), free(r->dv), free(r->dg), free(r->s);
+    free(r->valid), free(r->branch);
+}
+
+static dfl_status put_row(dfl_table *t, const bulge_keys *k, const bulge_case *c, size_t nseg,
+                          double delta, const dfl_rayset *rs, const dfl_ray_stats *rst,
+                          const dfl_bandstats *bs, const char *uname, const char *dname)
+{
+    static const char *const joins[] = {"requiv", "rconj", "requiv_corrected"};
+    static const char *const trims[] = {"disk", "disk_smooth", "strip", "strip_smooth"};
+    const double limit =
+        c->join == DFL_RFUNC_REQUIV ? pow(2.0, 1.0 / (double)k->p) - 1.0 : NAN;
+    const size_t a = rst->argmax;
+    const int has = a != (size_t)-1;
+    dfl_status st = dfl_table_row(t);
+    if (!st) st = dfl_table_set_string(t, "case", c->name);
+    if (!st) st = dfl_table_set_int(t, "p", k->p);
+    if (!st) st = dfl_table_set_string(t, "join", joins[c->join]);
+    if (!st) st = dfl_table_set_string(t, "trim", trims[c->trim]);
+    if (!st) st = dfl_table_set_double(t, "eps", c->eps);
+    if (!st) st = dfl_table_set_int(t, "segments", (long)nseg);
+    if (!st) st = dfl_table_set_double(t, "delta", delta);
+    if (!st) st = dfl_table_set_int(t, "rays", (long)rs->n);
+    if (!st) st = dfl_table_set_int(t, "rays_valid", (long)rst->valid);
+    if (!st) st = dfl_table_set_int(t, "unresolved", (long)rst->unresolved);
+    if (!st) st = dfl_table_set_int(t, "beyond", (long)rst->beyond);
+    if (!st) st = dfl_table_set_double(t, "merged", rst->merged);
+    if (!st) st = dfl_table_set_double(t, "bulge_max", rst->max);
+    if (!st) st = dfl_table_set_double(t, "bulge_min", rst->min);
+    if (!st) st = dfl_table_set_double(t, "bulge_mean", rst->mean);
+    if (!st) st = dfl_table_set_double(t, "bulge_side_max", rst->side_max);
+    if (!st) st = dfl_table_set_double(t, "bulge_cap_max", rst->cap_max);
+    if (!st) st = dfl_table_set_double(t, "bulge_joint_max", rst->joint_max);
+    if (!st) st = dfl_table_set_double(t, "joint_limit", limit);
+    if (!st) st = dfl_table_set_double(t, "bulge_flat_mean", rst->flat_mean);
+    if (!st) st = dfl_table_set_double(t, "bulge_curved_mean", rst->curved_mean);
+    if (!st) st = dfl_table_set_double(t, "bulge_outer_mean", rst->outer_mean);
+    if (!st) st = dfl_table_set_double(t, "bulge_inner_mean", rst->inner_mean);
+    if (!st) st = dfl_table_set_double(t, "max_x", has ? rs->o[2 * a] : NAN);
+    if (!st) st = dfl_table_set_double(t, "max_y", has ? rs->o[2 * a + 1] : NAN);
+    if (!st) st = dfl_table_set_double(t, "max_vx", has ? rs->v[2 * a] : NAN);
+    if (!st) st = dfl_table_set_double(t, "max_vy", has ? rs->v[2 * a + 1] : NAN);
+    if (!st) st = dfl_table_set_string(t, "max_kind",
+                                       !has ? "" : rs->kind[a] == DFL_RAY_JOINT ? "joint"
+                                                 : rs->kind[a] == DFL_RAY_CAP  ? "cap"
+                                                                              : "side");
+    if (!st) st = dfl_bandstats_put(t, bs);
+    if (!st) st = dfl_table_set_string(t, "u_vti", uname);
+    if (!st) st = dfl_table_set_string(t, "exact_vti", dname);
+    return st;
+}
+
+static const char *base_name(const char *path)
+{
+    const char *b = strrchr(path, '/');
+    return b ? b + 1 : path;
+}
+
+static dfl_status run_case(const bulge_keys *k, bulge_case *c, const dfl_study_ctx *ctx,
+                           dfl_table *table, dfl_err *err)
+{
+    case_run r;
+    memset(&r, 0, sizeof r);
+    size_t nseg = 0;
+    dfl_status st = build_field(c, (int)k->p, &r.pl, &r.u, &nseg, err);
+    if (st == DFL_OK) {
+        st = dfl_field_exact_new(&c->shape, &r.exact, err);
+        if (st == DFL_OK) c->have_shape = 0;
+    }
+    if (st == DFL_OK) {
+        const int closed = c->curve.closed;
+        const size_t nj = closed ? r.pl.n - 1 : r.pl.n - 2;
+        st = dfl_curveprobe_rays(&c->curve, (size_t)c->rays, (size_t)c->cap_rays,
+                                 closed ? r.pl.t : r.pl.t + 1, nj, &r.rays, err);
+    }
+    const size_t m = dfl_grid_size(&c->grid);
+    if (st == DFL_OK) {
+        r.uv = malloc(m * sizeof *r.uv), r.ug = malloc(2 * m * sizeof *r.ug);
+        r.dv = malloc(m * sizeof *r.dv), r.dg = malloc(2 * m * sizeof *r.dg);
+        r.s = malloc(r.rays.n * sizeof *r.s), r.valid = malloc(r.rays.n * sizeof *r.valid);
+        r.branch = malloc(r.rays.n * sizeof *r.branch);
+        if (!r.uv || !r.ug || !r.dv || !r.dg || !r.s || !r.valid || !r.branch)
+            st = dfl_err_set(err, DFL_E_NOMEM, "[%s]: out of memory", c->name);
+    }
+    if (st == DFL_OK) st = dfl_field_sample(&r.u, &c->grid, ctx->threads, r.uv, r.ug, err);
+    if (st == DFL_OK) st = dfl_field_sample(&r.exact, &c->grid, ctx->threads, r.dv, r.dg, err);
+    char ustem[NAME_LEN + 8], dstem[NAME_LEN + 8], upath[4400], dpath[4400];
+    snprintf(ustem, sizeof ustem, "%s_u", c->name);
+    snprintf(dstem, sizeof dstem, "%s_exact", c->name);
+    dfl_study_path(ctx, ustem, "vti", upath, sizeof upath);
+    /* the exact image is written once, at the first sweep point */
+    dfl_study_path_at(ctx, 0, dstem, "vti", dpath, sizeof dpath);
+    for (size_t l = 0; l < c->nlevels && st == DFL_OK; l++) {
+        const double delta = c->levels[l];
+        const dfl_cross_opts co = {k->smax * delta, (int)k->steps, (int)k->rounds};
+        dfl_ray_stats rst;
+        dfl_bandstats bs;
+        st = dfl_curveprobe_valid(&r.exact, &r.rays, delta, k->valid_tol, ctx->threads, r.valid,
+                                  err);
+        if (st == DFL_OK)
+            st = dfl_curveprobe_cross(&r.u, &r.rays, delta, &co, ctx->threads, r.s, err);
+        if (st == DFL_OK)
+            st = dfl_curveprobe_on_branch(&r.exact, &r.rays, r.s, k->valid_tol, ctx->threads,
+                                          r.branch, err);
+        if (st == DFL_OK) dfl_curveprobe_stats(&r.rays, r.s, r.valid, r.branch, delta, &rst);
+        if (st == DFL_OK) st = dfl_bandstats_compute(m, 2, r.uv, r.ug, r.dv, delta, &bs, err);
+        if (st == DFL_OK &&
+            (st = put_row(table, k, c, nseg, delta, &r.rays, &rst, &bs, base_name(upath),
+                          base_name(dpath))) != DFL_OK &&
+            err && err->code == DFL_OK)
+            dfl_err_set(err, st, "bs04_bulging: cannot fill the table");
+    }
+    if (st == DFL_OK) st = dfl_field_out_write(ctx, ustem, &c->grid, r.uv, r.ug, r.dv, &k->out, err);
+    if (st == DFL_OK && ctx->point == 0)
+        st = dfl_field_out_write(ctx, dstem, &c->grid, r.dv, r.dg, NULL, &k->out, err);
+    run_free(&r);
+    return st;
+}
+
+static dfl_status bulging_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
+                              dfl_err *err)
+{
+    bulge_keys k;
+    dfl_status st = read_keys(cfg, &k, err);
+    if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
+    for (int i = 0; i < k.ncases && st == DFL_OK; i++) st = run_case(&k, &k.c[i], ctx, table, err);
+    keys_free(&k);
+    return st;
+}
+
+const dfl_study dfl_study_bs04_bulging = {
+    .name = "bs04_bulging",
+    .summary = "bs04 Fig. 6 / Fig. 2: bulging of R-function level sets vs order p and offset",
+    .run = bulging_run,
+};

@@ -1,0 +1,257 @@
+/* bs04 study 7: the corrected join (eq. 20, Fig. 14) beside R-equivalence.
+ *
+ * Two segments of length L share the vertex O at the angle alpha (vjoin.h).
+ * Their fields (exact distances, as eq. 20's derivation assumes, or a
+ * library trim) are joined by R-equivalence (eq. 6) and by the corrected
+ * R-equivalence (eq. 20 with q = |x - O|).  Measured:
+ *   in the hatched sector (closest point of both segments is O, computed
+ *     exactly: x . e1 <= 0 and x . e2 <= 0), sampled in polar coordinates
+ *     (sector_nr radii up to sector_rmax L times sector_nt directions at
+ *     the midpoints of equal angular steps; for alpha = 180 degrees the
+ *     sector is the line x . e1 = 0, sampled on its two rays):
+ *     max and min of | |grad u| - 1 |, and max |u - q| / q.  Theory for
+ *     exact parts: h1 = h2 = q there, so eq. 6 gives u = 2^(-1/p) q,
+ *     |grad u| = 2^(-1/p) (defect 1 - 2^(-1/p)), and eq. 20 gives u = q,
+ *     |grad u| = 1 (defect 0);
+ *   elsewhere, on the [grid], against the exact distance d to the union:
+ *     "band": nodes with 0 < d <= band and |x - O| >= vertex_radius (near
+ *     regular points, where both joins are normalized to order p), and
+ *     "vertex": nodes with |x - O| < vertex_radius outside the hatched
+ *     sector (the convex sector's bulge, which eq. 20 does not remove);
+ *     max and mean | |grad u| - 1 | and max |u - d|.
+ * Keys ([study]): alpha (degrees, sweep), length (1), parts (exact | disk |
+ *   disk_smooth | strip | strip_smooth), p, sector_nr (40), sector_nt (21),
+ *   sector_rmax (0.5, relative to L), band (0.1 L), vertex_radius (0.25 L);
+ *   [grid] n, lo, hi (2D); [output] vti, exr, compress, half.
+ * Rows: one per join (requiv, requiv_corrected): alpha, p, parts, join,
+ *   sector_points, sector_gdef_max / _min, sector_gdef_theory (exact
+ *   parts), sector_gdef_at_rmin (max over the innermost ring, r = rmax L /
+ *   nr), sector_value_relerr_max (|u - q| / q), sector_part_gdef_max (max
+ *   ||grad h_i| - 1| in the sector), band_ and vertex_ count, gdef_max,
+ *   gdef_mean, linf.  Files: requiv<tag>.vti
+ * /.exr and corrected<tag>.vti/.exr (value, gradient, grad_norm, error =
+ * u - d, reference = d).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "harness/experiment.h"
+#include "field/sample.h"
+#include "harness/field_out.h"
+#include "cfg/grid_cfg.h"
+#include "bs04/vjoin.h"
+
+typedef struct cj_keys {
+    dfl_vjoin vj;
+    long p, nr, nt;
+    double rmax, band, vradius;
+    dfl_grid grid;
+    dfl_field_out_opts oo;
+} cj_keys;
+
+static dfl_status read_keys(const dfl_cfg *cfg, cj_keys *k, dfl_err *err)
+{
+    dfl_status st;
+    memset(k, 0, sizeof *k);
+    if ((st = dfl_vjoin_from_cfg(cfg, "study", &k->vj, err))) return st;
+    if ((st = dfl_cfg_int_opt(cfg, "study", "p", 2, 1, DFL_RFUNC_P_MAX, &k->p, err))) return st;
+    if ((st = dfl_cfg_int_opt(cfg, "study", "sector_nr", 40, 1, 100000, &k->nr, err))) return st;
+    if ((st = dfl_cfg_int_opt(cfg, "study", "sector_nt", 21, 1, 100000, &k->nt, err))) return st;
+    if ((st = dfl_cfg_double_opt(cfg, "study", "sector_rmax", 0.5, 1e-9, 100, &k->rmax, err)))
+        return st;
+    if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.1, 1e-9, 100, &k->band, err))) return st;
+    if ((st = dfl_cfg_double_opt(cfg, "study", "vertex_radius", 0.25, 0, 100, &k->vradius, err)))
+        return st;
+    if ((st = dfl_grid_from_cfg(cfg, "grid", 2, &k->grid, err))) return st;
+    return dfl_field_out_from_cfg(cfg, &k->oo, err);
+}
+
+typedef struct sector_stats {
+    long count;
+    double gdef_max, gdef_min, gdef_rmin, verr_max, part_gdef_max;
+} sector_stats;
+
+/* Sector samples (exact geometry, see the header) into pts (room for
+ * 2 * nr * max(nt, 2) doubles); returns how many pass the exact hatched
+ * test (all in exact arithmetic; rounding of cos/sin may drop some). */
+static size_t sector_points(const cj_keys *k, double *pts)
+{
+    double t0, t1;
+    int nrays;
+    dfl_vjoin_hatched_range(&k->vj, &t0, &t1, &nrays);
+    size_t m = 0;
+    const long nt = nrays == 2 ? 2 : k->nt;
+    for (long a = 0; a < nt; a++) {
+        double c, s;
+        if (nrays == 2) {
+            /* the normal of segment 1, both ways: exact coordinates */
+            c = -k->vj.e1[1] * (a ? -1.0 : 1.0);
+            s = k->vj.e1[0] * (a ? -1.0 : 1.0);
+        } else {
+            const double t = t0 + (t1 - t0) * ((double)a + 0.5) / (double)nt;
+            c = cos(t);
+            s = sin(t);
+        }
+        for (long j = 1; j <= k->nr; j++) {
+            const double r = k->rmax * k->vj.length * (double)j / (double)k->nr;
+            const double x[2] = {r * c, r * s};
+            if (!dfl_vjoin_hatched(&k->vj, x)) continue;
+            pts[2 * m] = x[0];
+            pts[2 * m + 1] = x[1];
+            m++;
+        }
+    }
+    return m;
+}
+
+static void measure_sector(const cj_keys *k, const dfl_field *f, size_t m, const double *pts,
+                           double *val, double *grad, sector_stats *ss)
+{
+    f->ops->eval(f->ctx, m, pts, val, grad);
+    memset(ss, 0, sizeof *ss);
+    ss->count = (long)m;
+    ss->gdef_min = m ? INFINITY : NAN;
+    /* the innermost ring: nominal radius rmax L / nr (up to rounding) */
+    const double r1 = k->rmax * k->vj.length / (double)k->nr * (1.0 + 1e-9);
+    for (size_t i = 0; i < m; i++) {
+        const double *x = pts + 2 * i;
+        const double q = hypot(x[0], x[1]);
+        const double gdef = fabs(hypot(grad[2 * i], grad[2 * i + 1]) - 1.0);
+        double h[2], gh[4];
+        dfl_vjoin_parts(&k->vj, x, h, gh);
+        ss->gdef_max = fmax(ss->gdef_max, gdef);
+        ss->gdef_min = fmin(ss->gdef_min, gdef);
+        ss->verr_max = fmax(ss->verr_max, fabs(val[i] - q) / q);
+        ss->part_gdef_max = fmax(ss->part_gdef_max, fmax(fabs(hypot(gh[0], gh[1]) - 1.0),
+                                                         fabs(hypot(gh[2], gh[3]) - 1.0)));
+        if (q <= r1) ss->gdef_rmin = fmax(ss->gdef_rmin, gdef);
+    }
+}
+
+typedef struct region_stats {
+    long count;
+    double gdef_max, gdef_mean, linf;
+} region_stats;
+
+static void region_add(region_stats *r, double gdef, double err)
+{
+    r->count++;
+    r->gdef_max = fmax(r->gdef_max, gdef);
+    r->gdef_mean += gdef;
+    r->linf = fmax(r->linf, fabs(err));
+}
+
+/* Grid regions of the header: band (near regular points) and vertex. */
+static void measure_grid(const cj_keys *k, const double *u, const double *gu, const double *d,
+                         region_stats *band, region_stats *vert)
+{
+    memset(band, 0, sizeof *band);
+    memset(vert, 0, sizeof *vert);
+    const size_t m = dfl_grid_size(&k->grid);
+    const double L = k->vj.length;
+    for (size_t i = 0; i < m; i++) {
+        double x[3];
+        dfl_grid_node(&k->grid, i, x);
+        if (!(d[i] > 0.0)) continue; /* on the set: gradient is a convention */
+        const double gdef = fabs(hypot(gu[2 * i], gu[2 * i + 1]) - 1.0);
+        const double rv = hypot(x[0], x[1]);
+        if (rv >= k->vradius * L && d[i] <= k->band * L)
+            region_add(band, gdef, u[i] - d[i]);
+        else if (rv < k->vradius * L && !dfl_vjoin_hatched(&k->vj, x))
+            region_add(vert, gdef, u[i] - d[i]);
+    }
+    band->gdef_mean = band->count ? band->gdef_mean / (double)band->count : NAN;
+    vert->gdef_mean = vert->count ? vert->gdef_mean / (double)vert->count : NAN;
+    if (!band->count) band->gdef_max = band->linf = NAN;
+    if (!vert->count) vert->gdef_max = vert->linf = NAN;
+}
+
+static dfl_status put_row(dfl_table *t, const cj_keys *k, dfl_rfunc_join join,
+                          const sector_stats *ss, const region_stats *band,
+                          const region_stats *vert, dfl_err *err)
+{
+    const int p = (int)k->p;
+    const double theory = join == DFL_RFUNC_REQUIV ? 1.0 - pow(2.0, -1.0 / p) : 0.0;
+    dfl_status st = dfl_table_row(t);
+    if (!st) st = dfl_table_set_double(t, "alpha", k->vj.alpha_deg);
+    if (!st) st = dfl_table_set_int(t, "p", p);
+    if (!st) st = dfl_table_set_string(t, "parts", dfl_vjoin_part_names[k->vj.parts]);
+    if (!st) st = dfl_table_set_string(t, "join", dfl_rfunc_join_name(join));
+    if (!st) st = dfl_table_set_int(t, "sector_points", ss->count);
+    if (!st) st = dfl_table_set_double(t, "sector_gdef_max", ss->gdef_max);
+    if (!st) st = dfl_table_set_double(t, "sector_gdef_min", ss->gdef_min);
+    if (!st) st = dfl_table_set_double(t, "sector_gdef_theory", theory);
+    if (!st) st = dfl_table_set_double(t, "sector_gdef_at_rmin", ss->gdef_rmin);
+    if (!st) st = dfl_table_set_double(t, "sector_value_relerr_max", ss->verr_max);
+    if (!st) st = dfl_table_set_double(t, "sector_part_gdef_max", ss->part_gdef_max);
+    if (!st) st = dfl_table_set_int(t, "band_count", band->count);
+    if (!st) st = dfl_table_set_double(t, "band_gdef_max", band->gdef_max);
+    if (!st) st = dfl_table_set_double(t, "band_gdef_mean", band->gdef_mean);
+    if (!st) st = dfl_table_set_double(t, "band_linf", band->linf);
+    if (!st) st = dfl_table_set_int(t, "vertex_count", vert->count);
+    if (!st) st = dfl_table_set_double(t, "vertex_gdef_max", vert->gdef_max);
+    if (!st) st = dfl_table_set_double(t, "vertex_gdef_mean", vert->gdef_mean);
+    if (!st) st = dfl_table_set_double(t, "vertex_linf", vert->linf);
+    if (st != DFL_OK && err && err->code == DFL_OK)
+        dfl_err_set(err, st, "bs04_corrected: cannot fill the table");
+    return st;
+}
+
+static dfl_status cj_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
+                         dfl_err *err)
+{
+    cj_keys k;
+    dfl_field f = {0};
+    double *spts = NULL, *sval = NULL, *sgrad = NULL, *u = NULL, *gu = NULL, *d = NULL;
+    dfl_status st = read_keys(cfg, &k, err);
+    if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
+    if (st != DFL_OK) return st;
+
+    const size_t ns = (size_t)k.nr * (size_t)(k.nt > 2 ? k.nt : 2);
+    const size_t m = dfl_grid_size(&k.grid);
+    spts = malloc(2 * ns * sizeof *spts);
+    sval = malloc(ns * sizeof *sval);
+    sgrad = malloc(2 * ns * sizeof *sgrad);
+    u = malloc(m * sizeof *u);
+    gu = malloc(2 * m * sizeof *gu);
+    d = malloc(m * sizeof *d);
+    if (!spts || !sval || !sgrad || !u || !gu || !d) {
+        st = dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu grid nodes", m);
+        goto done;
+    }
+    const size_t nsec = sector_points(&k, spts);
+    /* the exact distance to the union: the reference of both images */
+    for (size_t i = 0; i < m; i++) {
+        double x[3];
+        dfl_grid_node(&k.grid, i, x);
+        d[i] = dfl_vjoin_dist(&k.vj, x, NULL);
+    }
+    static const dfl_rfunc_join joins[2] = {DFL_RFUNC_REQUIV, DFL_RFUNC_REQUIV_CORRECTED};
+    static const char *const stems[2] = {"requiv", "corrected"};
+    for (int j = 0; j < 2 && st == DFL_OK; j++) {
+        st = dfl_vjoin_field(&k.vj, joins[j], (int)k.p, &f, err);
+        if (st != DFL_OK) break;
+        sector_stats ss;
+        region_stats band, vert;
+        measure_sector(&k, &f, nsec, spts, sval, sgrad, &ss);
+        st = dfl_field_sample(&f, &k.grid, ctx->threads, u, gu, err);
+        if (st == DFL_OK) {
+            measure_grid(&k, u, gu, d, &band, &vert);
+            st = put_row(table, &k, joins[j], &ss, &band, &vert, err);
+        }
+        if (st == DFL_OK) st = dfl_field_out_write(ctx, stems[j], &k.grid, u, gu, d, &k.oo, err);
+        dfl_field_destroy(&f);
+    }
+done:
+    free(spts), free(sval), free(sgrad), free(u), free(gu), free(d);
+    dfl_field_destroy(&f);
+    return st;
+}
+
+const dfl_study dfl_study_bs04_corrected = {
+    .name = "bs04_corrected",
+    .summary = "bs04 Fig. 14, eq. 20: corrected join, |grad u| = 1 in the hatched sector",
+    .run = cj_run,
+};

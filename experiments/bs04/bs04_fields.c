@@ -1,0 +1,300 @@
+/* bs04 Fig. 1 and Fig. 3(b): the approximate distance fields of two line
+ * segments (Fig. 1 a, b: each trimmed by its own region, eq. 4 or 5), their
+ * join (Fig. 1 c: R-equivalence of order 2 in the paper), and one
+ * segment's field under each trim (Fig. 3 b: the disk; also the strip and
+ * the smooth composition eq. 5), sampled on a grid, with |grad u|
+ * statistics and errors against the exact (unsigned) distance to the set.
+ *
+ * Keys.  [study]:
+ *   segment_a = x0 y0; x1 y1     first segment (end points)
+ *   segment_b = x0 y0; x1 y1     second segment; when it starts where A
+ *                                ends, that point is the shared vertex of
+ *                                the corrected join
+ *   join      = requiv | rconj | requiv_corrected   (default requiv)
+ *   p         = order (default 2; rconj needs >= 2)
+ *   trim      = disk | disk_smooth | strip | strip_smooth   (default disk)
+ *   band      = 0.1   |grad u| and errors also over the nodes with exact
+ *                     distance d <= band (> 0)
+ * [grid] n, lo, hi (2D; grid_cfg.h), [output] (field_out.h).
+ *
+ * Rows (one per field: a, b, join): field, nodes, offset nodes (u > 0:
+ * the gradient is 0 by convention on the zero set, those nodes are left
+ * out of the |grad u| statistics), gradnorm_min/mean/max (all off-set
+ * nodes), the same over the band, l1/linf of u - d (all, band);
+ * single segments also: trim_nodes (t > 0 and u > 0) and on them
+ * trim_value_maxdev = max |u - |f|| and trim_gradnorm_maxdev =
+ * max ||grad u| - 1| (theory: 0 for eq. 4, where h = |f| exactly);
+ * the join also: ratio_min/max of u / min(h_a, h_b) with the theory
+ * bounds ratio_lo (2^(-1/p) for requiv, 2 - 2^(1/p) for rconj, the values
+ * at h_a = h_b) and ratio_hi = 1 (both joins lie below min(h_a, h_b));
+ * vti: the file.
+ * Files: field_a, field_b, field_join (.vti with value, gradient,
+ * grad_norm, error = u - d, reference = d; .exr with value, grad_norm,
+ * error).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "harness/experiment.h"
+#include "field/sample.h"
+#include "harness/field_out.h"
+#include "cfg/grid_cfg.h"
+#include "rfunc/rfield.h"
+#include "rfunc/segment.h"
+
+typedef struct fields_keys {
+    double seg[2][4];   /* a0 a1 b0 b1 per segment */
+    int join, trim;
+    long p;
+    double band;
+    dfl_grid grid;
+    dfl_field_out_opts out;
+} fields_keys;
+
+static dfl_status read_segment(const dfl_cfg *cfg, const char *key, double *s, dfl_err *err)
+{
+    double *pts = NULL;
+    size_t n = 0;
+    char w[600];
+    dfl_status st = dfl_cfg_points(cfg, "study", key, 2, 2, &pts, &n, err);
+    if (st != DFL_OK) return st;
+    if (n != 2) {
+        free(pts);
+        return dfl_err_set(err, DFL_E_INPUT, "%s: expected the 2 end points of a segment, got %zu",
+                           dfl_cfg_where(cfg, "study", key, w, sizeof w), n);
+    }
+    memcpy(s, pts, 4 * sizeof *s);
+    free(pts);
+    return DFL_OK;
+}
+
+static dfl_status read_keys(const dfl_cfg *cfg, fields_keys *k, dfl_err *err)
+{
+    static const char *const joins[] = {"requiv", "rconj", "requiv_corrected"};
+    static const char *const trims[] = {"disk", "disk_smooth", "strip", "strip_smooth"};
+    char w[600];
+    dfl_status st;
+    memset(k, 0, sizeof *k);
+    if ((st = read_segment(cfg, "segment_a", k->seg[0], err))) return st;
+    if ((st = read_segment(cfg, "segment_b", k->seg[1], err))) return st;
+    if ((st = dfl_cfg_enum_opt(cfg, "study", "join", joins, 3, 0, &k->join, err))) return st;
+    if ((st = dfl_cfg_int_opt(cfg, "study", "p", 2, 1, DFL_RFUNC_P_MAX, &k->p, err))) return st;
+    if ((st = dfl_rfunc_join_check((dfl_rfunc_join)k->join, (int)k->p, err))) {
+        dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "p", w, sizeof w));
+        return st;
+    }
+    if ((st = dfl_cfg_enum_opt(cfg, "study", "trim", trims, 4, 0, &k->trim, err))) return st;
+    if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.1, 0.0, 1e300, &k->band, err))) return st;
+    if (!(k->band > 0.0))
+        return dfl_err_set(err, DFL_E_INPUT, "%s: expected band > 0, got %g",
+                           dfl_cfg_where(cfg, "study", "band", w, sizeof w), k->band);
+    if ((st = dfl_grid_from_cfg(cfg, "grid", 2, &k->grid, err))) return st;
+    return dfl_field_out_from_cfg(cfg, &k->out, err);
+}
+
+/* Unsigned distance from x to the segment a-b (closest point clamped). */
+static double seg_dist(const double *s, const double *x)
+{
+    const double ex = s[2] - s[0], ey = s[3] - s[1];
+    double l = ((x[0] - s[0]) * ex + (x[1] - s[1]) * ey) / (ex * ex + ey * ey);
+    l = l < 0 ? 0 : l > 1 ? 1 : l;
+    return hypot(x[0] - s[0] - l * ex, x[1] - s[1] - l * ey);
+}
+
+/* The field of the segments sel (bit 0: A, bit 1: B) joined by k's join. */
+static dfl_status build(const fields_keys *k, int sel, const char *where, dfl_field *out,
+                        dfl_err *err)
+{
+    dfl_rfield *r = NULL;
+    dfl_status st = dfl_rfield_new(2, (dfl_rfunc_join)k->join, (int)k->p, &r, err);
+    for (int i = 0; i < 2 && st == DFL_OK; i++)
+        if (sel >> i & 1)
+            st = dfl_rfield_add_segment(r, k->seg[i], k->seg[i] + 2, (dfl_rfunc_trim)k->trim, err);
+    if (st == DFL_OK && sel == 3 && k->seg[0][2] == k->seg[1][0] && k->seg[0][3] == k->seg[1][1])
+        st = dfl_rfield_add_vertex(r, k->seg[1], 0, 1, err);
+    if (st != DFL_OK) {
+        dfl_rfield_free(r);
+        dfl_err_prefix(err, "%s", where);
+        return st;
+    }
+    st = dfl_rfield_finish(&r, out, err);
+    if (st != DFL_OK) dfl_err_prefix(err, "%s", where);
+    return st;
+}
+
+typedef struct gstats {
+    long n;
+    double min, max, sum;
+} gstats;
+
+static void gs_init(gstats *s)
+{
+    s->n = 0;
+    s->min = INFINITY;
+    s->max = -INFINITY;
+    s->sum = 0;
+}
+
+static void gs_add(gstats *s, double v)
+{
+    s->n++;
+    s->sum += v;
+    if (v < s->min) s->min = v;
+    if (v > s->max) s->max = v;
+}
+
+static dfl_status fields_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
+                             dfl_err *err)
+{
+    fields_keys k;
+    dfl_field f[3];
+    double *u[3] = {NULL, NULL, NULL}, *gu[3] = {NULL, NULL, NULL}, *d[3] = {NULL, NULL, NULL};
+    char w[2][600];
+    memset(f, 0, sizeof f);
+    dfl_status st = read_keys(cfg, &k, err);
+    if (st == DFL_OK) {
+        dfl_cfg_where(cfg, "study", "segment_a", w[0], sizeof w[0]);
+        dfl_cfg_where(cfg, "study", "segment_b", w[1], sizeof w[1]);
+    }
+    /* building validates the geometry (degenerate segments) before any file */
+    for (int i = 0; i < 3 && st == DFL_OK; i++)
+        st = build(&k, i + 1, w[i == 1], &f[i], err);
+    if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
+    if (st != DFL_OK) goto done;
+
+    dfl_rfunc_seg seg[2];
+    for (int i = 0; i < 2 && st == DFL_OK; i++)
+        st = dfl_rfunc_seg_init(2, k.seg[i], k.seg[i] + 2, (dfl_rfunc_trim)k.trim, &seg[i], err);
+    if (st != DFL_OK) goto done;
+
+    const size_t m = dfl_grid_size(&k.grid);
+    for (int i = 0; i < 3; i++) {
+        u[i] = malloc(m * sizeof(double));
+        gu[i] = malloc(2 * m * sizeof(double));
+        d[i] = malloc(m * sizeof(double));
+        if (!u[i] || !gu[i] || !d[i]) {
+            st = dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu nodes", m);
+            goto done;
+        }
+    }
+    for (int i = 0; i < 3 && st == DFL_OK; i++)
+        st = dfl_field_sample(&f[i], &k.grid, ctx->threads, u[i], gu[i], err);
+    if (st != DFL_OK) goto done;
+    for (size_t j = 0; j < m; j++) {
+        double x[2];
+        dfl_grid_node(&k.grid, j, x);
+        d[0][j] = seg_dist(k.seg[0], x);
+        d[1][j] = seg_dist(k.seg[1], x);
+        d[2][j] = fmin(d[0][j], d[1][j]);
+    }
+
+    const int p = (int)k.p;
+    static const char *const names[3] = {"a", "b", "join"};
+    for (int i = 0; i < 3 && st == DFL_OK; i++) {
+        gstats all, band, trim;
+        gs_init(&all);
+        gs_init(&band);
+        gs_init(&trim);
+        double l1 = 0, linf = 0, l1b = 0, linfb = 0, vdev = 0, rmin = INFINITY, rmax = -INFINITY;
+        long nb = 0;
+        for (size_t j = 0; j < m; j++) {
+            const double e = fabs(u[i][j] - d[i][j]);
+            l1 += e;
+            if (e > linf) linf = e;
+            if (d[i][j] <= k.band) {
+                nb++;
+                l1b += e;
+                if (e > linfb) linfb = e;
+            }
+            if (!(u[i][j] > 0.0)) continue;
+            const double gn = hypot(gu[i][2 * j], gu[i][2 * j + 1]);
+            gs_add(&all, gn);
+            if (d[i][j] <= k.band) gs_add(&band, gn);
+            double x[2];
+            dfl_grid_node(&k.grid, j, x);
+            if (i < 2 && dfl_rfunc_seg_trim(&seg[i], x, NULL) > 0.0) {
+                gs_add(&trim, fabs(gn - 1.0));
+                const double fe = fabs(fabs(dfl_rfunc_seg_line(&seg[i], x, NULL)) - u[i][j]);
+                if (fe > vdev) vdev = fe;
+            }
+            if (i == 2) {
+                const double r = u[2][j] / fmin(u[0][j], u[1][j]);
+                if (r < rmin) rmin = r;
+                if (r > rmax) rmax = r;
+            }
+        }
+        char stem[32], path[4400];
+        snprintf(stem, sizeof stem, "field_%s", names[i]);
+        dfl_study_path(ctx, stem, "vti", path, sizeof path);
+        const char *base = strrchr(path, '/');
+        base = base ? base + 1 : path;
+        st = dfl_table_row(table);
+#define SETI(c, v) \
+    if (!st) st = dfl_table_set_int(table, c, (long)(v))
+#define SETD(c, v) \
+    if (!st) st = dfl_table_set_double(table, c, v)
+        if (!st) st = dfl_table_set_string(table, "field", names[i]);
+        if (!st) st = dfl_table_set_string(table, "join", i == 2 ? dfl_rfunc_join_name((dfl_rfunc_join)k.join) : "");
+        SETI("p", p);
+        if (!st) st = dfl_table_set_string(table, "trim", dfl_rfunc_trim_name((dfl_rfunc_trim)k.trim));
+        SETI("nodes", m);
+        SETI("offset_nodes", all.n);
+        SETD("gradnorm_min", all.min);
+        SETD("gradnorm_mean", all.sum / (double)all.n);
+        SETD("gradnorm_max", all.max);
+        SETD("band", k.band);
+        SETI("band_nodes", band.n);
+        if (band.n) {
+            SETD("gradnorm_min_band", band.min);
+            SETD("gradnorm_mean_band", band.sum / (double)band.n);
+            SETD("gradnorm_max_band", band.max);
+        }
+        SETD("l1", l1 / (double)m);
+        SETD("linf", linf);
+        if (nb) {
+            SETD("l1_band", l1b / (double)nb);
+            SETD("linf_band", linfb);
+        }
+        if (i < 2) {
+            SETI("trim_nodes", trim.n);
+            if (trim.n) {
+                SETD("trim_value_maxdev", vdev);
+                SETD("trim_gradnorm_maxdev", trim.max);
+            }
+        } else {
+            SETD("ratio_min", rmin);
+            SETD("ratio_max", rmax);
+            if (k.join != DFL_RFUNC_REQUIV_CORRECTED) {
+                SETD("ratio_lo", k.join == DFL_RFUNC_REQUIV ? pow(2.0, -1.0 / p)
+                                                            : 2.0 - pow(2.0, 1.0 / p));
+                SETD("ratio_hi", 1.0);
+            }
+        }
+        if (!st) st = dfl_table_set_string(table, "vti", k.out.vti ? base : "");
+#undef SETI
+#undef SETD
+        if (st != DFL_OK && err && err->code == DFL_OK)
+            dfl_err_set(err, st, "bs04_fields: cannot fill the table");
+    }
+    for (int i = 0; i < 3 && st == DFL_OK; i++) {
+        char stem[32];
+        snprintf(stem, sizeof stem, "field_%s", names[i]);
+        st = dfl_field_out_write(ctx, stem, &k.grid, u[i], gu[i], d[i], &k.out, err);
+    }
+done:
+    for (int i = 0; i < 3; i++) {
+        free(u[i]);
+        free(gu[i]);
+        free(d[i]);
+    }
+    for (int i = 0; i < 3; i++) dfl_field_destroy(&f[i]); /* zeroed when not built */
+    return st;
+}
+
+const dfl_study dfl_study_bs04_fields = {
+    .name = "bs04_fields",
+    .summary = "bs04 Fig. 1, 3b: two segment fields, their join, the trims; |grad u| statistics",
+    .run = fields_run,
+};

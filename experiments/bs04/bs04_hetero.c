@@ -1,0 +1,293 @@
+/* bs04 Sec. 4.2 / Fig. 13a: one approximate distance field for a 2D set of
+ * heterogeneous dimension: a square region (dimension 2), a line segment
+ * (1) and a point (0), each with its own field (rfunc/region.h,
+ * rfunc/segment.h), joined by R-equivalence.
+ *
+ * Measured against the exact distance to the union, d = min(d_region (0
+ * inside), d_segment, d_point), on [grid] (all samples, and the band
+ * 0 < d <= band: the set itself, where u = 0 and the gradient is 0 by
+ * convention, is left out), |grad u| in the band, and normalization at the
+ * parts' regular boundary points: at offset delta along the outward normal
+ * (the middle 80% of the square's edges, of the segment, a circle of
+ * radius delta around the point) the part's own field is the exact
+ * distance h_i = delta, so with the other fields h_j >= D there
+ *     u = delta (1 + sum_j (delta/h_j)^p)^(-1/p),
+ *     |u/delta - 1| <= (n - 1) (delta/D)^p / p,
+ *     du/dh_i = (u/delta)^(p+1) = 1 - (p+1)/p sum_j (delta/h_j)^p + ...,
+ *     ||grad u| - 1| <~ (p+1)/p (n - 1) (delta/D)^p
+ * (the other parts add (u/h_j)^(p+1) |grad h_j|, of higher order): the rows
+ * report the largest |u/delta - 1| and ||grad u| - 1| over those samples.
+ *
+ * Keys ([study]):
+ *   region  = x y; x y; ...     convex polygon (>= 3 vertices)
+ *   segment = x y; x y          end points
+ *   point   = x y
+ *   join, p                     (default requiv, 2)
+ *   trim    = disk              the segment's trim
+ *   band    = 0.05
+ *   delta   = 1e-4              normal offset of the boundary samples (> 0)
+ *   boundary_samples = 200      per part
+ *   compress = true             [grid] 2D   [output] see field_out.h
+ * Rows: join, p, trim, metrics of u against d (all, _band), |grad u| in
+ * the band, boundary_ratio_err, boundary_grad_err (max over all parts),
+ * and per part (region, segment, point) the same with suffixes.
+ * Files: hetero<tag>.vti/.exr (value, gradient, error = u - d, reference
+ * d), parts<tag>.vtp (square outline, segment, point).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bs04/bs04_space_util.h"
+#include "harness/experiment.h"
+#include "field/metrics.h"
+#include "field/sample.h"
+#include "harness/field_out.h"
+#include "geom/polygonize.h"
+#include "io/vtk.h"
+#include "cfg/grid_cfg.h"
+#include "rfunc/rfield.h"
+
+#define PI 3.14159265358979323846
+
+typedef struct keys {
+    double *region;
+    size_t nreg;
+    double seg[4], pt[2];
+    dfl_rfunc_join join;
+    int p;
+    dfl_rfunc_trim trim;
+    double band, delta;
+    long nb;
+    bool compress;
+    dfl_grid grid;
+    dfl_field_out_opts out;
+} keys;
+
+static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
+{
+    double *s = NULL;
+    size_t n;
+    char w[600];
+    dfl_status st;
+    memset(k, 0, sizeof *k);
+    if ((st = dfl_cfg_points(cfg, "study", "region", 2, 3, &k->region, &k->nreg, err))) return st;
+    if ((st = dfl_cfg_points(cfg, "study", "segment", 2, 2, &s, &n, err))) return st;
+    if (n != 2) {
+        free(s);
+        return dfl_err_set(err, DFL_E_INPUT, "%s: expected 2 end points, got %zu",
+                           dfl_cfg_where(cfg, "study", "segment", w, sizeof w), n);
+    }
+    memcpy(k->seg, s, sizeof k->seg);
+    free(s);
+    if ((st = dfl_cfg_vec(cfg, "study", "point", 2, k->pt, err))) return st;
+    if ((st = dfl_bs04_join_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
+    if ((st = dfl_bs04_trim_from_cfg(cfg, "study", &k->trim, err))) return st;
+    if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.05, 0.0, 1e300, &k->band, err))) return st;
+    if ((st = dfl_cfg_double_opt(cfg, "study", "delta", 1e-4, 1e-12, 1.0, &k->delta, err)))
+        return st;
+    if ((st = dfl_cfg_int_opt(cfg, "study", "boundary_samples", 200, 1, 1000000, &k->nb, err)))
+        return st;
+    if ((st = dfl_cfg_bool_opt(cfg, "study", "compress", true, &k->compress, err))) return st;
+    if ((st = dfl_grid_from_cfg(cfg, "grid", 2, &k->grid, err))) return st;
+    return dfl_field_out_from_cfg(cfg, &k->out, err);
+}
+
+/* Orientation sign of the polygon (+1 counter-clockwise). */
+static double orient(const double *v, size_t n)
+{
+    double a = 0;
+    for (size_t i = 0; i < n; i++) {
+        const double *p = v + 2 * i, *q = v + 2 * ((i + 1) % n);
+        a += p[0] * q[1] - q[0] * p[1];
+    }
+    return a > 0 ? 1.0 : -1.0;
+}
+
+/* Exact distance to the union of the convex region, the segment, the point. */
+static double exact_union(const keys *k, double o, const double *x)
+{
+    int inside = 1;
+    double dr = INFINITY;
+    for (size_t i = 0; i < k->nreg; i++) {
+        const double *p = k->region + 2 * i, *q = k->region + 2 * ((i + 1) % k->nreg);
+        const double cr = (q[0] - p[0]) * (x[1] - p[1]) - (q[1] - p[1]) * (x[0] - p[0]);
+        if (o * cr < 0) inside = 0;
+        dr = fmin(dr, dfl_point_segment_dist(2, x, p, q));
+    }
+    if (inside) return 0.0;
+    const double ds = dfl_point_segment_dist(2, x, k->seg, k->seg + 2);
+    const double dp = hypot(x[0] - k->pt[0], x[1] - k->pt[1]);
+    return fmin(dr, fmin(ds, dp));
+}
+
+typedef struct bstat {
+    double ratio, grad;
+} bstat;
+
+static void probe(const dfl_field *f, const double *x, double delta, bstat *b)
+{
+    double g[2];
+    const double u = dfl_field_eval1(f, x, g);
+    b->ratio = fmax(b->ratio, fabs(u / delta - 1.0));
+    b->grad = fmax(b->grad, fabs(hypot(g[0], g[1]) - 1.0));
+}
+
+static dfl_status hetero_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
+                             dfl_err *err)
+{
+    keys k;
+    dfl_field f = {0};
+    double *u = NULL, *gu = NULL, *d = NULL, *outline = NULL;
+    unsigned char *mask = NULL;
+    char path[4400], w[600];
+    dfl_rfield *rf = NULL;
+    dfl_status st = read_keys(cfg, &k, err);
+    if (!st) st = dfl_rfield_new(2, k.join, k.p, &rf, err);
+    if (!st && (st = dfl_rfield_add_region(rf, k.region, k.nreg, err)))
+        dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "region", w, sizeof w));
+    if (!st && (st = dfl_rfield_add_segment(rf, k.seg, k.seg + 2, k.trim, err)))
+        dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "segment", w, sizeof w));
+    if (!st) st = dfl_rfield_add_point(rf, k.pt, err);
+    if (!st) st = dfl_cfg_check_used(cfg, err);
+    if (st) {
+        dfl_rfield_free(rf);
+        goto done;
+    }
+    if ((st = dfl_rfield_finish(&rf, &f, err))) goto done;
+
+    const size_t m = dfl_grid_size(&k.grid);
+    u = malloc(m * sizeof *u);
+    gu = malloc(2 * m * sizeof *gu);
+    d = malloc(m * sizeof *d);
+    mask = malloc(m);
+    if (!u || !gu || !d || !mask) {
+        st = dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu samples", m);
+        goto done;
+    }
+    if ((st = dfl_field_sample(&f, &k.grid, ctx->threads, u, gu, err))) goto done;
+    const double o = orient(k.region, k.nreg);
+    for (size_t i = 0; i < m; i++) {
+        double x[2];
+        dfl_grid_node(&k.grid, i, x);
+        d[i] = exact_union(&k, o, x);
+        /* the band excludes the set itself (inside the region u = 0 and
+         * the gradient is 0 by convention, not a normalization defect) */
+        mask[i] = d[i] > 0.0 && d[i] <= k.band;
+    }
+    dfl_metrics all, inb;
+    dfl_gradstat gs;
+    if ((st = dfl_metrics_compute(m, 2, u, gu, d, 0.0, &all, err))) goto done;
+    /* band metrics over the masked samples (compacted copies) */
+    {
+        size_t nb2 = 0;
+        double *bu = malloc(m * sizeof *bu), *bg = malloc(2 * m * sizeof *bg),
+               *bd = malloc(m * sizeof *bd);
+        if (!bu || !bg || !bd) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+        for (size_t i = 0; i < m && !st; i++) {
+            if (!mask[i]) continue;
+            bu[nb2] = u[i];
+            bg[2 * nb2] = gu[2 * i];
+            bg[2 * nb2 + 1] = gu[2 * i + 1];
+            bd[nb2++] = d[i];
+        }
+        if (!st) st = dfl_metrics_compute(nb2, 2, bu, bg, bd, 0.0, &inb, err);
+        free(bu), free(bg), free(bd);
+        if (st) goto done;
+    }
+    dfl_bs04_gradstat(m, 2, gu, mask, &gs);
+
+    /* boundary samples at offset delta along the outward normal */
+    bstat br = {0, 0}, bs = {0, 0}, bp = {0, 0};
+    const size_t nb = (size_t)k.nb;
+    for (size_t e = 0; e < k.nreg; e++) {
+        const double *a = k.region + 2 * e, *b = k.region + 2 * ((e + 1) % k.nreg);
+        const double L = hypot(b[0] - a[0], b[1] - a[1]);
+        const double nx = o * (b[1] - a[1]) / L, ny = -o * (b[0] - a[0]) / L; /* outward */
+        for (size_t i = 0; i < nb; i++) {
+            /* the middle 80% of the edge: at the corners two half-planes
+             * are violated and h is the corner distance (still exact for a
+             * rectangle, but not at offset delta along one normal) */
+            const double t = 0.1 + 0.8 * ((double)i + 0.5) / (double)nb;
+            const double x[2] = {a[0] + t * (b[0] - a[0]) + k.delta * nx,
+                                 a[1] + t * (b[1] - a[1]) + k.delta * ny};
+            probe(&f, x, k.delta, &br);
+        }
+    }
+    {
+        const double *a = k.seg, *b = k.seg + 2;
+        const double L = hypot(b[0] - a[0], b[1] - a[1]);
+        const double nx = (b[1] - a[1]) / L, ny = -(b[0] - a[0]) / L;
+        for (size_t i = 0; i < nb; i++) {
+            const double t = 0.1 + 0.8 * ((double)i + 0.5) / (double)nb;
+            for (int sgn = -1; sgn <= 1; sgn += 2) {
+                const double x[2] = {a[0] + t * (b[0] - a[0]) + sgn * k.delta * nx,
+                                     a[1] + t * (b[1] - a[1]) + sgn * k.delta * ny};
+                probe(&f, x, k.delta, &bs);
+            }
+        }
+    }
+    for (size_t i = 0; i < nb; i++) {
+        const double ph = 2 * PI * ((double)i + 0.5) / (double)nb;
+        const double x[2] = {k.pt[0] + k.delta * cos(ph), k.pt[1] + k.delta * sin(ph)};
+        probe(&f, x, k.delta, &bp);
+    }
+
+    st = dfl_table_row(table);
+    if (!st) st = dfl_table_set_string(table, "join", dfl_rfunc_join_name(k.join));
+    if (!st) st = dfl_table_set_int(table, "p", k.p);
+    if (!st) st = dfl_table_set_string(table, "trim", dfl_rfunc_trim_name(k.trim));
+    if (!st) st = dfl_bs04_put_metrics(table, "", &all);
+    if (!st) st = dfl_bs04_put_metrics(table, "_band", &inb);
+    if (!st) st = dfl_bs04_put_gradstat(table, "_band", &gs);
+    if (!st) st = dfl_table_set_double(table, "delta", k.delta);
+    const double rmax = fmax(br.ratio, fmax(bs.ratio, bp.ratio));
+    const double gmax = fmax(br.grad, fmax(bs.grad, bp.grad));
+    if (!st) st = dfl_table_set_double(table, "boundary_ratio_err", rmax);
+    if (!st) st = dfl_table_set_double(table, "boundary_grad_err", gmax);
+    if (!st) st = dfl_table_set_double(table, "boundary_ratio_err_region", br.ratio);
+    if (!st) st = dfl_table_set_double(table, "boundary_grad_err_region", br.grad);
+    if (!st) st = dfl_table_set_double(table, "boundary_ratio_err_segment", bs.ratio);
+    if (!st) st = dfl_table_set_double(table, "boundary_grad_err_segment", bs.grad);
+    if (!st) st = dfl_table_set_double(table, "boundary_ratio_err_point", bp.ratio);
+    if (!st) st = dfl_table_set_double(table, "boundary_grad_err_point", bp.grad);
+    if (st) goto done;
+    if ((st = dfl_field_out_write(ctx, "hetero", &k.grid, u, gu, d, &k.out, err))) goto done;
+
+    /* the parts: the closed outline, the segment and the point as lines */
+    const size_t np = k.nreg + 1 + 2 + 1;
+    outline = malloc(3 * np * sizeof *outline);
+    size_t conn[64], off[4];
+    if (!outline || np > 64) {
+        st = dfl_err_set(err, DFL_E_NOMEM, "out of memory (or a region of > 60 vertices)");
+        goto done;
+    }
+    for (size_t i = 0; i < np; i++) {
+        const double *src = i <= k.nreg ? k.region + 2 * (i % k.nreg)
+                            : i < k.nreg + 3 ? k.seg + 2 * (i - k.nreg - 1)
+                                             : k.pt;
+        outline[3 * i] = src[0];
+        outline[3 * i + 1] = src[1];
+        outline[3 * i + 2] = 0.0;
+        conn[i] = i;
+    }
+    off[0] = 0;
+    off[1] = k.nreg + 1;
+    off[2] = k.nreg + 3;
+    off[3] = np;
+    dfl_vtp_data vd = {np, outline, 3, off, conn, 0, NULL, NULL, 0};
+    st = dfl_vtp_write(dfl_study_path(ctx, "parts", "vtp", path, sizeof path), &vd, k.compress, err);
+done:
+    if (st != DFL_OK && err && err->code == DFL_OK)
+        dfl_err_set(err, st, "bs04_hetero: cannot fill the table");
+    dfl_field_destroy(&f);
+    free(u), free(gu), free(d), free(mask), free(outline), free(k.region);
+    return st;
+}
+
+const dfl_study dfl_study_bs04_hetero = {
+    .name = "bs04_hetero",
+    .summary = "bs04 Fig. 13a: one field for a region, a segment and a point",
+    .run = hetero_run,
+};

@@ -1,0 +1,261 @@
+/* bs04 polygonization study: segment counts of certified polygonizations
+ * (geom/polygonize.h) of the 'S' and 'W' B-splines against the maximum
+ * deviation eps, with the fitted growth exponent and the paper's counts.
+ *
+ * Keys ([study]):
+ *   curves     = S W          names of curve sections (kind = bspline_curve)
+ *   eps        = 1e-2         maximum deviation (> 0); a comma list sweeps it
+ *   fit_eps    = ...          blank-separated eps values (>= 2 distinct, > 0)
+ *                             over which every row's fit_exponent is computed:
+ *                             the least-squares slope of log(segments) against
+ *                             log(eps) (smooth curves: -1/2)
+ *   samples    = 16           samples per segment when measuring the deviation
+ *   compress   = true         zlib-compressed .vtp
+ *   paper_curve, paper_eps, paper_segments   the paper's counts (bs04 Sec.
+ *                             2.4 for its 'S'), copied into paper_segments of
+ *                             matching rows; paper_fit_exponent is their slope
+ * Rows (one per curve and sweep point): curve, eps, segments, bound
+ * (certified Hausdorff bound, <= eps), measured (dense sampling + local
+ * maximization of the curve -> polyline distance), measured_over_eps,
+ * fit_exponent, paper_segments, paper_fit_exponent, vtp.
+ * Files: <curve>_polyline<tag>.vtp (points with the parameter t as point
+ * data, one polyline; planar curves at z = 0).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cfg/curve_cfg.h"
+#include "harness/experiment.h"
+#include "geom/polygonize.h"
+#include "io/vtk.h"
+
+#define MAX_CURVES 16
+#define NAME_MAX_LEN 64
+
+static double fit_slope(size_t n, const double *eps, const double *cnt)
+{
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (size_t i = 0; i < n; i++) {
+        double x = log(eps[i]), y = log(cnt[i]);
+        sx += x;
+        sy += y;
+        sxx += x * x;
+        sxy += x * y;
+    }
+    double dn = (double)n;
+    return (dn * sxy - sx * sy) / (dn * sxx - sx * sx);
+}
+
+typedef struct study_keys {
+    int ncurves;
+    char names[MAX_CURVES][NAME_MAX_LEN];
+    double eps;
+    double *fit_eps;
+    size_t nfit;
+    long samples;
+    bool compress;
+    const char *paper_curve;
+    double *paper_eps, *paper_seg;
+    size_t npaper;
+} study_keys;
+
+static void keys_free(study_keys *k)
+{
+    free(k->fit_eps);
+    free(k->paper_eps);
+    free(k->paper_seg);
+}
+
+static dfl_status read_keys(const dfl_cfg *cfg, study_keys *k, dfl_err *err)
+{
+    char w[600];
+    const char *list;
+    dfl_status st;
+    memset(k, 0, sizeof *k);
+    if ((st = dfl_cfg_string(cfg, "study", "curves", &list, err))) return st;
+    for (const char *s = list; *s;) {
+        while (*s == ' ' || *s == '\t') s++;
+        if (!*s) break;
+        size_t len = strcspn(s, " \t");
+        if (k->ncurves == MAX_CURVES || len >= NAME_MAX_LEN)
+            return dfl_err_set(err, DFL_E_INPUT,
+                               "%s: expected at most %d section names of < %d characters",
+                               dfl_cfg_where(cfg, "study", "curves", w, sizeof w), MAX_CURVES,
+                               NAME_MAX_LEN);
+        memcpy(k->names[k->ncurves], s, len);
+        k->names[k->ncurves][len] = '\0';
+        k->ncurves++;
+        s += len;
+    }
+    if (k->ncurves == 0)
+        return dfl_err_set(err, DFL_E_INPUT, "%s: expected at least one curve section name",
+                           dfl_cfg_where(cfg, "study", "curves", w, sizeof w));
+    if ((st = dfl_cfg_double(cfg, "study", "eps", 0.0, 1e300, &k->eps, err))) return st;
+    if (!(k->eps > 0.0))
+        return dfl_err_set(err, DFL_E_INPUT, "%s: expected eps > 0, got %g",
+                           dfl_cfg_where(cfg, "study", "eps", w, sizeof w), k->eps);
+    if ((st = dfl_cfg_doubles(cfg, "study", "fit_eps", 2, &k->fit_eps, &k->nfit, err))) return st;
+    int distinct = 0;
+    for (size_t i = 0; i < k->nfit; i++) {
+        if (!(k->fit_eps[i] > 0.0))
+            return dfl_err_set(err, DFL_E_INPUT, "%s: expected values > 0, got %g",
+                               dfl_cfg_where(cfg, "study", "fit_eps", w, sizeof w),
+                               k->fit_eps[i]);
+        if (k->fit_eps[i] != k->fit_eps[0]) distinct = 1;
+    }
+    if (!distinct)
+        return dfl_err_set(err, DFL_E_INPUT, "%s: expected at least 2 distinct values",
+                           dfl_cfg_where(cfg, "study", "fit_eps", w, sizeof w));
+    if ((st = dfl_cfg_int_opt(cfg, "study", "samples", 16, 2, 100000, &k->samples, err)))
+        return st;
+    if ((st = dfl_cfg_bool_opt(cfg, "study", "compress", true, &k->compress, err))) return st;
+    if (dfl_cfg_has(cfg, "study", "paper_curve")) {
+        size_t ns = 0;
+        if ((st = dfl_cfg_string(cfg, "study", "paper_curve", &k->paper_curve, err))) return st;
+        if ((st = dfl_cfg_doubles(cfg, "study", "paper_eps", 1, &k->paper_eps, &k->npaper, err)))
+            return st;
+        if ((st = dfl_cfg_doubles(cfg, "study", "paper_segments", 1, &k->paper_seg, &ns, err)))
+            return st;
+        if (ns != k->npaper)
+            return dfl_err_set(err, DFL_E_INPUT, "%s: expected %zu values (one per paper_eps)",
+                               dfl_cfg_where(cfg, "study", "paper_segments", w, sizeof w),
+                               k->npaper);
+        for (size_t i = 0; i < ns; i++)
+            if (!(k->paper_eps[i] > 0.0) || !(k->paper_seg[i] >= 1.0))
+                return dfl_err_set(err, DFL_E_INPUT,
+                                   "%s: paper eps must be > 0 and segment counts >= 1",
+                                   dfl_cfg_where(cfg, "study", "paper_segments", w, sizeof w));
+    }
+    return DFL_OK;
+}
+
+/* The polyline as VTK PolyData (z = 0 for planar curves). */
+static dfl_status write_vtp(const char *path, const dfl_polyline *p, int compress, dfl_err *err)
+{
+    double *pts = malloc(p->n * 3 * sizeof(double));
+    size_t *conn = malloc(p->n * sizeof(size_t));
+    if (!pts || !conn) {
+        free(pts);
+        free(conn);
+        return dfl_err_set(err, DFL_E_NOMEM, "out of memory writing %s", path);
+    }
+    for (size_t i = 0; i < p->n; i++) {
+        for (int j = 0; j < 3; j++)
+            pts[3 * i + (size_t)j] = j < p->dim ? p->pts[i * (size_t)p->dim + (size_t)j] : 0.0;
+        conn[i] = i;
+    }
+    size_t off[2] = {0, p->n};
+    dfl_vtk_array arr = {"t", 1, p->t};
+    dfl_vtp_data d = {p->n, pts, 1, off, conn, 0, NULL, &arr, 1};
+    dfl_status st = dfl_vtp_write(path, &d, compress, err);
+    free(pts);
+    free(conn);
+    return st;
+}
+
+static dfl_status bs04_poly_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
+                                dfl_err *err)
+{
+    study_keys k;
+    dfl_bspline curves[MAX_CURVES];
+    dfl_polyline polys[MAX_CURVES];
+    int nbuilt = 0, npoly = 0;
+    memset(curves, 0, sizeof curves);
+    memset(polys, 0, sizeof polys);
+    char w[600];
+    dfl_status st = read_keys(cfg, &k, err);
+    for (int c = 0; c < k.ncurves && st == DFL_OK; c++) {
+        const char *sec = k.names[c], *kind;
+        if (!dfl_cfg_has_section(cfg, sec)) {
+            st = dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s] for curve '%s'",
+                             dfl_cfg_where(cfg, "study", "curves", w, sizeof w), sec, sec);
+            break;
+        }
+        if ((st = dfl_cfg_string(cfg, sec, "kind", &kind, err))) break;
+        if (strcmp(kind, "bspline_curve") != 0) {
+            st = dfl_err_set(err, DFL_E_INPUT, "%s: expected bspline_curve, got '%s'",
+                             dfl_cfg_where(cfg, sec, "kind", w, sizeof w), kind);
+            break;
+        }
+        if ((st = dfl_curve_from_cfg(cfg, sec, &curves[c], err))) break;
+        nbuilt++;
+    }
+    /* every key read and validated before any computation or file */
+    if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
+    double paper_fit = NAN;
+    if (st == DFL_OK && k.npaper >= 2) paper_fit = fit_slope(k.npaper, k.paper_eps, k.paper_seg);
+    for (int c = 0; c < k.ncurves && st == DFL_OK; c++) {
+        /* fitted exponent over fit_eps */
+        double *cnt = malloc(k.nfit * sizeof(double));
+        if (!cnt) {
+            st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+            break;
+        }
+        for (size_t i = 0; i < k.nfit && st == DFL_OK; i++) {
+            dfl_polyline q;
+            st = dfl_polygonize_curve(&curves[c], k.fit_eps[i], 0, &q, err);
+            if (st != DFL_OK) {
+                dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "fit_eps", w, sizeof w));
+                break;
+            }
+            cnt[i] = (double)(q.n - 1);
+            dfl_polyline_free(&q);
+        }
+        double fit = st == DFL_OK ? fit_slope(k.nfit, k.fit_eps, cnt) : NAN;
+        free(cnt);
+        if (st != DFL_OK) break;
+        st = dfl_polygonize_curve(&curves[c], k.eps, 0, &polys[c], err);
+        if (st != DFL_OK) {
+            dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "eps", w, sizeof w));
+            break;
+        }
+        npoly++;
+        double meas;
+        if ((st = dfl_polyline_deviation(&curves[c], &polys[c], (int)k.samples, &meas, err)))
+            break;
+        char stem[NAME_MAX_LEN + 16], path[4096];
+        snprintf(stem, sizeof stem, "%s_polyline", k.names[c]);
+        dfl_study_path(ctx, stem, "vtp", path, sizeof path);
+        const char *base = strrchr(path, '/');
+        base = base ? base + 1 : path;
+        double paper = NAN;
+        if (k.paper_curve && strcmp(k.paper_curve, k.names[c]) == 0)
+            for (size_t i = 0; i < k.npaper; i++)
+                if (fabs(k.paper_eps[i] - k.eps) <= 1e-12 * k.eps) paper = k.paper_seg[i];
+        st = dfl_table_row(table);
+        if (!st) st = dfl_table_set_string(table, "curve", k.names[c]);
+        if (!st) st = dfl_table_set_double(table, "eps", k.eps);
+        if (!st) st = dfl_table_set_int(table, "segments", (long)(polys[c].n - 1));
+        if (!st) st = dfl_table_set_double(table, "bound", polys[c].bound);
+        if (!st) st = dfl_table_set_double(table, "measured", meas);
+        if (!st) st = dfl_table_set_double(table, "measured_over_eps", meas / k.eps);
+        if (!st) st = dfl_table_set_double(table, "fit_exponent", fit);
+        if (!st && !isnan(paper)) st = dfl_table_set_int(table, "paper_segments", (long)paper);
+        if (!st && k.paper_curve && strcmp(k.paper_curve, k.names[c]) == 0)
+            st = dfl_table_set_double(table, "paper_fit_exponent", paper_fit);
+        if (!st) st = dfl_table_set_string(table, "vtp", base);
+        if (st != DFL_OK) {
+            if (err && err->code == DFL_OK)
+                dfl_err_set(err, st, "bs04_polygonization: cannot fill the table");
+            break;
+        }
+    }
+    for (int c = 0; c < npoly && st == DFL_OK; c++) {
+        char stem[NAME_MAX_LEN + 16], path[4096];
+        snprintf(stem, sizeof stem, "%s_polyline", k.names[c]);
+        st = write_vtp(dfl_study_path(ctx, stem, "vtp", path, sizeof path), &polys[c], k.compress,
+                       err);
+    }
+    for (int c = 0; c < npoly; c++) dfl_polyline_free(&polys[c]);
+    for (int c = 0; c < nbuilt; c++) dfl_bspline_free(&curves[c]);
+    keys_free(&k);
+    return st;
+}
+
+const dfl_study dfl_study_bs04_polygonization = {
+    .name = "bs04_polygonization",
+    .summary = "bs04: certified polygonization of the S and W B-splines, segments vs eps",
+    .run = bs04_poly_run,
+};

@@ -1,0 +1,63 @@
+/* Helpers shared by the bs04 space studies (bs04_spacecurves,
+ * bs04_triangle, bs04_triedge, bs04_surface, bs04_hetero): table cells for
+ * error metrics and gradient statistics, and .vtp output of polylines,
+ * triangle meshes and point samples.
+ */
+#ifndef DFL_EXPERIMENTS_BS04_SPACE_UTIL_H
+#define DFL_EXPERIMENTS_BS04_SPACE_UTIL_H
+
+#include <stddef.h>
+
+#include "core/status.h"
+#include "field/metrics.h"
+#include "io/config.h"
+#include "io/table.h"
+#include "rfunc/join.h"
+#include "rfunc/segment.h"
+#include "harness/slice.h"
+
+/* Sets count<sfx>, l1<sfx>, mse<sfx>, rms<sfx>, linf<sfx>,
+ * graddefect_mean<sfx>, graddefect_max<sfx> in the current row. */
+dfl_status dfl_bs04_put_metrics(dfl_table *t, const char *sfx, const dfl_metrics *m);
+
+/* Statistics of |grad u| over the m samples whose mask entry is non-zero
+ * (mask may be NULL: all): min, mean, max; NAN when none. */
+typedef struct dfl_gradstat {
+    size_t count;
+    double min, mean, max;
+} dfl_gradstat;
+void dfl_bs04_gradstat(size_t m, int dim, const double *grad, const unsigned char *mask,
+                       dfl_gradstat *out);
+/* Sets grad_min<sfx>, grad_mean<sfx>, grad_max<sfx>. */
+dfl_status dfl_bs04_put_gradstat(dfl_table *t, const char *sfx, const dfl_gradstat *g);
+
+/* Reads [sec] join (requiv | rconj | requiv_corrected, default requiv),
+ * p (1..DFL_RFUNC_P_MAX, default 2; checked against the join). */
+dfl_status dfl_bs04_join_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_rfunc_join *join,
+                                  int *p, dfl_err *err);
+/* Reads [sec] trim (disk | disk_smooth | strip | strip_smooth, default disk). */
+dfl_status dfl_bs04_trim_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_rfunc_trim *trim,
+                                  dfl_err *err);
+
+/* .vtp writers (through dfl_vtp_write: atomic, optional zlib).
+ *   polyline: n points of dimension dim (2D gets z = 0), one line;
+ *   trimesh: nv 3D points, nt triangles (3 indices each);
+ *   points:  n 3D points with one scalar point array (name, values). */
+dfl_status dfl_bs04_vtp_polyline(const char *path, int dim, size_t n, const double *pts,
+                                 int compress, dfl_err *err);
+dfl_status dfl_bs04_vtp_trimesh(const char *path, size_t nv, const double *verts, size_t nt,
+                                const size_t *tris, int compress, dfl_err *err);
+dfl_status dfl_bs04_vtp_points(const char *path, size_t n, const double *pts, const char *name,
+                               const double *values, int compress, dfl_err *err);
+
+/* Samples the 3D field f (value and gradient) on each of the n slices and
+ * writes slice s as <prefix><s> (see dfl_slice_write; no reference).
+ * Stops at the first failure; temporary buffers are freed. */
+dfl_status dfl_bs04_write_slices(const dfl_study_ctx *ctx, const dfl_field *f,
+                                 const dfl_slice *slices, int n, const char *prefix,
+                                 const dfl_field_out_opts *o, dfl_err *err);
+
+/* Base name (after the last '/') of a path. */
+const char *dfl_bs04_base(const char *path);
+
+#endif

@@ -1,0 +1,296 @@
+/* bs04 Sec. 3.1 / Fig. 8: approximate distance fields of two space curves.
+ * Each degree-3 B-spline is polygonized with certified maximum deviation
+ * eps (geom/polygonize.h), its segments get the 3D segment field of eq. 4
+ * (f = sqrt(s^2 + q^2) for the line, a sphere trim), and the fields are
+ * joined (R-equivalence of order 2 in the paper).  The field is sampled on
+ * a volume grid and on section planes, and compared with the exact
+ * (unsigned) distance to the curve (footpoints, geom/footpoint.h).
+ *
+ * Keys ([study]):
+ *   curves  = space1 space2      curve sections (kind = bspline_curve, 3D)
+ *   eps     = 3e-3               polygonization bound (> 0)
+ *   join, p                      joining operation (bs04_space_util.h)
+ *   trim    = disk               disk = sphere trim of eq. 3/4 (strip = slab)
+ *   paper_segments = 56 90       bs04's counts, one per curve (optional)
+ *   band    = 0.05               metrics also over |d| <= band
+ *   volume  = true               sample [grid] (3D) and write <curve>_volume
+ *   slices  = z 0.5; y 0.5       section planes (slice.h), slice_n, slice_lo,
+ *                                slice_hi
+ *   compress = true              zlib .vtp
+ *   [grid] n, lo, hi             the volume grid   [output] see field_out.h
+ * Rows (one per curve): curve, eps, segments, bound, paper_segments,
+ * join, p, trim, metrics of u against the exact distance over the volume
+ * (suffix "") and in the band ("_band"), |grad u| statistics in the band
+ * ("_band": min, mean, max), the same for each slice ("_s<k>" and
+ * "_s<k>_band"), and file names.
+ * Files: <curve>_polyline.vtp, <curve>_volume.vti/.exr,
+ * <curve>_slice<k>.vti/.exr.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bs04/bs04_space_util.h"
+#include "cfg/curve_cfg.h"
+#include "harness/experiment.h"
+#include "field/exact.h"
+#include "field/metrics.h"
+#include "field/sample.h"
+#include "harness/field_out.h"
+#include "geom/polygonize.h"
+#include "cfg/grid_cfg.h"
+#include "rfunc/rfield.h"
+#include "harness/slice.h"
+
+#define MAX_CURVES 8
+#define MAX_SLICES 4
+#define NAME_LEN 64
+
+typedef struct keys {
+    int ncurves;
+    char names[MAX_CURVES][NAME_LEN];
+    double eps, band;
+    dfl_rfunc_join join;
+    int p;
+    dfl_rfunc_trim trim;
+    double *paper;
+    size_t npaper;
+    bool volume, compress;
+    dfl_grid grid;
+    dfl_slice slices[MAX_SLICES];
+    int nslices;
+    dfl_field_out_opts out;
+} keys;
+
+static dfl_status read_names(const dfl_cfg *cfg, keys *k, dfl_err *err)
+{
+    const char *list;
+    char w[600];
+    dfl_status st = dfl_cfg_string(cfg, "study", "curves", &list, err);
+    if (st) return st;
+    for (const char *s = list; *s;) {
+        while (*s == ' ' || *s == '\t') s++;
+        if (!*s) break;
+        const size_t len = strcspn(s, " \t");
+        if (k->ncurves == MAX_CURVES || len >= NAME_LEN)
+            return dfl_err_set(err, DFL_E_INPUT,
+                               "%s: expected at most %d section names of < %d characters",
+                               dfl_cfg_where(cfg, "study", "curves", w, sizeof w), MAX_CURVES,
+                               NAME_LEN);
+        memcpy(k->names[k->ncurves], s, len);
+        k->names[k->ncurves++][len] = '\0';
+        s += len;
+    }
+    if (k->ncurves == 0)
+        return dfl_err_set(err, DFL_E_INPUT, "%s: expected at least one curve section",
+                           dfl_cfg_where(cfg, "study", "curves", w, sizeof w));
+    return DFL_OK;
+}
+
+static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
+{
+    char w[600];
+    dfl_status st;
+    memset(k, 0, sizeof *k);
+    if ((st = read_names(cfg, k, err))) return st;
+    if ((st = dfl_cfg_double(cfg, "study", "eps", 1e-9, 1e3, &k->eps, err))) return st;
+    if ((st = dfl_bs04_join_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
+    if ((st = dfl_bs04_trim_from_cfg(cfg, "study", &k->trim, err))) return st;
+    if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.05, 0.0, 1e300, &k->band, err))) return st;
+    if ((st = dfl_cfg_bool_opt(cfg, "study", "volume", true, &k->volume, err))) return st;
+    if ((st = dfl_cfg_bool_opt(cfg, "study", "compress", true, &k->compress, err))) return st;
+    if (dfl_cfg_has(cfg, "study", "paper_segments")) {
+        if ((st = dfl_cfg_doubles(cfg, "study", "paper_segments", 1, &k->paper, &k->npaper, err)))
+            return st;
+        if (k->npaper != (size_t)k->ncurves)
+            return dfl_err_set(err, DFL_E_INPUT, "%s: expected %d values (one per curve)",
+                               dfl_cfg_where(cfg, "study", "paper_segments", w, sizeof w),
+                               k->ncurves);
+    }
+    /* [grid] is read whenever present, so that volume = false does not turn
+     * its keys into "unknown key" errors */
+    if ((k->volume || dfl_cfg_has_section(cfg, "grid")) &&
+        (st = dfl_grid_from_cfg(cfg, "grid", 3, &k->grid, err)))
+        return st;
+    if ((st = dfl_slices_from_cfg(cfg, "study", k->slices, MAX_SLICES, &k->nslices, err)))
+        return st;
+    return dfl_field_out_from_cfg(cfg, &k->out, err);
+}
+
+/* The curve of section sec (3D required) and its exact distance field. */
+static dfl_status load_curve(const dfl_cfg *cfg, const char *sec, dfl_bspline *c, dfl_field *exact,
+                             dfl_err *err)
+{
+    char w[600];
+    const char *kind;
+    dfl_status st;
+    if (!dfl_cfg_has_section(cfg, sec))
+        return dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s]",
+                           dfl_cfg_where(cfg, "study", "curves", w, sizeof w), sec);
+    if ((st = dfl_cfg_string(cfg, sec, "kind", &kind, err))) return st;
+    if (strcmp(kind, "bspline_curve") != 0)
+        return dfl_err_set(err, DFL_E_INPUT, "%s: expected bspline_curve, got '%s'",
+                           dfl_cfg_where(cfg, sec, "kind", w, sizeof w), kind);
+    if ((st = dfl_curve_from_cfg(cfg, sec, c, err))) return st;
+    if (c->dim != 3) {
+        dfl_bspline_free(c);
+        return dfl_err_set(err, DFL_E_INPUT, "%s: expected a space curve (3D control points)",
+                           dfl_cfg_where(cfg, sec, "control", w, sizeof w));
+    }
+    dfl_shape sh;
+    if ((st = dfl_param_shape_from_cfg(cfg, sec, "bspline_curve", &sh, err))) {
+        dfl_bspline_free(c);
+        return st;
+    }
+    if ((st = dfl_field_exact_new(&sh, exact, err))) {
+        dfl_shape_free(&sh);
+        dfl_bspline_free(c);
+    }
+    return st;
+}
+
+/* Metrics of u against the exact distance d (all and |d| <= band) and
+ * |grad u| in the band, into the row with suffix sfx. */
+static dfl_status put_field(dfl_table *t, const char *sfx, size_t m, const double *u,
+                            const double *gu, const double *d, double band, dfl_err *err)
+{
+    dfl_metrics all, inb;
+    char s2[64];
+    dfl_status st = dfl_metrics_compute(m, 3, u, gu, d, 0.0, &all, err);
+    if (st == DFL_OK) st = dfl_metrics_compute(m, 3, u, gu, d, band, &inb, err);
+    if (st != DFL_OK) return st;
+    unsigned char *mask = malloc(m ? m : 1);
+    if (!mask) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    for (size_t i = 0; i < m; i++) mask[i] = d[i] <= band;
+    dfl_gradstat gs;
+    dfl_bs04_gradstat(m, 3, gu, mask, &gs);
+    free(mask);
+    snprintf(s2, sizeof s2, "%s_band", sfx);
+    st = dfl_bs04_put_metrics(t, sfx, &all);
+    if (st == DFL_OK) st = dfl_bs04_put_metrics(t, s2, &inb);
+    if (st == DFL_OK) st = dfl_bs04_put_gradstat(t, s2, &gs);
+    return st;
+}
+
+static dfl_status do_curve(const keys *k, int c, const dfl_bspline *curve, const dfl_field *exact,
+                           const dfl_study_ctx *ctx, dfl_table *table, dfl_err *err)
+{
+    const char *name = k->names[c];
+    char stem[NAME_LEN + 32], path[4400], sfx[32];
+    dfl_polyline pl;
+    dfl_field f = {0};
+    double *u = NULL, *gu = NULL, *d = NULL;
+    dfl_status st = dfl_polygonize_curve(curve, k->eps, 0, &pl, err);
+    if (st != DFL_OK) return st;
+    /* a closed curve repeats its first point: drop it, close the polyline */
+    size_t np = pl.n;
+    const bool closed = curve->closed || (np >= 4 && memcmp(pl.pts, pl.pts + 3 * (np - 1),
+                                                            3 * sizeof *pl.pts) == 0);
+    if (closed) np--;
+    st = dfl_rfield_polyline(3, pl.pts, np, closed, k->join, k->p, k->trim, &f, err);
+    if (st != DFL_OK) goto done;
+    const long segs = (long)(pl.n - 1);
+
+    st = dfl_table_row(table);
+    if (!st) st = dfl_table_set_string(table, "curve", name);
+    if (!st) st = dfl_table_set_double(table, "eps", k->eps);
+    if (!st) st = dfl_table_set_int(table, "segments", segs);
+    if (!st) st = dfl_table_set_double(table, "bound", pl.bound);
+    if (!st && k->paper) st = dfl_table_set_int(table, "paper_segments", (long)k->paper[c]);
+    if (!st) st = dfl_table_set_string(table, "join", dfl_rfunc_join_name(k->join));
+    if (!st) st = dfl_table_set_int(table, "p", k->p);
+    if (!st) st = dfl_table_set_string(table, "trim", dfl_rfunc_trim_name(k->trim));
+    if (st) goto done;
+
+    snprintf(stem, sizeof stem, "%s_polyline", name);
+    st = dfl_bs04_vtp_polyline(dfl_study_path(ctx, stem, "vtp", path, sizeof path), 3, pl.n,
+                               pl.pts, k->compress, err);
+    if (!st) st = dfl_table_set_string(table, "vtp", dfl_bs04_base(path));
+    if (st) goto done;
+
+    if (k->volume) {
+        const size_t m = dfl_grid_size(&k->grid);
+        u = malloc(m * sizeof *u);
+        gu = malloc(3 * m * sizeof *gu);
+        d = malloc(m * sizeof *d);
+        if (!u || !gu || !d) {
+            st = dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu samples", m);
+            goto done;
+        }
+        st = dfl_field_sample(&f, &k->grid, ctx->threads, u, gu, err);
+        if (!st) st = dfl_field_sample(exact, &k->grid, ctx->threads, d, NULL, err);
+        if (!st) st = put_field(table, "", m, u, gu, d, k->band, err);
+        snprintf(stem, sizeof stem, "%s_volume", name);
+        if (!st) st = dfl_field_out_write(ctx, stem, &k->grid, u, gu, d, &k->out, err);
+        if (!st && k->out.vti)
+            st = dfl_table_set_string(
+                table, "volume_vti",
+                dfl_bs04_base(dfl_study_path(ctx, stem, "vti", path, sizeof path)));
+        free(u), free(gu), free(d);
+        u = gu = d = NULL;
+        if (st) goto done;
+    }
+    for (int s = 0; s < k->nslices && st == DFL_OK; s++) {
+        const dfl_slice *sl = &k->slices[s];
+        const size_t m = dfl_slice_size(sl);
+        u = malloc(m * sizeof *u);
+        gu = malloc(3 * m * sizeof *gu);
+        d = malloc(m * sizeof *d);
+        if (!u || !gu || !d) {
+            st = dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu samples", m);
+            break;
+        }
+        st = dfl_slice_sample(&f, sl, ctx->threads, u, gu, err);
+        if (!st) st = dfl_slice_sample(exact, sl, ctx->threads, d, NULL, err);
+        snprintf(sfx, sizeof sfx, "_s%d", s);
+        if (!st) st = put_field(table, sfx, m, u, gu, d, k->band, err);
+        snprintf(stem, sizeof stem, "%s_slice%d", name, s);
+        if (!st) st = dfl_slice_write(ctx, stem, sl, u, gu, d, &k->out, err);
+        char col[32], desc[64];
+        snprintf(col, sizeof col, "slice%d", s);
+        snprintf(desc, sizeof desc, "%c = %g", "xyz"[sl->axis], sl->at);
+        if (!st) st = dfl_table_set_string(table, col, desc);
+        free(u), free(gu), free(d);
+        u = gu = d = NULL;
+    }
+done:
+    free(u), free(gu), free(d);
+    dfl_field_destroy(&f);
+    dfl_polyline_free(&pl);
+    return st;
+}
+
+static dfl_status space_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
+                            dfl_err *err)
+{
+    keys k;
+    dfl_bspline curves[MAX_CURVES];
+    dfl_field exact[MAX_CURVES];
+    int nbuilt = 0;
+    memset(curves, 0, sizeof curves);
+    memset(exact, 0, sizeof exact);
+    dfl_status st = read_keys(cfg, &k, err);
+    for (int c = 0; c < k.ncurves && st == DFL_OK; c++) {
+        st = load_curve(cfg, k.names[c], &curves[c], &exact[c], err);
+        if (st == DFL_OK) nbuilt++;
+    }
+    if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
+    for (int c = 0; c < k.ncurves && st == DFL_OK; c++) {
+        st = do_curve(&k, c, &curves[c], &exact[c], ctx, table, err);
+        if (st != DFL_OK && err && err->code == DFL_OK)
+            dfl_err_set(err, st, "bs04_spacecurves: cannot fill the table");
+    }
+    for (int c = 0; c < nbuilt; c++) {
+        dfl_field_destroy(&exact[c]);
+        dfl_bspline_free(&curves[c]);
+    }
+    free(k.paper);
+    return st;
+}
+
+const dfl_study dfl_study_bs04_spacecurves = {
+    .name = "bs04_spacecurves",
+    .summary = "bs04 Fig. 8: fields of polygonized space curves, volume and section planes",
+    .run = space_run,
+};

@@ -1,0 +1,234 @@
+/* bs04 Sec. 3.2.2 / Fig. 12: the approximate distance field of a
+ * triangulated B-spline surface on a section plane.  The surface is
+ * triangulated with certified maximum deviation eps (geom/polygonize.h),
+ * every triangle gets the field of Sec. 3.2.1 (tri3d.h) and the fields are
+ * joined by R-equivalence of order 2, as in the paper.
+ *
+ * On the plane the study separates the two error sources:
+ *   d_S   exact distance to the surface (footpoints, geom/footpoint.h);
+ *   d_M   exact distance to the triangulation (brute force over triangles);
+ *   u     the R-function field.
+ * |d_M - d_S| <= Hausdorff(surface, mesh) <= the certified bound (the
+ * distance functions of two sets differ by at most their Hausdorff
+ * distance), and u - d_M is the R-function construction's own error.
+ *
+ * Keys ([study]):
+ *   surface  = surface       section with kind = bspline_surface | bezier_surface
+ *   eps      = 0.05          triangulation bound (> 0)
+ *   join, p                  (bs04_space_util.h; default requiv, 2)
+ *   tri_trim = conditional   prism | conditional; a = 0.2, k = 2; smooth = false
+ *   band     = 0.05          metrics also over d_S <= band
+ *   slices, slice_n, slice_lo, slice_hi   section planes (slice.h)
+ *   max_tris = 200000        refuse larger triangulations
+ *   compress = true          [output] see field_out.h
+ * Rows (one per eps): eps, triangles, vertices, bound, join, p, tri_trim, and
+ * per slice k: metrics of u against d_S (suffix _s<k>, _s<k>_band), of u
+ * against d_M (_s<k>_mesh), mesh_dev_max_s<k> = max |d_M - d_S|, |grad u| in
+ * the band (grad_*_s<k>_band), u_le_dmesh_s<k> (fraction of samples with
+ * u <= d_M (1 + 1e-12)).
+ * Files: mesh<tag>.vtp, surface_slice<k><tag>.vti/.exr (error = u - d_S).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bs04/bs04_space_util.h"
+#include "cfg/curve_cfg.h"
+#include "harness/experiment.h"
+#include "field/exact.h"
+#include "field/metrics.h"
+#include "geom/polygonize.h"
+#include "rfunc/rfield.h"
+#include "rfunc/tri3d.h"
+#include "harness/slice.h"
+
+#define MAX_SLICES 4
+
+typedef struct keys {
+    const char *sec, *kind;
+    double eps, band;
+    dfl_rfunc_join join;
+    int p;
+    dfl_rfunc_tri_opts o;
+    long max_tris;
+    dfl_slice slices[MAX_SLICES];
+    int nslices;
+    bool compress;
+    dfl_field_out_opts out;
+} keys;
+
+static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
+{
+    static const char *const trims[] = {"prism", "conditional"};
+    char w[600];
+    double a;
+    long kk;
+    int trim;
+    bool smooth;
+    dfl_status st;
+    memset(k, 0, sizeof *k);
+    if ((st = dfl_cfg_string(cfg, "study", "surface", &k->sec, err))) return st;
+    if (!dfl_cfg_has_section(cfg, k->sec))
+        return dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s]",
+                           dfl_cfg_where(cfg, "study", "surface", w, sizeof w), k->sec);
+    if ((st = dfl_cfg_string(cfg, k->sec, "kind", &k->kind, err))) return st;
+    if (strcmp(k->kind, "bspline_surface") != 0 && strcmp(k->kind, "bezier_surface") != 0)
+        return dfl_err_set(err, DFL_E_INPUT, "%s: expected bspline_surface or bezier_surface",
+                           dfl_cfg_where(cfg, k->sec, "kind", w, sizeof w));
+    if ((st = dfl_cfg_double(cfg, "study", "eps", 1e-9, 1e3, &k->eps, err))) return st;
+    if ((st = dfl_bs04_join_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
+    if ((st = dfl_cfg_enum_opt(cfg, "study", "tri_trim", trims, 2, 1, &trim, err))) return st;
+    if ((st = dfl_cfg_double_opt(cfg, "study", "a", 0.2, 1e-12, 1e12, &a, err))) return st;
+    if ((st = dfl_cfg_int_opt(cfg, "study", "k", 2, 2, 64, &kk, err))) return st;
+    if ((st = dfl_cfg_bool_opt(cfg, "study", "smooth", false, &smooth, err))) return st;
+    k->o = dfl_rfunc_tri_defaults();
+    k->o.trim = (dfl_rfunc_tri_trim)trim;
+    k->o.a = a;
+    k->o.k = (int)kk;
+    k->o.smooth = smooth;
+    if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.05, 0.0, 1e300, &k->band, err))) return st;
+    if ((st = dfl_cfg_int_opt(cfg, "study", "max_tris", 200000, 1, 10000000, &k->max_tris, err)))
+        return st;
+    if ((st = dfl_slices_from_cfg(cfg, "study", k->slices, MAX_SLICES, &k->nslices, err)))
+        return st;
+    if ((st = dfl_cfg_bool_opt(cfg, "study", "compress", true, &k->compress, err))) return st;
+    return dfl_field_out_from_cfg(cfg, &k->out, err);
+}
+
+/* Exact distance to the mesh at the slice samples (parallel brute force). */
+static void mesh_distance(const dfl_trimesh *M, const dfl_slice *s, int threads, double *dm)
+{
+    const long m = (long)dfl_slice_size(s);
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads > 0 ? threads : 1)
+    for (long i = 0; i < m; i++) {
+        double x[3], best = INFINITY;
+        dfl_slice_point(s, (size_t)i, x);
+        for (size_t t = 0; t < M->ntris; t++) {
+            const size_t *v = M->tris + 3 * t;
+            best = fmin(best, dfl_point_triangle_dist(x, M->verts + 3 * v[0], M->verts + 3 * v[1],
+                                                      M->verts + 3 * v[2]));
+        }
+        dm[i] = best;
+    }
+}
+
+static dfl_status do_slice(const keys *k, int s, const dfl_field *f, const dfl_field *exact,
+                           const dfl_trimesh *M, const dfl_study_ctx *ctx, dfl_table *table,
+                           dfl_err *err)
+{
+    const dfl_slice *sl = &k->slices[s];
+    const size_t m = dfl_slice_size(sl);
+    double *u = malloc(m * sizeof *u), *gu = malloc(3 * m * sizeof *gu);
+    double *ds = malloc(m * sizeof *ds), *dm = malloc(m * sizeof *dm);
+    unsigned char *mask = malloc(m);
+    char sfx[48], col[64], stem[64];
+    dfl_status st = DFL_OK;
+    if (!u || !gu || !ds || !dm || !mask) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    if (!st) st = dfl_slice_sample(f, sl, ctx->threads, u, gu, err);
+    if (!st) st = dfl_slice_sample(exact, sl, ctx->threads, ds, NULL, err);
+    if (st) goto done;
+    mesh_distance(M, sl, ctx->threads, dm);
+    dfl_metrics all, inb, mesh;
+    st = dfl_metrics_compute(m, 3, u, gu, ds, 0.0, &all, err);
+    if (!st) st = dfl_metrics_compute(m, 3, u, gu, ds, k->band, &inb, err);
+    if (!st) st = dfl_metrics_compute(m, 3, u, gu, dm, 0.0, &mesh, err);
+    if (st) goto done;
+    double dev = 0;
+    size_t le = 0;
+    for (size_t i = 0; i < m; i++) {
+        dev = fmax(dev, fabs(dm[i] - ds[i]));
+        le += u[i] <= dm[i] * (1 + 1e-12);
+        mask[i] = ds[i] <= k->band;
+    }
+    dfl_gradstat gs;
+    dfl_bs04_gradstat(m, 3, gu, mask, &gs);
+    snprintf(sfx, sizeof sfx, "_s%d", s);
+    st = dfl_bs04_put_metrics(table, sfx, &all);
+    snprintf(sfx, sizeof sfx, "_s%d_band", s);
+    if (!st) st = dfl_bs04_put_metrics(table, sfx, &inb);
+    if (!st) st = dfl_bs04_put_gradstat(table, sfx, &gs);
+    snprintf(sfx, sizeof sfx, "_s%d_mesh", s);
+    if (!st) st = dfl_bs04_put_metrics(table, sfx, &mesh);
+    snprintf(col, sizeof col, "mesh_dev_max_s%d", s);
+    if (!st) st = dfl_table_set_double(table, col, dev);
+    snprintf(col, sizeof col, "u_le_dmesh_s%d", s);
+    if (!st) st = dfl_table_set_double(table, col, (double)le / (double)m);
+    snprintf(col, sizeof col, "slice%d", s);
+    char desc[64];
+    snprintf(desc, sizeof desc, "%c = %g", "xyz"[sl->axis], sl->at);
+    if (!st) st = dfl_table_set_string(table, col, desc);
+    snprintf(stem, sizeof stem, "surface_slice%d", s);
+    if (!st) st = dfl_slice_write(ctx, stem, sl, u, gu, ds, &k->out, err);
+done:
+    free(u), free(gu), free(ds), free(dm), free(mask);
+    return st;
+}
+
+static dfl_status surf_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
+                           dfl_err *err)
+{
+    keys k;
+    dfl_surface_set S = {0};
+    dfl_shape sh = {0};
+    dfl_field exact = {0}, f = {0};
+    dfl_trimesh M;
+    int haveS = 0, haveM = 0;
+    char path[4400], w[600];
+    memset(&M, 0, sizeof M);
+    dfl_status st = read_keys(cfg, &k, err);
+    if (!st) st = dfl_surface_from_cfg(cfg, k.sec, k.kind, &S, err);
+    if (!st) haveS = 1;
+    if (!st) st = dfl_param_shape_from_cfg(cfg, k.sec, k.kind, &sh, err);
+    if (!st && (st = dfl_field_exact_new(&sh, &exact, err))) dfl_shape_free(&sh);
+    if (!st) st = dfl_cfg_check_used(cfg, err);
+    if (st) goto done;
+
+    if ((st = dfl_polygonize_surface(&S, k.eps, (size_t)k.max_tris, &M, err))) {
+        dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "eps", w, sizeof w));
+        goto done;
+    }
+    haveM = 1;
+    dfl_rfield *rf;
+    if ((st = dfl_rfield_new(3, k.join, k.p, &rf, err))) goto done;
+    for (size_t t = 0; t < M.ntris && !st; t++) {
+        const size_t *v = M.tris + 3 * t;
+        st = dfl_rfield_add_triangle(rf, M.verts + 3 * v[0], M.verts + 3 * v[1],
+                                     M.verts + 3 * v[2], &k.o, err);
+    }
+    if (st) {
+        dfl_rfield_free(rf);
+        goto done;
+    }
+    if ((st = dfl_rfield_finish(&rf, &f, err))) goto done;
+
+    st = dfl_table_row(table);
+    if (!st) st = dfl_table_set_double(table, "eps", k.eps);
+    if (!st) st = dfl_table_set_int(table, "triangles", (long)M.ntris);
+    if (!st) st = dfl_table_set_int(table, "vertices", (long)M.nverts);
+    if (!st) st = dfl_table_set_double(table, "bound", M.bound);
+    if (!st) st = dfl_table_set_string(table, "join", dfl_rfunc_join_name(k.join));
+    if (!st) st = dfl_table_set_int(table, "p", k.p);
+    if (!st)
+        st = dfl_table_set_string(table, "tri_trim",
+                                  k.o.trim == DFL_RFUNC_TRI_PRISM ? "prism" : "conditional");
+    if (!st) st = dfl_bs04_vtp_trimesh(dfl_study_path(ctx, "mesh", "vtp", path, sizeof path),
+                                       M.nverts, M.verts, M.ntris, M.tris, k.compress, err);
+    if (!st) st = dfl_table_set_string(table, "mesh_vtp", dfl_bs04_base(path));
+    for (int s = 0; s < k.nslices && !st; s++)
+        st = do_slice(&k, s, &f, &exact, &M, ctx, table, err);
+done:
+    if (st != DFL_OK && err && err->code == DFL_OK)
+        dfl_err_set(err, st, "bs04_surface: cannot fill the table");
+    dfl_field_destroy(&f);
+    dfl_field_destroy(&exact);
+    if (haveM) dfl_trimesh_free(&M);
+    if (haveS) dfl_surface_set_free(&S);
+    return st;
+}
+
+const dfl_study dfl_study_bs04_surface = {
+    .name = "bs04_surface",
+    .summary = "bs04 Fig. 12: field of a triangulated B-spline surface on a section plane",
+    .run = surf_run,
+};

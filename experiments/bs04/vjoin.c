@@ -1,0 +1,137 @@
+#include "bs04/vjoin.h"
+
+#include <assert.h>
+#include <math.h>
+#include <string.h>
+
+#include "rfunc/rfield.h"
+#include "geom/segdist.h"
+
+static const double PI = 3.14159265358979323846;
+
+const char *const dfl_vjoin_part_names[DFL_VJOIN_NPARTS] = {"exact", "disk", "disk_smooth",
+                                                            "strip", "strip_smooth"};
+
+/* The trims' order in rfunc/segment.h; the names above must follow it. */
+static const dfl_rfunc_trim trim_of[DFL_VJOIN_NPARTS] = {
+    DFL_RFUNC_TRIM_DISK, DFL_RFUNC_TRIM_DISK, DFL_RFUNC_TRIM_DISK_SMOOTH, DFL_RFUNC_TRIM_STRIP,
+    DFL_RFUNC_TRIM_STRIP_SMOOTH};
+
+dfl_status dfl_vjoin_init(double alpha_deg, double length, int parts, dfl_vjoin *out,
+                          dfl_err *err)
+{
+    if (!(alpha_deg > 0.0 && alpha_deg < 360.0))
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "angle %g degrees: expected 0 < alpha < 360 (0 and 360 make the"
+                           " segments overlap)",
+                           alpha_deg);
+    if (!(length > 0.0) || !isfinite(length))
+        return dfl_err_set(err, DFL_E_INPUT, "segment length %g: expected a finite value > 0",
+                           length);
+    if (parts < 0 || parts >= DFL_VJOIN_NPARTS)
+        return dfl_err_set(err, DFL_E_INPUT, "unknown part kind %d", parts);
+    dfl_vjoin vj;
+    memset(&vj, 0, sizeof vj);
+    vj.parts = parts;
+    vj.alpha_deg = alpha_deg;
+    vj.alpha = alpha_deg == 180.0 ? PI : alpha_deg * (PI / 180.0);
+    vj.length = length;
+    /* exact multiples of 90 degrees give exact coordinates, so that the
+     * hatched test of collinear segments is not spoiled by cos(pi) */
+    double c = cos(vj.alpha), s = sin(vj.alpha);
+    if (alpha_deg == 90.0) c = 0.0, s = 1.0;
+    if (alpha_deg == 180.0) c = -1.0, s = 0.0;
+    if (alpha_deg == 270.0) c = 0.0, s = -1.0;
+    vj.e1[0] = 1.0;
+    vj.e1[1] = 0.0;
+    vj.e2[0] = c;
+    vj.e2[1] = s;
+    vj.v[0] = length;
+    vj.v[1] = 0.0;
+    vj.v[2] = 0.0;
+    vj.v[3] = 0.0;
+    vj.v[4] = length * c;
+    vj.v[5] = length * s;
+    if (parts > 0) {
+        dfl_status st = dfl_rfunc_seg_init(2, vj.v, vj.v + 2, trim_of[parts], &vj.seg[0], err);
+        if (st == DFL_OK)
+            st = dfl_rfunc_seg_init(2, vj.v + 2, vj.v + 4, trim_of[parts], &vj.seg[1], err);
+        if (st != DFL_OK) return st;
+    }
+    *out = vj;
+    return DFL_OK;
+}
+
+dfl_status dfl_vjoin_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_vjoin *out, dfl_err *err)
+{
+    double alpha, length;
+    int parts;
+    char w[600];
+    dfl_status st = dfl_cfg_double(cfg, sec, "alpha", 0.0, 360.0, &alpha, err);
+    if (st == DFL_OK) st = dfl_cfg_double_opt(cfg, sec, "length", 1.0, 0.0, 1e300, &length, err);
+    if (st == DFL_OK)
+        st = dfl_cfg_enum_opt(cfg, sec, "parts", dfl_vjoin_part_names, DFL_VJOIN_NPARTS, 0,
+                              &parts, err);
+    if (st != DFL_OK) return st;
+    st = dfl_vjoin_init(alpha, length, parts, out, err);
+    if (st != DFL_OK) {
+        const char *key = !(alpha > 0.0 && alpha < 360.0) ? "alpha"
+                          : !(length > 0.0)               ? "length"
+                                                          : "parts";
+        dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, sec, key, w, sizeof w));
+    }
+    return st;
+}
+
+dfl_status dfl_vjoin_field(const dfl_vjoin *vj, dfl_rfunc_join join, int p, dfl_field *out,
+                           dfl_err *err)
+{
+    if (vj->parts == 0) return dfl_segdist_polyline_field(2, vj->v, 3, join, p, out, err);
+    return dfl_rfield_polyline(2, vj->v, 3, false, join, p, trim_of[vj->parts], out, err);
+}
+
+void dfl_vjoin_parts(const dfl_vjoin *vj, const double *x, double *h, double *g)
+{
+    if (vj->parts == 0) {
+        h[0] = dfl_segdist_eval(2, vj->v, vj->v + 2, x, g);
+        h[1] = dfl_segdist_eval(2, vj->v + 2, vj->v + 4, x, g ? g + 2 : NULL);
+    } else {
+        h[0] = dfl_rfunc_seg_eval(&vj->seg[0], x, g);
+        h[1] = dfl_rfunc_seg_eval(&vj->seg[1], x, g ? g + 2 : NULL);
+    }
+}
+
+double dfl_vjoin_dist(const dfl_vjoin *vj, const double *x, double *g)
+{
+    double g1[2], g2[2];
+    const double d1 = dfl_segdist_eval(2, vj->v, vj->v + 2, x, g ? g1 : NULL);
+    const double d2 = dfl_segdist_eval(2, vj->v + 2, vj->v + 4, x, g ? g2 : NULL);
+    if (g) memcpy(g, d1 <= d2 ? g1 : g2, sizeof g1);
+    return fmin(d1, d2);
+}
+
+bool dfl_vjoin_hatched(const dfl_vjoin *vj, const double *x)
+{
+    /* O is the origin: (x - O) . e_i */
+    return x[0] * vj->e1[0] + x[1] * vj->e1[1] <= 0.0 && x[0] * vj->e2[0] + x[1] * vj->e2[1] <= 0.0;
+}
+
+void dfl_vjoin_hatched_range(const dfl_vjoin *vj, double *t0, double *t1, int *nrays)
+{
+    /* directions t with cos t <= 0 and cos(t - alpha) <= 0 */
+    if (vj->alpha <= PI) {
+        *t0 = vj->alpha + 0.5 * PI;
+        *t1 = 1.5 * PI;
+    } else {
+        *t0 = 0.5 * PI;
+        *t1 = vj->alpha - 0.5 * PI;
+    }
+    if (*t1 < *t0) *t1 = *t0; /* rounding at alpha = pi */
+    *nrays = *t1 - *t0 <= 1e-15 ? 2 : 1;
+    assert(*t0 >= 0.0 && *t0 < 2.0 * PI);
+}
+
+double dfl_vjoin_bisector(const dfl_vjoin *vj)
+{
+    return vj->alpha <= PI ? 0.5 * vj->alpha : 0.5 * vj->alpha + PI;
+}

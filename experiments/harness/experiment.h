@@ -1,0 +1,54 @@
+/* The study interface.
+ *
+ * A study is one kind of experiment (smoke, bs04 normalization table, ...).
+ * A config names it in `[study] name = ...`.  The runner expands sweeps and
+ * calls run() once per sweep point with a single-valued configuration.
+ * run() must read and validate every key it uses *before* it writes any
+ * file (call dfl_cfg_check_used after reading), append its rows to the
+ * table, and write its files only through dfl_study_path() names, which
+ * live in a staging directory that the runner moves into place only when
+ * every sweep point succeeded.
+ */
+#ifndef DFL_EXPERIMENTS_EXPERIMENT_H
+#define DFL_EXPERIMENTS_EXPERIMENT_H
+
+#include <stddef.h>
+
+#include "core/status.h"
+#include "io/config.h"
+#include "io/table.h"
+
+typedef struct dfl_study_ctx {
+    const char *stage_dir;   /* where files are written during the run */
+    const char *tag;         /* unique per sweep point: "" without sweep, else "_pt003" etc. */
+    size_t point;            /* sweep point index */
+    size_t npoints;          /* number of sweep points */
+    int threads;             /* OpenMP threads to use (>= 1) */
+} dfl_study_ctx;
+
+typedef struct dfl_study {
+    const char *name;        /* value of [study] name */
+    const char *summary;     /* one line for `dflab list` */
+    dfl_status (*run)(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
+                      dfl_err *err);
+} dfl_study;
+
+/* "<stage_dir>/<stem><tag>.<ext>" into buf; returns buf. */
+const char *dfl_study_path(const dfl_study_ctx *ctx, const char *stem, const char *ext, char *buf,
+                           size_t size);
+/* The same name as sweep point `point` would give it: for files written
+ * once per run (e.g. a reference image shared by all sweep points). */
+const char *dfl_study_path_at(const dfl_study_ctx *ctx, size_t point, const char *stem,
+                              const char *ext, char *buf, size_t size);
+/* The file-name tag of sweep point `point` of `npoints`: "" when the run
+ * has one point, else "_ptNNN".  The runner and dfl_study_path_at use it. */
+const char *dfl_study_tag(size_t point, size_t npoints, char *buf, size_t size);
+
+/* All studies of all papers (registry.c): their number, the i-th in
+ * `dflab list` order (NULL when i >= dfl_study_count()), lookup by name
+ * (NULL if unknown). */
+size_t dfl_study_count(void);
+const dfl_study *dfl_study_at(size_t i);
+const dfl_study *dfl_study_find(const char *name);
+
+#endif

@@ -1,0 +1,109 @@
+/* Smoke study: the exact signed distance of [shape] sampled on [grid],
+ * and the error metrics of a deliberately perturbed copy
+ *
+ *     u = (1 + scale) d + offset,   grad u = (1 + scale) grad d
+ *
+ * against d.  The perturbation is affine on purpose: its metrics are known
+ * in closed form (e = scale*d + offset; the gradient-norm defect is |scale|
+ * wherever |grad d| = 1), so the end-to-end test can check the harness
+ * without trusting it.  Writes smoke.csv (one row per sweep point), field
+ * .vti and .exr.
+ *
+ * Keys:  [grid] n, lo, hi   [perturb] scale (default 0.02), offset (0.005)
+ *        [metrics] band (default 0.1: |d| <= band)   [output] see field_out.h
+ */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "harness/experiment.h"
+#include "field/metrics.h"
+#include "field/sample.h"
+#include "cfg/field_cfg.h"
+#include "harness/field_out.h"
+#include "cfg/grid_cfg.h"
+
+static dfl_status put_metrics(dfl_table *t, const char *suffix, const dfl_metrics *m)
+{
+    char col[64];
+    dfl_status st = DFL_OK;
+#define PUT(name, v)                                                \
+    do {                                                            \
+        snprintf(col, sizeof col, "%s%s", name, suffix);            \
+        if (st == DFL_OK) st = dfl_table_set_double(t, col, v);     \
+    } while (0)
+    snprintf(col, sizeof col, "count%s", suffix);
+    st = dfl_table_set_int(t, col, (long)m->count);
+    PUT("l1", m->l1);
+    PUT("mse", m->mse);
+    PUT("rms", m->rms);
+    PUT("linf", m->linf);
+    PUT("graddefect_mean", m->gdef_mean);
+    PUT("graddefect_max", m->gdef_max);
+#undef PUT
+    return st;
+}
+
+static dfl_status smoke_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
+                            dfl_err *err)
+{
+    dfl_field f = {0};
+    dfl_grid g;
+    double scale, offset, band;
+    dfl_field_out_opts oo;
+    double *d = NULL, *gd = NULL, *u = NULL, *gu = NULL;
+    dfl_status st = dfl_field_from_cfg(cfg, "field", &f, err);
+    if (st == DFL_OK) st = dfl_grid_from_cfg(cfg, "grid", f.dim, &g, err);
+    if (st == DFL_OK) st = dfl_cfg_double_opt(cfg, "perturb", "scale", 0.02, -0.5, 0.5, &scale, err);
+    if (st == DFL_OK) st = dfl_cfg_double_opt(cfg, "perturb", "offset", 0.005, -1, 1, &offset, err);
+    if (st == DFL_OK) st = dfl_cfg_double_opt(cfg, "metrics", "band", 0.1, 0, 1e300, &band, err);
+    if (st == DFL_OK) st = dfl_field_out_from_cfg(cfg, &oo, err);
+    if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
+    if (st != DFL_OK) goto done;
+
+    const size_t m = dfl_grid_size(&g);
+    const int dim = g.dim;
+    d = malloc(m * sizeof *d);
+    gd = malloc(m * (size_t)dim * sizeof *gd);
+    u = malloc(m * sizeof *u);
+    gu = malloc(m * (size_t)dim * sizeof *gu);
+    if (!d || !gd || !u || !gu) {
+        st = dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu samples", m);
+        goto done;
+    }
+    st = dfl_field_sample(&f, &g, ctx->threads, d, gd, err);
+    if (st != DFL_OK) goto done;
+    for (size_t i = 0; i < m; i++) {
+        u[i] = (1.0 + scale) * d[i] + offset;
+        for (int k = 0; k < dim; k++) gu[i * (size_t)dim + k] = (1.0 + scale) * gd[i * (size_t)dim + k];
+    }
+    dfl_metrics all, inband;
+    st = dfl_metrics_compute(m, dim, u, gu, d, 0.0, &all, err);
+    if (st == DFL_OK) st = dfl_metrics_compute(m, dim, u, gu, d, band, &inband, err);
+    if (st != DFL_OK) goto done;
+
+    st = dfl_table_row(table);
+    if (st == DFL_OK) st = dfl_table_set_int(table, "dim", dim);
+    if (st == DFL_OK) st = dfl_table_set_int(table, "nodes", (long)m);
+    if (st == DFL_OK) st = dfl_table_set_double(table, "scale", scale);
+    if (st == DFL_OK) st = dfl_table_set_double(table, "offset", offset);
+    if (st == DFL_OK) st = dfl_table_set_double(table, "band", band);
+    if (st == DFL_OK) st = put_metrics(table, "", &all);
+    if (st == DFL_OK) st = put_metrics(table, "_band", &inband);
+    if (st != DFL_OK) {
+        if (err && err->code == DFL_OK) dfl_err_set(err, st, "smoke: cannot fill the table");
+        goto done;
+    }
+    st = dfl_field_out_write(ctx, "field", &g, u, gu, d, &oo, err);
+done:
+    free(d), free(gd), free(u), free(gu);
+    dfl_field_destroy(&f);
+    return st;
+}
+
+const dfl_study dfl_study_smoke = {
+    .name = "smoke",
+    .summary = "exact SDF of [shape] on a grid + metrics of an affinely perturbed copy",
+    .run = smoke_run,
+};
+
+const dfl_study *const dfl_smoke_studies[] = {&dfl_study_smoke, NULL};

@@ -1,0 +1,147 @@
+/* End-to-end: the bs04_corrected study (Fig. 14, eq. 20) on a small sweep.
+ * Expected values are derived here:
+ *   - exact parts, hatched sector: h1 = h2 = q, so eq. 6 gives u = 2^(-1/p) q
+ *     (|grad u| defect 1 - 2^(-1/p) at every sample) and eq. 20 gives u = q
+ *     (defect 0 to rounding);
+ *   - exact parts, collinear (alpha = 180): off the sector one segment's
+ *     closest point is O, h_far = q cancels in eq. 20, so the corrected field
+ *     is the exact distance everywhere;
+ *   - trimmed parts (disk): h_i >= q in the sector (t = y.e - |y|^2/d with
+ *     y.e <= 0 only adds to h^2), the library's guard subtracts max(h1, h2)^-p
+ *     and u = min(h1, h2): the defect is the parts' own, no more;
+ *   - the .vti images through VTK's reader agree with the same closed forms. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "util/e2e_util.h"
+
+#define CFG "configs/paper/bs04/bs04_corrected.ini"
+
+Test(e2e_bs04_corrected, sector_defects_and_images, .timeout = 60)
+{
+    char dir[256], out[512], csv[700], path[800];
+    e2e_tmpdir(dir, sizeof dir);
+    e2e_run_ok(CFG,
+               "--set 'study.alpha=90, 180' --set 'study.p=2, 7'"
+               " --set 'study.parts=exact, disk' --set grid.n=41 --set study.sector_nr=10"
+               " --set study.sector_nt=5",
+               out, sizeof out);
+    snprintf(csv, sizeof csv, "%s/bs04_corrected.csv", out);
+    /* points: alpha x p x parts (last fastest); rows: requiv, corrected */
+    cr_assert_eq(e2e_csv_rows(csv), 16);
+    for (int pt = 0; pt < 8; pt++) {
+        const double alpha = pt < 4 ? 90 : 180;
+        const int p = (pt / 2) % 2 ? 7 : 2, exact = pt % 2 == 0;
+        const long rr = 2 * pt, rc_ = 2 * pt + 1;
+        cr_assert_eq(e2e_csv_get(csv, rr, "alpha"), alpha);
+        cr_assert_eq((int)e2e_csv_get(csv, rr, "p"), p);
+        /* alpha = 90: 5 directions x 10 radii; 180: 2 rays x 10 radii */
+        const double npts = alpha == 90 ? 50 : 20;
+        cr_expect_eq(e2e_csv_get(csv, rr, "sector_points"), npts, "pt %d", pt);
+        cr_expect_eq(e2e_csv_get(csv, rc_, "sector_points"), npts, "pt %d", pt);
+        const double def = 1 - pow(2, -1.0 / p);
+        if (exact) {
+            cr_expect_float_eq(e2e_csv_get(csv, rr, "sector_gdef_max"), def, 1e-12, "pt %d", pt);
+            cr_expect_float_eq(e2e_csv_get(csv, rr, "sector_gdef_min"), def, 1e-12, "pt %d", pt);
+            cr_expect_float_eq(e2e_csv_get(csv, rr, "sector_value_relerr_max"), def, 1e-12);
+            cr_expect(e2e_csv_get(csv, rc_, "sector_gdef_max") < 1e-9, "pt %d", pt);
+            cr_expect(e2e_csv_get(csv, rc_, "sector_value_relerr_max") < 1e-12, "pt %d", pt);
+            cr_expect_float_eq(e2e_csv_get(csv, rr, "sector_gdef_theory"), def, 1e-15);
+            cr_expect_eq(e2e_csv_get(csv, rc_, "sector_gdef_theory"), 0.0);
+            if (alpha == 180) {
+                cr_expect(e2e_csv_get(csv, rc_, "band_linf") < 1e-12, "pt %d", pt);
+                cr_expect(e2e_csv_get(csv, rc_, "band_gdef_max") < 1e-12, "pt %d", pt);
+                cr_expect(e2e_csv_get(csv, rc_, "vertex_linf") < 1e-12, "pt %d", pt);
+                cr_expect(e2e_csv_get(csv, rc_, "vertex_gdef_max") < 1e-12, "pt %d", pt);
+                /* the plain join is not the distance near O */
+                cr_expect(e2e_csv_get(csv, rr, "vertex_gdef_max") > 0.5 * def, "pt %d", pt);
+            }
+        } else {
+            const double pg = e2e_csv_get(csv, rc_, "sector_part_gdef_max");
+            cr_expect(e2e_csv_get(csv, rc_, "sector_gdef_max") <= pg + 1e-12, "pt %d", pt);
+            /* Disk trim behind its end point O (y = x - O, e into the
+             * segment, n its normal, d = L): f = y.n, t = y.e - |y|^2/d,
+             * grad h = (f n + t e)/h - 2 t y/(d h) and |f n + t e| = h, |t| <= h:
+             * | |grad h| - 1 | <= 2 |y| / L.  So on the innermost ring
+             * (rho = r / L = 0.5 / 10) the corrected defect is <= 2 rho. */
+            const double rho = 0.05;
+            cr_expect(e2e_csv_get(csv, rc_, "sector_gdef_at_rmin") <= 2 * rho + 1e-12, "pt %d", pt);
+            /* Plain join: h_i in [q, q (1 + rho)] (h^2 = q^2 (1 - 2 y.e/d +
+             * q^2/d^2)), so phi is within atan(1 + rho) of 45 degrees and
+             * |grad u| <= (F1 + F2)(phi) (1 + 2 rho), F1 + F2 largest at the
+             * ends of that range (eq. 14, monotone on each side of 45). */
+            const double ph = atan(1 + rho), c = cos(ph), sn = sin(ph);
+            const double smax = (pow(c, p + 1) + pow(sn, p + 1)) / pow(pow(c, p) + pow(sn, p), (p + 1.0) / p);
+            cr_expect(e2e_csv_get(csv, rr, "sector_gdef_at_rmin") >= 1 - smax * (1 + 2 * rho) - 1e-12,
+                      "pt %d", pt);
+        }
+        cr_expect(e2e_csv_get(csv, rr, "band_count") > 0 && e2e_csv_get(csv, rr, "vertex_count") > 0);
+    }
+    /* images of point 0 (alpha 90, p 2, exact) through VTK */
+    char cmd[4096], pyout[700];
+    snprintf(pyout, sizeof pyout, "%s/py.txt", dir);
+    snprintf(cmd, sizeof cmd,
+             "%s -c \"import sys, numpy as np, vtk\n"
+             "from vtk.util.numpy_support import vtk_to_numpy as v\n"
+             "res = []\n"
+             "for name in ('requiv', 'corrected'):\n"
+             "    r = vtk.vtkXMLImageDataReader(); r.SetFileName(sys.argv[1] + '/' + name + '_pt000.vti'); r.Update()\n"
+             "    d = r.GetOutput(); pd = d.GetPointData()\n"
+             "    n = d.GetNumberOfPoints(); P = np.array([d.GetPoint(i) for i in range(n)])\n"
+             "    g = v(pd.GetArray('grad_norm')); e = v(pd.GetArray('error')); ref = v(pd.GetArray('reference'))\n"
+             "    m = (P[:,0] <= 0) & (P[:,1] <= 0) & (ref > 0)\n"
+             "    res += [d.GetDimensions()[0], d.GetDimensions()[1], int(m.sum()), abs(g[m] - 1).max(), abs(g[m] - 1).min(), abs(e[m] + ref[m] - np.hypot(P[m,0], P[m,1])).max()]\n"
+             "print(*res)\" %s >%s 2>&1",
+             e2e_python(), out, pyout);
+    int prc = system(cmd);
+    char *py = e2e_slurp(pyout);
+    cr_assert_eq(prc, 0, "VTK check failed: %s", py);
+    int nx[2], ny[2], nm[2];
+    double gmax[2], gmin[2], verr[2];
+    cr_assert_eq(sscanf(py, "%d %d %d %lf %lf %lf %d %d %d %lf %lf %lf", &nx[0], &ny[0], &nm[0],
+                        &gmax[0], &gmin[0], &verr[0], &nx[1], &ny[1], &nm[1], &gmax[1], &gmin[1],
+                        &verr[1]),
+                 12, "%s", py);
+    free(py);
+    /* 41 x 41 on [-1.5, 1.5]^2: x <= 0 is 21 columns, minus the node at O */
+    for (int j = 0; j < 2; j++) {
+        cr_expect_eq(nx[j], 41);
+        cr_expect_eq(ny[j], 41);
+        cr_expect_eq(nm[j], 21 * 21 - 1);
+    }
+    /* value = error + reference; in the sector 2^(-1/2) q resp. q */
+    cr_expect_float_eq(gmax[0], 1 - sqrt(0.5), 1e-6);
+    cr_expect_float_eq(gmin[0], 1 - sqrt(0.5), 1e-6);
+    cr_expect(verr[0] > 0.25);
+    cr_expect(gmax[1] < 1e-9 && verr[1] < 1e-12, "corrected image: %g %g", gmax[1], verr[1]);
+    for (int pt = 0; pt < 8; pt++)
+        for (int j = 0; j < 2; j++) {
+            snprintf(path, sizeof path, "%s/%s_pt%03d.exr", out, j ? "corrected" : "requiv", pt);
+            FILE *fp = fopen(path, "rb");
+            cr_expect_not_null(fp, "%s", path);
+            if (fp) fclose(fp);
+        }
+}
+
+Test(e2e_bs04_corrected, bad_input_exits_2_without_files)
+{
+    const char *sets[][2] = {
+        {"study.alpha=360", "study.alpha"},
+        {"study.parts=round", "study.parts"},
+        {"study.p=0", "study.p"},
+        {"study.length=0", "study.length"},
+        {"grid.n=1", "grid.n"},
+        {"study.colour=red", "study.colour"},
+    };
+    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++) {
+        char extra[512];
+        snprintf(extra, sizeof extra,
+                 "--set study.alpha=90 --set study.p=2"
+                 " --set study.parts=exact --set '%s'",
+                 sets[i][0]);
+        e2e_run_expect_fail(CFG, extra, sets[i][1]);
+    }
+}

@@ -1,0 +1,138 @@
+/* End-to-end: the bs04 recursive normalization study (appendix A) on a
+ * coarse grid.
+ *
+ * Expected values derived here: the measured order is m at every boundary
+ * point (A.4 cancels exactly the terms s^2..s^m), the error along a normal
+ * line is a_(m+1) delta^(m+1) (1 + O(delta)) so its log-log slope is m + 1,
+ * the m = 1 field is A.1 in closed form f / sqrt(f^2 + |grad f|^2), the
+ * reference is the distance to the ellipse by brute force (dense sampling
+ * and golden-section refinement), and the band columns are recomputed from
+ * the .vti arrays read by VTK. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "util/e2e_util.h"
+
+#define CFG "configs/paper/bs04/bs04_recursive.ini"
+
+static double brute_dist(double a, double b, const double *x)
+{
+    const int N = 2000;
+    const double tp = 2 * 3.14159265358979323846;
+    double best = INFINITY, tb = 0;
+    for (int i = 0; i < N; i++) {
+        const double t = tp * i / N, d = hypot(a * cos(t) - x[0], b * sin(t) - x[1]);
+        if (d < best) best = d, tb = t;
+    }
+    /* the global minimum is within one sample of the best sample */
+    double lo = tb - tp / N, hi = tb + tp / N;
+    const double gr = 0.5 * (sqrt(5.0) - 1.0);
+    for (int it = 0; it < 100; it++) {
+        const double m1 = hi - gr * (hi - lo), m2 = lo + gr * (hi - lo);
+        if (hypot(a * cos(m1) - x[0], b * sin(m1) - x[1]) < hypot(a * cos(m2) - x[0], b * sin(m2) - x[1]))
+            hi = m2;
+        else
+            lo = m1;
+    }
+    const double t = 0.5 * (lo + hi);
+    return fmin(best, hypot(a * cos(t) - x[0], b * sin(t) - x[1]));
+}
+
+Test(e2e_bs04_recursive, orders_slopes_and_fields, .timeout = 60)
+{
+    char dir[256], out[512], csv[700];
+    e2e_tmpdir(dir, sizeof dir);
+    const int N = 25;
+    const double A = 1.0, B = 0.5, LO = -1.3, HI = 1.3;
+    char extra[256];
+    snprintf(extra, sizeof extra,
+             "--set grid.n=%d --set 'study.m=1, 2, 3, 4' --set implicit.b=%g --set study.points=16",
+             N, B);
+    e2e_run_ok(CFG, extra, out, sizeof out);
+    snprintf(csv, sizeof csv, "%s/bs04_recursive.csv", out);
+    cr_assert_eq(e2e_csv_rows(csv), 4);
+    for (long r = 0; r < 4; r++) {
+        const int m = (int)e2e_csv_get(csv, (size_t)r, "m");
+        cr_assert_eq(m, r + 1);
+        cr_expect_eq((int)e2e_csv_get(csv, (size_t)r, "rays"), 32);
+        cr_expect_eq((int)e2e_csv_get(csv, (size_t)r, "measured_order_min"), m);
+        cr_expect_eq((int)e2e_csv_get(csv, (size_t)r, "measured_order_max"), m);
+        cr_expect_eq((int)e2e_csv_get(csv, (size_t)r, "first_k"), m + 1);
+        cr_expect(e2e_csv_get(csv, (size_t)r, "first_coef_min") > 1e-3, "m=%d: a_(m+1) vanishes", m);
+        cr_expect(e2e_csv_get(csv, (size_t)r, "d1_maxdev") < 1e-12);
+        const double slope = e2e_csv_get(csv, (size_t)r, "line_slope");
+        if (m <= 3) cr_expect(fabs(slope - (m + 1)) < 0.25, "m=%d: slope %g", m, slope);
+        /* errors shrink like delta^(m+1): each doubling multiplies by ~2^(m+1) */
+        const double e1 = e2e_csv_get(csv, (size_t)r, "line_err_1");
+        const double e2 = e2e_csv_get(csv, (size_t)r, "line_err_2");
+        cr_expect(e2 / e1 > pow(2, m + 1) * 0.7 && e2 / e1 < pow(2, m + 1) * 1.5, "m=%d: %g %g", m,
+                  e1, e2);
+        cr_expect_eq(e2e_csv_get(csv, (size_t)r, "nonfinite_nodes"), 0);
+
+        /* the image through VTK */
+        char *vti = e2e_csv_cell(csv, r, "vti");
+        char cmd[2048], txt[700];
+        snprintf(txt, sizeof txt, "%s/vti_%ld.txt", dir, r);
+        snprintf(cmd, sizeof cmd,
+                 "%s -c \"import sys, vtk\n"
+                 "from vtk.util.numpy_support import vtk_to_numpy as v\n"
+                 "r = vtk.vtkXMLImageDataReader(); r.SetFileName(sys.argv[1]); r.Update()\n"
+                 "pd = r.GetOutput().GetPointData()\n"
+                 "a = [v(pd.GetArray(k)) for k in ('value', 'reference', 'grad_norm')]\n"
+                 "[print(repr(a[0][i]), repr(a[1][i]), repr(a[2][i])) for i in range(len(a[0]))]\""
+                 " %s/%s >%s 2>&1",
+                 e2e_python(), out, vti, txt);
+        cr_assert_eq(system(cmd), 0, "VTK read of %s failed", vti);
+        FILE *fp = fopen(txt, "r");
+        cr_assert_not_null(fp);
+        const double band1 = e2e_csv_get(csv, (size_t)r, "band_1");
+        double linf1 = 0, sum1 = 0;
+        long n1 = 0;
+        for (int j = 0; j < N * N; j++) {
+            double val, ref, gn;
+            cr_assert_eq(fscanf(fp, "%lf %lf %lf", &val, &ref, &gn), 3);
+            const double x[2] = {LO + (j % N) * (HI - LO) / (N - 1), LO + (j / N) * (HI - LO) / (N - 1)};
+            const double f = x[0] * x[0] / (A * A) + x[1] * x[1] / (B * B) - 1;
+            if (j % 3 == 0) {
+                const double bd = brute_dist(A, B, x) * (f < 0 ? -1 : 1);
+                cr_expect(fabs(ref - bd) < 1e-9, "reference at (%g %g): %.12g vs %.12g", x[0], x[1],
+                          ref, bd);
+            }
+            if (m == 1) {
+                const double gx = 2 * x[0] / (A * A), gy = 2 * x[1] / (B * B);
+                const double f1 = f / sqrt(f * f + gx * gx + gy * gy);
+                cr_expect(fabs(val - f1) < 1e-14, "A.1 at (%g %g): %.17g vs %.17g", x[0], x[1], val,
+                          f1);
+            }
+            if (fabs(ref) <= band1) {
+                n1++;
+                sum1 += fabs(val - ref);
+                linf1 = fmax(linf1, fabs(val - ref));
+            }
+        }
+        fclose(fp);
+        cr_expect_eq((long)e2e_csv_get(csv, (size_t)r, "band_nodes_1"), n1);
+        cr_expect_float_eq(e2e_csv_get(csv, (size_t)r, "linf_band_1"), linf1, 1e-12 * (1 + linf1));
+        cr_expect_float_eq(e2e_csv_get(csv, (size_t)r, "l1_band_1"), sum1 / (double)n1,
+                           1e-12 * (1 + linf1));
+        free(vti);
+    }
+}
+
+Test(e2e_bs04_recursive, bad_input_exits_2_without_files)
+{
+    const char *sets[][2] = {
+        {"--set study.m=7", "study.m"},
+        {"--set study.K=3 --set study.m=3", "study.K"},
+        {"--set 'study.deltas=0.01 0.005'", "study.deltas"},
+        {"--set 'study.deltas=0.01 0.3'", "study.deltas"},
+        {"--set 'study.bands=0.1 0'", "study.bands"},
+        {"--set implicit.kind=circle", "implicit.kind"},
+        {"--set implicit.a=0", "implicit.a"},
+    };
+    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++)
+        e2e_run_expect_fail(CFG, sets[i][0], sets[i][1]);
+}

@@ -1,0 +1,131 @@
+/* The probe contract: [field] kind = rfunc -> dfl_field. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cfg/curve_cfg.h"
+#include "cfg/field_cfg.h"
+#include "geom/polygonize.h"
+#include "io/config.h"
+#include "rfunc/rfield.h"
+#include "cfg/rfunc_cfg.h"
+#include "rfunc/rfunc_util.h"
+
+static dfl_status build(const char *text, dfl_field *f, dfl_err *err)
+{
+    dfl_cfg *cfg;
+    dfl_status st = dfl_cfg_parse_string("test.ini", text, &cfg, err);
+    cr_assert_eq(st, DFL_OK, "%s", err->msg);
+    st = dfl_field_from_cfg(cfg, "field", f, err);
+    if (st == DFL_OK) {
+        dfl_err e2;
+        cr_assert_eq(dfl_cfg_check_used(cfg, &e2), DFL_OK, "%s", e2.msg);
+    }
+    dfl_cfg_free(cfg);
+    return st;
+}
+
+/* The config builds exactly the field of the library call. */
+Test(rfunc_cfg, polyline_keys)
+{
+    const double v2[] = {0, 0, 1, 0.5, 2, 0.2, 2.5, 1.5};
+    const double v3[] = {0, 0, 0, 1, 0.5, 0.2, 2, 0.2, -0.3};
+    struct {
+        const char *text;
+        int dim;
+        const double *v;
+        size_t n;
+        bool closed;
+        dfl_rfunc_join join;
+        int p;
+        dfl_rfunc_trim trim;
+    } cases[] = {
+        {"[field]\nkind = rfunc\nvertices = 0 0; 1 0.5; 2 0.2; 2.5 1.5\n", 2, v2, 4, false,
+         DFL_RFUNC_REQUIV, 2, DFL_RFUNC_TRIM_DISK},
+        {"[field]\nkind = rfunc\nvertices = 0 0; 1 0.5; 2 0.2; 2.5 1.5\nclosed = true\njoin = "
+         "rconj\np = 7\ntrim = strip\n",
+         2, v2, 4, true, DFL_RFUNC_RCONJ, 7, DFL_RFUNC_TRIM_STRIP},
+        {"[field]\nkind = rfunc\nvertices = 0 0 0; 1 0.5 0.2; 2 0.2 -0.3\njoin = "
+         "requiv_corrected\np = 12\ntrim = disk_smooth\n",
+         3, v3, 3, false, DFL_RFUNC_REQUIV_CORRECTED, 12, DFL_RFUNC_TRIM_DISK_SMOOTH},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        dfl_field f, g;
+        dfl_err err;
+        cr_assert_eq(build(cases[k].text, &f, &err), DFL_OK, "%s", err.msg);
+        cr_assert_eq(f.dim, cases[k].dim);
+        cr_assert_eq(dfl_rfield_polyline(cases[k].dim, cases[k].v, cases[k].n, cases[k].closed,
+                                         cases[k].join, cases[k].p, cases[k].trim, &g, NULL),
+                     DFL_OK);
+        uint64_t rng = 5;
+        for (int i = 0; i < 100; i++) {
+            double x[3];
+            for (int j = 0; j < 3; j++) x[j] = tu_uniform(&rng, -1, 3);
+            cr_assert_eq(dfl_field_eval1(&f, x, NULL), dfl_field_eval1(&g, x, NULL));
+        }
+        dfl_field_destroy(&f);
+        dfl_field_destroy(&g);
+    }
+}
+
+static void expect_error(const char *text, const char *needle1, const char *needle2)
+{
+    dfl_field f;
+    dfl_err err;
+    cr_assert_eq(build(text, &f, &err), DFL_E_INPUT, "accepted: %s", text);
+    cr_assert(strstr(err.msg, needle1) != NULL, "'%s' not in '%s'", needle1, err.msg);
+    if (needle2) cr_assert(strstr(err.msg, needle2) != NULL, "'%s' not in '%s'", needle2, err.msg);
+}
+
+Test(rfunc_cfg, bad_input)
+{
+    expect_error("[field]\nkind = rfunc\nvertices = 0 0; 1 1\njoin = rconj\np = 1\n", "p",
+                 "test.ini:5");
+    expect_error("[field]\nkind = rfunc\nvertices = 0 0; 1 1; 1 1; 2 0\n", "degenerate",
+                 "test.ini:3");
+    expect_error("[field]\nkind = rfunc\nvertices = 0 0; 1 1\ntrim = box\n", "trim", NULL);
+    expect_error("[field]\nkind = rfunc\nvertices = 0 0; 1 1\nclosed = true\n", "vertices", NULL);
+    expect_error("[field]\nkind = rfunc\n", "vertices", "curve");
+    expect_error("[field]\nkind = rfunc\nvertices = 0 0; 1 1\ncurve = c\neps = 0.1\n", "both",
+                 NULL);
+    expect_error("[field]\nkind = rfunc\nvertices = 0; 1\n", "vertices", NULL);
+    expect_error("[field]\nkind = rfunc\nvertices = 0 0; 1 1\np = 0\n", "p", NULL);
+    expect_error("[field]\nkind = rfunc\ncurve = nowhere\neps = 0.01\n", "nowhere", NULL);
+    expect_error("[field]\nkind = rfunc\ncurve = c\n[c]\nkind = circle\ncenter = 0 0\nradius = 1\n",
+                 "eps", NULL);
+}
+
+/* curve = <section>, eps: the field vanishes at the vertices of the certified
+ * polygonization (points of the curve); a closed curve gives a closed
+ * polyline. */
+Test(rfunc_cfg, curve_polygonized)
+{
+    const char *curve_sec = "[c]\nkind = bspline_curve\norder = 4\ncontrol = 0 0; 1 2; 2 -1; 3 1; 4 0\n";
+    char text[512];
+    snprintf(text, sizeof text, "[field]\nkind = rfunc\ncurve = c\neps = 0.001\np = 3\n%s",
+             curve_sec);
+    dfl_field f;
+    dfl_err err;
+    dfl_status st = build(text, &f, &err);
+    cr_assert_eq(st, DFL_OK, "%s", err.msg);
+    /* The same polygonization through the library. */
+    dfl_cfg *cfg;
+    cr_assert_eq(dfl_cfg_parse_string("c.ini", curve_sec, &cfg, &err), DFL_OK);
+    dfl_bspline c;
+    cr_assert_eq(dfl_curve_from_cfg(cfg, "c", &c, &err), DFL_OK, "%s", err.msg);
+    dfl_polyline pl;
+    cr_assert_eq(dfl_polygonize_curve(&c, 0.001, 0, &pl, &err), DFL_OK);
+    cr_assert(pl.n > 10);
+    for (size_t i = 0; i < pl.n; i++) cr_assert_eq(dfl_field_eval1(&f, pl.pts + 2 * i, NULL), 0.0);
+    /* Within eps of the curve the field is O(eps) (bs04 eq. 9). */
+    for (int i = 0; i <= 50; i++) {
+        double y[2];
+        dfl_bspline_eval(&c, c.t0 + 0.02 * i * (c.t1 - c.t0), 0, y);
+        cr_assert(dfl_field_eval1(&f, y, NULL) <= 2e-3);
+    }
+    dfl_polyline_free(&pl);
+    dfl_bspline_free(&c);
+    dfl_cfg_free(cfg);
+    dfl_field_destroy(&f);
+}
