@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "harness/experiment.h"
+#include "io/path.h"
 #include "io/atomic.h"
 #include "io/config.h"
 #include "io/manifest.h"
@@ -57,15 +58,6 @@ static dfl_status move_all(const char *from, const char *to, dfl_err *err)
 }
 
 /* "configs/paper/x.ini" -> "x" */
-static void config_stem(const char *path, char *buf, size_t size)
-{
-    const char *base = strrchr(path, '/');
-    base = base ? base + 1 : path;
-    snprintf(buf, size, "%s", base);
-    char *dot = strrchr(buf, '.');
-    if (dot && dot != buf) *dot = '\0';
-}
-
 dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
 {
     dfl_cfg *cfg = NULL;
@@ -93,7 +85,7 @@ dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
     }
 
     char stem[512], outdir[4096], stage[4200];
-    config_stem(o->config, stem, sizeof stem);
+    dfl_path_stem(o->config, stem, sizeof stem);
     if (o->outdir)
         snprintf(outdir, sizeof outdir, "%s", o->outdir);
     else

@@ -1,12 +1,32 @@
-/* Small fixed-size vector helpers (3D unless the name says otherwise).
+/* Small fixed-size vector helpers: dflab's one small-vector vocabulary
+ * (3D unless the name says otherwise; vecn takes the length).
+ *
+ *   DFL_PI                      pi to double precision
+ *   dfl_vecn_dot(n, a, b)       sum a[j] b[j], j = 0..n-1, summed from 0.0 in order
+ *   dfl_vec3_dot(a, b)          a0 b0 + a1 b1 + a2 b2
+ *   dfl_vec3_cross(a, b, c)     c = a x b
+ *   dfl_vec3_norm(a)            |a|
+ *   dfl_vec3_tangent_basis      orthonormal completion of a unit normal
  *
  * All inline, no allocation, no checks beyond what the comment states:
- * callers pass valid pointers to 3 doubles.  Output arguments may not
- * alias inputs unless stated. */
+ * callers pass valid pointers to 3 (or n) doubles.  Output arguments may
+ * not alias inputs unless stated.  The two dot products round differently
+ * (vecn adds to 0.0 first, which turns a -0 product into +0): keep the one
+ * a module's numbers were computed with. */
 #ifndef DFL_CORE_VEC_H
 #define DFL_CORE_VEC_H
 
 #include <math.h>
+
+#define DFL_PI 3.14159265358979323846
+
+/* n >= 0; 0.0 for n == 0. */
+static inline double dfl_vecn_dot(int n, const double *a, const double *b)
+{
+    double s = 0.0;
+    for (int j = 0; j < n; j++) s += a[j] * b[j];
+    return s;
+}
 
 static inline double dfl_vec3_dot(const double *a, const double *b)
 {
