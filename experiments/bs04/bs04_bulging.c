@@ -225,7 +225,8 @@ static void run_free(case_run *r)
 
 static dfl_status put_row(dfl_table *t, const bulge_keys *k, const bulge_case *c, size_t nseg,
                           double delta, const dfl_rayset *rs, const dfl_ray_stats *rst,
-                          const dfl_bandstats *bs, const char *uname, const char *dname)
+                          const dfl_bandstats *bs, const char *uname, const char *dname,
+                          dfl_err *err)
 {
     static const char *const joins[] = {"requiv", "rconj", "requiv_corrected"};
     static const char *const trims[] = {"disk", "disk_smooth", "strip", "strip_smooth"};
@@ -233,41 +234,42 @@ static dfl_status put_row(dfl_table *t, const bulge_keys *k, const bulge_case *c
         c->join == DFL_RFUNC_REQUIV ? pow(2.0, 1.0 / (double)k->p) - 1.0 : NAN;
     const size_t a = rst->argmax;
     const int has = a != (size_t)-1;
-    dfl_status st = dfl_table_row(t);
-    if (!st) st = dfl_table_set_string(t, "case", c->name);
-    if (!st) st = dfl_table_set_int(t, "p", k->p);
-    if (!st) st = dfl_table_set_string(t, "join", joins[c->join]);
-    if (!st) st = dfl_table_set_string(t, "trim", trims[c->trim]);
-    if (!st) st = dfl_table_set_double(t, "eps", c->eps);
-    if (!st) st = dfl_table_set_int(t, "segments", (long)nseg);
-    if (!st) st = dfl_table_set_double(t, "delta", delta);
-    if (!st) st = dfl_table_set_int(t, "rays", (long)rs->n);
-    if (!st) st = dfl_table_set_int(t, "rays_valid", (long)rst->valid);
-    if (!st) st = dfl_table_set_int(t, "unresolved", (long)rst->unresolved);
-    if (!st) st = dfl_table_set_int(t, "beyond", (long)rst->beyond);
-    if (!st) st = dfl_table_set_double(t, "merged", rst->merged);
-    if (!st) st = dfl_table_set_double(t, "bulge_max", rst->max);
-    if (!st) st = dfl_table_set_double(t, "bulge_min", rst->min);
-    if (!st) st = dfl_table_set_double(t, "bulge_mean", rst->mean);
-    if (!st) st = dfl_table_set_double(t, "bulge_side_max", rst->side_max);
-    if (!st) st = dfl_table_set_double(t, "bulge_cap_max", rst->cap_max);
-    if (!st) st = dfl_table_set_double(t, "bulge_joint_max", rst->joint_max);
-    if (!st) st = dfl_table_set_double(t, "joint_limit", limit);
-    if (!st) st = dfl_table_set_double(t, "bulge_flat_mean", rst->flat_mean);
-    if (!st) st = dfl_table_set_double(t, "bulge_curved_mean", rst->curved_mean);
-    if (!st) st = dfl_table_set_double(t, "bulge_outer_mean", rst->outer_mean);
-    if (!st) st = dfl_table_set_double(t, "bulge_inner_mean", rst->inner_mean);
-    if (!st) st = dfl_table_set_double(t, "max_x", has ? rs->o[2 * a] : NAN);
-    if (!st) st = dfl_table_set_double(t, "max_y", has ? rs->o[2 * a + 1] : NAN);
-    if (!st) st = dfl_table_set_double(t, "max_vx", has ? rs->v[2 * a] : NAN);
-    if (!st) st = dfl_table_set_double(t, "max_vy", has ? rs->v[2 * a + 1] : NAN);
+    dfl_status st = dfl_table_row(t, err);
+    if (!st) st = dfl_table_set_string(t, "case", c->name, err);
+    if (!st) st = dfl_table_set_int(t, "p", k->p, err);
+    if (!st) st = dfl_table_set_string(t, "join", joins[c->join], err);
+    if (!st) st = dfl_table_set_string(t, "trim", trims[c->trim], err);
+    if (!st) st = dfl_table_set_double(t, "eps", c->eps, err);
+    if (!st) st = dfl_table_set_int(t, "segments", (long)nseg, err);
+    if (!st) st = dfl_table_set_double(t, "delta", delta, err);
+    if (!st) st = dfl_table_set_int(t, "rays", (long)rs->n, err);
+    if (!st) st = dfl_table_set_int(t, "rays_valid", (long)rst->valid, err);
+    if (!st) st = dfl_table_set_int(t, "unresolved", (long)rst->unresolved, err);
+    if (!st) st = dfl_table_set_int(t, "beyond", (long)rst->beyond, err);
+    if (!st) st = dfl_table_set_double(t, "merged", rst->merged, err);
+    if (!st) st = dfl_table_set_double(t, "bulge_max", rst->max, err);
+    if (!st) st = dfl_table_set_double(t, "bulge_min", rst->min, err);
+    if (!st) st = dfl_table_set_double(t, "bulge_mean", rst->mean, err);
+    if (!st) st = dfl_table_set_double(t, "bulge_side_max", rst->side_max, err);
+    if (!st) st = dfl_table_set_double(t, "bulge_cap_max", rst->cap_max, err);
+    if (!st) st = dfl_table_set_double(t, "bulge_joint_max", rst->joint_max, err);
+    if (!st) st = dfl_table_set_double(t, "joint_limit", limit, err);
+    if (!st) st = dfl_table_set_double(t, "bulge_flat_mean", rst->flat_mean, err);
+    if (!st) st = dfl_table_set_double(t, "bulge_curved_mean", rst->curved_mean, err);
+    if (!st) st = dfl_table_set_double(t, "bulge_outer_mean", rst->outer_mean, err);
+    if (!st) st = dfl_table_set_double(t, "bulge_inner_mean", rst->inner_mean, err);
+    if (!st) st = dfl_table_set_double(t, "max_x", has ? rs->o[2 * a] : NAN, err);
+    if (!st) st = dfl_table_set_double(t, "max_y", has ? rs->o[2 * a + 1] : NAN, err);
+    if (!st) st = dfl_table_set_double(t, "max_vx", has ? rs->v[2 * a] : NAN, err);
+    if (!st) st = dfl_table_set_double(t, "max_vy", has ? rs->v[2 * a + 1] : NAN, err);
     if (!st) st = dfl_table_set_string(t, "max_kind",
                                        !has ? "" : rs->kind[a] == DFL_RAY_JOINT ? "joint"
                                                  : rs->kind[a] == DFL_RAY_CAP  ? "cap"
-                                                                              : "side");
-    if (!st) st = dfl_bandstats_put(t, bs);
-    if (!st) st = dfl_table_set_string(t, "u_vti", uname);
-    if (!st) st = dfl_table_set_string(t, "exact_vti", dname);
+                                                                              : "side",
+                                       err);
+    if (!st) st = dfl_bandstats_put(t, bs, err);
+    if (!st) st = dfl_table_set_string(t, "u_vti", uname, err);
+    if (!st) st = dfl_table_set_string(t, "exact_vti", dname, err);
     return st;
 }
 
@@ -325,11 +327,9 @@ static dfl_status run_case(const bulge_keys *k, bulge_case *c, const dfl_study_c
                                           r.branch, err);
         if (st == DFL_OK) dfl_curveprobe_stats(&r.rays, r.s, r.valid, r.branch, delta, &rst);
         if (st == DFL_OK) st = dfl_bandstats_compute(m, 2, r.uv, r.ug, r.dv, delta, &bs, err);
-        if (st == DFL_OK &&
-            (st = put_row(table, k, c, nseg, delta, &r.rays, &rst, &bs, base_name(upath),
-                          base_name(dpath))) != DFL_OK &&
-            err && err->code == DFL_OK)
-            dfl_err_set(err, st, "bs04_bulging: cannot fill the table");
+        if (st == DFL_OK)
+            st = put_row(table, k, c, nseg, delta, &r.rays, &rst, &bs, base_name(upath),
+                         base_name(dpath), err);
     }
     if (st == DFL_OK) st = dfl_field_out_write(ctx, ustem, &c->grid, r.uv, r.ug, r.dv, &k->out, err);
     if (st == DFL_OK && ctx->point == 0)

@@ -174,28 +174,26 @@ static dfl_status put_row(dfl_table *t, const cj_keys *k, dfl_rfunc_join join,
 {
     const int p = (int)k->p;
     const double theory = join == DFL_RFUNC_REQUIV ? 1.0 - pow(2.0, -1.0 / p) : 0.0;
-    dfl_status st = dfl_table_row(t);
-    if (!st) st = dfl_table_set_double(t, "alpha", k->vj.alpha_deg);
-    if (!st) st = dfl_table_set_int(t, "p", p);
-    if (!st) st = dfl_table_set_string(t, "parts", dfl_vjoin_part_names[k->vj.parts]);
-    if (!st) st = dfl_table_set_string(t, "join", dfl_rfunc_join_name(join));
-    if (!st) st = dfl_table_set_int(t, "sector_points", ss->count);
-    if (!st) st = dfl_table_set_double(t, "sector_gdef_max", ss->gdef_max);
-    if (!st) st = dfl_table_set_double(t, "sector_gdef_min", ss->gdef_min);
-    if (!st) st = dfl_table_set_double(t, "sector_gdef_theory", theory);
-    if (!st) st = dfl_table_set_double(t, "sector_gdef_at_rmin", ss->gdef_rmin);
-    if (!st) st = dfl_table_set_double(t, "sector_value_relerr_max", ss->verr_max);
-    if (!st) st = dfl_table_set_double(t, "sector_part_gdef_max", ss->part_gdef_max);
-    if (!st) st = dfl_table_set_int(t, "band_count", band->count);
-    if (!st) st = dfl_table_set_double(t, "band_gdef_max", band->gdef_max);
-    if (!st) st = dfl_table_set_double(t, "band_gdef_mean", band->gdef_mean);
-    if (!st) st = dfl_table_set_double(t, "band_linf", band->linf);
-    if (!st) st = dfl_table_set_int(t, "vertex_count", vert->count);
-    if (!st) st = dfl_table_set_double(t, "vertex_gdef_max", vert->gdef_max);
-    if (!st) st = dfl_table_set_double(t, "vertex_gdef_mean", vert->gdef_mean);
-    if (!st) st = dfl_table_set_double(t, "vertex_linf", vert->linf);
-    if (st != DFL_OK && err && err->code == DFL_OK)
-        dfl_err_set(err, st, "bs04_corrected: cannot fill the table");
+    dfl_status st = dfl_table_row(t, err);
+    if (!st) st = dfl_table_set_double(t, "alpha", k->vj.alpha_deg, err);
+    if (!st) st = dfl_table_set_int(t, "p", p, err);
+    if (!st) st = dfl_table_set_string(t, "parts", dfl_vjoin_part_names[k->vj.parts], err);
+    if (!st) st = dfl_table_set_string(t, "join", dfl_rfunc_join_name(join), err);
+    if (!st) st = dfl_table_set_int(t, "sector_points", ss->count, err);
+    if (!st) st = dfl_table_set_double(t, "sector_gdef_max", ss->gdef_max, err);
+    if (!st) st = dfl_table_set_double(t, "sector_gdef_min", ss->gdef_min, err);
+    if (!st) st = dfl_table_set_double(t, "sector_gdef_theory", theory, err);
+    if (!st) st = dfl_table_set_double(t, "sector_gdef_at_rmin", ss->gdef_rmin, err);
+    if (!st) st = dfl_table_set_double(t, "sector_value_relerr_max", ss->verr_max, err);
+    if (!st) st = dfl_table_set_double(t, "sector_part_gdef_max", ss->part_gdef_max, err);
+    if (!st) st = dfl_table_set_int(t, "band_count", band->count, err);
+    if (!st) st = dfl_table_set_double(t, "band_gdef_max", band->gdef_max, err);
+    if (!st) st = dfl_table_set_double(t, "band_gdef_mean", band->gdef_mean, err);
+    if (!st) st = dfl_table_set_double(t, "band_linf", band->linf, err);
+    if (!st) st = dfl_table_set_int(t, "vertex_count", vert->count, err);
+    if (!st) st = dfl_table_set_double(t, "vertex_gdef_max", vert->gdef_max, err);
+    if (!st) st = dfl_table_set_double(t, "vertex_gdef_mean", vert->gdef_mean, err);
+    if (!st) st = dfl_table_set_double(t, "vertex_linf", vert->linf, err);
     return st;
 }
 

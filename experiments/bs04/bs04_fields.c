@@ -230,15 +230,15 @@ static dfl_status fields_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
         dfl_study_path(ctx, stem, "vti", path, sizeof path);
         const char *base = strrchr(path, '/');
         base = base ? base + 1 : path;
-        st = dfl_table_row(table);
+        st = dfl_table_row(table, err);
 #define SETI(c, v) \
-    if (!st) st = dfl_table_set_int(table, c, (long)(v))
+    if (!st) st = dfl_table_set_int(table, c, (long)(v), err)
 #define SETD(c, v) \
-    if (!st) st = dfl_table_set_double(table, c, v)
-        if (!st) st = dfl_table_set_string(table, "field", names[i]);
-        if (!st) st = dfl_table_set_string(table, "join", i == 2 ? dfl_rfunc_join_name((dfl_rfunc_join)k.join) : "");
+    if (!st) st = dfl_table_set_double(table, c, v, err)
+        if (!st) st = dfl_table_set_string(table, "field", names[i], err);
+        if (!st) st = dfl_table_set_string(table, "join", i == 2 ? dfl_rfunc_join_name((dfl_rfunc_join)k.join) : "", err);
         SETI("p", p);
-        if (!st) st = dfl_table_set_string(table, "trim", dfl_rfunc_trim_name((dfl_rfunc_trim)k.trim));
+        if (!st) st = dfl_table_set_string(table, "trim", dfl_rfunc_trim_name((dfl_rfunc_trim)k.trim), err);
         SETI("nodes", m);
         SETI("offset_nodes", all.n);
         SETD("gradnorm_min", all.min);
@@ -272,11 +272,9 @@ static dfl_status fields_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
                 SETD("ratio_hi", 1.0);
             }
         }
-        if (!st) st = dfl_table_set_string(table, "vti", k.out.vti ? base : "");
+        if (!st) st = dfl_table_set_string(table, "vti", k.out.vti ? base : "", err);
 #undef SETI
 #undef SETD
-        if (st != DFL_OK && err && err->code == DFL_OK)
-            dfl_err_set(err, st, "bs04_fields: cannot fill the table");
     }
     for (int i = 0; i < 3 && st == DFL_OK; i++) {
         char stem[32];

@@ -136,13 +136,6 @@ static dfl_status read_keys(const dfl_cfg *cfg, gb_keys *k, dfl_err *err)
     return DFL_OK;
 }
 
-static dfl_status table_fail(dfl_status st, dfl_err *err, const char *what)
-{
-    if (st != DFL_OK && err && err->code == DFL_OK)
-        dfl_err_set(err, st, "bs04_gradbounds: cannot fill the %s table", what);
-    return st;
-}
-
 /* Fig. 5: the bounds vs phi, and the paper's claims about them. */
 static dfl_status write_fig5(const dfl_study_ctx *ctx, const gb_keys *k, dfl_err *err)
 {
@@ -156,35 +149,35 @@ static dfl_status write_fig5(const dfl_study_ctx *ctx, const gb_keys *k, dfl_err
                 double F1, F2, lo, hi;
                 dfl_gradbound_partials(join_of[j], p, phi_deg / DEG, &F1, &F2);
                 dfl_gradbound_band(F1, F2, 1.0, 1.0, &lo, &hi);
-                st = dfl_table_row(tb);
-                if (!st) st = dfl_table_set_string(tb, "join", join_names[j]);
-                if (!st) st = dfl_table_set_int(tb, "p", p);
-                if (!st) st = dfl_table_set_double(tb, "phi_deg", phi_deg);
-                if (!st) st = dfl_table_set_double(tb, "F1", F1);
-                if (!st) st = dfl_table_set_double(tb, "F2", F2);
-                if (!st) st = dfl_table_set_double(tb, "lower", lo);
-                if (!st) st = dfl_table_set_double(tb, "upper", hi);
+                st = dfl_table_row(tb, err);
+                if (!st) st = dfl_table_set_string(tb, "join", join_names[j], err);
+                if (!st) st = dfl_table_set_int(tb, "p", p, err);
+                if (!st) st = dfl_table_set_double(tb, "phi_deg", phi_deg, err);
+                if (!st) st = dfl_table_set_double(tb, "F1", F1, err);
+                if (!st) st = dfl_table_set_double(tb, "F2", F2, err);
+                if (!st) st = dfl_table_set_double(tb, "lower", lo, err);
+                if (!st) st = dfl_table_set_double(tb, "upper", hi, err);
             }
             double phi_min, smax, dmax, F1, F2, S0a, S0b, S9a, S9b;
             const double smin = dfl_gradbound_sum_min(join_of[j], p, &phi_min, &smax, &dmax);
             dfl_gradbound_partials(join_of[j], p, 0.25 * PI, &F1, &F2);
             dfl_gradbound_partials(join_of[j], p, 0.0, &S0a, &S0b);
             dfl_gradbound_partials(join_of[j], p, 0.5 * PI, &S9a, &S9b);
-            if (!st) st = dfl_table_row(tc);
-            if (!st) st = dfl_table_set_string(tc, "join", join_names[j]);
-            if (!st) st = dfl_table_set_int(tc, "p", p);
-            if (!st) st = dfl_table_set_double(tc, "sum_min_phi_deg", phi_min * DEG);
-            if (!st) st = dfl_table_set_double(tc, "sum_min", smin);
+            if (!st) st = dfl_table_row(tc, err);
+            if (!st) st = dfl_table_set_string(tc, "join", join_names[j], err);
+            if (!st) st = dfl_table_set_int(tc, "p", p, err);
+            if (!st) st = dfl_table_set_double(tc, "sum_min_phi_deg", phi_min * DEG, err);
+            if (!st) st = dfl_table_set_double(tc, "sum_min", smin, err);
             if (!st)
                 st = dfl_table_set_double(tc, "sum_min_theory",
-                                          j == 0 ? pow(2.0, -1.0 / p) : 2.0 - pow(2.0, 1.0 / p));
-            if (!st) st = dfl_table_set_double(tc, "diff_at_45", F1 - F2);
-            if (!st) st = dfl_table_set_double(tc, "sum_max", smax);
-            if (!st) st = dfl_table_set_double(tc, "diff_max", dmax);
-            if (!st) st = dfl_table_set_double(tc, "sum_at_0", S0a + S0b);
-            if (!st) st = dfl_table_set_double(tc, "sum_at_90", S9a + S9b);
+                                          j == 0 ? pow(2.0, -1.0 / p) : 2.0 - pow(2.0, 1.0 / p),
+                                          err);
+            if (!st) st = dfl_table_set_double(tc, "diff_at_45", F1 - F2, err);
+            if (!st) st = dfl_table_set_double(tc, "sum_max", smax, err);
+            if (!st) st = dfl_table_set_double(tc, "diff_max", dmax, err);
+            if (!st) st = dfl_table_set_double(tc, "sum_at_0", S0a + S0b, err);
+            if (!st) st = dfl_table_set_double(tc, "sum_at_90", S9a + S9b, err);
         }
-    st = table_fail(st, err, "Fig. 5");
     /* one file for the whole sweep: no tag */
     dfl_study_ctx c0 = *ctx;
     c0.tag = "";
@@ -291,19 +284,18 @@ static dfl_status measure_circle(const gb_keys *k, const dfl_field *f, double r,
         cs->fd_maxdiff = fmax(cs->fd_maxdiff, fabs(hypot(gx, gy) - G));
         if (prof && i % stride == stride / 2) {
             const double t = 2.0 * PI * ((double)i + 0.5) / (double)n;
-            st = dfl_table_row(prof);
-            if (!st) st = dfl_table_set_double(prof, "r_rel", r / k->vj.length);
-            if (!st) st = dfl_table_set_double(prof, "theta_deg", t * DEG);
-            if (!st) st = dfl_table_set_double(prof, "phi_deg", phi * DEG);
-            if (!st) st = dfl_table_set_double(prof, "h1", h[0]);
-            if (!st) st = dfl_table_set_double(prof, "h2", h[1]);
-            if (!st) st = dfl_table_set_double(prof, "grad_norm", G);
-            if (!st) st = dfl_table_set_double(prof, "lower", lo);
-            if (!st) st = dfl_table_set_double(prof, "upper", hi);
-            if (!st) st = dfl_table_set_double(prof, "lower_parts", lo1);
-            if (!st) st = dfl_table_set_double(prof, "upper_parts", hi1);
-            if (!st) st = dfl_table_set_int(prof, "hatched", dfl_vjoin_hatched(&k->vj, x));
-            st = table_fail(st, err, "profile");
+            st = dfl_table_row(prof, err);
+            if (!st) st = dfl_table_set_double(prof, "r_rel", r / k->vj.length, err);
+            if (!st) st = dfl_table_set_double(prof, "theta_deg", t * DEG, err);
+            if (!st) st = dfl_table_set_double(prof, "phi_deg", phi * DEG, err);
+            if (!st) st = dfl_table_set_double(prof, "h1", h[0], err);
+            if (!st) st = dfl_table_set_double(prof, "h2", h[1], err);
+            if (!st) st = dfl_table_set_double(prof, "grad_norm", G, err);
+            if (!st) st = dfl_table_set_double(prof, "lower", lo, err);
+            if (!st) st = dfl_table_set_double(prof, "upper", hi, err);
+            if (!st) st = dfl_table_set_double(prof, "lower_parts", lo1, err);
+            if (!st) st = dfl_table_set_double(prof, "upper_parts", hi1, err);
+            if (!st) st = dfl_table_set_int(prof, "hatched", dfl_vjoin_hatched(&k->vj, x), err);
         }
     }
     if (st != DFL_OK) return st;
@@ -339,38 +331,39 @@ static dfl_status put_row(dfl_table *t, const gb_keys *k, double r, const circle
     const double smin = dfl_gradbound_sum_min(join, p, &phi_min, NULL, NULL);
     double F1, F2;
     dfl_gradbound_partials(join, p, 0.25 * PI, &F1, &F2);
-    dfl_status st = dfl_table_row(t);
-    if (!st) st = dfl_table_set_double(t, "alpha", k->alpha_deg);
-    if (!st) st = dfl_table_set_int(t, "p", p);
-    if (!st) st = dfl_table_set_string(t, "join", join_names[k->join]);
-    if (!st) st = dfl_table_set_string(t, "parts", dfl_vjoin_part_names[k->vj.parts]);
-    if (!st) st = dfl_table_set_double(t, "r_rel", r / k->vj.length);
-    if (!st) st = dfl_table_set_double(t, "r", r);
-    if (!st) st = dfl_table_set_int(t, "samples", k->samples);
-    if (!st) st = dfl_table_set_int(t, "on_set", cs->on_set);
-    if (!st) st = dfl_table_set_double(t, "grad_min", cs->gmin);
-    if (!st) st = dfl_table_set_double(t, "grad_max", cs->gmax);
-    if (!st) st = dfl_table_set_double(t, "theta_min_deg", cs->theta_min * DEG);
-    if (!st) st = dfl_table_set_double(t, "bisector_deg", bis * DEG);
-    if (!st) st = dfl_table_set_double(t, "theta_min_err_deg", dmin * DEG);
-    if (!st) st = dfl_table_set_int(t, "min_on_bisector", dmin * DEG < 1e-3);
-    if (!st) st = dfl_table_set_double(t, "grad_bisector", gbis);
+    dfl_status st = dfl_table_row(t, err);
+    if (!st) st = dfl_table_set_double(t, "alpha", k->alpha_deg, err);
+    if (!st) st = dfl_table_set_int(t, "p", p, err);
+    if (!st) st = dfl_table_set_string(t, "join", join_names[k->join], err);
+    if (!st) st = dfl_table_set_string(t, "parts", dfl_vjoin_part_names[k->vj.parts], err);
+    if (!st) st = dfl_table_set_double(t, "r_rel", r / k->vj.length, err);
+    if (!st) st = dfl_table_set_double(t, "r", r, err);
+    if (!st) st = dfl_table_set_int(t, "samples", k->samples, err);
+    if (!st) st = dfl_table_set_int(t, "on_set", cs->on_set, err);
+    if (!st) st = dfl_table_set_double(t, "grad_min", cs->gmin, err);
+    if (!st) st = dfl_table_set_double(t, "grad_max", cs->gmax, err);
+    if (!st) st = dfl_table_set_double(t, "theta_min_deg", cs->theta_min * DEG, err);
+    if (!st) st = dfl_table_set_double(t, "bisector_deg", bis * DEG, err);
+    if (!st) st = dfl_table_set_double(t, "theta_min_err_deg", dmin * DEG, err);
+    if (!st) st = dfl_table_set_int(t, "min_on_bisector", dmin * DEG < 1e-3, err);
+    if (!st) st = dfl_table_set_double(t, "grad_bisector", gbis, err);
     if (!st)
         st = dfl_table_set_double(t, "grad_bisector_theory",
-                                  dfl_gradbound_bisector(join, p, k->vj.alpha));
-    if (!st) st = dfl_table_set_double(t, "grad_min_theory", gth);
-    if (!st) st = dfl_table_set_string(t, "min_regime_theory", where == 0 ? "bisector" : "mixed");
-    if (!st) st = dfl_table_set_double(t, "lower_min", cs->lower_min);
-    if (!st) st = dfl_table_set_double(t, "upper_max", cs->upper_max);
-    if (!st) st = dfl_table_set_int(t, "violations", cs->viol);
-    if (!st) st = dfl_table_set_int(t, "violations_paper", cs->viol_paper);
-    if (!st) st = dfl_table_set_double(t, "excess_paper_max", fmax(cs->excess_max, 0.0));
-    if (!st) st = dfl_table_set_double(t, "part_gdef_max", cs->part_gdef_max);
-    if (!st) st = dfl_table_set_double(t, "fd_maxdiff", cs->fd_maxdiff);
-    if (!st) st = dfl_table_set_double(t, "sum_min_phi_deg", phi_min * DEG);
-    if (!st) st = dfl_table_set_double(t, "sum_min", smin);
-    if (!st) st = dfl_table_set_double(t, "diff_at_45", F1 - F2);
-    return table_fail(st, err, "result");
+                                  dfl_gradbound_bisector(join, p, k->vj.alpha), err);
+    if (!st) st = dfl_table_set_double(t, "grad_min_theory", gth, err);
+    if (!st)
+        st = dfl_table_set_string(t, "min_regime_theory", where == 0 ? "bisector" : "mixed", err);
+    if (!st) st = dfl_table_set_double(t, "lower_min", cs->lower_min, err);
+    if (!st) st = dfl_table_set_double(t, "upper_max", cs->upper_max, err);
+    if (!st) st = dfl_table_set_int(t, "violations", cs->viol, err);
+    if (!st) st = dfl_table_set_int(t, "violations_paper", cs->viol_paper, err);
+    if (!st) st = dfl_table_set_double(t, "excess_paper_max", fmax(cs->excess_max, 0.0), err);
+    if (!st) st = dfl_table_set_double(t, "part_gdef_max", cs->part_gdef_max, err);
+    if (!st) st = dfl_table_set_double(t, "fd_maxdiff", cs->fd_maxdiff, err);
+    if (!st) st = dfl_table_set_double(t, "sum_min_phi_deg", phi_min * DEG, err);
+    if (!st) st = dfl_table_set_double(t, "sum_min", smin, err);
+    if (!st) st = dfl_table_set_double(t, "diff_at_45", F1 - F2, err);
+    return st;
 }
 
 static dfl_status gb_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,

@@ -234,24 +234,24 @@ static dfl_status hetero_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
         probe(&f, x, k.delta, &bp);
     }
 
-    st = dfl_table_row(table);
-    if (!st) st = dfl_table_set_string(table, "join", dfl_rfunc_join_name(k.join));
-    if (!st) st = dfl_table_set_int(table, "p", k.p);
-    if (!st) st = dfl_table_set_string(table, "trim", dfl_rfunc_trim_name(k.trim));
-    if (!st) st = dfl_bs04_put_metrics(table, "", &all);
-    if (!st) st = dfl_bs04_put_metrics(table, "_band", &inb);
-    if (!st) st = dfl_bs04_put_gradstat(table, "_band", &gs);
-    if (!st) st = dfl_table_set_double(table, "delta", k.delta);
+    st = dfl_table_row(table, err);
+    if (!st) st = dfl_table_set_string(table, "join", dfl_rfunc_join_name(k.join), err);
+    if (!st) st = dfl_table_set_int(table, "p", k.p, err);
+    if (!st) st = dfl_table_set_string(table, "trim", dfl_rfunc_trim_name(k.trim), err);
+    if (!st) st = dfl_bs04_put_metrics(table, "", &all, err);
+    if (!st) st = dfl_bs04_put_metrics(table, "_band", &inb, err);
+    if (!st) st = dfl_bs04_put_gradstat(table, "_band", &gs, err);
+    if (!st) st = dfl_table_set_double(table, "delta", k.delta, err);
     const double rmax = fmax(br.ratio, fmax(bs.ratio, bp.ratio));
     const double gmax = fmax(br.grad, fmax(bs.grad, bp.grad));
-    if (!st) st = dfl_table_set_double(table, "boundary_ratio_err", rmax);
-    if (!st) st = dfl_table_set_double(table, "boundary_grad_err", gmax);
-    if (!st) st = dfl_table_set_double(table, "boundary_ratio_err_region", br.ratio);
-    if (!st) st = dfl_table_set_double(table, "boundary_grad_err_region", br.grad);
-    if (!st) st = dfl_table_set_double(table, "boundary_ratio_err_segment", bs.ratio);
-    if (!st) st = dfl_table_set_double(table, "boundary_grad_err_segment", bs.grad);
-    if (!st) st = dfl_table_set_double(table, "boundary_ratio_err_point", bp.ratio);
-    if (!st) st = dfl_table_set_double(table, "boundary_grad_err_point", bp.grad);
+    if (!st) st = dfl_table_set_double(table, "boundary_ratio_err", rmax, err);
+    if (!st) st = dfl_table_set_double(table, "boundary_grad_err", gmax, err);
+    if (!st) st = dfl_table_set_double(table, "boundary_ratio_err_region", br.ratio, err);
+    if (!st) st = dfl_table_set_double(table, "boundary_grad_err_region", br.grad, err);
+    if (!st) st = dfl_table_set_double(table, "boundary_ratio_err_segment", bs.ratio, err);
+    if (!st) st = dfl_table_set_double(table, "boundary_grad_err_segment", bs.grad, err);
+    if (!st) st = dfl_table_set_double(table, "boundary_ratio_err_point", bp.ratio, err);
+    if (!st) st = dfl_table_set_double(table, "boundary_grad_err_point", bp.grad, err);
     if (st) goto done;
     if ((st = dfl_field_out_write(ctx, "hetero", &k.grid, u, gu, d, &k.out, err))) goto done;
 
@@ -279,8 +279,6 @@ static dfl_status hetero_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
     dfl_vtp_data vd = {np, outline, 3, off, conn, 0, NULL, NULL, 0};
     st = dfl_vtp_write(dfl_study_path(ctx, "parts", "vtp", path, sizeof path), &vd, k.compress, err);
 done:
-    if (st != DFL_OK && err && err->code == DFL_OK)
-        dfl_err_set(err, st, "bs04_hetero: cannot fill the table");
     dfl_field_destroy(&f);
     free(u), free(gu), free(d), free(mask), free(outline), free(k.region);
     return st;

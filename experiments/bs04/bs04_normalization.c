@@ -251,25 +251,23 @@ static double end_normal_a3(int trim, double d)
 }
 
 /* The row's identity, also when nothing is swept. */
-static dfl_status put_ids(dfl_table *t, const norm_keys *k)
+static dfl_status put_ids(dfl_table *t, const norm_keys *k, dfl_err *err)
 {
-    dfl_status st = dfl_table_set_string(t, "join", dfl_rfunc_join_name((dfl_rfunc_join)k->join));
-    if (!st) st = dfl_table_set_int(t, "p", k->p);
-    if (!st) st = dfl_table_set_string(t, "trim", dfl_rfunc_trim_name((dfl_rfunc_trim)k->trim));
+    dfl_status st = dfl_table_set_string(t, "join", dfl_rfunc_join_name((dfl_rfunc_join)k->join), err);
+    if (!st) st = dfl_table_set_int(t, "p", k->p, err);
+    if (!st) st = dfl_table_set_string(t, "trim", dfl_rfunc_trim_name((dfl_rfunc_trim)k->trim), err);
     return st;
 }
 
 static dfl_status put_na_row(dfl_table *t, const norm_keys *k, dfl_err *err)
 {
-    dfl_status st = dfl_table_row(t);
-    if (!st) st = put_ids(t, k);
-    if (!st) st = dfl_table_set_string(t, "status", "n/a");
+    dfl_status st = dfl_table_row(t, err);
+    if (!st) st = put_ids(t, k, err);
+    if (!st) st = dfl_table_set_string(t, "status", "n/a", err);
     if (!st)
         st = dfl_table_set_string(t, "note",
-                                  "p >= 2 required: eq. 7 with p = 1 is a + b - (a + b) = 0");
-    if (!st) st = dfl_table_set_int(t, "K", k->K);
-    if (st != DFL_OK && err && err->code == DFL_OK)
-        dfl_err_set(err, st, "bs04_normalization: cannot fill the table");
+                                  "p >= 2 required: eq. 7 with p = 1 is a + b - (a + b) = 0", err);
+    if (!st) st = dfl_table_set_int(t, "K", k->K, err);
     return st;
 }
 
@@ -424,14 +422,14 @@ static dfl_status norm_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     const int joint_order = k.join == DFL_RFUNC_REQUIV_CORRECTED ? 1 : 0;
     const int match = in.omin == order_theory || (capped_min && order_theory >= in.omin);
 
-    st = dfl_table_row(table);
+    st = dfl_table_row(table, err);
 #define SETI(c, v) \
-    if (!st) st = dfl_table_set_int(table, c, (long)(v))
+    if (!st) st = dfl_table_set_int(table, c, (long)(v), err)
 #define SETD(c, v) \
-    if (!st) st = dfl_table_set_double(table, c, v)
-    if (!st) st = put_ids(table, &k);
-    if (!st) st = dfl_table_set_string(table, "status", "ok");
-    if (!st) st = dfl_table_set_string(table, "note", capped_min ? "normalized to every order the jet knows (>= K)" : "");
+    if (!st) st = dfl_table_set_double(table, c, v, err)
+    if (!st) st = put_ids(table, &k, err);
+    if (!st) st = dfl_table_set_string(table, "status", "ok", err);
+    if (!st) st = dfl_table_set_string(table, "note", capped_min ? "normalized to every order the jet knows (>= K)" : "", err);
     SETI("K", K);
     SETI("rays", in.n);
     SETI("order_join", order_join);
@@ -476,8 +474,6 @@ static dfl_status norm_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     }
 #undef SETI
 #undef SETD
-    if (st != DFL_OK && err && err->code == DFL_OK)
-        dfl_err_set(err, st, "bs04_normalization: cannot fill the table");
 done:
     free(seg);
     free(k.v);

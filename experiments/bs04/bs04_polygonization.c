@@ -224,23 +224,18 @@ static dfl_status bs04_poly_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, df
         if (k.paper_curve && strcmp(k.paper_curve, k.names[c]) == 0)
             for (size_t i = 0; i < k.npaper; i++)
                 if (fabs(k.paper_eps[i] - k.eps) <= 1e-12 * k.eps) paper = k.paper_seg[i];
-        st = dfl_table_row(table);
-        if (!st) st = dfl_table_set_string(table, "curve", k.names[c]);
-        if (!st) st = dfl_table_set_double(table, "eps", k.eps);
-        if (!st) st = dfl_table_set_int(table, "segments", (long)(polys[c].n - 1));
-        if (!st) st = dfl_table_set_double(table, "bound", polys[c].bound);
-        if (!st) st = dfl_table_set_double(table, "measured", meas);
-        if (!st) st = dfl_table_set_double(table, "measured_over_eps", meas / k.eps);
-        if (!st) st = dfl_table_set_double(table, "fit_exponent", fit);
-        if (!st && !isnan(paper)) st = dfl_table_set_int(table, "paper_segments", (long)paper);
+        st = dfl_table_row(table, err);
+        if (!st) st = dfl_table_set_string(table, "curve", k.names[c], err);
+        if (!st) st = dfl_table_set_double(table, "eps", k.eps, err);
+        if (!st) st = dfl_table_set_int(table, "segments", (long)(polys[c].n - 1), err);
+        if (!st) st = dfl_table_set_double(table, "bound", polys[c].bound, err);
+        if (!st) st = dfl_table_set_double(table, "measured", meas, err);
+        if (!st) st = dfl_table_set_double(table, "measured_over_eps", meas / k.eps, err);
+        if (!st) st = dfl_table_set_double(table, "fit_exponent", fit, err);
+        if (!st && !isnan(paper)) st = dfl_table_set_int(table, "paper_segments", (long)paper, err);
         if (!st && k.paper_curve && strcmp(k.paper_curve, k.names[c]) == 0)
-            st = dfl_table_set_double(table, "paper_fit_exponent", paper_fit);
-        if (!st) st = dfl_table_set_string(table, "vtp", base);
-        if (st != DFL_OK) {
-            if (err && err->code == DFL_OK)
-                dfl_err_set(err, st, "bs04_polygonization: cannot fill the table");
-            break;
-        }
+            st = dfl_table_set_double(table, "paper_fit_exponent", paper_fit, err);
+        if (!st) st = dfl_table_set_string(table, "vtp", base, err);
     }
     for (int c = 0; c < npoly && st == DFL_OK; c++) {
         char stem[NAME_MAX_LEN + 16], path[4096];

@@ -251,11 +251,11 @@ static dfl_status rec_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
     dfl_study_path(ctx, "normalized", "vti", path, sizeof path);
     const char *base = strrchr(path, '/');
     base = base ? base + 1 : path;
-    st = dfl_table_row(table);
+    st = dfl_table_row(table, err);
 #define SETI(c, v) \
-    if (!st) st = dfl_table_set_int(table, c, (long)(v))
+    if (!st) st = dfl_table_set_int(table, c, (long)(v), err)
 #define SETD(c, v) \
-    if (!st) st = dfl_table_set_double(table, c, v)
+    if (!st) st = dfl_table_set_double(table, c, v, err)
     SETD("a", k.a);
     SETD("b", k.b);
     SETI("m", m);
@@ -302,13 +302,10 @@ static dfl_status rec_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
         }
 #undef SETB
     }
-    if (!st) st = dfl_table_set_string(table, "vti", k.out.vti ? base : "");
+    if (!st) st = dfl_table_set_string(table, "vti", k.out.vti ? base : "", err);
 #undef SETI
 #undef SETD
-    if (st != DFL_OK) {
-        if (err && err->code == DFL_OK) dfl_err_set(err, st, "bs04_recursive: cannot fill the table");
-        goto done;
-    }
+    if (st != DFL_OK) goto done;
     st = dfl_field_out_write(ctx, "normalized", &k.grid, u, gu, d, &k.out, err);
 done:
     free(u);

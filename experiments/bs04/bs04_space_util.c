@@ -7,16 +7,17 @@
 
 #include "io/vtk.h"
 
-dfl_status dfl_bs04_put_metrics(dfl_table *t, const char *sfx, const dfl_metrics *m)
+dfl_status dfl_bs04_put_metrics(dfl_table *t, const char *sfx, const dfl_metrics *m,
+                                dfl_err *err)
 {
     char col[96];
     dfl_status st;
     snprintf(col, sizeof col, "count%s", sfx);
-    st = dfl_table_set_int(t, col, (long)m->count);
+    st = dfl_table_set_int(t, col, (long)m->count, err);
 #define PUT(name, v)                                              \
     do {                                                          \
         snprintf(col, sizeof col, "%s%s", name, sfx);             \
-        if (st == DFL_OK) st = dfl_table_set_double(t, col, v);   \
+        if (st == DFL_OK) st = dfl_table_set_double(t, col, v, err);   \
     } while (0)
     PUT("l1", m->l1);
     PUT("mse", m->mse);
@@ -50,16 +51,17 @@ void dfl_bs04_gradstat(size_t m, int dim, const double *grad, const unsigned cha
     out->mean = c ? s / (double)c : NAN;
 }
 
-dfl_status dfl_bs04_put_gradstat(dfl_table *t, const char *sfx, const dfl_gradstat *g)
+dfl_status dfl_bs04_put_gradstat(dfl_table *t, const char *sfx, const dfl_gradstat *g,
+                                 dfl_err *err)
 {
     char col[96];
     dfl_status st;
     snprintf(col, sizeof col, "grad_min%s", sfx);
-    st = dfl_table_set_double(t, col, g->min);
+    st = dfl_table_set_double(t, col, g->min, err);
     snprintf(col, sizeof col, "grad_mean%s", sfx);
-    if (st == DFL_OK) st = dfl_table_set_double(t, col, g->mean);
+    if (st == DFL_OK) st = dfl_table_set_double(t, col, g->mean, err);
     snprintf(col, sizeof col, "grad_max%s", sfx);
-    if (st == DFL_OK) st = dfl_table_set_double(t, col, g->max);
+    if (st == DFL_OK) st = dfl_table_set_double(t, col, g->max, err);
     return st;
 }
 

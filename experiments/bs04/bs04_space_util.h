@@ -18,7 +18,8 @@
 
 /* Sets count<sfx>, l1<sfx>, mse<sfx>, rms<sfx>, linf<sfx>,
  * graddefect_mean<sfx>, graddefect_max<sfx> in the current row. */
-dfl_status dfl_bs04_put_metrics(dfl_table *t, const char *sfx, const dfl_metrics *m);
+dfl_status dfl_bs04_put_metrics(dfl_table *t, const char *sfx, const dfl_metrics *m,
+                                dfl_err *err);
 
 /* Statistics of |grad u| over the m samples whose mask entry is non-zero
  * (mask may be NULL: all): min, mean, max; NAN when none. */
@@ -29,7 +30,8 @@ typedef struct dfl_gradstat {
 void dfl_bs04_gradstat(size_t m, int dim, const double *grad, const unsigned char *mask,
                        dfl_gradstat *out);
 /* Sets grad_min<sfx>, grad_mean<sfx>, grad_max<sfx>. */
-dfl_status dfl_bs04_put_gradstat(dfl_table *t, const char *sfx, const dfl_gradstat *g);
+dfl_status dfl_bs04_put_gradstat(dfl_table *t, const char *sfx, const dfl_gradstat *g,
+                                 dfl_err *err);
 
 /* Reads [sec] join (requiv | rconj | requiv_corrected, default requiv),
  * p (1..DFL_RFUNC_P_MAX, default 2; checked against the join). */

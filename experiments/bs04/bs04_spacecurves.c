@@ -167,9 +167,9 @@ static dfl_status put_field(dfl_table *t, const char *sfx, size_t m, const doubl
     dfl_bs04_gradstat(m, 3, gu, mask, &gs);
     free(mask);
     snprintf(s2, sizeof s2, "%s_band", sfx);
-    st = dfl_bs04_put_metrics(t, sfx, &all);
-    if (st == DFL_OK) st = dfl_bs04_put_metrics(t, s2, &inb);
-    if (st == DFL_OK) st = dfl_bs04_put_gradstat(t, s2, &gs);
+    st = dfl_bs04_put_metrics(t, sfx, &all, err);
+    if (st == DFL_OK) st = dfl_bs04_put_metrics(t, s2, &inb, err);
+    if (st == DFL_OK) st = dfl_bs04_put_gradstat(t, s2, &gs, err);
     return st;
 }
 
@@ -192,21 +192,21 @@ static dfl_status do_curve(const keys *k, int c, const dfl_bspline *curve, const
     if (st != DFL_OK) goto done;
     const long segs = (long)(pl.n - 1);
 
-    st = dfl_table_row(table);
-    if (!st) st = dfl_table_set_string(table, "curve", name);
-    if (!st) st = dfl_table_set_double(table, "eps", k->eps);
-    if (!st) st = dfl_table_set_int(table, "segments", segs);
-    if (!st) st = dfl_table_set_double(table, "bound", pl.bound);
-    if (!st && k->paper) st = dfl_table_set_int(table, "paper_segments", (long)k->paper[c]);
-    if (!st) st = dfl_table_set_string(table, "join", dfl_rfunc_join_name(k->join));
-    if (!st) st = dfl_table_set_int(table, "p", k->p);
-    if (!st) st = dfl_table_set_string(table, "trim", dfl_rfunc_trim_name(k->trim));
+    st = dfl_table_row(table, err);
+    if (!st) st = dfl_table_set_string(table, "curve", name, err);
+    if (!st) st = dfl_table_set_double(table, "eps", k->eps, err);
+    if (!st) st = dfl_table_set_int(table, "segments", segs, err);
+    if (!st) st = dfl_table_set_double(table, "bound", pl.bound, err);
+    if (!st && k->paper) st = dfl_table_set_int(table, "paper_segments", (long)k->paper[c], err);
+    if (!st) st = dfl_table_set_string(table, "join", dfl_rfunc_join_name(k->join), err);
+    if (!st) st = dfl_table_set_int(table, "p", k->p, err);
+    if (!st) st = dfl_table_set_string(table, "trim", dfl_rfunc_trim_name(k->trim), err);
     if (st) goto done;
 
     snprintf(stem, sizeof stem, "%s_polyline", name);
     st = dfl_bs04_vtp_polyline(dfl_study_path(ctx, stem, "vtp", path, sizeof path), 3, pl.n,
                                pl.pts, k->compress, err);
-    if (!st) st = dfl_table_set_string(table, "vtp", dfl_bs04_base(path));
+    if (!st) st = dfl_table_set_string(table, "vtp", dfl_bs04_base(path), err);
     if (st) goto done;
 
     if (k->volume) {
@@ -226,7 +226,7 @@ static dfl_status do_curve(const keys *k, int c, const dfl_bspline *curve, const
         if (!st && k->out.vti)
             st = dfl_table_set_string(
                 table, "volume_vti",
-                dfl_bs04_base(dfl_study_path(ctx, stem, "vti", path, sizeof path)));
+                dfl_bs04_base(dfl_study_path(ctx, stem, "vti", path, sizeof path)), err);
         free(u), free(gu), free(d);
         u = gu = d = NULL;
         if (st) goto done;
@@ -250,7 +250,7 @@ static dfl_status do_curve(const keys *k, int c, const dfl_bspline *curve, const
         char col[32], desc[64];
         snprintf(col, sizeof col, "slice%d", s);
         snprintf(desc, sizeof desc, "%c = %g", "xyz"[sl->axis], sl->at);
-        if (!st) st = dfl_table_set_string(table, col, desc);
+        if (!st) st = dfl_table_set_string(table, col, desc, err);
         free(u), free(gu), free(d);
         u = gu = d = NULL;
     }
@@ -276,11 +276,8 @@ static dfl_status space_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_ta
         if (st == DFL_OK) nbuilt++;
     }
     if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
-    for (int c = 0; c < k.ncurves && st == DFL_OK; c++) {
+    for (int c = 0; c < k.ncurves && st == DFL_OK; c++)
         st = do_curve(&k, c, &curves[c], &exact[c], ctx, table, err);
-        if (st != DFL_OK && err && err->code == DFL_OK)
-            dfl_err_set(err, st, "bs04_spacecurves: cannot fill the table");
-    }
     for (int c = 0; c < nbuilt; c++) {
         dfl_field_destroy(&exact[c]);
         dfl_bspline_free(&curves[c]);

@@ -144,20 +144,20 @@ static dfl_status do_slice(const keys *k, int s, const dfl_field *f, const dfl_f
     dfl_gradstat gs;
     dfl_bs04_gradstat(m, 3, gu, mask, &gs);
     snprintf(sfx, sizeof sfx, "_s%d", s);
-    st = dfl_bs04_put_metrics(table, sfx, &all);
+    st = dfl_bs04_put_metrics(table, sfx, &all, err);
     snprintf(sfx, sizeof sfx, "_s%d_band", s);
-    if (!st) st = dfl_bs04_put_metrics(table, sfx, &inb);
-    if (!st) st = dfl_bs04_put_gradstat(table, sfx, &gs);
+    if (!st) st = dfl_bs04_put_metrics(table, sfx, &inb, err);
+    if (!st) st = dfl_bs04_put_gradstat(table, sfx, &gs, err);
     snprintf(sfx, sizeof sfx, "_s%d_mesh", s);
-    if (!st) st = dfl_bs04_put_metrics(table, sfx, &mesh);
+    if (!st) st = dfl_bs04_put_metrics(table, sfx, &mesh, err);
     snprintf(col, sizeof col, "mesh_dev_max_s%d", s);
-    if (!st) st = dfl_table_set_double(table, col, dev);
+    if (!st) st = dfl_table_set_double(table, col, dev, err);
     snprintf(col, sizeof col, "u_le_dmesh_s%d", s);
-    if (!st) st = dfl_table_set_double(table, col, (double)le / (double)m);
+    if (!st) st = dfl_table_set_double(table, col, (double)le / (double)m, err);
     snprintf(col, sizeof col, "slice%d", s);
     char desc[64];
     snprintf(desc, sizeof desc, "%c = %g", "xyz"[sl->axis], sl->at);
-    if (!st) st = dfl_table_set_string(table, col, desc);
+    if (!st) st = dfl_table_set_string(table, col, desc, err);
     snprintf(stem, sizeof stem, "surface_slice%d", s);
     if (!st) st = dfl_slice_write(ctx, stem, sl, u, gu, ds, &k->out, err);
 done:
@@ -202,24 +202,22 @@ static dfl_status surf_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     }
     if ((st = dfl_rfield_finish(&rf, &f, err))) goto done;
 
-    st = dfl_table_row(table);
-    if (!st) st = dfl_table_set_double(table, "eps", k.eps);
-    if (!st) st = dfl_table_set_int(table, "triangles", (long)M.ntris);
-    if (!st) st = dfl_table_set_int(table, "vertices", (long)M.nverts);
-    if (!st) st = dfl_table_set_double(table, "bound", M.bound);
-    if (!st) st = dfl_table_set_string(table, "join", dfl_rfunc_join_name(k.join));
-    if (!st) st = dfl_table_set_int(table, "p", k.p);
+    st = dfl_table_row(table, err);
+    if (!st) st = dfl_table_set_double(table, "eps", k.eps, err);
+    if (!st) st = dfl_table_set_int(table, "triangles", (long)M.ntris, err);
+    if (!st) st = dfl_table_set_int(table, "vertices", (long)M.nverts, err);
+    if (!st) st = dfl_table_set_double(table, "bound", M.bound, err);
+    if (!st) st = dfl_table_set_string(table, "join", dfl_rfunc_join_name(k.join), err);
+    if (!st) st = dfl_table_set_int(table, "p", k.p, err);
     if (!st)
         st = dfl_table_set_string(table, "tri_trim",
-                                  k.o.trim == DFL_RFUNC_TRI_PRISM ? "prism" : "conditional");
+                                  k.o.trim == DFL_RFUNC_TRI_PRISM ? "prism" : "conditional", err);
     if (!st) st = dfl_bs04_vtp_trimesh(dfl_study_path(ctx, "mesh", "vtp", path, sizeof path),
                                        M.nverts, M.verts, M.ntris, M.tris, k.compress, err);
-    if (!st) st = dfl_table_set_string(table, "mesh_vtp", dfl_bs04_base(path));
+    if (!st) st = dfl_table_set_string(table, "mesh_vtp", dfl_bs04_base(path), err);
     for (int s = 0; s < k.nslices && !st; s++)
         st = do_slice(&k, s, &f, &exact, &M, ctx, table, err);
 done:
-    if (st != DFL_OK && err && err->code == DFL_OK)
-        dfl_err_set(err, st, "bs04_surface: cannot fill the table");
     dfl_field_destroy(&f);
     dfl_field_destroy(&exact);
     if (haveM) dfl_trimesh_free(&M);

@@ -256,38 +256,38 @@ static dfl_status do_sphere(const keys *k, const dfl_rfunc_tri *tri, int vi, int
         qmax = fmax(qmax, q);
     }
 
-    st = dfl_table_row(table);
-    if (!st) st = dfl_table_set_int(table, "vertex", vi);
+    st = dfl_table_row(table, err);
+    if (!st) st = dfl_table_set_int(table, "vertex", vi, err);
     if (!st)
         st = dfl_table_set_string(table, "tri_trim",
-                                  k->o.trim == DFL_RFUNC_TRI_PRISM ? "prism" : "conditional");
-    if (!st) st = dfl_table_set_double(table, "radius", r);
-    if (!st) st = dfl_table_set_double(table, "alpha_deg", fr.alpha * 180.0 / PI);
-    if (!st) st = dfl_table_set_int(table, "samples", (long)cnt);
-    if (!st) st = dfl_table_set_double(table, "grad_min", gmin);
-    if (!st) st = dfl_table_set_double(table, "grad_mean", gsum / (double)cnt);
-    if (!st) st = dfl_table_set_double(table, "grad_max", gmax);
-    if (!st) st = dfl_table_set_double(table, "tgrad_min", tmin);
-    if (!st) st = dfl_table_set_double(table, "tgrad_max", tmax);
-    if (!st) st = dfl_table_set_double(table, "plane_grad_min", pmin);
-    if (!st) st = dfl_table_set_double(table, "plane_grad_max", pmax);
-    if (!st) st = dfl_table_set_double(table, "theory_plane_min", qmin);
-    if (!st) st = dfl_table_set_double(table, "theory_plane_max", qmax);
+                                  k->o.trim == DFL_RFUNC_TRI_PRISM ? "prism" : "conditional", err);
+    if (!st) st = dfl_table_set_double(table, "radius", r, err);
+    if (!st) st = dfl_table_set_double(table, "alpha_deg", fr.alpha * 180.0 / PI, err);
+    if (!st) st = dfl_table_set_int(table, "samples", (long)cnt, err);
+    if (!st) st = dfl_table_set_double(table, "grad_min", gmin, err);
+    if (!st) st = dfl_table_set_double(table, "grad_mean", gsum / (double)cnt, err);
+    if (!st) st = dfl_table_set_double(table, "grad_max", gmax, err);
+    if (!st) st = dfl_table_set_double(table, "tgrad_min", tmin, err);
+    if (!st) st = dfl_table_set_double(table, "tgrad_max", tmax, err);
+    if (!st) st = dfl_table_set_double(table, "plane_grad_min", pmin, err);
+    if (!st) st = dfl_table_set_double(table, "plane_grad_max", pmax, err);
+    if (!st) st = dfl_table_set_double(table, "theory_plane_min", qmin, err);
+    if (!st) st = dfl_table_set_double(table, "theory_plane_max", qmax, err);
     if (!st && k->o.trim == DFL_RFUNC_TRI_PRISM) {
-        st = dfl_table_set_double(table, "theory_sphere_min", fmin(1.0, qmin));
-        if (!st) st = dfl_table_set_double(table, "theory_sphere_max", fmax(1.0, qmax));
+        st = dfl_table_set_double(table, "theory_sphere_min", fmin(1.0, qmin), err);
+        if (!st) st = dfl_table_set_double(table, "theory_sphere_max", fmax(1.0, qmax), err);
     }
     /* directions in the vertex frame (e1, e2, n) */
     const char *cols[6] = {"argmin_e1", "argmin_e2", "argmin_n",
                            "argmax_e1", "argmax_e2", "argmax_n"};
     const double vals[6] = {dot3(dmin, fr.e1), dot3(dmin, fr.e2), dot3(dmin, fr.n),
                             dot3(dmax, fr.e1), dot3(dmax, fr.e2), dot3(dmax, fr.n)};
-    for (int c = 0; c < 6 && !st; c++) st = dfl_table_set_double(table, cols[c], vals[c]);
+    for (int c = 0; c < 6 && !st; c++) st = dfl_table_set_double(table, cols[c], vals[c], err);
     snprintf(stem, sizeof stem, "sphere_v%d_r%d", vi, ri);
     if (!st)
         st = dfl_bs04_vtp_points(dfl_study_path(ctx, stem, "vtp", path, sizeof path), N, sph,
                                  "grad_norm", gn, k->compress, err);
-    if (!st) st = dfl_table_set_string(table, "sphere_vtp", dfl_bs04_base(path));
+    if (!st) st = dfl_table_set_string(table, "sphere_vtp", dfl_bs04_base(path), err);
 done:
     free(sph);
     free(gn);
@@ -319,8 +319,6 @@ static dfl_status tri_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
     if ((st = dfl_rfield_finish(&rf, &fld, err))) goto done;
     st = dfl_bs04_write_slices(ctx, &fld, k.slices, k.nslices, "triangle_slice", &k.out, err);
 done:
-    if (st != DFL_OK && err && err->code == DFL_OK)
-        dfl_err_set(err, st, "bs04_triangle: cannot fill the table");
     dfl_field_destroy(&fld);
     return st;
 }

@@ -183,27 +183,27 @@ static dfl_status edge_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     const double half = k.theta <= PI ? 0.5 * k.theta : 0.5 * (2 * PI - k.theta);
     const double tb_in = pow(2.0, -1.0 / k.p) * sin(half), tb_out = pow(2.0, -1.0 / k.p);
 
-    st = dfl_table_row(table);
-    if (!st) st = dfl_table_set_double(table, "dihedral", k.theta * 180.0 / PI);
+    st = dfl_table_row(table, err);
+    if (!st) st = dfl_table_set_double(table, "dihedral", k.theta * 180.0 / PI, err);
     if (!st)
         st = dfl_table_set_string(table, "tri_trim",
-                                  k.o.trim == DFL_RFUNC_TRI_PRISM ? "prism" : "conditional");
-    if (!st) st = dfl_table_set_string(table, "join", dfl_rfunc_join_name(k.join));
-    if (!st) st = dfl_table_set_int(table, "p", k.p);
-    if (!st) st = dfl_table_set_double(table, "radius", k.radius);
-    if (!st) st = dfl_table_set_double(table, "grad_min", gmin);
-    if (!st) st = dfl_table_set_double(table, "grad_max", gmax);
-    if (!st) st = dfl_table_set_double(table, "argmin_deg", amin * 180.0 / PI);
-    if (!st) st = dfl_table_set_double(table, "argmax_deg", amax * 180.0 / PI);
-    if (!st) st = dfl_table_set_double(table, "theory_min", tmin);
-    if (!st) st = dfl_table_set_double(table, "theory_max", tmax);
-    if (!st) st = dfl_table_set_double(table, "max_dev_theory", dev);
-    if (!st) st = dfl_table_set_double(table, "eq13_violation", viol);
+                                  k.o.trim == DFL_RFUNC_TRI_PRISM ? "prism" : "conditional", err);
+    if (!st) st = dfl_table_set_string(table, "join", dfl_rfunc_join_name(k.join), err);
+    if (!st) st = dfl_table_set_int(table, "p", k.p, err);
+    if (!st) st = dfl_table_set_double(table, "radius", k.radius, err);
+    if (!st) st = dfl_table_set_double(table, "grad_min", gmin, err);
+    if (!st) st = dfl_table_set_double(table, "grad_max", gmax, err);
+    if (!st) st = dfl_table_set_double(table, "argmin_deg", amin * 180.0 / PI, err);
+    if (!st) st = dfl_table_set_double(table, "argmax_deg", amax * 180.0 / PI, err);
+    if (!st) st = dfl_table_set_double(table, "theory_min", tmin, err);
+    if (!st) st = dfl_table_set_double(table, "theory_max", tmax, err);
+    if (!st) st = dfl_table_set_double(table, "max_dev_theory", dev, err);
+    if (!st) st = dfl_table_set_double(table, "eq13_violation", viol, err);
     /* with theta > 180 the inner bisector is phi = theta/2 + pi */
-    if (!st) st = dfl_table_set_double(table, "bisector_in", k.theta <= PI ? bis[0] : bis[1]);
-    if (!st) st = dfl_table_set_double(table, "bisector_out", k.theta <= PI ? bis[1] : bis[0]);
-    if (!st) st = dfl_table_set_double(table, "theory_bisector_in", tb_in);
-    if (!st) st = dfl_table_set_double(table, "theory_bisector_out", tb_out);
+    if (!st) st = dfl_table_set_double(table, "bisector_in", k.theta <= PI ? bis[0] : bis[1], err);
+    if (!st) st = dfl_table_set_double(table, "bisector_out", k.theta <= PI ? bis[1] : bis[0], err);
+    if (!st) st = dfl_table_set_double(table, "theory_bisector_in", tb_in, err);
+    if (!st) st = dfl_table_set_double(table, "theory_bisector_out", tb_out, err);
     if (st) goto done;
 
     const double verts[12] = {P[0], P[1], P[2], Q[0], Q[1], Q[2], R1[0], R1[1], R1[2],
@@ -214,8 +214,6 @@ static dfl_status edge_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     if (st == DFL_OK)
         st = dfl_bs04_write_slices(ctx, &f, k.slices, k.nslices, "edge_slice", &k.out, err);
 done:
-    if (st != DFL_OK && err && err->code == DFL_OK)
-        dfl_err_set(err, st, "bs04_triedge: cannot fill the table");
     dfl_field_destroy(&f);
     return st;
 }

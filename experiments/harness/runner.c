@@ -129,7 +129,12 @@ dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
         char label[2048] = "";
         size_t ll = 0;
         for (size_t a = 0; a < na; a++) {
-            dfl_table_prefix_string(table, dfl_cfg_sweep_axis_name(cfg, a), dfl_cfg_axis_value(pt, a));
+            st = dfl_table_prefix_string(table, dfl_cfg_sweep_axis_name(cfg, a),
+                                         dfl_cfg_axis_value(pt, a), err);
+            if (st != DFL_OK) {
+                dfl_cfg_free(pt);
+                goto fail;
+            }
             if (ll < sizeof label)
                 ll += (size_t)snprintf(label + ll, sizeof label - ll, "%s%s=%s", a ? " " : "",
                                        dfl_cfg_sweep_axis_name(cfg, a), dfl_cfg_axis_value(pt, a));

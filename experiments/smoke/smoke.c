@@ -22,17 +22,18 @@
 #include "harness/field_out.h"
 #include "cfg/grid_cfg.h"
 
-static dfl_status put_metrics(dfl_table *t, const char *suffix, const dfl_metrics *m)
+static dfl_status put_metrics(dfl_table *t, const char *suffix, const dfl_metrics *m,
+                              dfl_err *err)
 {
     char col[64];
     dfl_status st = DFL_OK;
 #define PUT(name, v)                                                \
     do {                                                            \
         snprintf(col, sizeof col, "%s%s", name, suffix);            \
-        if (st == DFL_OK) st = dfl_table_set_double(t, col, v);     \
+        if (st == DFL_OK) st = dfl_table_set_double(t, col, v, err); \
     } while (0)
     snprintf(col, sizeof col, "count%s", suffix);
-    st = dfl_table_set_int(t, col, (long)m->count);
+    st = dfl_table_set_int(t, col, (long)m->count, err);
     PUT("l1", m->l1);
     PUT("mse", m->mse);
     PUT("rms", m->rms);
@@ -81,18 +82,15 @@ static dfl_status smoke_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_ta
     if (st == DFL_OK) st = dfl_metrics_compute(m, dim, u, gu, d, band, &inband, err);
     if (st != DFL_OK) goto done;
 
-    st = dfl_table_row(table);
-    if (st == DFL_OK) st = dfl_table_set_int(table, "dim", dim);
-    if (st == DFL_OK) st = dfl_table_set_int(table, "nodes", (long)m);
-    if (st == DFL_OK) st = dfl_table_set_double(table, "scale", scale);
-    if (st == DFL_OK) st = dfl_table_set_double(table, "offset", offset);
-    if (st == DFL_OK) st = dfl_table_set_double(table, "band", band);
-    if (st == DFL_OK) st = put_metrics(table, "", &all);
-    if (st == DFL_OK) st = put_metrics(table, "_band", &inband);
-    if (st != DFL_OK) {
-        if (err && err->code == DFL_OK) dfl_err_set(err, st, "smoke: cannot fill the table");
-        goto done;
-    }
+    st = dfl_table_row(table, err);
+    if (st == DFL_OK) st = dfl_table_set_int(table, "dim", dim, err);
+    if (st == DFL_OK) st = dfl_table_set_int(table, "nodes", (long)m, err);
+    if (st == DFL_OK) st = dfl_table_set_double(table, "scale", scale, err);
+    if (st == DFL_OK) st = dfl_table_set_double(table, "offset", offset, err);
+    if (st == DFL_OK) st = dfl_table_set_double(table, "band", band, err);
+    if (st == DFL_OK) st = put_metrics(table, "", &all, err);
+    if (st == DFL_OK) st = put_metrics(table, "_band", &inband, err);
+    if (st != DFL_OK) goto done;
     st = dfl_field_out_write(ctx, "field", &g, u, gu, d, &oo, err);
 done:
     free(d), free(gd), free(u), free(gu);

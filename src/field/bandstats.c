@@ -48,16 +48,16 @@ dfl_status dfl_bandstats_compute(size_t m, int dim, const double *u, const doubl
     return DFL_OK;
 }
 
-dfl_status dfl_bandstats_put(dfl_table *t, const dfl_bandstats *b)
+dfl_status dfl_bandstats_put(dfl_table *t, const dfl_bandstats *b, dfl_err *err)
 {
-    dfl_status st = dfl_table_set_int(t, "band_count", (long)b->count);
-    if (!st) st = dfl_table_set_double(t, "band_bias", b->bias);
-    if (!st) st = dfl_table_set_double(t, "band_rel_bias", b->rel_bias);
-    if (!st) st = dfl_table_set_double(t, "band_l1", b->l1);
-    if (!st) st = dfl_table_set_double(t, "band_rms", b->rms);
-    if (!st) st = dfl_table_set_double(t, "band_linf", b->linf);
-    if (!st) st = dfl_table_set_double(t, "grad_min", b->gmin);
-    if (!st) st = dfl_table_set_double(t, "grad_mean", b->gmean);
-    if (!st) st = dfl_table_set_double(t, "grad_max", b->gmax);
+    dfl_status st = dfl_table_set_int(t, "band_count", (long)b->count, err);
+    if (!st) st = dfl_table_set_double(t, "band_bias", b->bias, err);
+    if (!st) st = dfl_table_set_double(t, "band_rel_bias", b->rel_bias, err);
+    if (!st) st = dfl_table_set_double(t, "band_l1", b->l1, err);
+    if (!st) st = dfl_table_set_double(t, "band_rms", b->rms, err);
+    if (!st) st = dfl_table_set_double(t, "band_linf", b->linf, err);
+    if (!st) st = dfl_table_set_double(t, "grad_min", b->gmin, err);
+    if (!st) st = dfl_table_set_double(t, "grad_mean", b->gmean, err);
+    if (!st) st = dfl_table_set_double(t, "grad_max", b->gmax, err);
     return st;
 }

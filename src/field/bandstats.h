@@ -35,6 +35,6 @@ dfl_status dfl_bandstats_compute(size_t m, int dim, const double *u, const doubl
 
 /* Sets columns band_count, band_bias, band_rel_bias, band_l1, band_rms,
  * band_linf, grad_min, grad_mean, grad_max of the current row. */
-dfl_status dfl_bandstats_put(dfl_table *t, const dfl_bandstats *b);
+dfl_status dfl_bandstats_put(dfl_table *t, const dfl_bandstats *b, dfl_err *err);
 
 #endif

@@ -43,7 +43,7 @@ void dfl_table_free(dfl_table *t)
     free(t);
 }
 
-dfl_status dfl_table_prefix_clear(dfl_table *t)
+void dfl_table_prefix_clear(dfl_table *t)
 {
     for (size_t i = 0; i < t->npre; i++) {
         free(t->pcol[i]);
@@ -53,23 +53,28 @@ dfl_status dfl_table_prefix_clear(dfl_table *t)
     free(t->pval);
     t->pcol = t->pval = NULL;
     t->npre = 0;
-    return DFL_OK;
 }
 
-dfl_status dfl_table_prefix_string(dfl_table *t, const char *col, const char *value)
+static dfl_status no_memory(dfl_err *err, const char *col)
+{
+    return dfl_err_set(err, DFL_E_NOMEM, "table: out of memory for column %s", col);
+}
+
+dfl_status dfl_table_prefix_string(dfl_table *t, const char *col, const char *value,
+                                   dfl_err *err)
 {
     char **pc = realloc(t->pcol, (t->npre + 1) * sizeof *pc);
-    if (!pc) return DFL_E_NOMEM;
+    if (!pc) return no_memory(err, col);
     t->pcol = pc;
     char **pv = realloc(t->pval, (t->npre + 1) * sizeof *pv);
-    if (!pv) return DFL_E_NOMEM;
+    if (!pv) return no_memory(err, col);
     t->pval = pv;
     t->pcol[t->npre] = dup(col);
     t->pval[t->npre] = dup(value);
     if (!t->pcol[t->npre] || !t->pval[t->npre]) {
         free(t->pcol[t->npre]);
         free(t->pval[t->npre]);
-        return DFL_E_NOMEM;
+        return no_memory(err, col);
     }
     t->npre++;
     return DFL_OK;
@@ -92,36 +97,37 @@ static long col_index(dfl_table *t, const char *col, int create)
     return (long)t->ncols++;
 }
 
-static dfl_status set_text(dfl_table *t, const char *col, const char *text)
+static dfl_status set_text(dfl_table *t, const char *col, const char *text, dfl_err *err)
 {
-    if (t->nrows == 0) return DFL_E_INTERNAL;
+    if (t->nrows == 0)
+        return dfl_err_set(err, DFL_E_INTERNAL, "table: column %s set before the first row", col);
     long j = col_index(t, col, 1);
-    if (j < 0) return DFL_E_NOMEM;
+    if (j < 0) return no_memory(err, col);
     size_t i = t->nrows - 1;
     if ((size_t)j >= t->rowcap[i]) {
         size_t cap = (size_t)j + 8;
         char **r = realloc(t->rows[i], cap * sizeof *r);
-        if (!r) return DFL_E_NOMEM;
+        if (!r) return no_memory(err, col);
         for (size_t k = t->rowcap[i]; k < cap; k++) r[k] = NULL;
         t->rows[i] = r;
         t->rowcap[i] = cap;
     }
     char *d = dup(text);
-    if (!d) return DFL_E_NOMEM;
+    if (!d) return no_memory(err, col);
     free(t->rows[i][j]);
     t->rows[i][j] = d;
     return DFL_OK;
 }
 
-dfl_status dfl_table_row(dfl_table *t)
+dfl_status dfl_table_row(dfl_table *t, dfl_err *err)
 {
     if (t->nrows == t->caprows) {
         size_t cap = t->caprows ? 2 * t->caprows : 16;
         char ***r = realloc(t->rows, cap * sizeof *r);
-        if (!r) return DFL_E_NOMEM;
+        if (!r) return dfl_err_set(err, DFL_E_NOMEM, "table: out of memory for row %zu", t->nrows);
         t->rows = r;
         size_t *rc = realloc(t->rowcap, cap * sizeof *rc);
-        if (!rc) return DFL_E_NOMEM;
+        if (!rc) return dfl_err_set(err, DFL_E_NOMEM, "table: out of memory for row %zu", t->nrows);
         t->rowcap = rc;
         t->caprows = cap;
     }
@@ -129,29 +135,29 @@ dfl_status dfl_table_row(dfl_table *t)
     t->rowcap[t->nrows] = 0;
     t->nrows++;
     for (size_t k = 0; k < t->npre; k++) {
-        dfl_status st = set_text(t, t->pcol[k], t->pval[k]);
+        dfl_status st = set_text(t, t->pcol[k], t->pval[k], err);
         if (st != DFL_OK) return st;
     }
     return DFL_OK;
 }
 
-dfl_status dfl_table_set_double(dfl_table *t, const char *col, double v)
+dfl_status dfl_table_set_double(dfl_table *t, const char *col, double v, dfl_err *err)
 {
     char buf[64];
     snprintf(buf, sizeof buf, "%.17g", v);
-    return set_text(t, col, buf);
+    return set_text(t, col, buf, err);
 }
 
-dfl_status dfl_table_set_int(dfl_table *t, const char *col, long v)
+dfl_status dfl_table_set_int(dfl_table *t, const char *col, long v, dfl_err *err)
 {
     char buf[32];
     snprintf(buf, sizeof buf, "%ld", v);
-    return set_text(t, col, buf);
+    return set_text(t, col, buf, err);
 }
 
-dfl_status dfl_table_set_string(dfl_table *t, const char *col, const char *v)
+dfl_status dfl_table_set_string(dfl_table *t, const char *col, const char *v, dfl_err *err)
 {
-    return set_text(t, col, v);
+    return set_text(t, col, v, err);
 }
 
 size_t dfl_table_rows(const dfl_table *t) { return t->nrows; }

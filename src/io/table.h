@@ -15,19 +15,39 @@
 
 typedef struct dfl_table dfl_table;
 
+/* Function index
+ *   dfl_table_new, dfl_table_free          lifetime
+ *   dfl_table_prefix_clear, _prefix_string  cells copied into each new row
+ *   dfl_table_row                           starts a row
+ *   dfl_table_set_double, _int, _string     cells of the current row
+ *   dfl_table_rows, _cols, _col_name, _get  reading back
+ *   dfl_table_write_csv                     the CSV file
+ *
+ * Failure behaviour of the setters (prefix_string, row, set_*): they return
+ * DFL_OK, or DFL_E_NOMEM ("table: out of memory ...") or DFL_E_INTERNAL
+ * (a cell set before the first row) with a message naming the column in err
+ * (err may be NULL).  After a failure the table is still valid and freeable:
+ * the failed cell is absent, the cells already set are kept. */
+
+/* A new empty table, or NULL when out of memory.  Free with dfl_table_free. */
 dfl_table *dfl_table_new(void);
+/* Frees t and every cell; t may be NULL. */
 void dfl_table_free(dfl_table *t);
 
-/* Replaces the prefix cells copied into each new row. */
-dfl_status dfl_table_prefix_clear(dfl_table *t);
-dfl_status dfl_table_prefix_string(dfl_table *t, const char *col, const char *value);
+/* Drops the prefix cells (rows already started keep theirs).  Cannot fail. */
+void dfl_table_prefix_clear(dfl_table *t);
+/* Adds a prefix cell col = value (both copied). */
+dfl_status dfl_table_prefix_string(dfl_table *t, const char *col, const char *value,
+                                   dfl_err *err);
 
 /* Starts a new row (with the prefix cells). */
-dfl_status dfl_table_row(dfl_table *t);
-/* Sets a cell of the current row; creates the column on first use. */
-dfl_status dfl_table_set_double(dfl_table *t, const char *col, double v);
-dfl_status dfl_table_set_int(dfl_table *t, const char *col, long v);
-dfl_status dfl_table_set_string(dfl_table *t, const char *col, const char *v);
+dfl_status dfl_table_row(dfl_table *t, dfl_err *err);
+/* Sets a cell of the current row (replacing an earlier value of the same
+ * column); creates the column on first use.  Doubles print with %.17g,
+ * integers with %ld, strings as given (quoted in the CSV when needed). */
+dfl_status dfl_table_set_double(dfl_table *t, const char *col, double v, dfl_err *err);
+dfl_status dfl_table_set_int(dfl_table *t, const char *col, long v, dfl_err *err);
+dfl_status dfl_table_set_string(dfl_table *t, const char *col, const char *v, dfl_err *err);
 
 size_t dfl_table_rows(const dfl_table *t);
 size_t dfl_table_cols(const dfl_table *t);
