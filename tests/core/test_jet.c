@@ -5,6 +5,7 @@
  * long-double finite differences (Fornberg weights) at low orders. */
 #include <criterion/criterion.h>
 
+#include <limits.h>
 #include <math.h>
 #include <string.h>
 
@@ -776,4 +777,57 @@ Test(jet, errors)
     OK(dfl_jet_powi(&s, -7, &s7, &e_));
     OK(dfl_jet_pow(&s7, -1.0 / 7.0, &out, &e_));
     cr_assert(out.v == 1 && out.c[0] == 1.0);
+}
+
+/* Builders clamp K to [0, DFL_JET_MAX] (jet.h): on both sides of each limit
+ * the result equals the one built at the limit itself, and no call aborts. */
+Test(jet, builders_clamp_order)
+{
+    const double p[3] = {1.5, -2.0, 0.25};
+    dfl_jet lo, hi, r;
+    dfl_jet_poly(p, 3, 0, &lo);
+    cr_assert(lo.v == 0 && lo.n == 1 && lo.c[0] == 1.5 && dfl_jet_order(&lo) == 0);
+    dfl_jet_poly(p, 3, DFL_JET_MAX, &hi);
+    cr_assert(hi.v == 0 && hi.n == DFL_JET_MAX + 1 && dfl_jet_order(&hi) == DFL_JET_MAX);
+    cr_assert(hi.c[1] == -2.0 && hi.c[2] == 0.25 && hi.c[3] == 0.0);
+    const int below[] = {-1, -7, INT_MIN};
+    for (int i = 0; i < 3; i++) {
+        dfl_jet_poly(p, 3, below[i], &r);
+        cr_assert(same(&r, &lo), "poly K = %d", below[i]);
+        dfl_jet_const(1.5, below[i], &r);
+        cr_assert(same(&r, &lo), "const K = %d", below[i]);
+        dfl_jet_linear(1.5, -2.0, below[i], &r);
+        cr_assert(same(&r, &lo), "linear K = %d", below[i]);
+    }
+    const int above[] = {DFL_JET_MAX + 1, 1000, INT_MAX};
+    dfl_jet c_hi, l_hi;
+    dfl_jet_const(1.5, DFL_JET_MAX, &c_hi);
+    dfl_jet_linear(0.0, -2.0, DFL_JET_MAX, &l_hi);
+    cr_assert(l_hi.v == 1 && l_hi.n == DFL_JET_MAX);
+    for (int i = 0; i < 3; i++) {
+        dfl_jet_poly(p, 3, above[i], &r);
+        cr_assert(same(&r, &hi), "poly K = %d", above[i]);
+        dfl_jet_const(1.5, above[i], &r);
+        cr_assert(same(&r, &c_hi), "const K = %d", above[i]);
+        dfl_jet_linear(0.0, -2.0, above[i], &r);
+        cr_assert(same(&r, &l_hi), "linear K = %d", above[i]);
+    }
+    /* the zero: known below s^1 at K <= 0, the exact zero at K >= DFL_JET_MAX */
+    dfl_jet_const(0.0, -3, &r);
+    cr_assert(r.zero && dfl_jet_order(&r) == 0);
+    dfl_jet_const(0.0, DFL_JET_MAX + 1, &r);
+    cr_assert(r.zero && r.v == 0 && r.n == DFL_JET_MAX + 1);
+}
+
+/* The rejecting form for orders that come from input. */
+Test(jet, check_order_rejects_outside_range)
+{
+    dfl_err err;
+    cr_assert_eq(dfl_jet_check_order(0, &err), DFL_OK);
+    cr_assert_eq(dfl_jet_check_order(DFL_JET_MAX, &err), DFL_OK);
+    cr_assert_eq(dfl_jet_check_order(-1, &err), DFL_E_INPUT);
+    cr_assert(strstr(err.msg, "jet order -1 outside [0, 24]"), "%s", err.msg);
+    cr_assert_eq(dfl_jet_check_order(DFL_JET_MAX + 1, &err), DFL_E_INPUT);
+    cr_assert(strstr(err.msg, "jet order 25 outside [0, 24]"), "%s", err.msg);
+    cr_assert_eq(dfl_jet_check_order(INT_MIN, NULL), DFL_E_INPUT);
 }
