@@ -1,7 +1,6 @@
 #include "util/e2e_util.h"
 
 #include <criterion/criterion.h>
-#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,12 +9,9 @@
 #include <unistd.h>
 
 #include "io/config.h"
+#include "util/tmpdir.h"
 
-void e2e_tmpdir(char *buf, size_t size)
-{
-    snprintf(buf, size, "/tmp/dflab-test-XXXXXX");
-    if (!mkdtemp(buf)) buf[0] = '\0';
-}
+void e2e_tmpdir(char *buf, size_t size) { tmpdir_new(buf, size); }
 
 const char *e2e_write(const char *dir, const char *name, const char *text, char *buf, size_t size)
 {
@@ -55,17 +51,7 @@ char *e2e_slurp(const char *path)
     return s;
 }
 
-int e2e_count_entries(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (!d) return -1;
-    int n = 0;
-    struct dirent *de;
-    while ((de = readdir(d)))
-        if (strcmp(de->d_name, ".") && strcmp(de->d_name, "..")) n++;
-    closedir(d);
-    return n;
-}
+int e2e_count_entries(const char *dir) { return tmpdir_count(dir); }
 
 const char *e2e_python(void)
 {
@@ -175,7 +161,6 @@ void e2e_run_ok(const char *cfg, const char *extra, char *out, size_t size)
 {
     char dir[256];
     e2e_tmpdir(dir, sizeof dir);
-    cr_assert(dir[0], "no temporary directory");
     const int rc = e2e_run_cfg(dir, cfg, extra, out, size);
     char *msg = e2e_err_text(dir);
     cr_assert_eq(rc, 0, "dflab run %s %s failed (%d): %s", cfg, extra ? extra : "", rc,

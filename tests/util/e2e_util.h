@@ -7,7 +7,8 @@
 
 #include <stddef.h>
 
-/* A fresh empty directory under /tmp; path into buf. */
+/* tmpdir_new (util/tmpdir.h): a fresh empty directory under /tmp, path into
+ * buf; fatal assertion when it cannot be made. */
 void e2e_tmpdir(char *buf, size_t size);
 /* Writes text to dir/name; returns the path in buf. */
 const char *e2e_write(const char *dir, const char *name, const char *text, char *buf, size_t size);
@@ -16,7 +17,8 @@ const char *e2e_write(const char *dir, const char *name, const char *text, char 
 int e2e_dflab(const char *dir, const char *args);
 /* Reads a whole file into a malloc'ed string (NULL if unreadable). */
 char *e2e_slurp(const char *path);
-/* Number of directory entries (excluding . and ..); -1 if dir is absent. */
+/* tmpdir_count: number of directory entries (excluding . and ..); -1 if
+ * dir is absent. */
 int e2e_count_entries(const char *dir);
 /* Path of the python interpreter with numpy/vtk. */
 const char *e2e_python(void);
