@@ -784,33 +784,26 @@ Test(jet, errors)
 Test(jet, builders_clamp_order)
 {
     const double p[3] = {1.5, -2.0, 0.25};
-    dfl_jet lo, hi, r;
-    dfl_jet_poly(p, 3, 0, &lo);
-    cr_assert(lo.v == 0 && lo.n == 1 && lo.c[0] == 1.5 && dfl_jet_order(&lo) == 0);
-    dfl_jet_poly(p, 3, DFL_JET_MAX, &hi);
-    cr_assert(hi.v == 0 && hi.n == DFL_JET_MAX + 1 && dfl_jet_order(&hi) == DFL_JET_MAX);
-    cr_assert(hi.c[1] == -2.0 && hi.c[2] == 0.25 && hi.c[3] == 0.0);
-    const int below[] = {-1, -7, INT_MIN};
-    for (int i = 0; i < 3; i++) {
-        dfl_jet_poly(p, 3, below[i], &r);
-        cr_assert(same(&r, &lo), "poly K = %d", below[i]);
-        dfl_jet_const(1.5, below[i], &r);
-        cr_assert(same(&r, &lo), "const K = %d", below[i]);
-        dfl_jet_linear(1.5, -2.0, below[i], &r);
-        cr_assert(same(&r, &lo), "linear K = %d", below[i]);
-    }
-    const int above[] = {DFL_JET_MAX + 1, 1000, INT_MAX};
-    dfl_jet c_hi, l_hi;
-    dfl_jet_const(1.5, DFL_JET_MAX, &c_hi);
-    dfl_jet_linear(0.0, -2.0, DFL_JET_MAX, &l_hi);
-    cr_assert(l_hi.v == 1 && l_hi.n == DFL_JET_MAX);
-    for (int i = 0; i < 3; i++) {
-        dfl_jet_poly(p, 3, above[i], &r);
-        cr_assert(same(&r, &hi), "poly K = %d", above[i]);
-        dfl_jet_const(1.5, above[i], &r);
-        cr_assert(same(&r, &c_hi), "const K = %d", above[i]);
-        dfl_jet_linear(0.0, -2.0, above[i], &r);
-        cr_assert(same(&r, &l_hi), "linear K = %d", above[i]);
+    dfl_jet r, want;
+    /* the limits themselves: order 0 keeps one term, DFL_JET_MAX all 25 */
+    dfl_jet_poly(p, 3, 0, &r);
+    cr_assert(r.v == 0 && r.n == 1 && r.c[0] == 1.5 && dfl_jet_order(&r) == 0);
+    dfl_jet_poly(p, 3, DFL_JET_MAX, &r);
+    cr_assert(r.v == 0 && r.n == DFL_JET_MAX + 1 && r.c[1] == -2.0 && r.c[2] == 0.25);
+    dfl_jet_linear(0.0, -2.0, DFL_JET_MAX, &r);
+    cr_assert(r.v == 1 && r.n == DFL_JET_MAX && dfl_jet_order(&r) == DFL_JET_MAX);
+    const int K[] = {-1, -7, INT_MIN, DFL_JET_MAX + 1, 1000, INT_MAX};
+    for (int i = 0; i < 6; i++) {
+        const int L = K[i] < 0 ? 0 : DFL_JET_MAX;
+        dfl_jet_poly(p, 3, K[i], &r);
+        dfl_jet_poly(p, 3, L, &want);
+        cr_assert(same(&r, &want), "poly K = %d", K[i]);
+        dfl_jet_const(1.5, K[i], &r);
+        dfl_jet_const(1.5, L, &want);
+        cr_assert(same(&r, &want), "const K = %d", K[i]);
+        dfl_jet_linear(0.0, -2.0, K[i], &r);
+        dfl_jet_linear(0.0, -2.0, L, &want);
+        cr_assert(same(&r, &want), "linear K = %d", K[i]);
     }
     /* the zero: known below s^1 at K <= 0, the exact zero at K >= DFL_JET_MAX */
     dfl_jet_const(0.0, -3, &r);
