@@ -2,6 +2,7 @@
 
 #include <criterion/criterion.h>
 #include <dirent.h>
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -19,6 +20,28 @@ void tmpdir_file(char *dir, size_t dsize, const char *name, char *path, size_t p
     tmpdir_new(dir, dsize);
     int n = snprintf(path, psize, "%s/%s", dir, name);
     cr_assert(n > 0 && (size_t)n < psize, "%s/%s does not fit", dir, name);
+}
+
+const char *tmpdir_write(const char *dir, const char *name, const char *text, char *path,
+                         size_t psize)
+{
+    char p[4096];
+    int n = snprintf(p, sizeof p, "%s/%s", dir, name);
+    cr_assert(n > 0 && (size_t)n < sizeof p, "%s/%s does not fit", dir, name);
+    for (char *s = p + strlen(dir) + 1; (s = strchr(s, '/')); s++) {
+        *s = '\0';
+        cr_assert(mkdir(p, 0700) == 0 || errno == EEXIST, "mkdir %s: %s", p, strerror(errno));
+        *s = '/';
+    }
+    FILE *fp = fopen(p, "w");
+    cr_assert_not_null(fp, "cannot write %s", p);
+    fputs(text, fp);
+    cr_assert_eq(fclose(fp), 0, "cannot write %s", p);
+    if (path) {
+        cr_assert_lt((size_t)n, psize, "%s does not fit", p);
+        memcpy(path, p, (size_t)n + 1);
+    }
+    return path;
 }
 
 int tmpdir_count(const char *dir)

@@ -2,6 +2,7 @@
  *
  *   tmpdir_new(dir, size)                       a fresh empty directory under /tmp
  *   tmpdir_file(dir, dsize, name, path, psize)  tmpdir_new, and the path of name in it
+ *   tmpdir_write(dir, name, text, path, psize)  writes text to <dir>/<name> (parents made)
  *   tmpdir_count(dir)                           its entries other than . and ..
  *   tmpdir_remove(dir)                          removes dir and everything below it
  *   tmpdir_expect_io_error(st, err, path, dir, left)
@@ -23,6 +24,11 @@
 void tmpdir_new(char *dir, size_t dsize);
 /* tmpdir_new(dir, dsize), then path = "<dir>/<name>" (asserted to fit). */
 void tmpdir_file(char *dir, size_t dsize, const char *name, char *path, size_t psize);
+/* Writes text to <dir>/<name>, making missing directories of name first;
+ * the path goes to path (NULL: not wanted).  Asserts (fatal) success.
+ * Returns path. */
+const char *tmpdir_write(const char *dir, const char *name, const char *text, char *path,
+                         size_t psize);
 /* Number of entries of dir other than . and ..; -1 if dir cannot be opened
  * (e.g. it does not exist). */
 int tmpdir_count(const char *dir);
