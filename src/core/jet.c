@@ -24,9 +24,9 @@
 
 static int imin(int a, int b) { return a < b ? a : b; }
 
+/* The header promises clamping (see dfl_jet_check_order for rejection). */
 static int clamp_order(int K)
 {
-    assert(K >= 0 && K <= DFL_JET_MAX);
     if (K < 0) return 0;
     if (K > DFL_JET_MAX) return DFL_JET_MAX;
     return K;
@@ -100,6 +100,13 @@ static double at(const dfl_jet *a, int idx)
 }
 
 /* ---------------------------------------------------------------- build */
+
+dfl_status dfl_jet_check_order(int K, dfl_err *err)
+{
+    if (K < 0 || K > DFL_JET_MAX)
+        return dfl_err_set(err, DFL_E_INPUT, "jet order %d outside [0, %d]", K, DFL_JET_MAX);
+    return DFL_OK;
+}
 
 void dfl_jet_zero(dfl_jet *out)
 {
@@ -350,6 +357,22 @@ static void const_one(int n, dfl_jet *out)
     *out = r;
 }
 
+/* A zero jet to the power e != 0 (fn names the caller in the message).
+ * O(s^P)^e = O(s^(P e)): the coefficients below s^ceil(P e) vanish; for an
+ * integer e (powi) P e is an exact integer in double, so ceil keeps it. */
+static dfl_status zero_power(const dfl_jet *a, double e, const char *fn, dfl_jet *out,
+                             dfl_err *err)
+{
+    if (e < 0.0)
+        return dfl_err_set(err, DFL_E_NUMERIC,
+                           "jet %s: zero jet (to order %d) to the negative power %g", fn,
+                           prec(a) - 1, e);
+    dfl_jet r;
+    set_zero(is_exact_zero(a) ? NMAX : (long long)ceil(prec(a) * e), &r);
+    *out = r;
+    return DFL_OK;
+}
+
 dfl_status dfl_jet_powi(const dfl_jet *a, int e, dfl_jet *out, dfl_err *err)
 {
     check(a);
@@ -357,16 +380,7 @@ dfl_status dfl_jet_powi(const dfl_jet *a, int e, dfl_jet *out, dfl_err *err)
         const_one(a->n, out);
         return DFL_OK;
     }
-    if (a->zero) {
-        if (e < 0)
-            return dfl_err_set(err, DFL_E_NUMERIC,
-                               "jet powi: zero jet (to order %d) to the negative power %d",
-                               prec(a) - 1, e);
-        dfl_jet r;
-        set_zero(is_exact_zero(a) ? NMAX : (long long)prec(a) * e, &r);
-        *out = r;
-        return DFL_OK;
-    }
+    if (a->zero) return zero_power(a, e, "powi", out, err);
     long long vout = (long long)a->v * e;
     if (vout > VAL_LIMIT || vout < -VAL_LIMIT)
         return dfl_err_set(err, DFL_E_NUMERIC,
@@ -380,17 +394,7 @@ dfl_status dfl_jet_pow(const dfl_jet *a, double e, dfl_jet *out, dfl_err *err)
     if (!isfinite(e))
         return dfl_err_set(err, DFL_E_NUMERIC, "jet pow: exponent %g is not finite", e);
     if (e == nearbyint(e) && fabs(e) <= VAL_LIMIT) return dfl_jet_powi(a, (int)e, out, err);
-    if (a->zero) {
-        if (e < 0.0)
-            return dfl_err_set(err, DFL_E_NUMERIC,
-                               "jet pow: zero jet (to order %d) to the negative power %g",
-                               prec(a) - 1, e);
-        /* O(s^P)^e = O(s^(P e)): the coefficients below s^ceil(P e) vanish. */
-        dfl_jet r;
-        set_zero(is_exact_zero(a) ? NMAX : (long long)ceil(prec(a) * e), &r);
-        *out = r;
-        return DFL_OK;
-    }
+    if (a->zero) return zero_power(a, e, "pow", out, err);
     if (!(a->c[0] > 0.0))
         return dfl_err_set(err, DFL_E_NUMERIC,
                            "jet pow: leading coefficient %g is not positive (exponent %g)",

@@ -48,18 +48,28 @@ typedef struct dfl_jet {
     double c[DFL_JET_MAX + 1];
 } dfl_jet;
 
+/* DFL_OK if 0 <= K <= DFL_JET_MAX; otherwise DFL_E_INPUT with "jet order K
+ * outside [0, DFL_JET_MAX]" in err (may be NULL).  For callers that take an
+ * order from user input and must reject it rather than let the builders
+ * below clamp it. */
+dfl_status dfl_jet_check_order(int K, dfl_err *err);
+
 /* The exact zero (absorbing, precision DFL_JET_MAX + 1). */
 void dfl_jet_zero(dfl_jet *out);
-/* The constant a, known to absolute order K (0 <= K <= DFL_JET_MAX; K is
- * clamped to that range).  a == 0.0 gives the zero known below s^(K+1)
- * (the exact zero when K == DFL_JET_MAX). */
+
+/* Builders.  The absolute order K is clamped to [0, DFL_JET_MAX]: K < 0
+ * builds as K = 0 and K > DFL_JET_MAX as K = DFL_JET_MAX (never an abort, no
+ * status).  They are for internal use with orders already checked; an order
+ * from input goes through dfl_jet_check_order first. */
+/* The constant a, known to absolute order K.  a == 0.0 gives the zero known
+ * below s^(K+1) (the exact zero when K == DFL_JET_MAX). */
 void dfl_jet_const(double a, int K, dfl_jet *out);
 /* The polynomial a0 + a1 s, known to absolute order K.  If a0 == 0.0 exactly,
  * the valuation is 1. */
 void dfl_jet_linear(double a0, double a1, int K, dfl_jet *out);
 /* The polynomial a[0] + a[1] s + ... + a[m-1] s^(m-1) known to order K
  * (terms beyond K are dropped, leading exact zeros give the valuation).
- * a may be NULL when m == 0. */
+ * m >= 0 and a may be NULL only when m == 0 (asserted: a caller bug). */
 void dfl_jet_poly(const double *a, int m, int K, dfl_jet *out);
 
 void dfl_jet_add(const dfl_jet *a, const dfl_jet *b, dfl_jet *out);

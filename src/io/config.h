@@ -1,10 +1,48 @@
-/* INI configuration with sweeps and typed, checked getters.
+/* INI configuration with includes, sweeps and typed, checked getters.
+ *
+ * Function index (one concern per file, src/io/config_*.c):
+ *   loading        config_parse.c    dfl_cfg_load, dfl_cfg_parse_string
+ *   includes       config_include.c  (the `include` key, see below)
+ *   storage        config_store.c    dfl_cfg_free, dfl_cfg_path, dfl_cfg_has,
+ *                                    dfl_cfg_has_section, dfl_cfg_write
+ *   overrides      config_set.c      dfl_cfg_set
+ *   sweeps         config_sweep.c    dfl_cfg_sweep_axes, dfl_cfg_sweep_points,
+ *                                    dfl_cfg_sweep_axis_name, dfl_cfg_sweep_point,
+ *                                    dfl_cfg_axis_value
+ *   typed getters  config_get.c      dfl_cfg_string/int/double/bool/enum/vec[_opt],
+ *                                    dfl_cfg_points, dfl_cfg_doubles, dfl_cfg_point_dim
+ *   locations      config_where.c    dfl_cfg_where, dfl_cfg_err_at,
+ *                                    dfl_cfg_check_used, dfl_cfg_check_used_in
  *
  * A configuration file is parsed by libinih into (section, key, value, line)
  * entries; `--set section.key=value` overrides are applied on top.  A value
  * containing a comma is a sweep axis: dfl_cfg_sweep_* enumerates the
  * cartesian product of all axes, in file order, last axis fastest, and gives
  * one single-valued dfl_cfg per sweep point.
+ *
+ * Includes.  `include = FILE` in a section [S] makes the keys of FILE's
+ * [shape] section keys of [S], e.g.
+ *
+ *     [S]
+ *     include = ../../shapes/S.ini     # configs/paper/bs04/x.ini -> configs/shapes/S.ini
+ *     order = 3                        # overrides the included order
+ *
+ *   - FILE is resolved against the directory of the including file (an
+ *     absolute FILE is taken as is), so a config reads the same from any
+ *     working directory; for dfl_cfg_parse_string the "file" is its name.
+ *   - Keys written in [S] itself win over included ones, before or after the
+ *     include line; `--set S.key=value` overrides included keys like any key.
+ *   - The included keys stand where the include line stood; dfl_cfg_write
+ *     writes them as plain keys of [S] (no include line), so a resolved
+ *     config.ini reruns on its own.  A getter's message about an included key
+ *     names the shape file's line and the include:
+ *     "S.ini:8: [shape] order (included as [S] at x.ini:40): expected ...".
+ *   - One level only: FILE must hold a non-empty [shape] section and nothing
+ *     else, and may not include another file (so no loops).  One include per
+ *     section; FILE is one name on one line (no sweep, no continuation);
+ *     `--set S.include=...` is refused.  Each of these, a missing or
+ *     unreadable FILE and FILE's own syntax errors are DFL_E_INPUT messages
+ *     naming the including file and line, and FILE's line where it has one.
  *
  * Getters validate type and range and mark the key as used; after a study
  * has read everything it needs, dfl_cfg_check_used() rejects keys nobody
@@ -33,11 +71,15 @@
 
 typedef struct dfl_cfg dfl_cfg;
 
-/* Parses path.  DFL_E_INPUT / DFL_E_IO with "path:line: ..." on failure. */
+/* Parses path and its includes.  DFL_E_INPUT with "path:line: ..." on
+ * failure (DFL_E_NOMEM when out of memory); *out is NULL then. */
 dfl_status dfl_cfg_load(const char *path, dfl_cfg **out, dfl_err *err);
-/* Parses INI text held in memory; name is used in messages. */
+/* Parses INI text held in memory; name is used in messages and as the
+ * "file" that relative includes are resolved against. */
 dfl_status dfl_cfg_parse_string(const char *name, const char *text, dfl_cfg **out, dfl_err *err);
-/* Applies "section.key=value".  The key need not exist in the file. */
+/* Applies "section.key=value".  The key need not exist in the file; an
+ * included key is overridden like any other.  DFL_E_INPUT for a malformed
+ * assignment, an empty value or the key `include`. */
 dfl_status dfl_cfg_set(dfl_cfg *c, const char *assignment, dfl_err *err);
 void dfl_cfg_free(dfl_cfg *c);
 
@@ -122,7 +164,8 @@ dfl_status dfl_cfg_check_used(const dfl_cfg *c, dfl_err *err);
 dfl_status dfl_cfg_check_used_in(const dfl_cfg *c, const char *sec, dfl_err *err);
 
 /* Writes the configuration (single-valued or not) as INI text to path,
- * through a temporary file renamed on success. */
+ * through a temporary file renamed on success: every key as written, set
+ * or included, in entry order, without include lines. */
 dfl_status dfl_cfg_write(const dfl_cfg *c, const char *path, dfl_err *err);
 
 #endif

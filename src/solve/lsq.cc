@@ -5,11 +5,8 @@
 // C++ surface out of the rest of dflab: no exception and no log line may
 // cross the extern "C" boundary.
 
-// core/status.h has no extern "C" guard of its own (lsq.h includes it
-// outside its guard); include it with C linkage first.
-extern "C" {
-#include "core/status.h"
-}
+// lsq.h includes core/status.h, which carries its own extern "C" guard, so
+// the C API keeps C linkage here without a wrapper.
 #include "solve/lsq.h"
 
 #include <ceres/ceres.h>

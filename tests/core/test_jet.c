@@ -5,6 +5,7 @@
  * long-double finite differences (Fornberg weights) at low orders. */
 #include <criterion/criterion.h>
 
+#include <limits.h>
 #include <math.h>
 #include <string.h>
 
@@ -776,4 +777,50 @@ Test(jet, errors)
     OK(dfl_jet_powi(&s, -7, &s7, &e_));
     OK(dfl_jet_pow(&s7, -1.0 / 7.0, &out, &e_));
     cr_assert(out.v == 1 && out.c[0] == 1.0);
+}
+
+/* Builders clamp K to [0, DFL_JET_MAX] (jet.h): on both sides of each limit
+ * the result equals the one built at the limit itself, and no call aborts. */
+Test(jet, builders_clamp_order)
+{
+    const double p[3] = {1.5, -2.0, 0.25};
+    dfl_jet r, want;
+    /* the limits themselves: order 0 keeps one term, DFL_JET_MAX all 25 */
+    dfl_jet_poly(p, 3, 0, &r);
+    cr_assert(r.v == 0 && r.n == 1 && r.c[0] == 1.5 && dfl_jet_order(&r) == 0);
+    dfl_jet_poly(p, 3, DFL_JET_MAX, &r);
+    cr_assert(r.v == 0 && r.n == DFL_JET_MAX + 1 && r.c[1] == -2.0 && r.c[2] == 0.25);
+    dfl_jet_linear(0.0, -2.0, DFL_JET_MAX, &r);
+    cr_assert(r.v == 1 && r.n == DFL_JET_MAX && dfl_jet_order(&r) == DFL_JET_MAX);
+    const int K[] = {-1, -7, INT_MIN, DFL_JET_MAX + 1, 1000, INT_MAX};
+    for (int i = 0; i < 6; i++) {
+        const int L = K[i] < 0 ? 0 : DFL_JET_MAX;
+        dfl_jet_poly(p, 3, K[i], &r);
+        dfl_jet_poly(p, 3, L, &want);
+        cr_assert(same(&r, &want), "poly K = %d", K[i]);
+        dfl_jet_const(1.5, K[i], &r);
+        dfl_jet_const(1.5, L, &want);
+        cr_assert(same(&r, &want), "const K = %d", K[i]);
+        dfl_jet_linear(0.0, -2.0, K[i], &r);
+        dfl_jet_linear(0.0, -2.0, L, &want);
+        cr_assert(same(&r, &want), "linear K = %d", K[i]);
+    }
+    /* the zero: known below s^1 at K <= 0, the exact zero at K >= DFL_JET_MAX */
+    dfl_jet_const(0.0, -3, &r);
+    cr_assert(r.zero && dfl_jet_order(&r) == 0);
+    dfl_jet_const(0.0, DFL_JET_MAX + 1, &r);
+    cr_assert(r.zero && r.v == 0 && r.n == DFL_JET_MAX + 1);
+}
+
+/* The rejecting form for orders that come from input. */
+Test(jet, check_order_rejects_outside_range)
+{
+    dfl_err err;
+    cr_assert_eq(dfl_jet_check_order(0, &err), DFL_OK);
+    cr_assert_eq(dfl_jet_check_order(DFL_JET_MAX, &err), DFL_OK);
+    cr_assert_eq(dfl_jet_check_order(-1, &err), DFL_E_INPUT);
+    cr_assert(strstr(err.msg, "jet order -1 outside [0, 24]"), "%s", err.msg);
+    cr_assert_eq(dfl_jet_check_order(DFL_JET_MAX + 1, &err), DFL_E_INPUT);
+    cr_assert(strstr(err.msg, "jet order 25 outside [0, 24]"), "%s", err.msg);
+    cr_assert_eq(dfl_jet_check_order(INT_MIN, NULL), DFL_E_INPUT);
 }

@@ -7,7 +7,6 @@
 #include <criterion/criterion.h>
 
 #include <Imath/half.h>
-#include <dirent.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -18,45 +17,9 @@
 #include <zlib.h>
 
 #include "io/exr.h"
+#include "util/tmpdir.h"
 
 enum { W = 37, H = 45 }; /* H > 16: several ZIP chunks, the last one partial */
-
-static void make_tmpdir(char *dir, size_t size)
-{
-    snprintf(dir, size, "/tmp/dflab_exr_XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
-}
-
-static int count_entries(const char *dir)
-{
-    DIR *d = opendir(dir);
-    cr_assert_not_null(d);
-    int n = 0;
-    struct dirent *e;
-    while ((e = readdir(d)))
-        if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) n++;
-    closedir(d);
-    return n;
-}
-
-static void remove_tree(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (!d) return;
-    struct dirent *e;
-    char p[4096];
-    while ((e = readdir(d))) {
-        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
-        snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
-        struct stat st;
-        if (stat(p, &st) == 0 && S_ISDIR(st.st_mode))
-            remove_tree(p);
-        else
-            remove(p);
-    }
-    closedir(d);
-    rmdir(dir);
-}
 
 /* Three smooth, distinguishable patterns; channel c of pixel (x, y). */
 static float pattern(int c, int x, int y)
@@ -79,6 +42,34 @@ static float *make_channel(int c)
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) d[(size_t)y * W + x] = pattern(c, x, y);
     return d;
+}
+
+/* Writes the three patterns to <new tmpdir>/img.exr (HALF storage if half),
+ * the six special values over the first pixels of channel sc; d receives
+ * the channels (caller frees).  Only the image may be left in dir. */
+static void write_patterns(char *dir, size_t dsize, char *path, size_t psize, int sc,
+                           const float special[6], int half, float *d[3])
+{
+    tmpdir_file(dir, dsize, "img.exr", path, psize);
+    for (int c = 0; c < 3; c++) d[c] = make_channel(c);
+    memcpy(d[sc], special, 6 * sizeof *special);
+    dfl_exr_channel ch[3] = {{NAMES[0], d[0]}, {NAMES[1], d[1]}, {NAMES[2], d[2]}};
+    dfl_err err;
+    dfl_err_clear(&err);
+    cr_assert_eq(dfl_exr_write(path, W, H, ch, 3, half, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(tmpdir_count(dir), 1, "temporary file left behind");
+}
+
+/* Channel name of a W x H image through the library's decoder (caller frees). */
+static float *read_back(const char *path, const char *name)
+{
+    int w = 0, h = 0;
+    float *r = NULL;
+    dfl_err err;
+    cr_assert_eq(dfl_exr_read_channel(path, name, &w, &h, &r, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(w, W);
+    cr_assert_eq(h, H);
+    return r;
 }
 
 /* --- Independent parser of the written file ---------------------------- */
@@ -235,31 +226,29 @@ static void check_exrheader(const char *path, const char *type_name)
     cr_assert_not_null(strstr(out, "\"scanlineimage\""), "%s", out);
 }
 
+/* End of a pattern test: exrheader's view of the header, then frees raw
+ * and d and removes dir. */
+static void finish_patterns(raw_exr *raw, const char *path, const char *type_name, float *d[3],
+                            const char *dir)
+{
+    raw_exr_free(raw);
+    check_exrheader(path, type_name);
+    for (int c = 0; c < 3; c++) free(d[c]);
+    tmpdir_remove(dir);
+}
+
 /* --- tests ---------------------------------------------------------------- */
 
 Test(exr, float_roundtrip_is_exact)
 {
     char dir[64], path[128];
-    make_tmpdir(dir, sizeof dir);
-    snprintf(path, sizeof path, "%s/img.exr", dir);
     float *d[3];
-    for (int c = 0; c < 3; c++) d[c] = make_channel(c);
     /* special values must survive a lossless float file bit for bit */
-    float special[6] = {-0.0f, 1e-40f, INFINITY, -INFINITY, NAN, 3.4e38f};
-    memcpy(d[2], special, sizeof special);
-    dfl_exr_channel ch[3] = {{NAMES[0], d[0]}, {NAMES[1], d[1]}, {NAMES[2], d[2]}};
-    dfl_err err;
-    dfl_err_clear(&err);
-    cr_assert_eq(dfl_exr_write(path, W, H, ch, 3, 0, &err), DFL_OK, "%s", err.msg);
-    cr_assert_eq(count_entries(dir), 1, "temporary file left behind");
+    const float special[6] = {-0.0f, 1e-40f, INFINITY, -INFINITY, NAN, 3.4e38f};
+    write_patterns(dir, sizeof dir, path, sizeof path, 2, special, 0, d);
 
     for (int c = 0; c < 3; c++) {
-        int w = 0, h = 0;
-        float *r = NULL;
-        cr_assert_eq(dfl_exr_read_channel(path, NAMES[c], &w, &h, &r, &err), DFL_OK, "%s",
-                     err.msg);
-        cr_assert_eq(w, W);
-        cr_assert_eq(h, H);
+        float *r = read_back(path, NAMES[c]);
         cr_assert_eq(memcmp(r, d[c], (size_t)W * H * sizeof(float)), 0, "channel %s differs",
                      NAMES[c]);
         free(r);
@@ -282,10 +271,7 @@ Test(exr, float_roundtrip_is_exact)
         cr_assert_eq(memcmp(raw.pix[c], d[src], (size_t)W * H * sizeof(float)), 0,
                      "raw channel %s differs", SORTED[c]);
     }
-    raw_exr_free(&raw);
-    check_exrheader(path, "32-bit floating-point");
-    for (int c = 0; c < 3; c++) free(d[c]);
-    remove_tree(dir);
+    finish_patterns(&raw, path, "32-bit floating-point", d, dir);
 }
 
 /* Half storage: each value must be the round-to-nearest-even half of the
@@ -295,24 +281,14 @@ Test(exr, float_roundtrip_is_exact)
 Test(exr, half_roundtrip_within_half_rounding)
 {
     char dir[64], path[128];
-    make_tmpdir(dir, sizeof dir);
-    snprintf(path, sizeof path, "%s/img.exr", dir);
     float *d[3];
-    for (int c = 0; c < 3; c++) d[c] = make_channel(c);
-    float special[6] = {1e6f, -1e6f, 65504.0f, 3e-6f, -0.0f, 6.2e-5f};
-    memcpy(d[1], special, sizeof special);
-    dfl_exr_channel ch[3] = {{NAMES[0], d[0]}, {NAMES[1], d[1]}, {NAMES[2], d[2]}};
-    dfl_err err;
-    cr_assert_eq(dfl_exr_write(path, W, H, ch, 3, 1, &err), DFL_OK, "%s", err.msg);
+    const float special[6] = {1e6f, -1e6f, 65504.0f, 3e-6f, -0.0f, 6.2e-5f};
+    write_patterns(dir, sizeof dir, path, sizeof path, 1, special, 1, d);
 
     raw_exr raw;
     raw_exr_read(path, &raw);
     for (int c = 0; c < 3; c++) {
-        int w, h;
-        float *r = NULL;
-        cr_assert_eq(dfl_exr_read_channel(path, NAMES[c], &w, &h, &r, &err), DFL_OK, "%s",
-                     err.msg);
-        cr_assert(w == W && h == H);
+        float *r = read_back(path, NAMES[c]);
         int fc = -1;
         for (int k = 0; k < 3; k++)
             if (!strcmp(raw.names[k], NAMES[c])) fc = k;
@@ -336,18 +312,14 @@ Test(exr, half_roundtrip_within_half_rounding)
     }
     cr_assert(isinf(raw.pix[1][0]) && raw.pix[1][0] > 0);
     cr_assert_eq(raw.pix[1][2], 65504.0f);
-    raw_exr_free(&raw);
-    check_exrheader(path, "16-bit floating-point");
-    for (int c = 0; c < 3; c++) free(d[c]);
-    remove_tree(dir);
+    finish_patterns(&raw, path, "16-bit floating-point", d, dir);
 }
 
 /* 1x1 and 1-row images: the smallest chunks. */
 Test(exr, tiny_images)
 {
     char dir[64], path[128];
-    make_tmpdir(dir, sizeof dir);
-    snprintf(path, sizeof path, "%s/t.exr", dir);
+    tmpdir_file(dir, sizeof dir, "t.exr", path, sizeof path);
     float one = -2.75f, row[5] = {1, 2, 3, 4, 5};
     dfl_exr_channel c1 = {"value", &one}, c5 = {"value", row};
     dfl_err err;
@@ -362,14 +334,13 @@ Test(exr, tiny_images)
     cr_assert(w == 1 && h == 5);
     for (int i = 0; i < 5; i++) cr_assert_eq(r[i], row[i]); /* small integers are exact halves */
     free(r);
-    remove_tree(dir);
+    tmpdir_remove(dir);
 }
 
 Test(exr, read_errors)
 {
     char dir[64], path[128];
-    make_tmpdir(dir, sizeof dir);
-    snprintf(path, sizeof path, "%s/none.exr", dir);
+    tmpdir_file(dir, sizeof dir, "none.exr", path, sizeof path);
     dfl_err err;
     int w = 7, h = 7;
     float *r = (float *)&w;
@@ -390,47 +361,38 @@ Test(exr, read_errors)
     fclose(fp);
     cr_assert_eq(dfl_exr_read_channel(path, "value", &w, &h, &r, &err), DFL_E_IO);
     cr_assert(r == NULL);
-    remove_tree(dir);
+    tmpdir_remove(dir);
 }
 
-Test(exr, missing_directory_is_io_error_and_leaves_nothing)
+/* Writes a 2 x 2 image to <tmpdir>/name (a directory made there first when
+ * target_is_dir) and expects an I/O error that leaves `left` entries. */
+static void expect_io_failure(const char *name, int target_is_dir, int left)
 {
     char dir[64], path[160];
-    make_tmpdir(dir, sizeof dir);
-    snprintf(path, sizeof path, "%s/no/such/dir/img.exr", dir);
+    tmpdir_file(dir, sizeof dir, name, path, sizeof path);
+    if (target_is_dir) cr_assert_eq(mkdir(path, 0700), 0);
     float px[4] = {1, 2, 3, 4};
     dfl_exr_channel ch = {"value", px};
     dfl_err err;
     dfl_err_clear(&err);
-    cr_assert_eq(dfl_exr_write(path, 2, 2, &ch, 1, 0, &err), DFL_E_IO);
-    cr_assert_eq(err.code, DFL_E_IO);
-    cr_assert_not_null(strstr(err.msg, path), "message '%s' does not name the path", err.msg);
-    cr_assert_eq(count_entries(dir), 0);
-    remove_tree(dir);
+    tmpdir_expect_io_error(dfl_exr_write(path, 2, 2, &ch, 1, 0, &err), &err, path, dir, left);
+    tmpdir_remove(dir);
+}
+
+Test(exr, missing_directory_is_io_error_and_leaves_nothing)
+{
+    expect_io_failure("no/such/dir/img.exr", 0, 0);
 }
 
 /* The target is a directory: the image is written to the temporary name,
- * the rename fails, and the temporary must be removed. */
-Test(exr, failed_rename_removes_temporary)
-{
-    char dir[64], path[128];
-    make_tmpdir(dir, sizeof dir);
-    snprintf(path, sizeof path, "%s/target.exr", dir);
-    cr_assert_eq(mkdir(path, 0700), 0);
-    float px[4] = {1, 2, 3, 4};
-    dfl_exr_channel ch = {"value", px};
-    dfl_err err;
-    cr_assert_eq(dfl_exr_write(path, 2, 2, &ch, 1, 0, &err), DFL_E_IO);
-    cr_assert_not_null(strstr(err.msg, path));
-    cr_assert_eq(count_entries(dir), 1, "only the directory itself may remain");
-    remove_tree(dir);
-}
+ * the rename fails, and the temporary must be removed (only the directory
+ * itself may remain). */
+Test(exr, failed_rename_removes_temporary) { expect_io_failure("target.exr", 1, 1); }
 
 Test(exr, invalid_input_rejected_without_file)
 {
     char dir[64], path[128];
-    make_tmpdir(dir, sizeof dir);
-    snprintf(path, sizeof path, "%s/bad.exr", dir);
+    tmpdir_file(dir, sizeof dir, "bad.exr", path, sizeof path);
     float px[4] = {1, 2, 3, 4};
     dfl_exr_channel ch = {"value", px};
     dfl_exr_channel dup[2] = {{"value", px}, {"value", px}};
@@ -443,16 +405,15 @@ Test(exr, invalid_input_rejected_without_file)
     cr_assert_eq(dfl_exr_write(path, 2, 2, dup, 2, 0, &err), DFL_E_INPUT);
     cr_assert_eq(dfl_exr_write(path, 2, 2, &noname, 1, 0, &err), DFL_E_INPUT);
     cr_assert_eq(dfl_exr_write(path, 2, 2, &nodata, 1, 0, &err), DFL_E_INPUT);
-    cr_assert_eq(count_entries(dir), 0);
-    remove_tree(dir);
+    cr_assert_eq(tmpdir_count(dir), 0);
+    tmpdir_remove(dir);
 }
 
 /* Channel names longer than 31 bytes need the long-name flag. */
 Test(exr, long_channel_name)
 {
     char dir[64], path[128];
-    make_tmpdir(dir, sizeof dir);
-    snprintf(path, sizeof path, "%s/long.exr", dir);
+    tmpdir_file(dir, sizeof dir, "long.exr", path, sizeof path);
     const char *name = "a_channel_name_longer_than_31_bytes_for_sure";
     float px[6] = {1, 2, 3, 4, 5, 6};
     dfl_exr_channel ch[2] = {{name, px}, {"b", px}};
@@ -463,5 +424,5 @@ Test(exr, long_channel_name)
     cr_assert_eq(dfl_exr_read_channel(path, name, &w, &h, &r, &err), DFL_OK, "%s", err.msg);
     cr_assert(w == 3 && h == 2 && memcmp(r, px, sizeof px) == 0);
     free(r);
-    remove_tree(dir);
+    tmpdir_remove(dir);
 }

@@ -1,7 +1,6 @@
 #include "util/e2e_util.h"
 
 #include <criterion/criterion.h>
-#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,23 +8,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "io/config.h"
+#include "util/tmpdir.h"
 
-void e2e_tmpdir(char *buf, size_t size)
-{
-    snprintf(buf, size, "/tmp/dflab-test-XXXXXX");
-    if (!mkdtemp(buf)) buf[0] = '\0';
-}
+void e2e_tmpdir(char *buf, size_t size) { tmpdir_new(buf, size); }
 
 const char *e2e_write(const char *dir, const char *name, const char *text, char *buf, size_t size)
 {
-    snprintf(buf, size, "%s/%s", dir, name);
-    FILE *fp = fopen(buf, "w");
-    if (fp) {
-        fputs(text, fp);
-        fclose(fp);
-    }
-    return buf;
+    return tmpdir_write(dir, name, text, buf, size);
 }
 
 int e2e_dflab(const char *dir, const char *args)
@@ -55,17 +44,7 @@ char *e2e_slurp(const char *path)
     return s;
 }
 
-int e2e_count_entries(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (!d) return -1;
-    int n = 0;
-    struct dirent *de;
-    while ((de = readdir(d)))
-        if (strcmp(de->d_name, ".") && strcmp(de->d_name, "..")) n++;
-    closedir(d);
-    return n;
-}
+int e2e_count_entries(const char *dir) { return tmpdir_count(dir); }
 
 const char *e2e_python(void)
 {
@@ -175,7 +154,6 @@ void e2e_run_ok(const char *cfg, const char *extra, char *out, size_t size)
 {
     char dir[256];
     e2e_tmpdir(dir, sizeof dir);
-    cr_assert(dir[0], "no temporary directory");
     const int rc = e2e_run_cfg(dir, cfg, extra, out, size);
     char *msg = e2e_err_text(dir);
     cr_assert_eq(rc, 0, "dflab run %s %s failed (%d): %s", cfg, extra ? extra : "", rc,
@@ -193,28 +171,4 @@ void e2e_run_expect_fail(const char *cfg, const char *extra, const char *want)
     cr_expect(msg && strstr(msg, want), "%s: message '%s'", extra, msg);
     cr_expect_eq(e2e_count_entries(out), -1, "%s left %s behind", extra, out);
     free(msg);
-}
-
-void e2e_expect_same_section(const char *cfg, const char *sec, const char *shape_file,
-                             const char *const *keys, int nkeys, int nrequired)
-{
-    dfl_cfg *a, *b;
-    dfl_err err;
-    cr_assert_eq(dfl_cfg_load(cfg, &a, &err), DFL_OK, "%s", err.msg);
-    cr_assert_eq(dfl_cfg_load(shape_file, &b, &err), DFL_OK, "%s", err.msg);
-    for (int k = 0; k < nkeys; k++) {
-        const bool ha = dfl_cfg_has(a, sec, keys[k]), hb = dfl_cfg_has(b, "shape", keys[k]);
-        if (k < nrequired)
-            cr_assert(ha && hb, "[%s] %s missing in %s or [shape] of %s", sec, keys[k], cfg,
-                      shape_file);
-        cr_expect_eq(ha, hb, "[%s] %s present in one of %s, %s only", sec, keys[k], cfg,
-                     shape_file);
-        if (!ha || !hb) continue;
-        const char *va, *vb;
-        cr_assert_eq(dfl_cfg_string(a, sec, keys[k], &va, &err), DFL_OK, "%s", err.msg);
-        cr_assert_eq(dfl_cfg_string(b, "shape", keys[k], &vb, &err), DFL_OK, "%s", err.msg);
-        cr_expect_str_eq(va, vb, "[%s] %s of %s differs from %s", sec, keys[k], cfg, shape_file);
-    }
-    dfl_cfg_free(a);
-    dfl_cfg_free(b);
 }

@@ -7,16 +7,19 @@
 
 #include <stddef.h>
 
-/* A fresh empty directory under /tmp; path into buf. */
+/* tmpdir_new (util/tmpdir.h): a fresh empty directory under /tmp, path into
+ * buf; fatal assertion when it cannot be made. */
 void e2e_tmpdir(char *buf, size_t size);
-/* Writes text to dir/name; returns the path in buf. */
+/* tmpdir_write: writes text to dir/name (fatal assertion on failure);
+ * returns the path in buf. */
 const char *e2e_write(const char *dir, const char *name, const char *text, char *buf, size_t size);
 /* Runs `dflab <args>` with stdout and stderr captured into dir/out.txt and
  * dir/err.txt; returns the exit status (or -1). */
 int e2e_dflab(const char *dir, const char *args);
 /* Reads a whole file into a malloc'ed string (NULL if unreadable). */
 char *e2e_slurp(const char *path);
-/* Number of directory entries (excluding . and ..); -1 if dir is absent. */
+/* tmpdir_count: number of directory entries (excluding . and ..); -1 if
+ * dir is absent. */
 int e2e_count_entries(const char *dir);
 /* Path of the python interpreter with numpy/vtk. */
 const char *e2e_python(void);
@@ -42,11 +45,4 @@ void e2e_run_ok(const char *cfg, const char *extra, char *out, size_t size);
  * rejected; expects (Criterion, non-fatal) exit status 2, `want` in stderr
  * and no results directory left behind. */
 void e2e_run_expect_fail(const char *cfg, const char *extra, const char *want);
-/* Compares [sec] of config file cfg with [shape] of shape_file, key by key
- * (Criterion): the first nrequired keys must be present in both (fatal);
- * every key must be present in both or in neither; present values must be
- * equal as strings. */
-void e2e_expect_same_section(const char *cfg, const char *sec, const char *shape_file,
-                             const char *const *keys, int nkeys, int nrequired);
-
 #endif

@@ -144,12 +144,6 @@ Test(e2e_bs04_bulging, collinear_closed_forms_and_bounds, .timeout = 120)
     dfl_cfg_free(wc);
 }
 
-Test(e2e_bs04_bulging, W_section_equals_the_shape_config)
-{
-    const char *keys[3] = {"kind", "order", "control"};
-    e2e_expect_same_section(CFG, "W", "configs/shapes/W.ini", keys, 3, 3);
-}
-
 Test(e2e_bs04_bulging, bad_input_exits_2_without_files)
 {
     const char *sets[][2] = {

@@ -112,13 +112,6 @@ Test(e2e_bs04_poly, study_rows_files_and_growth, .timeout = 300)
     dfl_bspline_free(&W);
 }
 
-Test(e2e_bs04_poly, study_sections_equal_the_shape_configs)
-{
-    const char *keys[3] = {"kind", "order", "control"};
-    e2e_expect_same_section(CFG, "S", "configs/shapes/S.ini", keys, 3, 3);
-    e2e_expect_same_section(CFG, "W", "configs/shapes/W.ini", keys, 3, 3);
-}
-
 /* every shipped shape config builds through the [shape] dispatcher */
 Test(e2e_bs04_poly, shipped_shape_configs_build)
 {

@@ -112,12 +112,6 @@ Test(e2e_bs04_scurve, curve_bound_bands_and_offsets, .timeout = 120)
     dfl_cfg_free(cfg);
 }
 
-Test(e2e_bs04_scurve, S_section_equals_the_shape_config)
-{
-    const char *keys[3] = {"kind", "order", "control"};
-    e2e_expect_same_section(CFG, "S", "configs/shapes/S.ini", keys, 3, 3);
-}
-
 Test(e2e_bs04_scurve, bad_input_exits_2_without_files)
 {
     const char *sets[][2] = {

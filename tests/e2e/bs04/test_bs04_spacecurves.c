@@ -91,13 +91,6 @@ Test(e2e_bs04_spacecurves, counts_and_slice_metrics, .timeout = 60)
     cr_expect_eq(e2e_count_entries(out), 3 + 2 * (1 + 2 + 4));
 }
 
-Test(e2e_bs04_spacecurves, sections_equal_the_shape_configs)
-{
-    const char *keys[] = {"kind", "order", "control", "closed", "knots"};
-    e2e_expect_same_section(CFG, "space1", "configs/shapes/space1.ini", keys, 5, 0);
-    e2e_expect_same_section(CFG, "space2", "configs/shapes/space2.ini", keys, 5, 0);
-}
-
 Test(e2e_bs04_spacecurves, bad_input)
 {
     char msg[2048];

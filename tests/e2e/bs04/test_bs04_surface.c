@@ -96,13 +96,6 @@ Test(e2e_bs04_surface, coarse_mesh_metrics, .timeout = 60)
     cr_expect_eq(e2e_count_entries(out), 6);
 }
 
-Test(e2e_bs04_surface, section_equals_the_shape_config)
-{
-    const char *keys[] = {"kind", "order_u", "order_v", "nu", "nv", "control", "knots_u",
-                          "knots_v"};
-    e2e_expect_same_section(CFG, "surface", "configs/shapes/surface.ini", keys, 8, 0);
-}
-
 Test(e2e_bs04_surface, bad_input)
 {
     char msg[2048];

@@ -1,0 +1,143 @@
+/* The configuration's storage: a flat list of entries in file order, and
+ * the resolved INI text written from it.  Lists hold tens of keys, so
+ * linear lookup is simpler than a hash and fast enough. */
+#include <ctype.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/atomic.h"
+#include "io/config_impl.h"
+
+dfl_cfg *dfl_cfgi_new(const char *name)
+{
+    dfl_cfg *c = calloc(1, sizeof *c);
+    if (!c) return NULL;
+    c->path = strdup(name);
+    if (!c->path) {
+        free(c);
+        return NULL;
+    }
+    return c;
+}
+
+static dfl_status nomem(dfl_err *err)
+{
+    return dfl_err_set(err, DFL_E_NOMEM, "out of memory reading config");
+}
+
+dfl_status dfl_cfgi_insert(dfl_cfg *c, size_t at, const char *sec, const char *key,
+                           const char *value, const char *file, int line, const char *via,
+                           dfl_err *err)
+{
+    if (c->n == c->cap) {
+        size_t cap = c->cap ? 2 * c->cap : 32;
+        dfl_cfg_entry *e = realloc(c->e, cap * sizeof *e);
+        if (!e) return nomem(err);
+        c->e = e;
+        unsigned char *u = realloc(c->used, cap);
+        if (!u) return nomem(err);
+        c->used = u;
+        c->cap = cap;
+    }
+    dfl_cfg_entry en = {strdup(sec), strdup(key), strdup(value), strdup(file), line,
+                        via ? strdup(via) : NULL};
+    if (!en.sec || !en.key || !en.value || !en.file || (via && !en.via)) {
+        free(en.sec), free(en.key), free(en.value), free(en.file), free(en.via);
+        return nomem(err);
+    }
+    memmove(c->e + at + 1, c->e + at, (c->n - at) * sizeof *c->e);
+    memmove(c->used + at + 1, c->used + at, c->n - at);
+    c->e[at] = en;
+    c->used[at] = 0;
+    c->n++;
+    return DFL_OK;
+}
+
+dfl_status dfl_cfgi_add(dfl_cfg *c, const char *sec, const char *key, const char *value,
+                        const char *file, int line, const char *via, dfl_err *err)
+{
+    return dfl_cfgi_insert(c, c->n, sec, key, value, file, line, via, err);
+}
+
+ssize_t dfl_cfgi_find(const dfl_cfg *c, const char *sec, const char *key)
+{
+    for (size_t i = 0; i < c->n; i++)
+        if (strcmp(c->e[i].sec, sec) == 0 && strcmp(c->e[i].key, key) == 0) return (ssize_t)i;
+    return -1;
+}
+
+dfl_status dfl_cfgi_set_value(dfl_cfg_entry *en, const char *value, const char *file, int line,
+                              dfl_err *err)
+{
+    char *nv = strdup(value), *nf = strdup(file);
+    if (!nv || !nf) {
+        free(nv), free(nf);
+        return nomem(err);
+    }
+    free(en->value);
+    free(en->file);
+    free(en->via);
+    en->value = nv;
+    en->file = nf;
+    en->line = line;
+    en->via = NULL;
+    return DFL_OK;
+}
+
+char *dfl_cfgi_trim(char *s)
+{
+    while (isspace((unsigned char)*s)) s++;
+    size_t n = strlen(s);
+    while (n > 0 && isspace((unsigned char)s[n - 1])) s[--n] = '\0';
+    return s;
+}
+
+void dfl_cfg_free(dfl_cfg *c)
+{
+    if (!c) return;
+    for (size_t i = 0; i < c->n; i++) {
+        free(c->e[i].sec);
+        free(c->e[i].key);
+        free(c->e[i].value);
+        free(c->e[i].file);
+        free(c->e[i].via);
+    }
+    free(c->e);
+    free(c->used);
+    dfl_cfgi_free_axes(c);
+    free(c->path);
+    free(c);
+}
+
+const char *dfl_cfg_path(const dfl_cfg *c) { return c->path; }
+
+bool dfl_cfg_has(const dfl_cfg *c, const char *sec, const char *key)
+{
+    return dfl_cfgi_find(c, sec, key) >= 0;
+}
+
+bool dfl_cfg_has_section(const dfl_cfg *c, const char *sec)
+{
+    for (size_t i = 0; i < c->n; i++)
+        if (strcmp(c->e[i].sec, sec) == 0) return true;
+    return false;
+}
+
+/* Included keys are written as the section's own: the file reruns without
+ * the shape files it was made from. */
+dfl_status dfl_cfg_write(const dfl_cfg *c, const char *path, dfl_err *err)
+{
+    dfl_atomic_file af;
+    dfl_status st = dfl_atomic_open(path, &af, err);
+    if (st != DFL_OK) return st;
+    fprintf(af.fp, "# resolved configuration of %s\n", c->path);
+    const char *cur = NULL;
+    for (size_t i = 0; i < c->n; i++) {
+        if (!cur || strcmp(cur, c->e[i].sec) != 0) {
+            cur = c->e[i].sec;
+            fprintf(af.fp, "%s[%s]\n", i ? "\n" : "", cur);
+        }
+        fprintf(af.fp, "%s = %s\n", c->e[i].key, c->e[i].value);
+    }
+    return dfl_atomic_commit(&af, err);
+}

@@ -1,0 +1,76 @@
+/* Locations and the messages built on them.  Every config message starts
+ * with where the key was written, so that a user can go to it: the file and
+ * line, the --set that gave it, or for an included key the shape file's
+ * line and the include that brought it. */
+#include <stdio.h>
+#include <string.h>
+
+#include "io/config_impl.h"
+
+void dfl_cfgi_where(const dfl_cfg_entry *en, char *buf, size_t size)
+{
+    if (en->via)
+        snprintf(buf, size, "%s:%d: [shape] %s (included as [%s] at %s)", en->file, en->line,
+                 en->key, en->sec, en->via);
+    else if (en->line > 0)
+        snprintf(buf, size, "%s:%d: [%s] %s", en->file, en->line, en->sec, en->key);
+    else
+        snprintf(buf, size, "%s %s.%s", en->file, en->sec, en->key);
+}
+
+const char *dfl_cfg_where(const dfl_cfg *c, const char *sec, const char *key, char *buf,
+                          size_t size)
+{
+    ssize_t i = dfl_cfgi_find(c, sec, key);
+    if (i >= 0)
+        dfl_cfgi_where(&c->e[i], buf, size);
+    else
+        snprintf(buf, size, "%s: [%s] %s", c->path, sec, key);
+    return buf;
+}
+
+dfl_status dfl_cfg_err_at(const dfl_cfg *c, const char *sec, const char *key, dfl_status st,
+                          dfl_err *err)
+{
+    char w[1024];
+    dfl_cfg_where(c, sec, key, w, sizeof w);
+    dfl_err_prefix(err, "%s", w);
+    return st;
+}
+
+dfl_status dfl_cfgi_missing(const dfl_cfg *c, const char *sec, const char *key,
+                            const char *expect, dfl_err *err)
+{
+    return dfl_err_set(err, DFL_E_INPUT, "%s: [%s] %s: missing key (expected %s)", c->path, sec,
+                       key, expect);
+}
+
+dfl_status dfl_cfgi_bad(const dfl_cfg_entry *en, const char *expect, dfl_err *err)
+{
+    char w[1024];
+    dfl_cfgi_where(en, w, sizeof w);
+    return dfl_err_set(err, DFL_E_INPUT, "%s: expected %s, got '%.200s'", w, expect, en->value);
+}
+
+/* The first unread key of section sec (any section when sec is NULL). */
+static dfl_status first_unused(const dfl_cfg *c, const char *sec, const char *what,
+                               dfl_err *err)
+{
+    for (size_t i = 0; i < c->n; i++) {
+        if (c->used[i] || (sec && strcmp(c->e[i].sec, sec) != 0)) continue;
+        char w[1024];
+        dfl_cfgi_where(&c->e[i], w, sizeof w);
+        return dfl_err_set(err, DFL_E_INPUT, "%s: %s", w, what);
+    }
+    return DFL_OK;
+}
+
+dfl_status dfl_cfg_check_used(const dfl_cfg *c, dfl_err *err)
+{
+    return first_unused(c, NULL, "unknown key (not used by this study)", err);
+}
+
+dfl_status dfl_cfg_check_used_in(const dfl_cfg *c, const char *sec, dfl_err *err)
+{
+    return first_unused(c, sec, "unknown key", err);
+}

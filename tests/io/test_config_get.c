@@ -1,0 +1,113 @@
+/* Tests for src/io/config_get.c: typed getters, their ranges and defaults. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/config.h"
+#include "util/config_util.h"
+
+Test(config, typed_getters)
+{
+    dfl_cfg *c = cfgu_parse("[a]\ni = 42\nd = -1.5e-3\nb = yes\ne = strip\n"
+                       "v = 1 2 3\np = 0 0; 1 0.5; 2 1;\nl = 0 0 0 1 1 1\n");
+    dfl_err err;
+    long i;
+    double d, v[3];
+    bool b;
+    int e;
+    static const char *const names[] = {"disk", "strip"};
+    cr_assert_eq(dfl_cfg_int(c, "a", "i", 0, 100, &i, &err), DFL_OK);
+    cr_expect_eq(i, 42);
+    cr_assert_eq(dfl_cfg_double(c, "a", "d", -1, 1, &d, &err), DFL_OK);
+    cr_expect_eq(d, -1.5e-3);
+    cr_assert_eq(dfl_cfg_bool(c, "a", "b", &b, &err), DFL_OK);
+    cr_expect(b);
+    cr_assert_eq(dfl_cfg_enum(c, "a", "e", names, 2, &e, &err), DFL_OK);
+    cr_expect_eq(e, 1);
+    cr_assert_eq(dfl_cfg_vec(c, "a", "v", 3, v, &err), DFL_OK);
+    cr_expect(v[0] == 1 && v[1] == 2 && v[2] == 3);
+    double *pts;
+    size_t n;
+    cr_assert_eq(dfl_cfg_points(c, "a", "p", 2, 2, &pts, &n, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(n, 3);
+    cr_expect(pts[2] == 1 && pts[3] == 0.5 && pts[5] == 1);
+    free(pts);
+    double *l;
+    cr_assert_eq(dfl_cfg_doubles(c, "a", "l", 2, &l, &n, &err), DFL_OK);
+    cr_expect_eq(n, 6);
+    free(l);
+    cr_expect_eq(dfl_cfg_check_used(c, &err), DFL_OK, "%s", err.msg);
+    /* defaults do not invent keys */
+    cr_assert_eq(dfl_cfg_int_opt(c, "a", "zz", 7, 0, 9, &i, &err), DFL_OK);
+    cr_expect_eq(i, 7);
+    dfl_cfg_free(c);
+}
+
+Test(config, rejects_non_finite)
+{
+    dfl_cfg *c = cfgu_parse("[a]\nx = nan\ny = inf\nz = 1e999\nv = 1 nan\n");
+    dfl_err err;
+    double d, v[2];
+    cr_expect_eq(dfl_cfg_double(c, "a", "x", -1e300, 1e300, &d, &err), DFL_E_INPUT);
+    cr_expect_eq(dfl_cfg_double(c, "a", "y", -HUGE_VAL, HUGE_VAL, &d, &err), DFL_E_INPUT);
+    cr_expect_eq(dfl_cfg_double(c, "a", "z", -HUGE_VAL, HUGE_VAL, &d, &err), DFL_E_INPUT);
+    cr_expect_eq(dfl_cfg_vec(c, "a", "v", 2, v, &err), DFL_E_INPUT);
+    dfl_cfg_free(c);
+}
+
+/* _opt getters: the default when absent, the full check when present. */
+Test(config, optional_getters)
+{
+    dfl_cfg *c = cfgu_parse("[a]\ni = 12\nd = x\nb = maybe\ne = ring\nv = 1 2\ns =\n");
+    dfl_err err;
+    long i;
+    double d, v[2];
+    const double dv[2] = {7, 8};
+    bool b;
+    int e;
+    const char *s;
+    static const char *const names[] = {"disk", "strip"};
+    cr_assert_eq(dfl_cfg_int_opt(c, "a", "i", 0, 0, 9, &i, &err), DFL_E_INPUT);
+    cr_assert(strstr(err.msg, "t.ini:2: [a] i: expected an integer in [0, 9], got '12'"), "%s",
+              err.msg);
+    cr_assert_eq(dfl_cfg_double_opt(c, "a", "d", 0, -1, 1, &d, &err), DFL_E_INPUT);
+    cr_assert_eq(dfl_cfg_double_opt(c, "a", "zz", 0.5, -1, 1, &d, &err), DFL_OK);
+    cr_assert_eq(d, 0.5);
+    cr_assert_eq(dfl_cfg_bool_opt(c, "a", "b", true, &b, &err), DFL_E_INPUT);
+    cr_assert_eq(dfl_cfg_bool_opt(c, "a", "zz", true, &b, &err), DFL_OK);
+    cr_assert(b);
+    cr_assert_eq(dfl_cfg_enum_opt(c, "a", "e", names, 2, 0, &e, &err), DFL_E_INPUT);
+    cr_assert(strstr(err.msg, "one of disk|strip"), "%s", err.msg);
+    cr_assert_eq(dfl_cfg_enum_opt(c, "a", "zz", names, 2, 1, &e, &err), DFL_OK);
+    cr_assert_eq(e, 1);
+    cr_assert_eq(dfl_cfg_vec_opt(c, "a", "v", 2, dv, v, &err), DFL_OK);
+    cr_assert(v[0] == 1 && v[1] == 2);
+    cr_assert_eq(dfl_cfg_vec_opt(c, "a", "zz", 2, dv, v, &err), DFL_OK);
+    cr_assert(v[0] == 7 && v[1] == 8);
+    cr_assert_eq(dfl_cfg_string_opt(c, "a", "s", "def", &s, &err), DFL_E_INPUT);
+    cr_assert(strstr(err.msg, "expected a non-empty value"), "%s", err.msg);
+    cr_assert_eq(dfl_cfg_string_opt(c, "a", "zz", "def", &s, &err), DFL_OK);
+    cr_assert_str_eq(s, "def");
+    cr_assert(!dfl_cfg_has(c, "a", "zz"));
+    dfl_cfg_free(c);
+}
+
+Test(config, point_lists)
+{
+    dfl_cfg *c = cfgu_parse("[a]\np = 0 0; 1 2 3; 4 4\nq = 0 0 1; 1 1 1\nr = 1 2\n");
+    dfl_err err;
+    double *pts;
+    size_t n;
+    cr_assert_eq(dfl_cfg_points(c, "a", "p", 2, 1, &pts, &n, &err), DFL_E_INPUT);
+    cr_assert(strstr(err.msg, "t.ini:2: [a] p: point 2: expected 2 numbers, got ' 1 2 3'"), "%s",
+              err.msg);
+    cr_assert(pts == NULL && n == 0);
+    cr_assert_eq(dfl_cfg_points(c, "a", "q", 3, 3, &pts, &n, &err), DFL_E_INPUT);
+    cr_assert(strstr(err.msg, "at least 3 points of 3 numbers each"), "%s", err.msg);
+    cr_assert_eq(dfl_cfg_point_dim("0 0 1; 1 1 1"), 3);
+    cr_assert_eq(dfl_cfg_point_dim("  0   1 ;"), 2);
+    cr_assert_eq(dfl_cfg_point_dim(""), 0);
+    cr_assert_eq(dfl_cfg_doubles(c, "a", "r", 3, &pts, &n, &err), DFL_E_INPUT);
+    dfl_cfg_free(c);
+}

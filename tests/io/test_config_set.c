@@ -1,0 +1,44 @@
+/* Tests for src/io/config_set.c: --set overrides. */
+#include <criterion/criterion.h>
+#include <string.h>
+
+#include "io/config.h"
+#include "util/config_util.h"
+
+Test(config, set_overrides_and_adds)
+{
+    dfl_cfg *c = cfgu_parse("[g]\nn = 4\n");
+    dfl_err err;
+    cr_assert_eq(dfl_cfg_set(c, "g.n=16,32", &err), DFL_OK);
+    cr_assert_eq(dfl_cfg_set(c, "h.k = 3", &err), DFL_OK);
+    cr_expect_eq(dfl_cfg_sweep_points(c), 2);
+    dfl_cfg *p;
+    cr_assert_eq(dfl_cfg_sweep_point(c, 1, &p, &err), DFL_OK);
+    long n, k;
+    cr_assert_eq(dfl_cfg_int(p, "g", "n", 0, 99, &n, &err), DFL_OK);
+    cr_assert_eq(dfl_cfg_int(p, "h", "k", 0, 99, &k, &err), DFL_OK);
+    cr_expect_eq(n, 32);
+    cr_expect_eq(k, 3);
+    dfl_cfg_free(p);
+    cr_expect_eq(dfl_cfg_set(c, "nodot=1", &err), DFL_E_INPUT);
+    cr_expect_eq(dfl_cfg_set(c, "g.n=", &err), DFL_E_INPUT);
+    dfl_cfg_free(c);
+}
+
+/* include is resolved when the file is read; --set cannot add one. */
+Test(config, set_refuses_include)
+{
+    dfl_cfg *c = cfgu_parse("[S]\norder = 4\n");
+    dfl_err err;
+    cr_assert_eq(dfl_cfg_set(c, "S.include=configs/shapes/S.ini", &err), DFL_E_INPUT);
+    cr_assert(strstr(err.msg, "--set S.include=configs/shapes/S.ini: include is read with"),
+              "%s", err.msg);
+    cr_assert(!dfl_cfg_has(c, "S", "include"));
+    /* a --set key gets the origin "--set" in messages */
+    cr_assert_eq(dfl_cfg_set(c, "S.order=x", &err), DFL_OK);
+    long o;
+    cr_assert_eq(dfl_cfg_int(c, "S", "order", 1, 9, &o, &err), DFL_E_INPUT);
+    cr_assert(strstr(err.msg, "--set S.order: expected an integer in [1, 9], got 'x'"), "%s",
+              err.msg);
+    dfl_cfg_free(c);
+}

@@ -1,0 +1,52 @@
+/* Tests for src/io/config_where.c: every message names where the key was
+ * written; unknown keys are reported. */
+#include <criterion/criterion.h>
+#include <string.h>
+
+#include "io/config.h"
+#include "util/config_util.h"
+
+Test(config, errors_name_line_and_key)
+{
+    dfl_cfg *c = cfgu_parse("[a]\nx = 1\ny = 2.5\nz = 1 2\n");
+    dfl_err err;
+    long i;
+    double v[3];
+    cr_expect_eq(dfl_cfg_int(c, "a", "y", 0, 9, &i, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "t.ini:3: [a] y") != NULL, "%s", err.msg);
+    cr_expect_eq(dfl_cfg_int(c, "a", "x", 2, 9, &i, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "[2, 9]") != NULL, "%s", err.msg);
+    cr_expect_eq(dfl_cfg_vec(c, "a", "z", 3, v, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "t.ini:4") != NULL, "%s", err.msg);
+    cr_expect_eq(dfl_cfg_int(c, "a", "missing", 0, 9, &i, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "missing") != NULL, "%s", err.msg);
+    /* x, y, z were read (even if rejected); nothing else exists */
+    cr_expect_eq(dfl_cfg_check_used(c, &err), DFL_OK, "%s", err.msg);
+    dfl_cfg_free(c);
+    c = cfgu_parse("[a]\nx = 1\nw = 3\n");
+    cr_assert_eq(dfl_cfg_int(c, "a", "x", 0, 9, &i, &err), DFL_OK);
+    cr_expect_eq(dfl_cfg_check_used(c, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "t.ini:3: [a] w") != NULL, "%s", err.msg);
+    dfl_cfg_free(c);
+}
+
+Test(config, where_and_err_at)
+{
+    dfl_cfg *c = cfgu_parse("[a]\nx = 1\n\n[b]\ny = 2\n");
+    char w[256];
+    cr_assert_str_eq(dfl_cfg_where(c, "b", "y", w, sizeof w), "t.ini:5: [b] y");
+    cr_assert_str_eq(dfl_cfg_where(c, "b", "nope", w, sizeof w), "t.ini: [b] nope");
+    dfl_err err;
+    cr_assert_eq(dfl_cfg_set(c, "a.x=3", &err), DFL_OK);
+    cr_assert_str_eq(dfl_cfg_where(c, "a", "x", w, sizeof w), "--set a.x");
+    dfl_err_set(&err, DFL_E_INPUT, "degenerate");
+    cr_assert_eq(dfl_cfg_err_at(c, "b", "y", DFL_E_INPUT, &err), DFL_E_INPUT);
+    cr_assert_str_eq(err.msg, "t.ini:5: [b] y: degenerate");
+    /* check_used_in looks at one section only */
+    long v;
+    cr_assert_eq(dfl_cfg_int(c, "a", "x", 0, 9, &v, &err), DFL_OK);
+    cr_assert_eq(dfl_cfg_check_used_in(c, "a", &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(dfl_cfg_check_used_in(c, "b", &err), DFL_E_INPUT);
+    cr_assert(strstr(err.msg, "t.ini:5: [b] y: unknown key"), "%s", err.msg);
+    dfl_cfg_free(c);
+}
