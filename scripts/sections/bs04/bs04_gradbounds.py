@@ -135,7 +135,7 @@ def render(ctx):
             body.append(line)
         md += (f"**Where the minimum lies** (R-equivalence of exact distances, r = {r0:g} L; the "
                "bisector of the convex sector is at α/2, or α/2 + 180° for α > 180°; *theory* is "
-               "the closed-form minimum of experiments/gradbound.h):\n\n")
+               "the closed-form minimum of rfunc/gradbound.h):\n\n")
         md += dflio.md_table(header, body) + "\n\n"
         collinear = ""
         c180 = [(p, by[(180.0, p)]) for p in ps if (180.0, p) in by]

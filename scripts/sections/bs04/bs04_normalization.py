@@ -4,7 +4,7 @@ from sections.bs04 import bs04_common as bc
 from sections.common.plot import pyplot
 
 ASSUMPTIONS = [
-    "Normalization order: measured on an open 'W' polyline of 4 segments (configs/paper/"
+    "Normalization order: measured on an open 'W' polyline of 4 segments (configs/paper/bs04/"
     "bs04_normalization.ini), at 5 interior points per segment along both normals; the "
     "table reports the minimum over these 40 rays. A Taylor coefficient a_k = d_k/k! counts as "
     "zero when |a_k| L^(k-1) <= 1e-9 with L the segment's length, d1 as 1 when |d1 - 1| <= 1e-9.",

@@ -11,7 +11,7 @@ ASSUMPTIONS = [
     "coefficient counts as zero when |a_k| L^(k−1) ≤ 1e-9 with L = min(local radius of "
     "curvature, the series' own scale min_k |a_k|^(−1/(k−1)))",
     "Recursive normalization: the reference is the exact signed distance to the ellipse "
-    "(footpoint by bisection on Eberly's root function, experiments/ellipse_dist.h).",
+    "(footpoint by bisection on Eberly's root function, geom/ellipse.h).",
 ]
 
 

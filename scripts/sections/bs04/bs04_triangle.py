@@ -8,7 +8,7 @@ ASSUMPTIONS = [
     "(0.3,0.8,0) (angles 69.4°, 48.8°, 61.7°). Spheres of radius 10⁻² and 10⁻³ around each "
     "vertex, 4000 Fibonacci points each; eq. 4 (not eq. 5).",
     "The in-plane closed form of |∇t| at a vertex (limit r → 0, R0-conjunction of the two "
-    "adjacent edge planes) is derived in experiments/bs04_triangle.c; bs04 gives no numbers "
+    "adjacent edge planes) is derived in experiments/bs04/bs04_triangle.c; bs04 gives no numbers "
     "for Fig. 10b.",
 ]
 
