@@ -1,15 +1,19 @@
 #!/usr/bin/env python3
 """Writes results/REPORT.md from the results directories of `make reproduce`.
 
-Each results/<name>/ holding a manifest.json is one study run.  A module
-scripts/sections/<paper>/<study>.py renders its section: render(ctx) -> markdown, with
-tables beside the paper's values (ctx.ref("bs04_facts.csv")) and figures as
-PNG (ctx.figure(fig, stem)); an optional list ASSUMPTIONS names the settings
-the paper leaves open, gathered per paper.  Studies without a module get
-their CSV as a table.
+Each results/<name>/ holding a manifest.json is one study run.  Its section
+comes from the first paper folder sections/<paper>/ (see scripts/README.md)
+holding a module <study>.py: render(ctx) -> markdown, with tables beside the
+paper's values (ctx.ref("bs04_facts.csv")) and figures as PNG
+(ctx.figure(fig, stem)); an optional list ASSUMPTIONS names the settings the
+paper leaves open, gathered per paper.  A study no folder knows gets its CSV
+as a table under "Other studies" (a module without render: under its paper).
+A section that fails (its module or its folder does not import, render
+raises) shows its traceback in place and makes the exit status 1.
 Every figure and table names the config it came from."""
 import argparse
 import importlib
+import importlib.util
 import os
 import sys
 import traceback
@@ -18,24 +22,57 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import dflio  # noqa: E402
 
 SECTIONS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "sections")
+OTHER = "other"
 
 
-def papers():
-    """[(folder, TITLE)] of the section folders, in RANK order."""
-    found = []
-    for d in sorted(os.listdir(SECTIONS)):
-        if os.path.isfile(os.path.join(SECTIONS, d, "__init__.py")):
-            pkg = importlib.import_module(f"sections.{d}")
-            found.append((getattr(pkg, "RANK", 50), d, getattr(pkg, "TITLE", d)))
-    return [(d, t) for _, d, t in sorted(found)]
+class Paper:
+    """One paper folder root/<folder>/ of section modules: the package it
+    imports as, its TITLE and RANK, and why it cannot be used (None when its
+    __init__.py imports)."""
+
+    def __init__(self, root, folder):
+        self.dir = os.path.join(root, folder)
+        self.pkg = f"{os.path.basename(root)}.{folder}"
+        self.folder = folder
+        self.title = folder
+        self.rank = 50
+        self.error = None
+        if not os.path.isfile(os.path.join(self.dir, "__init__.py")):
+            self.error = f"sections folder {folder}/ has no __init__.py (TITLE, RANK)\n"
+            return
+        try:
+            mod = importlib.import_module(self.pkg)
+        except Exception:  # reported as a failed section, the others still render
+            self.error = traceback.format_exc()
+            return
+        self.title = getattr(mod, "TITLE", folder)
+        self.rank = getattr(mod, "RANK", 50)
+
+    def has(self, study):
+        return os.path.isfile(os.path.join(self.dir, study + ".py"))
 
 
-def paper_of(study, folders):
-    """The folder holding sections/<folder>/<study>.py, else "other"."""
-    for d in folders:
-        if os.path.isfile(os.path.join(SECTIONS, d, study + ".py")):
-            return d
-    return "other"
+def papers(root=SECTIONS):
+    """The paper folders under root (every subfolder not starting with '_' or
+    '.'), in RANK order.  root is imported as a package named after its base
+    name, so its parent goes on sys.path."""
+    root = os.path.abspath(root)
+    parent = os.path.dirname(root)
+    if parent not in sys.path:
+        sys.path.insert(0, parent)
+    spec = importlib.util.find_spec(os.path.basename(root))
+    where = [os.path.abspath(d) for d in (spec.submodule_search_locations or [])] if spec else []
+    if root not in where:
+        raise ValueError(f"{root}: its name is taken by another package ({where or spec}); "
+                         "give the sections folder another name")
+    found = [Paper(root, d) for d in sorted(os.listdir(root))
+             if os.path.isdir(os.path.join(root, d)) and not d.startswith(("_", "."))]
+    return sorted(found, key=lambda p: (p.rank, p.folder))
+
+
+def paper_of(study, found):
+    """The first paper whose folder holds <study>.py, else None."""
+    return next((p for p in found if p.has(study)), None)
 
 
 class Ctx:
@@ -82,11 +119,23 @@ def generic(ctx):
     return dflio.md_table(header, body) + "\n"
 
 
-def main():
+def section(r, paper, assumptions):
+    """Markdown of run r's section (its module's render, else the generic
+    table); collects the module's ASSUMPTIONS into assumptions."""
+    mod = importlib.import_module(f"{paper.pkg}.{r.study}") if paper else None
+    for line in getattr(mod, "ASSUMPTIONS", []):
+        if line not in assumptions:
+            assumptions.append(line)
+    return (getattr(mod, "render", None) or generic)(r)
+
+
+def main(argv=None):
     ap = argparse.ArgumentParser()
     ap.add_argument("--results", default="results")
     ap.add_argument("--out", default="results/REPORT.md")
-    a = ap.parse_args()
+    ap.add_argument("--sections", default=SECTIONS,
+                    help="folder of the paper folders (default: scripts/sections)")
+    a = ap.parse_args(argv)
     ref_dir = os.path.join(a.results, "reference")
     fig_dir = os.path.join(a.results, "figures")
     runs = []
@@ -97,13 +146,16 @@ def main():
         man = dflio.read_manifest(full)
         if man:
             runs.append(Ctx(full, man, ref_dir, fig_dir))
-    folders = papers()
-    titles = dict(folders)
+    try:
+        found = papers(a.sections)
+    except ValueError as e:
+        print(f"report: error: --sections {e}", file=sys.stderr)
+        return 2
     groups = {}
     for r in runs:
         r.report_path = a.out
-        r.paper = paper_of(r.study, titles)
-        groups.setdefault(r.paper, []).append(r)
+        paper = paper_of(r.study, found)
+        groups.setdefault(paper.folder if paper else OTHER, (paper, []))[1].append(r)
 
     out = ["# dflab report", "",
            "Generated by `make reproduce` (scripts/report.py) from the results directories below. "
@@ -111,21 +163,20 @@ def main():
            "`results/reference/` (transcribed from the papers). Signed distance is negative "
            "inside everywhere in dflab.", ""]
     failures = 0
-    for p in [d for d, _ in folders] + ["other"]:
-        if p not in groups:
+    for p in found + [None]:
+        key = p.folder if p else OTHER
+        if key not in groups and not (p and p.error):
             continue
-        out += [f"## {titles.get(p, 'Other studies')}", ""]
+        out += [f"## {p.title if p else 'Other studies'}", ""]
+        if p and p.error:  # a broken folder is never silent, with or without runs
+            failures += 1
+            out += [f"Section folder `{p.folder}` failed:", "", "```", p.error, "```", ""]
         assumptions = []
         body = []
-        for r in groups[p]:
+        for r in groups.get(key, (p, []))[1]:
             body += [f"### {r.name} (`{r.config}`, study `{r.study}`)", ""]
             try:
-                mod = (importlib.import_module(f"sections.{r.paper}.{r.study}")
-                       if r.paper != "other" else None)
-                for line in getattr(mod, "ASSUMPTIONS", []):
-                    if line not in assumptions:
-                        assumptions.append(line)
-                body.append((getattr(mod, "render", None) or generic)(r))
+                body.append(section(r, p, assumptions))
             except Exception:  # a broken section must not hide the others
                 failures += 1
                 body += ["```", traceback.format_exc(), "```"]

@@ -1,5 +1,6 @@
 /* dflab command line.  Exit status: 0 success, 2 bad input (config, points
  * file, geometry, usage), 1 any other failure (I/O, numerical). */
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -51,120 +52,151 @@ static int fail(const dfl_err *err)
 }
 
 /* One line, like every other error; the usage text is one command away. */
-static int usage_error(const char *msg, const char *usage)
+static int usage_error(const char *usage, const char *fmt, ...)
 {
     const char *cmd = usage == usage_run ? "run" : usage == usage_probe ? "probe" : "";
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
     fprintf(stderr, "dflab: error: %s (see `dflab help %s`)\n", msg, cmd);
     return 2;
 }
 
-static int cmd_run(int argc, char **argv)
+/* One command: its usage text, its options besides what every command takes
+ * (--help, -h, --set V, --set=V and the config path), and what it does. */
+typedef struct cmd_spec {
+    const char *usage;
+    const char *const *valued;  /* options followed by a value, NULL-terminated */
+    const char *const *flags;   /* options without a value, NULL-terminated */
+    /* Stores option opt (its value v, NULL for a flag) into the command's
+     * options; returns 0, or 2 after reporting a usage error. */
+    int (*take)(void *opts, const char *opt, const char *v);
+    /* Runs the command on its parsed options; returns the exit status. */
+    int (*exec)(void *opts);
+} cmd_spec;
+
+static int listed(const char *const *names, const char *a)
 {
-    const char **sets = calloc((size_t)argc + 1, sizeof *sets);
-    if (!sets) return 1;
-    dfl_run_opts o = {0};
-    o.sets = sets;
-    char msg[512];
+    for (; *names; names++)
+        if (strcmp(*names, a) == 0) return 1;
+    return 0;
+}
+
+/* Parses a command's arguments up to the first error: the config path into
+ * *config, each --set value into sets (room for argc entries) and *nsets,
+ * the spec's options through spec->take(opts, ...).  Returns 0, 2 after
+ * reporting a usage error, or -1 when --help printed the usage. */
+static int parse_args(int argc, char **argv, const cmd_spec *spec, void *opts,
+                      const char **config, const char **sets, int *nsets)
+{
     int rc = 0;
     for (int i = 0; i < argc && rc == 0; i++) {
         const char *a = argv[i];
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            fputs(usage_run, stdout);
-            free(sets);
-            return 0;
-        } else if (strcmp(a, "--set") == 0 || strcmp(a, "--out") == 0 || strcmp(a, "--threads") == 0) {
-            if (i + 1 >= argc) {
-                snprintf(msg, sizeof msg, "%s needs a value", a);
-                rc = usage_error(msg, usage_run);
-                break;
-            }
+            fputs(spec->usage, stdout);
+            return -1;
+        } else if (strcmp(a, "--set") == 0 || listed(spec->valued, a)) {
+            if (i + 1 >= argc) return usage_error(spec->usage, "%s needs a value", a);
             const char *v = argv[++i];
-            if (a[2] == 's') sets[o.nsets++] = v;
-            else if (a[2] == 'o') o.outdir = v;
-            else {
-                char *end;
-                long t = strtol(v, &end, 10);
-                if (*end || t < 1 || t > 1024) {
-                    snprintf(msg, sizeof msg, "--threads %s: expected an integer in [1, 1024]", v);
-                    rc = usage_error(msg, usage_run);
-                }
-                o.threads = (int)t;
-            }
+            if (a[2] == 's') sets[(*nsets)++] = v;
+            else rc = spec->take(opts, a, v);
         } else if (strncmp(a, "--set=", 6) == 0) {
-            sets[o.nsets++] = a + 6;
-        } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
-            o.quiet = 1;
+            sets[(*nsets)++] = a + 6;
+        } else if (listed(spec->flags, a)) {
+            rc = spec->take(opts, a, NULL);
         } else if (a[0] == '-') {
-            snprintf(msg, sizeof msg, "unknown option '%s'", a);
-            rc = usage_error(msg, usage_run);
-        } else if (!o.config) {
-            o.config = a;
+            rc = usage_error(spec->usage, "unknown option '%s'", a);
+        } else if (!*config) {
+            *config = a;
         } else {
-            snprintf(msg, sizeof msg, "unexpected argument '%s'", a);
-            rc = usage_error(msg, usage_run);
+            rc = usage_error(spec->usage, "unexpected argument '%s'", a);
         }
     }
-    if (rc == 0 && !o.config) rc = usage_error("missing CONFIG.ini", usage_run);
-    if (rc == 0) {
-        dfl_err err;
-        dfl_err_clear(&err);
-        if (dfl_run(&o, &err) != DFL_OK) rc = fail(&err);
-    }
-    free(sets);
+    if (rc == 0 && !*config) rc = usage_error(spec->usage, "missing CONFIG.ini");
     return rc;
+}
+
+/* Parses argv into opts (whose config, sets and nsets fields are passed
+ * apart) and runs the command; returns the exit status. */
+static int command(int argc, char **argv, const cmd_spec *spec, void *opts, const char **config,
+                   const char *const **sets, int *nsets)
+{
+    const char **list = calloc((size_t)argc + 1, sizeof *list);
+    if (!list) return 1;
+    *sets = list;
+    int rc = parse_args(argc, argv, spec, opts, config, list, nsets);
+    if (rc == 0) rc = spec->exec(opts);
+    free(list);
+    return rc < 0 ? 0 : rc;
+}
+
+static int take_run(void *opts, const char *opt, const char *v)
+{
+    dfl_run_opts *o = opts;
+    if (strcmp(opt, "--out") == 0) {
+        o->outdir = v;
+    } else if (strcmp(opt, "--threads") == 0) {
+        char *end;
+        const long t = strtol(v, &end, 10);
+        if (*end || t < 1 || t > 1024)
+            return usage_error(usage_run, "--threads %s: expected an integer in [1, 1024]", v);
+        o->threads = (int)t;
+    } else {
+        o->quiet = 1; /* --quiet, -q */
+    }
+    return 0;
+}
+
+static int exec_run(void *opts)
+{
+    dfl_err err;
+    dfl_err_clear(&err);
+    return dfl_run(opts, &err) == DFL_OK ? 0 : fail(&err);
+}
+
+static int take_probe(void *opts, const char *opt, const char *v)
+{
+    dfl_probe_opts *o = opts;
+    if (strcmp(opt, "--points") == 0) {
+        o->points = v;
+    } else { /* --jet */
+        char *end;
+        const long k = strtol(v, &end, 10);
+        if (*end || end == v || k < 0 || k > DFL_JET_MAX)
+            return usage_error(usage_probe, "--jet %s: expected an integer in [0, %d]", v,
+                               DFL_JET_MAX);
+        o->jet = (int)k;
+    }
+    return 0;
+}
+
+static int exec_probe(void *opts)
+{
+    const dfl_probe_opts *o = opts;
+    if (!o->points) return usage_error(usage_probe, "missing --points FILE.csv");
+    dfl_err err;
+    dfl_err_clear(&err);
+    return dfl_probe(o, stdout, &err) == DFL_OK ? 0 : fail(&err);
+}
+
+static int cmd_run(int argc, char **argv)
+{
+    static const char *const valued[] = {"--out", "--threads", NULL};
+    static const char *const flags[] = {"--quiet", "-q", NULL};
+    static const cmd_spec spec = {usage_run, valued, flags, take_run, exec_run};
+    dfl_run_opts o = {0};
+    return command(argc, argv, &spec, &o, &o.config, &o.sets, &o.nsets);
 }
 
 static int cmd_probe(int argc, char **argv)
 {
-    const char **sets = calloc((size_t)argc + 1, sizeof *sets);
-    if (!sets) return 1;
+    static const char *const valued[] = {"--points", "--jet", NULL};
+    static const char *const none[] = {NULL};
+    static const cmd_spec spec = {usage_probe, valued, none, take_probe, exec_probe};
     dfl_probe_opts o = {0};
-    o.sets = sets;
-    char msg[512];
-    int rc = 0;
-    for (int i = 0; i < argc && rc == 0; i++) {
-        const char *a = argv[i];
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            fputs(usage_probe, stdout);
-            free(sets);
-            return 0;
-        } else if (strcmp(a, "--set") == 0 || strcmp(a, "--points") == 0 || strcmp(a, "--jet") == 0) {
-            if (i + 1 >= argc) {
-                snprintf(msg, sizeof msg, "%s needs a value", a);
-                rc = usage_error(msg, usage_probe);
-                break;
-            }
-            const char *v = argv[++i];
-            if (a[2] == 's') sets[o.nsets++] = v;
-            else if (a[2] == 'p') o.points = v;
-            else {
-                char *end;
-                long k = strtol(v, &end, 10);
-                if (*end || end == v || k < 0 || k > DFL_JET_MAX) {
-                    snprintf(msg, sizeof msg, "--jet %s: expected an integer in [0, %d]", v, DFL_JET_MAX);
-                    rc = usage_error(msg, usage_probe);
-                }
-                o.jet = (int)k;
-            }
-        } else if (a[0] == '-') {
-            snprintf(msg, sizeof msg, "unknown option '%s'", a);
-            rc = usage_error(msg, usage_probe);
-        } else if (!o.config) {
-            o.config = a;
-        } else {
-            snprintf(msg, sizeof msg, "unexpected argument '%s'", a);
-            rc = usage_error(msg, usage_probe);
-        }
-    }
-    if (rc == 0 && !o.config) rc = usage_error("missing CONFIG.ini", usage_probe);
-    if (rc == 0 && !o.points) rc = usage_error("missing --points FILE.csv", usage_probe);
-    if (rc == 0) {
-        dfl_err err;
-        dfl_err_clear(&err);
-        if (dfl_probe(&o, stdout, &err) != DFL_OK) rc = fail(&err);
-    }
-    free(sets);
-    return rc;
+    return command(argc, argv, &spec, &o, &o.config, &o.sets, &o.nsets);
 }
 
 /* Scans configs/ (two levels) for `name = <study>` lines under [study]. */

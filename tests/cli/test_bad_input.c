@@ -103,8 +103,7 @@ ParameterizedTest(const int *ci, bad_input, table)
     if (c->points) e2e_write(dir, "pts.csv", c->points, path, sizeof path);
     expand(c->args, dir, args, sizeof args);
     int rc = e2e_dflab(dir, args);
-    snprintf(path, sizeof path, "%s/err.txt", dir);
-    char *msg = e2e_slurp(path);
+    char *msg = e2e_err_text(dir);
     cr_assert_not_null(msg);
     cr_expect_eq(rc, 2, "[%s] exit status %d, stderr: %s", c->name, rc, msg);
     cr_expect(strstr(msg, c->want1) != NULL, "[%s] message lacks '%s': %s", c->name, c->want1, msg);
@@ -128,7 +127,5 @@ ParameterizedTest(const int *ci, bad_input, table)
     cr_expect_eq(e2e_count_entries(dir), expected, "[%s] stray files in %s", c->name, dir);
     free(msg);
     free(out);
-    char cmd[600];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    if (system(cmd) != 0) cr_log_warn("cleanup of %s failed", dir);
+    if (e2e_rmtree(dir) != 0) cr_log_warn("cleanup of %s failed", dir);
 }

@@ -5,6 +5,7 @@
 #ifndef DFL_TESTS_E2E_UTIL_H
 #define DFL_TESTS_E2E_UTIL_H
 
+#include <math.h>
 #include <stddef.h>
 
 /* tmpdir_new (util/tmpdir.h): a fresh empty directory under /tmp, path into
@@ -24,14 +25,50 @@ int e2e_count_entries(const char *dir);
 /* Path of the python interpreter with numpy/vtk. */
 const char *e2e_python(void);
 /* Value of column col in data row `row` (0-based) of a CSV file, as double
- * (NAN when absent). */
+ * (NAN when the cell is absent or empty). */
 double e2e_csv_get(const char *path, size_t row, const char *col);
-/* Number of data rows of a CSV file. */
+/* Number of data rows of a CSV file (-1 when it cannot be read). */
 long e2e_csv_rows(const char *path);
 /* Text of column col in data row `row` (0-based) of a CSV file without
  * quoting (malloc'ed, caller frees; NULL when the file, column or row is
- * absent). */
+ * absent, "" for an empty cell). */
 char *e2e_csv_cell(const char *path, long row, const char *col);
+
+/* Removes a directory made by e2e_tmpdir and everything in it; 0 on
+ * success, -1 on failure or for any other path (nothing is removed). */
+int e2e_rmtree(const char *dir);
+/* Runs `<python> <args>` (args printf-style; tests run from the repository
+ * root) with stdout and stderr captured in dir/py.txt.  Returns the exit
+ * status (-1 if the interpreter did not run); *out (when out is not NULL)
+ * receives the captured text (malloc'ed, caller frees; "" when none). */
+int e2e_python_run(const char *dir, char **out, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+/* A .vti as VTK's own reader sees it (through tests/e2e/common/vtk_dump.py). */
+typedef struct e2e_vti {
+    int dims[3];
+    double origin[3], spacing[3];
+    size_t npoints;   /* dims[0] dims[1] dims[2], x fastest */
+    int narrays;
+    double *pts;      /* pts[3 i + k]: coordinate k of point i (VTK's GetPoint) */
+    double *val;      /* val[i narrays + a]: array a at point i */
+} e2e_vti;
+/* Reads the scalar point arrays names[0..nnames-1] of path, exactly (17
+ * digits each way), using dir for the dump.  Asserts (Criterion, fatal) that
+ * the file reads and has every array.  Free with e2e_vti_free. */
+void e2e_vti_read(const char *dir, const char *path, const char *const *names, int nnames,
+                  e2e_vti *v);
+void e2e_vti_free(e2e_vti *v);
+/* Larger / smaller of a and b, NaN if either is NaN (as numpy's max and min:
+ * a NaN in the data then fails every comparison that follows). */
+static inline double e2e_max(double a, double b)
+{
+    return isnan(a) || isnan(b) ? NAN : a > b ? a : b;
+}
+static inline double e2e_min(double a, double b)
+{
+    return isnan(a) || isnan(b) ? NAN : a < b ? a : b;
+}
 
 /* Contents of dir/err.txt as left by e2e_dflab (malloc'ed; NULL if absent). */
 char *e2e_err_text(const char *dir);
@@ -41,6 +78,19 @@ int e2e_run_cfg(const char *dir, const char *cfg, const char *extra, char *out, 
 /* e2e_run_cfg in a fresh temporary directory; asserts (Criterion, fatal)
  * exit status 0, reporting stderr.  out receives the results directory. */
 void e2e_run_ok(const char *cfg, const char *extra, char *out, size_t size);
+/* e2e_run_ok, then the path of the study's table <out>/<study>.csv into csv;
+ * asserts (fatal) that it has nrows data rows unless nrows < 0.  Returns the
+ * number of data rows. */
+long e2e_run_table(const char *cfg, const char *extra, const char *study, long nrows, char *out,
+                   size_t nout, char *csv, size_t ncsv);
+/* e2e_run_expect_fail for each row {args, want} of a table of bad input:
+ * the run gets `<fixed> <args>` (fixed may be NULL). */
+void e2e_expect_bad_runs(const char *cfg, const char *fixed, const char *const rows[][2],
+                         size_t n);
+/* A config given as text that must be rejected: written to a fresh
+ * directory and run; expects (non-fatal) exit status 2, want1 and want2 (NULL:
+ * none) in stderr and no results directory left behind. */
+void e2e_expect_bad_config(const char *ini_text, const char *want1, const char *want2);
 /* e2e_run_cfg in a fresh temporary directory for input that must be
  * rejected; expects (Criterion, non-fatal) exit status 2, `want` in stderr
  * and no results directory left behind. */

@@ -3,6 +3,7 @@ import math
 import os
 
 import dflio
+from sections.common.plot import pyplot
 
 ASSUMPTIONS = [
     "Bulge measure (bs04 shows bulging only as pictures): for an offset δ, rays leave the exact "
@@ -22,9 +23,7 @@ ASSUMPTIONS = [
 ]
 
 
-def _f(r, k):
-    v = dflio.num(r.get(k))
-    return float("nan") if v is None else v
+_f = dflio.cell_nan
 
 
 def _disk_joint(p, delta):
@@ -35,9 +34,7 @@ def _disk_joint(p, delta):
 
 
 def _isolines(ctx, rows, case, levels, stem, title, xlim=None, ylim=None):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     import numpy as np
 
     crow = sorted([r for r in rows if r["case"] == case], key=lambda r: int(float(r["p"])))
@@ -60,10 +57,8 @@ def _isolines(ctx, rows, case, levels, stem, title, xlim=None, ylim=None):
         if not os.path.exists(path):
             ax.set_visible(False)
             continue
-        dims, org, sp, a = dflio.read_vti(path)
-        x = org[0] + sp[0] * np.arange(dims[0])
-        y = org[1] + sp[1] * np.arange(dims[1])
-        v = a[arr][0]
+        x, y, a = dflio.read_vti_plane(path)
+        v = a[arr]
         if ref is None and "reference" not in a:
             ref = v
         if ref is not None and fn != exact:
@@ -85,16 +80,11 @@ def _isolines(ctx, rows, case, levels, stem, title, xlim=None, ylim=None):
 
 
 def render(ctx):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     import numpy as np
 
     rows = ctx.csv()
-    cases = []
-    for r in rows:
-        if r["case"] not in cases:
-            cases.append(r["case"])
+    cases = dflio.unique(r["case"] for r in rows)
     ps = sorted({int(float(r["p"])) for r in rows})
     md = ("Bulge r = (s − δ)/δ along the exact curve's normals: how far, in units of δ, the level "
           "set u = δ lies outside the true offset d = δ (definition in the assumptions). "

@@ -3,6 +3,8 @@ import math
 import os
 
 import dflio
+from sections.bs04 import bs04_common as bc
+from sections.common.plot import pyplot
 
 ASSUMPTIONS = [
     "Corrected join (Fig. 14): the angle of Fig. 1(c)'s segments is not given; dflab uses "
@@ -15,21 +17,28 @@ ASSUMPTIONS = [
 ]
 
 
-def _f(r, k):
-    return dflio.num(r.get(k))
+_f = dflio.cell
+
+
+def _pairs(by, parts, alphas, ps):
+    """(part, alpha, p, plain row, corrected row) of every point run with both
+    joins, parts slowest, p fastest."""
+    for part in parts:
+        for a in alphas:
+            for p in ps:
+                e = by.get((part, a, p, "requiv"))
+                c = by.get((part, a, p, "requiv_corrected"))
+                if e and c:
+                    yield part, a, p, e[1], c[1]
 
 
 def render(ctx):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     import numpy as np
 
     rows = ctx.csv()
-    ref = {r["id"]: r for r in ctx.ref("bs04_facts.csv")}
-    md = ""
-    if "corrected" in ref:
-        md += f"Paper (bs04 {ref['corrected']['where']}): *{ref['corrected']['statement']}*\n\n"
+    paper = bc.quote(bc.facts(ctx), "corrected")
+    md = paper + "\n\n" if paper else ""
     by = {}
     for i, r in enumerate(rows):
         by[(r["parts"], _f(r, "alpha"), int(_f(r, "p")), r["join"])] = (i, r)
@@ -38,19 +47,11 @@ def render(ctx):
     parts = [p for p in ("exact", "disk", "strip", "disk_smooth", "strip_smooth")
              if any(r["parts"] == p for r in rows)]
 
-    body = []
-    for part in parts:
-        for a in alphas:
-            for p in ps:
-                e = by.get((part, a, p, "requiv"))
-                c = by.get((part, a, p, "requiv_corrected"))
-                if not e or not c:
-                    continue
-                e, c = e[1], c[1]
-                body.append([part, a, p, int(_f(e, "sector_points")), _f(e, "sector_gdef_max"),
-                             _f(e, "sector_gdef_min"), 1 - 2 ** (-1 / p), _f(c, "sector_gdef_max"),
-                             _f(e, "sector_gdef_at_rmin"), _f(c, "sector_gdef_at_rmin"),
-                             _f(c, "sector_part_gdef_max")])
+    body = [[part, a, p, int(_f(e, "sector_points")), _f(e, "sector_gdef_max"),
+             _f(e, "sector_gdef_min"), 1 - 2 ** (-1 / p), _f(c, "sector_gdef_max"),
+             _f(e, "sector_gdef_at_rmin"), _f(c, "sector_gdef_at_rmin"),
+             _f(c, "sector_part_gdef_max")]
+            for part, a, p, e, c in _pairs(by, parts, alphas, ps)]
     md += ("**Hatched sector**: | |∇u| − 1 | over the sector samples (exact geometry). Theory for exact "
            "parts: h1 = h2 = q, so eq. 6 gives |∇u| = 2^(−1/p) (defect 1 − 2^(−1/p)) and eq. 20 gives "
            "u = q (defect 0). *ring*: the innermost ring of samples, r = L/80:\n\n")
@@ -70,18 +71,10 @@ def render(ctx):
                "distance (its |∇h| reaches 2 at r = L/2). So eq. 20 repairs the sector only as far "
                "as the parts are exact distances.\n\n")
 
-    body = []
-    for part in parts:
-        for a in alphas:
-            for p in ps:
-                e = by.get((part, a, p, "requiv"))
-                c = by.get((part, a, p, "requiv_corrected"))
-                if not e or not c:
-                    continue
-                e, c = e[1], c[1]
-                body.append([part, a, p, _f(e, "band_gdef_max"), _f(c, "band_gdef_max"),
-                             _f(e, "band_linf"), _f(c, "band_linf"), _f(e, "vertex_gdef_max"),
-                             _f(c, "vertex_gdef_max"), _f(e, "vertex_linf"), _f(c, "vertex_linf")])
+    body = [[part, a, p, _f(e, "band_gdef_max"), _f(c, "band_gdef_max"),
+             _f(e, "band_linf"), _f(c, "band_linf"), _f(e, "vertex_gdef_max"),
+             _f(c, "vertex_gdef_max"), _f(e, "vertex_linf"), _f(c, "vertex_linf")]
+            for part, a, p, e, c in _pairs(by, parts, alphas, ps)]
     md += ("**Elsewhere** (grid nodes; *band*: 0 < d ≤ 0.1 L and |x − O| ≥ 0.25 L, near regular "
            "points; *vertex*: |x − O| < 0.25 L outside the hatched sector; d = exact distance to the "
            "union; max | |∇u| − 1 | and max |u − d|):\n\n")
@@ -125,17 +118,15 @@ def render(ctx):
                 if not hit:
                     ax.axis("off")
                     continue
-                pt = hit[0] // 2
+                # two rows (plain, corrected) per sweep point
                 stem = "corrected" if join == "requiv_corrected" else "requiv"
-                fn = ctx.path(f"{stem}_pt{pt:03d}.vti")
+                fn = ctx.path(dflio.sweep_name(stem, hit[0] // 2, len(rows) // 2, "vti"))
                 if not os.path.exists(fn):
                     ax.axis("off")
                     continue
-                dims, org, sp, arr = dflio.read_vti(fn)
-                g = arr["grad_norm"][0]
-                v = arr["value"][0]
-                x = org[0] + sp[0] * np.arange(dims[0])
-                y = org[1] + sp[1] * np.arange(dims[1])
+                x, y, arr = dflio.read_vti_plane(fn)
+                g = arr["grad_norm"]
+                v = arr["value"]
                 im = ax.imshow(g, origin="lower", extent=[x[0], x[-1], y[0], y[-1]], vmin=0.5,
                                vmax=1.5, cmap="RdBu_r")
                 ax.contour(x, y, v, levels=np.linspace(0.1, 1.0, 10), colors="k", linewidths=0.4)

@@ -2,6 +2,7 @@
 import os
 
 import dflio
+from sections.common.plot import pyplot
 
 ASSUMPTIONS = [
     "Fig. 1 / Fig. 3: the segments are not given in bs04; ours are a 'roof' (0.15, 0.3)-(0.5, 0.6)"
@@ -22,16 +23,11 @@ def _row(rows, trim, field):
 
 
 def render(ctx):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     import numpy as np
 
     rows = ctx.csv()
-    trims = []
-    for r in rows:
-        if r["trim"] not in trims:
-            trims.append(r["trim"])
+    trims = dflio.unique(r["trim"] for r in rows)
     p = int(float(rows[0]["p"]))
     join = next(r["join"] for r in rows if r["field"] == "join")
     f = dflio.num
@@ -107,12 +103,9 @@ def render(ctx):
             if not r or not r.get("vti"):
                 ax.axis("off")
                 continue
-            dims, org, sp, arr = dflio.read_vti(ctx.path(r["vti"]))
-            v = arr["value"][0]
-            x = org[0] + sp[0] * np.arange(dims[0])
-            y = org[1] + sp[1] * np.arange(dims[1])
-            ax.contour(x, y, v, levels=levels, cmap="viridis", linewidths=0.8)
-            ax.contour(x, y, arr["reference"][0], levels=[0.1, 0.2, 0.3], colors="0.35",
+            x, y, arr = dflio.read_vti_plane(ctx.path(r["vti"]))
+            ax.contour(x, y, arr["value"], levels=levels, cmap="viridis", linewidths=0.8)
+            ax.contour(x, y, arr["reference"], levels=[0.1, 0.2, 0.3], colors="0.35",
                        linewidths=0.7, linestyles="dashed")
             _draw_segments(ctx, ax, nm)
             ax.set_aspect("equal")
@@ -129,10 +122,9 @@ def render(ctx):
     for i, t in enumerate(trims):
         r = _row(rows, t, "join")
         ax = axes[0][i]
-        dims, org, sp, arr = dflio.read_vti(ctx.path(r["vti"]))
-        g = arr["grad_norm"][0]
-        ext = [org[0], org[0] + sp[0] * (dims[0] - 1), org[1], org[1] + sp[1] * (dims[1] - 1)]
-        im = ax.imshow(g, origin="lower", extent=ext, vmin=0.5, vmax=1.5, cmap="RdBu_r")
+        x, y, arr = dflio.read_vti_plane(ctx.path(r["vti"]))
+        im = ax.imshow(arr["grad_norm"], origin="lower", extent=[x[0], x[-1], y[0], y[-1]],
+                       vmin=0.5, vmax=1.5, cmap="RdBu_r")
         _draw_segments(ctx, ax, "join")
         ax.set_title(f"|∇u| of the join, trim {t}", fontsize=8)
         ax.tick_params(labelsize=6)

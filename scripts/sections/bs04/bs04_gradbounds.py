@@ -3,6 +3,8 @@ import math
 import os
 
 import dflio
+from sections.bs04 import bs04_common as bc
+from sections.common.plot import pyplot
 
 ASSUMPTIONS = [
     "Gradient bounds (Fig. 4-5): two segments of length L = 1 sharing a vertex at angle α; "
@@ -16,8 +18,7 @@ ASSUMPTIONS = [
 ]
 
 
-def _f(r, k):
-    return dflio.num(r.get(k))
+_f = dflio.cell
 
 
 def _partials(join, p, phi):
@@ -40,15 +41,11 @@ def _alpha_star(join, p):
 
 
 def render(ctx):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     rows = ctx.csv()
-    ref = {r["id"]: r for r in ctx.ref("bs04_facts.csv")}
-    md = ""
-    if "grad_bounds" in ref:
-        md += f"Paper (bs04 {ref['grad_bounds']['where']}): *{ref['grad_bounds']['statement']}*"
+    ref = bc.facts(ctx)
+    md = bc.quote(ref, "grad_bounds")
     if "grad_min" in ref:
         md += f"; *{ref['grad_min']['statement']}*"
     md += "\n\n"
@@ -123,7 +120,7 @@ def render(ctx):
         by = {(_f(r, "alpha"), int(_f(r, "p"))): r for r in sel}
         header = ["α (°)"]
         for p in ps:
-            header += [f"p={p}: min |∇u|", f"θ_min (°)", "on bisector", "theory min"]
+            header += [f"p={p}: min |∇u|", "θ_min (°)", "on bisector", "theory min"]
         body = []
         for a in alphas:
             line = [a]
@@ -138,7 +135,7 @@ def render(ctx):
             body.append(line)
         md += (f"**Where the minimum lies** (R-equivalence of exact distances, r = {r0:g} L; the "
                "bisector of the convex sector is at α/2, or α/2 + 180° for α > 180°; *theory* is "
-               "the closed-form minimum of experiments/gradbound.h):\n\n")
+               "the closed-form minimum of rfunc/gradbound.h):\n\n")
         md += dflio.md_table(header, body) + "\n\n"
         collinear = ""
         c180 = [(p, by[(180.0, p)]) for p in ps if (180.0, p) in by]
@@ -185,18 +182,14 @@ def render(ctx):
         md += ctx.figure(fig, "min_vs_alpha") + "\n\n"
 
     # --- profiles
-    profs = sorted(f for f in os.listdir(ctx.dir) if f.startswith("profile") and f.endswith(".csv"))
-    # profile_ptNNN belongs to sweep point NNN; every point has one row per radius
+    # profile<tag>.csv belongs to the sweep point of its tag; every point has one row per radius
     nrad = len({_f(r, "r_rel") for r in rows})
     points = [rows[i] for i in range(0, len(rows), nrad)]
     byfile = {}
-    for f in profs:
-        try:
-            idx = int(f[len("profile_pt"):-4]) if f.startswith("profile_pt") else 0
-        except ValueError:
-            continue
-        if idx < len(points):
-            byfile[f] = points[idx]
+    for f in sorted(os.listdir(ctx.dir)):
+        stem, idx, ext = dflio.sweep_split(f)
+        if stem == "profile" and ext == "csv" and (idx or 0) < len(points):
+            byfile[f] = points[idx or 0]
     want = [(f, r) for f, r in byfile.items() if r["join"] == "requiv"]
     alist = sorted({_f(r, "alpha") for _, r in want})
     plist = sorted({int(_f(r, "p")) for _, r in want})

@@ -12,10 +12,6 @@ ASSUMPTIONS = [
 
 
 def render(ctx):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     rows = ctx.csv()
     md = ("A square region, a segment and a point, each with its own field, joined by "
           "R-equivalence; u against the exact distance d to the union (band: 0 < d ≤ 0.05, the "
@@ -38,21 +34,11 @@ def render(ctx):
            "comparable (between the parts u ≈ 2^(−1/p) d, the bulging of R-equivalence, smaller "
            "for p = 7), and u − d > 0 beyond the segment's ends, where its disk-trimmed field "
            "grows like |x − c|²/d (eq. 3–4).\n\n")
-    n = len(rows)
-    fig, axs = plt.subplots(3, n, figsize=(3.8 * n, 9.5), squeeze=False, constrained_layout=True)
-    import numpy as np
-    for i, r in enumerate(rows):
-        tag = f"_pt{i:03d}" if n > 1 else ""
-        fn = f"hetero{tag}.vti"
-        if not sc.exists(ctx, fn):
-            continue
-        img, ext, lab = sc.slice_image(ctx.path(fn))
-        sc.show(axs[0][i], fig, img["value"], ext, lab, f"u, p = {r['p']}", iso=img["value"])
-        sc.show(axs[1][i], fig, img["grad_norm"], ext, lab, "|∇u| (white = 1)", cmap="RdBu_r",
-                vmin=0, vmax=2)
-        e = img["error"]
-        m = float(np.nanmax(np.abs(e))) or 1.0
-        sc.show(axs[2][i], fig, e, ext, lab, "u − d", cmap="RdBu_r", vmin=-m, vmax=m)
+    fig, cols = sc.point_columns(ctx, rows, "hetero", 3, 3.8, 9.5)
+    for ax, r, img, ext, lab in cols:
+        sc.show(ax[0], fig, img["value"], ext, lab, f"u, p = {r['p']}", iso=img["value"])
+        sc.show_grad(ax[1], fig, img, ext, lab)
+        sc.show_error(ax[2], fig, img["error"], ext, lab, "u − d")
     fig.suptitle(f"bs04 Fig. 13a analogue: square, segment and point\n{ctx.config}", fontsize=8)
     md += ctx.figure(fig, "field") + "\n\n"
     return md

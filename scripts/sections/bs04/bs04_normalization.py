@@ -1,8 +1,10 @@
 """bs04 Sec. 2.3: the normalization-order table (join x p x trim), measured with jets."""
 import dflio
+from sections.bs04 import bs04_common as bc
+from sections.common.plot import pyplot
 
 ASSUMPTIONS = [
-    "Normalization order: measured on an open 'W' polyline of 4 segments (configs/paper/"
+    "Normalization order: measured on an open 'W' polyline of 4 segments (configs/paper/bs04/"
     "bs04_normalization.ini), at 5 interior points per segment along both normals; the "
     "table reports the minimum over these 40 rays. A Taylor coefficient a_k = d_k/k! counts as "
     "zero when |a_k| L^(k-1) <= 1e-9 with L the segment's length, d1 as 1 when |d1 - 1| <= 1e-9.",
@@ -12,19 +14,26 @@ ASSUMPTIONS = [
 ]
 
 
+def _ran(by, keys, shown_p):
+    """(join, p, trim, row) for the keys (join, p, trim), in their order, whose
+    point ran (status ok) and whose p is one of shown_p."""
+    for j, p, t in keys:
+        r = by.get((j, p, t))
+        if r and r["status"] == "ok" and p in shown_p:
+            yield j, p, t, r
+
+
 def render(ctx):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     rows = ctx.csv()
     f = dflio.num
     jk, pk, tk = "join", "p", "trim"
-    joins = list(dict.fromkeys(r[jk] for r in rows))
-    trims = list(dict.fromkeys(r[tk] for r in rows))
+    joins = dflio.unique(r[jk] for r in rows)
+    trims = dflio.unique(r[tk] for r in rows)
     ps = sorted({int(float(r[pk])) for r in rows})
     by = {(r[jk], int(float(r[pk])), r[tk]): r for r in rows}
-    ref = {r["id"]: r for r in ctx.ref("bs04_facts.csv")}
+    ref = bc.facts(ctx)
 
     ok = [r for r in rows if r["status"] == "ok"]
     mism = [r for r in ok if r["match"] != "1"]
@@ -76,16 +85,10 @@ def render(ctx):
            "+1/(32 t0²) at k = 7), and the largest relative difference over all 40 rays:\n\n")
     header = ["join", "trim", "p", "k", "d_k measured", "a_k measured", "a_k predicted",
               "max rel. diff (all rays)"]
-    body = []
-    for j in joins:
-        for t in trims:
-            for p in ps:
-                r = by.get((j, p, t))
-                if not r or r["status"] != "ok" or p not in (2, 6, 7, 12):
-                    continue
-                body.append([j, t, p, int(f(r["first_k"])), f(r["first_deriv"]),
-                             f(r["first_coef"]), f(r.get("first_coef_theory")),
-                             f(r["coef_relerr_max"])])
+    body = [[j, t, p, int(f(r["first_k"])), f(r["first_deriv"]), f(r["first_coef"]),
+             f(r.get("first_coef_theory")), f(r["coef_relerr_max"])]
+            for j, p, t, r in _ran(by, [(j, p, t) for j in joins for t in trims for p in ps],
+                                   (2, 6, 7, 12))]
     md += dflio.md_table(header, body) + "\n\n"
 
     # end points and joining points
@@ -101,21 +104,15 @@ def render(ctx):
            "h = |f| (t = 0 on the whole normal line): the join's full order.\n\n")
     header = ["join", "p", "trim", "joint d1 measured", "joint d1 theory", "joint order",
               "end d1 range", "end order (fan)", "end order along normal / theory"]
-    body = []
-    for j in joins:
-        for p in ps:
-            for t in trims:
-                r = by.get((j, p, t))
-                if not r or r["status"] != "ok" or p not in (1, 2, 7, 12):
-                    continue
-                body.append([j, p, t,
-                             f"{f(r['joint_d1_min']):.6f}…{f(r['joint_d1_max']):.6f}",
-                             f"{f(r['joint_d1_theory']):.6f}",
-                             f"{int(f(r['joint_order_max']))} / {int(f(r['joint_order_theory']))}",
-                             f"{f(r['end_d1_min']):.12f}…{f(r['end_d1_max']):.12f}",
-                             f"{int(f(r['end_order_min']))} / {int(f(r['end_order_theory']))}",
-                             f"{int(f(r['end_normal_order_min']))} / "
-                             f"{int(f(r['end_normal_order_theory']))}"])
+    body = [[j, p, t,
+             f"{f(r['joint_d1_min']):.6f}…{f(r['joint_d1_max']):.6f}",
+             f"{f(r['joint_d1_theory']):.6f}",
+             f"{int(f(r['joint_order_max']))} / {int(f(r['joint_order_theory']))}",
+             f"{f(r['end_d1_min']):.12f}…{f(r['end_d1_max']):.12f}",
+             f"{int(f(r['end_order_min']))} / {int(f(r['end_order_theory']))}",
+             f"{int(f(r['end_normal_order_min']))} / {int(f(r['end_normal_order_theory']))}"]
+            for j, p, t, r in _ran(by, [(j, p, t) for j in joins for p in ps for t in trims],
+                                   (1, 2, 7, 12))]
     md += dflio.md_table(header, body) + "\n\n"
     md += ("The corrected join can exceed the plain theory along an end's normal: where every "
            "vertex guard max(q_v, h_i, h_j) picks a part's field (the trimmed fields exceed the "

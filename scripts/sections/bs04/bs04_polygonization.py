@@ -1,5 +1,7 @@
 """bs04 Sec. 2.4 / Fig. 7: segment counts of the certified polygonization vs eps."""
 import dflio
+from sections.bs04 import bs04_common as bc
+from sections.common.plot import pyplot
 
 ASSUMPTIONS = [
     "The 'S' and 'W' order-4 B-splines are not given in bs04; ours are designed to fit the "
@@ -12,16 +14,10 @@ ASSUMPTIONS = [
 
 def render(ctx):
     import math
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     rows = ctx.csv()
-    ref = {r["id"]: r for r in ctx.ref("bs04_facts.csv")}
-    paper = {}
-    for key, eps in (("seg_S_eps1e-2", 1e-2), ("seg_S_eps1e-3", 1e-3), ("seg_S_eps1e-5", 1e-5)):
-        if key in ref:
-            paper[eps] = float(ref[key]["value"])
+    paper = bc.s_counts(bc.facts(ctx))
     curves = sorted({r["curve"] for r in rows})
     eps = sorted({float(r["eps"]) for r in rows}, reverse=True)
     by = {(r["curve"], float(r["eps"])): r for r in rows}

@@ -1,5 +1,6 @@
 """bs04 appendix A: recursive normalization of the ellipse's implicit function, m = 1..6."""
 import dflio
+from sections.common.plot import pyplot
 
 ASSUMPTIONS = [
     "Recursive normalization (appendix A): bs04 gives no example; dflab normalizes the ellipse "
@@ -10,14 +11,12 @@ ASSUMPTIONS = [
     "coefficient counts as zero when |a_k| L^(k−1) ≤ 1e-9 with L = min(local radius of "
     "curvature, the series' own scale min_k |a_k|^(−1/(k−1)))",
     "Recursive normalization: the reference is the exact signed distance to the ellipse "
-    "(footpoint by bisection on Eberly's root function, experiments/ellipse_dist.h).",
+    "(footpoint by bisection on Eberly's root function, geom/ellipse.h).",
 ]
 
 
 def render(ctx):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     import numpy as np
 
     rows = ctx.csv()
@@ -93,14 +92,12 @@ def render(ctx):
     for i, m in enumerate(show):
         r = by[(m, b)]
         ax = axes[0][i]
-        dims, org, sp, arr = dflio.read_vti(ctx.path(r["vti"]))
-        x = org[0] + sp[0] * np.arange(dims[0])
-        y = org[1] + sp[1] * np.arange(dims[1])
-        v = np.clip(arr["value"][0], -10, 10)
-        ax.contour(x, y, arr["reference"][0], levels=levels, colors="0.6", linewidths=0.6,
+        x, y, arr = dflio.read_vti_plane(ctx.path(r["vti"]))
+        v = np.clip(arr["value"], -10, 10)
+        ax.contour(x, y, arr["reference"], levels=levels, colors="0.6", linewidths=0.6,
                    linestyles="dashed")
         ax.contour(x, y, v, levels=levels, cmap="coolwarm", linewidths=0.9)
-        ax.contour(x, y, arr["reference"][0], levels=[0], colors="k", linewidths=1.2)
+        ax.contour(x, y, arr["reference"], levels=[0], colors="k", linewidths=1.2)
         ax.set_aspect("equal")
         ax.set_title(f"f_{m}, b = {b:g}: isolines −0.3…0.3 step 0.05", fontsize=8)
         ax.tick_params(labelsize=6)

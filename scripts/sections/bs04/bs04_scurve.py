@@ -3,6 +3,8 @@ import math
 import os
 
 import dflio
+from sections.bs04 import bs04_common as bc
+from sections.common.plot import pyplot
 
 ASSUMPTIONS = [
     "'S' curve of Fig. 7: configs/shapes/S.ini (bs04 gives no control points; ours fits the unit "
@@ -18,9 +20,7 @@ ASSUMPTIONS = [
 ]
 
 
-def _f(r, k):
-    v = dflio.num(r.get(k))
-    return float("nan") if v is None else v
+_f = dflio.cell_nan
 
 
 def _model(L, delta):
@@ -31,11 +31,7 @@ def _model(L, delta):
 
 
 def _panels(ctx, rows, levels):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    import numpy as np
-
+    plt = pyplot()
     eps = sorted({_f(r, "eps") for r in rows}, reverse=True)
     joins = [j for j in ("requiv", "rconj", "requiv_corrected") if any(r["join"] == j for r in rows)]
     fig, axs = plt.subplots(len(joins), len(eps), figsize=(3.2 * len(eps), 3.3 * len(joins)),
@@ -43,8 +39,7 @@ def _panels(ctx, rows, levels):
     ref = None
     exact = ctx.path(rows[0]["exact_vti"])
     if os.path.exists(exact):
-        dims, org, sp, a = dflio.read_vti(exact)
-        ref = a["value"][0]
+        ref = dflio.read_vti_plane(exact)[2]["value"]
     for i, j in enumerate(joins):
         for k, e in enumerate(eps):
             ax = axs[i][k]
@@ -52,12 +47,10 @@ def _panels(ctx, rows, levels):
             if r is None or not os.path.exists(ctx.path(r["u_vti"])):
                 ax.set_visible(False)
                 continue
-            dims, org, sp, a = dflio.read_vti(ctx.path(r["u_vti"]))
-            x = org[0] + sp[0] * np.arange(dims[0])
-            y = org[1] + sp[1] * np.arange(dims[1])
+            x, y, a = dflio.read_vti_plane(ctx.path(r["u_vti"]))
             if ref is not None:
                 ax.contour(x, y, ref, levels=levels, colors="0.75", linewidths=0.6)
-            ax.contour(x, y, a["value"][0], levels=levels, colors="C0", linewidths=0.8)
+            ax.contour(x, y, a["value"], levels=levels, colors="C0", linewidths=0.8)
             ax.set_aspect("equal")
             ax.set_xticks([])
             ax.set_yticks([])
@@ -70,17 +63,11 @@ def _panels(ctx, rows, levels):
 
 
 def render(ctx):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     import numpy as np
 
     rows = ctx.csv()
-    ref = {r["id"]: r for r in ctx.ref("bs04_facts.csv")}
-    paper = {}
-    for key, e in (("seg_S_eps1e-2", 1e-2), ("seg_S_eps1e-3", 1e-3), ("seg_S_eps1e-5", 1e-5)):
-        if key in ref:
-            paper[e] = int(float(ref[key]["value"]))
+    paper = {e: int(n) for e, n in bc.s_counts(bc.facts(ctx)).items()}
     eps = sorted({_f(r, "eps") for r in rows}, reverse=True)
     joins = [j for j in ("requiv", "rconj", "requiv_corrected") if any(r["join"] == j for r in rows)]
     deltas = sorted({_f(r, "delta") for r in rows})

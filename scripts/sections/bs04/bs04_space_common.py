@@ -1,8 +1,10 @@
 """Helpers shared by the bs04 space sections (spacecurves, triangle, triedge,
-surface, hetero): reading slice .vti files as 2D images, and drawing them."""
+surface, hetero): reading slice .vti files as 2D images, and drawing them
+with colour bars."""
 import os
 
 import dflio
+from sections.common.plot import pyplot
 
 
 def slice_image(path):
@@ -33,8 +35,43 @@ def show(ax, fig, data, ext, labels, title, cmap="viridis", vmin=None, vmax=None
     fig.colorbar(im, ax=ax, shrink=0.75).ax.tick_params(labelsize=6)
 
 
+def show_grad(ax, fig, img, ext, labels, title="|∇u| (white = 1)"):
+    """The image's grad_norm on a diverging scale around 1 (white), 0 to 2."""
+    show(ax, fig, img["grad_norm"], ext, labels, title, cmap="RdBu_r", vmin=0, vmax=2)
+
+
+def show_error(ax, fig, err, ext, labels, title):
+    """A signed error on a diverging scale symmetric about 0 (white)."""
+    import numpy as np
+    m = float(np.nanmax(np.abs(err))) or 1.0
+    show(ax, fig, err, ext, labels, title, cmap="RdBu_r", vmin=-m, vmax=m)
+
+
 def exists(ctx, name):
     return os.path.exists(ctx.path(name))
+
+
+def point_slice(ctx, stem, point, npoints):
+    """slice_image of <stem>.vti at a sweep point (dflio.sweep_name), None
+    when the run wrote no such file."""
+    fn = dflio.sweep_name(stem, point, npoints, "vti")
+    return slice_image(ctx.path(fn)) if exists(ctx, fn) else None
+
+
+def point_columns(ctx, rows, stem, nax, width, height):
+    """A figure with a column of nax axes per row of `rows` (one row per
+    sweep point, in point order), width inches a column, and, for every point
+    whose slice <stem>.vti exists, (axes of its column, row, image, extent,
+    labels) as from slice_image.  Returns (fig, that list)."""
+    n = len(rows)
+    fig, axs = pyplot().subplots(nax, n, figsize=(width * n, height), squeeze=False,
+                                 constrained_layout=True)
+    cols = []
+    for i, r in enumerate(rows):
+        sl = point_slice(ctx, stem, i, n)
+        if sl is not None:
+            cols.append(([axs[k][i] for k in range(nax)], r) + sl)
+    return fig, cols
 
 
 def f(v, fmt="{:.4g}"):

@@ -1,5 +1,7 @@
 """bs04 Sec. 3.1 / Fig. 8: fields of two polygonized space curves."""
 import dflio
+from sections.common.plot import pyplot
+from sections.bs04 import bs04_common as bc
 from sections.bs04 import bs04_space_common as sc
 
 ASSUMPTIONS = [
@@ -16,13 +18,11 @@ ASSUMPTIONS = [
 
 
 def render(ctx):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     import numpy as np
 
     rows = ctx.csv()
-    ref = {r["id"]: r for r in ctx.ref("bs04_facts.csv")}
+    ref = bc.facts(ctx)
     md = ("Each curve is polygonized with a certified bound ε, its segments get the 3D segment "
           "field of eq. 4 and are joined by R-equivalence (p = 2, as in the paper). u is compared "
           "with the exact distance d to the B-spline (footpoints) on a 64³ volume over the unit "
@@ -77,22 +77,18 @@ def render(ctx):
             n += 1
         if n == 0:
             continue
-        tag = ""
-        if "_pt" in r.get("vtp", ""):
-            tag = "_pt" + r["vtp"].split("_pt")[-1].split(".")[0]
         fig, axs = plt.subplots(n, 3, figsize=(11, 3.3 * n), squeeze=False, constrained_layout=True)
         for s in range(n):
-            fn = f"{r['curve']}_slice{s}{tag}.vti"
+            # the slices of the sweep point that wrote this row's polyline
+            fn = dflio.sweep_sibling(r.get("vtp", ""), f"{r['curve']}_slice{s}", "vti")
             if not sc.exists(ctx, fn):
                 continue
             img, ext, lab = sc.slice_image(ctx.path(fn))
-            u, g, e = img["value"], img["grad_norm"], img["error"]
+            u = img["value"]
             sc.show(axs[s][0], fig, np.minimum(u, 0.5), ext, lab,
                     f"u (clipped at 0.5), {r['slice' + str(s)]}", iso=u)
-            sc.show(axs[s][1], fig, g, ext, lab, "|∇u| (white = 1)", cmap="RdBu_r", vmin=0,
-                    vmax=2)
-            m = float(np.nanmax(np.abs(e))) or 1.0
-            sc.show(axs[s][2], fig, e, ext, lab, "u − d", cmap="RdBu_r", vmin=-m, vmax=m)
+            sc.show_grad(axs[s][1], fig, img, ext, lab)
+            sc.show_error(axs[s][2], fig, img["error"], ext, lab, "u − d")
         fig.suptitle(f"{r['curve']}, {int(float(r['segments']))} segments, trim {r['trim']}, "
                      f"R-equivalence p = {r['p']}\n{ctx.config}", fontsize=8)
         md += ctx.figure(fig, f"{r['curve']}_{r['trim']}") + "\n\n"

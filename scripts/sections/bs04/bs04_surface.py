@@ -1,5 +1,6 @@
 """bs04 Sec. 3.2.2 / Fig. 12: field of a triangulated B-spline surface on a section plane."""
 import dflio
+from sections.bs04 import bs04_common as bc
 from sections.bs04 import bs04_space_common as sc
 
 ASSUMPTIONS = [
@@ -13,13 +14,10 @@ ASSUMPTIONS = [
 
 
 def render(ctx):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
     import numpy as np
 
     rows = ctx.csv()
-    ref = {r["id"]: r for r in ctx.ref("bs04_facts.csv")}
+    ref = bc.facts(ctx)
     note = ref.get("surface_eps", {}).get("value", "0.5 and 0.005 (caption .05 and .005)")
     md = ("The surface is triangulated with certified bound ε, one field per triangle "
           "(conditional trim) joined by R-equivalence, and sampled on the section plane. d_S is "
@@ -66,25 +64,15 @@ def render(ctx):
                f"{float(b7['l1_s0_mesh']):.3g}, mean |∇u| in the band "
                f"{float(b7['grad_mean_s0_band']):.2f}).")
     md += "\n\n"
-    n = len(rows)
-    fig, axs = plt.subplots(3, n, figsize=(3.0 * n, 7.6), squeeze=False, constrained_layout=True)
-    for i, r in enumerate(rows):
-        tag = f"_pt{i:03d}" if n > 1 else ""
-        fn = f"surface_slice0{tag}.vti"
-        if not sc.exists(ctx, fn):
-            continue
-        img, ext, lab = sc.slice_image(ctx.path(fn))
+    fig, cols = sc.point_columns(ctx, rows, "surface_slice0", 3, 3.0, 7.6)
+    for ax, r, img, ext, lab in cols:
         t = f"ε = {float(r['eps']):g}, p = {r['p']}, {int(float(r['triangles']))} tri"
-        sc.show(axs[0][i], fig, np.minimum(img["value"], 0.4), ext, lab, "u, " + t,
-                iso=img["value"])
-        axs[0][i].contour(np.linspace(ext[0], ext[1], img["reference"].shape[1]),
-                          np.linspace(ext[2], ext[3], img["reference"].shape[0]),
-                          img["reference"], levels=[1e-3], colors="r", linewidths=0.8)
-        sc.show(axs[1][i], fig, img["grad_norm"], ext, lab, "|∇u| (white = 1)", cmap="RdBu_r",
-                vmin=0, vmax=2)
-        e = img["error"]
-        m = float(np.nanmax(np.abs(e))) or 1.0
-        sc.show(axs[2][i], fig, e, ext, lab, "u − d_S", cmap="RdBu_r", vmin=-m, vmax=m)
+        sc.show(ax[0], fig, np.minimum(img["value"], 0.4), ext, lab, "u, " + t, iso=img["value"])
+        ax[0].contour(np.linspace(ext[0], ext[1], img["reference"].shape[1]),
+                      np.linspace(ext[2], ext[3], img["reference"].shape[0]),
+                      img["reference"], levels=[1e-3], colors="r", linewidths=0.8)
+        sc.show_grad(ax[1], fig, img, ext, lab)
+        sc.show_error(ax[2], fig, img["error"], ext, lab, "u − d_S")
     fig.suptitle("bs04 Fig. 12 analogue: section plane y = 0.5 (red: the surface)\n"
                  f"{ctx.config}", fontsize=8)
     md += ctx.figure(fig, "sections") + "\n\n"

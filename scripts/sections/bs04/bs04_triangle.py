@@ -1,5 +1,6 @@
 """bs04 Sec. 3.2.1 / Figs. 9-10: one triangle, |grad h| on a small sphere at a vertex."""
 import dflio
+from sections.common.plot import pyplot
 from sections.bs04 import bs04_space_common as sc
 
 ASSUMPTIONS = [
@@ -7,7 +8,7 @@ ASSUMPTIONS = [
     "(0.3,0.8,0) (angles 69.4°, 48.8°, 61.7°). Spheres of radius 10⁻² and 10⁻³ around each "
     "vertex, 4000 Fibonacci points each; eq. 4 (not eq. 5).",
     "The in-plane closed form of |∇t| at a vertex (limit r → 0, R0-conjunction of the two "
-    "adjacent edge planes) is derived in experiments/bs04_triangle.c; bs04 gives no numbers "
+    "adjacent edge planes) is derived in experiments/bs04/bs04_triangle.c; bs04 gives no numbers "
     "for Fig. 10b.",
 ]
 
@@ -23,9 +24,7 @@ def _sphere(path):
 
 
 def render(ctx):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     import numpy as np
 
     rows = ctx.csv()
@@ -88,20 +87,17 @@ def render(ctx):
         if r["tri_trim"] in seen:
             continue
         seen.add(r["tri_trim"])
-        tag = ""
-        if "_pt" in r["sphere_vtp"]:
-            tag = "_pt" + r["sphere_vtp"].split("_pt")[-1].split(".")[0]
         k = 0
-        while sc.exists(ctx, f"triangle_slice{k}{tag}.vti"):
-            panels.append((r["tri_trim"], ctx.path(f"triangle_slice{k}{tag}.vti")))
+        # the slices of the sweep point that wrote this row's sphere
+        while sc.exists(ctx, fn := dflio.sweep_sibling(r["sphere_vtp"], f"triangle_slice{k}", "vti")):
+            panels.append((r["tri_trim"], ctx.path(fn)))
             k += 1
     if panels:
         fig, axs = plt.subplots(2, len(panels), figsize=(3.6 * len(panels), 6.2), squeeze=False, constrained_layout=True)
         for j, (trim, fn) in enumerate(panels):
             img, ext, lab = sc.slice_image(fn)
             sc.show(axs[0][j], fig, img["value"], ext, lab, f"h, trim {trim}", iso=img["value"])
-            sc.show(axs[1][j], fig, img["grad_norm"], ext, lab, "|∇h| (white = 1)",
-                    cmap="RdBu_r", vmin=0, vmax=2)
+            sc.show_grad(axs[1][j], fig, img, ext, lab, "|∇h| (white = 1)")
         fig.suptitle(f"bs04 Fig. 9c analogue: one triangle's field on section planes\n{ctx.config}",
                      fontsize=8)
         md += ctx.figure(fig, "slices") + "\n\n"

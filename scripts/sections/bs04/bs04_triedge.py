@@ -11,10 +11,6 @@ ASSUMPTIONS = [
 
 
 def render(ctx):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     rows = ctx.csv()
     md = ("Two triangles sharing an edge, joined by R-equivalence. On a circle of radius r around "
           "the edge in the orthogonal section plane, |∇u| is compared with the 2D theory of bs04 "
@@ -46,18 +42,11 @@ def render(ctx):
            "(of order r: the trims' corrections near the edge). The minimum 2^(−1/p) sin(θ/2) "
            "drops as the dihedral angle closes and rises with p.\n\n")
     # figure: the section plane of every run
-    n = len(rows)
-    fig, axs = plt.subplots(2, n, figsize=(2.9 * n, 5.4), squeeze=False, constrained_layout=True)
-    for i, r in enumerate(rows):
-        tag = f"_pt{i:03d}" if n > 1 else ""
-        fn = f"edge_slice0{tag}.vti"
-        if not sc.exists(ctx, fn):
-            continue
-        img, ext, lab = sc.slice_image(ctx.path(fn))
+    fig, cols = sc.point_columns(ctx, rows, "edge_slice0", 2, 2.9, 5.4)
+    for ax, r, img, ext, lab in cols:
         t = f"θ = {float(r['dihedral']):.0f}°, p = {r['p']}"
-        sc.show(axs[0][i], fig, img["value"], ext, lab, "u, " + t, iso=img["value"])
-        sc.show(axs[1][i], fig, img["grad_norm"], ext, lab, "|∇u| (white = 1)", cmap="RdBu_r",
-                vmin=0, vmax=2)
+        sc.show(ax[0], fig, img["value"], ext, lab, "u, " + t, iso=img["value"])
+        sc.show_grad(ax[1], fig, img, ext, lab)
     fig.suptitle(f"bs04 Fig. 11b analogue: section plane z = 0.35 orthogonal to the shared edge\n"
                  f"{ctx.config}", fontsize=8)
     md += ctx.figure(fig, "sections") + "\n\n"

@@ -1,5 +1,9 @@
 """Smoke studies: metrics of the affinely perturbed exact field."""
+import glob
+import os
+
 import dflio
+from sections.common.plot import pyplot
 
 
 def render(ctx):
@@ -9,18 +13,11 @@ def render(ctx):
     md = dflio.md_table(cols, [[dflio.num(r[c]) for c in cols] for r in rows])
     md += ("\n\nu = (1 + scale) d + offset against the exact d; expected gradient-norm defect "
            f"= |scale| = {abs(dflio.num(rows[0]['scale'])):g}.\n")
-    import glob
-    import os
     vtis = sorted(glob.glob(ctx.path("field*.vti")))
     if vtis:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        import numpy as np
-        dims, org, sp, arr = dflio.read_vti(vtis[-1])
-        v = arr["reference"][dims[2] // 2]
-        x = org[0] + sp[0] * np.arange(dims[0])
-        y = org[1] + sp[1] * np.arange(dims[1])
+        plt = pyplot()
+        x, y, arr = dflio.read_vti_plane(vtis[-1], z=None)
+        v = arr["reference"]
         fig, ax = plt.subplots(figsize=(4.5, 4))
         cs = ax.contour(x, y, v, levels=15, cmap="coolwarm")
         ax.contour(x, y, v, levels=[0], colors="k", linewidths=2)

@@ -43,10 +43,8 @@ Test(e2e_bs04_bulging, collinear_closed_forms_and_bounds, .timeout = 120)
              " --set collinear_disk.cap_rays=%d --set collinear_strip.cap_rays=%d"
              " --set W_fig2.cap_rays=8 --set grid_collinear.n=41 --set grid_W.n=41",
              STEPS, SMAX, NSIDE, NSIDE, NCAP, NCAP);
-    e2e_run_ok(CFG, args, out, sizeof out);
     /* 2 orders x (5 + 5 + 4 offsets) */
-    snprintf(path, sizeof path, "%s/bs04_bulging.csv", out);
-    cr_assert_eq(e2e_csv_rows(path), 28);
+    e2e_run_table(CFG, args, "bs04_bulging", 28, out, sizeof out, path, sizeof path);
     /* per point 3 u images (vti + exr), 3 exact images once, csv, config, manifest */
     cr_expect_eq(e2e_count_entries(out), 2 * 6 + 6 + 3);
 
@@ -107,38 +105,33 @@ Test(e2e_bs04_bulging, collinear_closed_forms_and_bounds, .timeout = 120)
 
     /* images through VTK: the exact distance to [-1, 1] x {0}; u on the
      * joint's normal x = 0 for strips and p = 2 (point 0) is |y| / sqrt 2 */
-    char cmd[4096], pyout[700];
-    snprintf(pyout, sizeof pyout, "%s/py.txt", dir);
-    snprintf(cmd, sizeof cmd,
-             "%s -c \"import sys, numpy as np, vtk\n"
-             "from vtk.util.numpy_support import vtk_to_numpy as v\n"
-             "def rd(f):\n"
-             "  r = vtk.vtkXMLImageDataReader(); r.SetFileName(f); r.Update(); return r.GetOutput()\n"
-             "e = rd(sys.argv[1]); n = e.GetDimensions()\n"
-             "P = np.array([e.GetPoint(i) for i in range(e.GetNumberOfPoints())])\n"
-             "x, y = P[:,0], P[:,1]\n"
-             "d = np.where(np.abs(x) <= 1, np.abs(y), np.hypot(np.abs(x) - 1, y))\n"
-             "ev = v(e.GetPointData().GetArray('value'))\n"
-             "u = rd(sys.argv[2]); uv = v(u.GetPointData().GetArray('value'))\n"
-             "ref = v(u.GetPointData().GetArray('reference'))\n"
-             "er = v(u.GetPointData().GetArray('error'))\n"
-             "c = np.abs(x) < 1e-12\n"
-             "print(n[0], n[1], np.abs(ev - d).max(), np.abs(ref - d).max(), "
-             "np.abs(er - (uv - ref)).max(), np.abs(uv[c] - np.abs(y[c]) / np.sqrt(2)).max(), c.sum())\" "
-             "%s/collinear_disk_exact_pt000.vti %s/collinear_strip_u_pt000.vti >%s 2>&1",
-             e2e_python(), out, out, pyout);
-    int prc = system(cmd);
-    char *py = e2e_slurp(pyout);
-    cr_assert_eq(prc, 0, "VTK check failed: %s", py);
-    int nx = 0, ny = 0, nc = 0;
-    double e1 = 1, e2 = 1, e3 = 1, e4 = 1;
-    cr_assert_eq(sscanf(py, "%d %d %lf %lf %lf %lf %d", &nx, &ny, &e1, &e2, &e3, &e4, &nc), 7, "%s",
-                 py);
-    cr_expect(nx == 41 && ny == 41 && nc == 41);
+    e2e_vti ex, u;
+    const char *ex_arrays[] = {"value"}, *u_arrays[] = {"value", "reference", "error"};
+    snprintf(path, sizeof path, "%s/collinear_disk_exact_pt000.vti", out);
+    e2e_vti_read(dir, path, ex_arrays, 1, &ex);
+    snprintf(path, sizeof path, "%s/collinear_strip_u_pt000.vti", out);
+    e2e_vti_read(dir, path, u_arrays, 3, &u);
+    cr_assert_eq(u.npoints, ex.npoints, "both images on the collinear grid");
+    int nc = 0;
+    double e1 = 0, e2 = 0, e3 = 0, e4 = 0;
+    for (size_t i = 0; i < ex.npoints; i++) {
+        const double x = ex.pts[3 * i], y = ex.pts[3 * i + 1];
+        const double d = fabs(x) <= 1 ? fabs(y) : hypot(fabs(x) - 1, y);
+        const double uv = u.val[3 * i], ref = u.val[3 * i + 1], er = u.val[3 * i + 2];
+        e1 = e2e_max(e1, fabs(ex.val[i] - d));
+        e2 = e2e_max(e2, fabs(ref - d));
+        e3 = e2e_max(e3, fabs(er - (uv - ref)));
+        if (fabs(x) < 1e-12) {
+            nc++;
+            e4 = e2e_max(e4, fabs(uv - fabs(y) / sqrt(2)));
+        }
+    }
+    cr_expect(ex.dims[0] == 41 && ex.dims[1] == 41 && nc == 41);
     cr_expect(e1 < 1e-12 && e2 < 1e-12, "exact image off by %g / %g", e1, e2);
     cr_expect(e3 < 1e-15, "error != value - reference");
     cr_expect(e4 < 1e-14, "u on the joint normal off by %g", e4);
-    free(py);
+    e2e_vti_free(&ex);
+    e2e_vti_free(&u);
     dfl_polyline_free(&wp);
     dfl_bspline_free(&W);
     dfl_cfg_free(wc);
@@ -146,19 +139,15 @@ Test(e2e_bs04_bulging, collinear_closed_forms_and_bounds, .timeout = 120)
 
 Test(e2e_bs04_bulging, bad_input_exits_2_without_files)
 {
-    const char *sets[][2] = {
-        {"study.p=0", "study.p: expected an integer in [1, 64]"},
-        {"study.cases=nope", "no section [nope]"},
-        {"W_fig2.levels=0.1 -0.1", "W_fig2.levels: expected offsets > 0"},
-        {"W_fig2.grid=grid_X", "no section [grid_X]"},
-        {"collinear.order=1", "collinear.order"},
-        {"W_fig2.trim=round", "W_fig2.trim"},
-        {"study.steps=0", "study.steps"},
-        {"collinear.colour=red", "collinear.colour: unknown key"},
+    static const char *const sets[][2] = {
+        {"--set study.p=0", "study.p: expected an integer in [1, 64]"},
+        {"--set study.cases=nope", "no section [nope]"},
+        {"--set 'W_fig2.levels=0.1 -0.1'", "W_fig2.levels: expected offsets > 0"},
+        {"--set W_fig2.grid=grid_X", "no section [grid_X]"},
+        {"--set collinear.order=1", "collinear.order"},
+        {"--set W_fig2.trim=round", "W_fig2.trim"},
+        {"--set study.steps=0", "study.steps"},
+        {"--set collinear.colour=red", "collinear.colour: unknown key"},
     };
-    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++) {
-        char extra[512];
-        snprintf(extra, sizeof extra, "--set '%s'", sets[i][0]);
-        e2e_run_expect_fail(CFG, extra, sets[i][1]);
-    }
+    e2e_expect_bad_runs(CFG, NULL, sets, sizeof sets / sizeof sets[0]);
 }

@@ -67,14 +67,13 @@ static int trim_index(const char *name)
 
 Test(e2e_bs04_fields, values_gradients_and_theory_columns, .timeout = 60)
 {
-    char dir[256], out[512], csv[700];
+    char dir[256], out[512], csv[700], path[800];
     e2e_tmpdir(dir, sizeof dir);
     const int N = 31;
     char extra[128];
     snprintf(extra, sizeof extra, "--set grid.n=%d", N);
-    e2e_run_ok(CFG, extra, out, sizeof out);
-    snprintf(csv, sizeof csv, "%s/bs04_fields.csv", out);
-    cr_assert_eq(e2e_csv_rows(csv), 9, "3 trims x (a, b, join)");
+    /* 3 trims x (a, b, join) */
+    e2e_run_table(CFG, extra, "bs04_fields", 9, out, sizeof out, csv, sizeof csv);
     /* 9 .vti + 9 .exr + csv + config + manifest */
     cr_expect_eq(e2e_count_entries(out), 21);
 
@@ -118,39 +117,23 @@ Test(e2e_bs04_fields, values_gradients_and_theory_columns, .timeout = 60)
             cr_expect(e2e_csv_get(csv, (size_t)r, "ratio_max") <= 1.0, "%s", what);
         }
         /* the image through VTK's reader */
-        char cmd[2048], txt[700];
-        snprintf(txt, sizeof txt, "%s/vti_%ld.txt", dir, r);
-        snprintf(cmd, sizeof cmd,
-                 "%s -c \"import sys, vtk\n"
-                 "from vtk.util.numpy_support import vtk_to_numpy as v\n"
-                 "r = vtk.vtkXMLImageDataReader(); r.SetFileName(sys.argv[1]); r.Update()\n"
-                 "d = r.GetOutput(); pd = d.GetPointData()\n"
-                 "print(*d.GetDimensions(), *d.GetOrigin(), *d.GetSpacing())\n"
-                 "a = [v(pd.GetArray(k)) for k in ('value', 'reference', 'grad_norm', 'error')]\n"
-                 "[print(repr(a[0][i]), repr(a[1][i]), repr(a[2][i]), repr(a[3][i])) "
-                 "for i in range(len(a[0]))]\" %s/%s >%s 2>&1",
-                 e2e_python(), out, vti, txt);
-        cr_assert_eq(system(cmd), 0, "VTK read of %s failed", vti);
-        FILE *fp = fopen(txt, "r");
-        cr_assert_not_null(fp);
-        int dims[3];
-        double org[3], sp[3];
-        cr_assert_eq(fscanf(fp, "%d %d %d %lf %lf %lf %lf %lf %lf", &dims[0], &dims[1], &dims[2],
-                            &org[0], &org[1], &org[2], &sp[0], &sp[1], &sp[2]),
-                     9);
-        cr_assert(dims[0] == N && dims[1] == N && dims[2] == 1);
-        cr_expect_float_eq(org[0], lo[0], 1e-15);
-        cr_expect_float_eq(sp[1], (hi[1] - lo[1]) / (N - 1), 1e-15);
+        const char *arrays[] = {"value", "reference", "grad_norm", "error"};
+        e2e_vti img;
+        snprintf(path, sizeof path, "%s/%s", out, vti);
+        e2e_vti_read(dir, path, arrays, 4, &img);
+        cr_assert(img.dims[0] == N && img.dims[1] == N && img.dims[2] == 1);
+        cr_expect_float_eq(img.origin[0], lo[0], 1e-15);
+        cr_expect_float_eq(img.spacing[1], (hi[1] - lo[1]) / (N - 1), 1e-15);
         double vmaxdev = 0, rmaxdev = 0;
         for (int j = 0; j < N * N; j++) {
-            double val, ref, gn, er;
-            cr_assert_eq(fscanf(fp, "%lf %lf %lf %lf", &val, &ref, &gn, &er), 4);
+            const double *a = img.val + 4 * (size_t)j;
+            const double val = a[0], ref = a[1], gn = a[2], er = a[3];
             const double x[2] = {lo[0] + (j % N) * (hi[0] - lo[0]) / (N - 1),
                                  lo[1] + (j / N) * (hi[1] - lo[1]) / (N - 1)};
             const double want = cf_u(s, fi, it, (int)p, x);
             const double dref = fi < 2 ? cf_dist(&s[fi], x) : fmin(cf_dist(&s[0], x), cf_dist(&s[1], x));
-            vmaxdev = fmax(vmaxdev, fabs(val - want) / (1e-3 + want));
-            rmaxdev = fmax(rmaxdev, fabs(ref - dref));
+            vmaxdev = e2e_max(vmaxdev, fabs(val - want) / (1e-3 + want));
+            rmaxdev = e2e_max(rmaxdev, fabs(ref - dref));
             cr_expect(fabs(er - (val - ref)) <= 1e-15, "error = value - reference");
             if (j % 37 == 0 && want > 1e-3) {
                 /* |grad u| by central differences of the closed form */
@@ -166,7 +149,7 @@ Test(e2e_bs04_fields, values_gradients_and_theory_columns, .timeout = 60)
                           what, j, gn, hypot(g[0], g[1]));
             }
         }
-        fclose(fp);
+        e2e_vti_free(&img);
         cr_expect(vmaxdev <= 1e-12, "%s: values differ from the closed form by %g", what, vmaxdev);
         cr_expect(rmaxdev <= 1e-15, "%s: reference differs from the exact distance by %g", what,
                   rmaxdev);
@@ -176,7 +159,7 @@ Test(e2e_bs04_fields, values_gradients_and_theory_columns, .timeout = 60)
 
 Test(e2e_bs04_fields, bad_input_exits_2_without_files)
 {
-    const char *sets[][2] = {
+    static const char *const sets[][2] = {
         {"--set 'study.segment_a=0 0; 0 0'", "study.segment_a"},
         {"--set 'study.segment_b=0 0; 1 1; 2 2'", "study.segment_b"},
         {"--set study.join=rconj --set study.p=1", "study.p"},
@@ -184,6 +167,5 @@ Test(e2e_bs04_fields, bad_input_exits_2_without_files)
         {"--set grid.n=1", "grid.n"},
         {"--set study.trim=square", "study.trim"},
     };
-    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++)
-        e2e_run_expect_fail(CFG, sets[i][0], sets[i][1]);
+    e2e_expect_bad_runs(CFG, NULL, sets, sizeof sets / sizeof sets[0]);
 }

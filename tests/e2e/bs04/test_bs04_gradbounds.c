@@ -17,10 +17,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/vec.h"
 #include "util/e2e_util.h"
 
 #define CFG "configs/paper/bs04/bs04_gradbounds.ini"
-#define PI 3.14159265358979323846
 
 /* u from first principles: exact distances to the segments from O along
  * (1, 0) and (cos a, sin a) (length 1), joined with pow(). */
@@ -49,12 +49,12 @@ static double brute_min(int rconj, int p, double a, double r, double *tmin)
 {
     double best = INFINITY, tb = 0;
     for (int k = 0; k < 3600; k++) {
-        double t = 2 * PI * (k + 0.25) / 3600, g = g_at(rconj, p, a, r, t);
+        double t = 2 * DFL_PI * (k + 0.25) / 3600, g = g_at(rconj, p, a, r, t);
         if (g < best) best = g, tb = t;
     }
     double t0 = tb;
     for (int k = -500; k <= 500; k++) {
-        double t = t0 + k * (2 * PI / 3600) / 500, g = g_at(rconj, p, a, r, t);
+        double t = t0 + k * (2 * DFL_PI / 3600) / 500, g = g_at(rconj, p, a, r, t);
         if (g < best) best = g, tb = t;
     }
     *tmin = tb;
@@ -64,14 +64,12 @@ static double brute_min(int rconj, int p, double a, double r, double *tmin)
 Test(e2e_bs04_gradbounds, bounds_minimum_and_fig5, .timeout = 60)
 {
     char out[512], csv[700];
-    e2e_run_ok(CFG,
-               "--set 'study.alpha=60, 180, 270' --set 'study.p=2, 12'"
-               " --set 'study.parts=exact, disk' --set study.samples=720"
-               " --set study.profile_alpha=60 --set study.profile_samples=72",
-               out, sizeof out);
-    snprintf(csv, sizeof csv, "%s/bs04_gradbounds.csv", out);
     /* 3 alpha x 2 p x 2 joins x 2 parts, 2 radii each */
-    cr_assert_eq(e2e_csv_rows(csv), 48);
+    e2e_run_table(CFG,
+                  "--set 'study.alpha=60, 180, 270' --set 'study.p=2, 12'"
+                  " --set 'study.parts=exact, disk' --set study.samples=720"
+                  " --set study.profile_alpha=60 --set study.profile_samples=72",
+                  "bs04_gradbounds", 48, out, sizeof out, csv, sizeof csv);
     for (long row = 0; row < 48; row++) {
         char parts[32], join[32];
         char *ps = e2e_csv_cell(csv, row, "parts"), *js = e2e_csv_cell(csv, row, "join");
@@ -84,7 +82,7 @@ Test(e2e_bs04_gradbounds, bounds_minimum_and_fig5, .timeout = 60)
         const double alpha = e2e_csv_get(csv, row, "alpha");
         const int p = (int)e2e_csv_get(csv, row, "p");
         const double r = e2e_csv_get(csv, row, "r");
-        const double a = alpha * PI / 180;
+        const double a = alpha * DFL_PI / 180;
         cr_expect_eq(e2e_csv_get(csv, row, "violations"), 0.0, "row %ld", row);
         cr_expect(e2e_csv_get(csv, row, "fd_maxdiff") < 1e-6, "row %ld", row);
         const double gmin = e2e_csv_get(csv, row, "grad_min");
@@ -100,8 +98,8 @@ Test(e2e_bs04_gradbounds, bounds_minimum_and_fig5, .timeout = 60)
                       row, join, p, alpha, gmin, bm);
             cr_expect(fabs(e2e_csv_get(csv, row, "grad_min_theory") - bm) < 2e-6, "row %ld", row);
             /* the bisector of the convex sector */
-            const double tbis = alpha <= 180 ? a / 2 : a / 2 + PI;
-            cr_expect_float_eq(e2e_csv_get(csv, row, "bisector_deg"), tbis * 180 / PI, 1e-9);
+            const double tbis = alpha <= 180 ? a / 2 : a / 2 + DFL_PI;
+            cr_expect_float_eq(e2e_csv_get(csv, row, "bisector_deg"), tbis * 180 / DFL_PI, 1e-9);
             const double gbis = g_at(rconj, p, a, r, tbis);
             cr_expect(fabs(e2e_csv_get(csv, row, "grad_bisector") - gbis) < 1e-6, "row %ld", row);
             if (alpha != 180) {
@@ -166,21 +164,17 @@ Test(e2e_bs04_gradbounds, bounds_minimum_and_fig5, .timeout = 60)
 
 Test(e2e_bs04_gradbounds, bad_input_exits_2_without_files)
 {
-    const char *sets[][2] = {
-        {"study.alpha=0", "study.alpha"},
-        {"study.join=requiv_corrected", "requiv|rconj"},
-        {"study.p=1", "study.p"},
-        {"study.radii=0.7", "study.radii"},
-        {"study.profile_samples=7", "does not divide"},
-        {"study.fig5_p=2.5", "study.fig5_p"},
-        {"study.colour=red", "study.colour"},
+    static const char *const sets[][2] = {
+        {"--set study.alpha=0", "study.alpha"},
+        {"--set study.join=requiv_corrected", "requiv|rconj"},
+        {"--set study.p=1", "study.p"},
+        {"--set study.radii=0.7", "study.radii"},
+        {"--set study.profile_samples=7", "does not divide"},
+        {"--set study.fig5_p=2.5", "study.fig5_p"},
+        {"--set study.colour=red", "study.colour"},
     };
-    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++) {
-        char extra[512];
-        snprintf(extra, sizeof extra,
-                 "--set study.alpha=90 --set study.p=2"
-                 " --set study.join=rconj --set study.parts=exact --set '%s'",
-                 sets[i][0]);
-        e2e_run_expect_fail(CFG, extra, sets[i][1]);
-    }
+    e2e_expect_bad_runs(CFG,
+                        "--set study.alpha=90 --set study.p=2 --set study.join=rconj"
+                        " --set study.parts=exact",
+                        sets, sizeof sets / sizeof sets[0]);
 }

@@ -8,16 +8,17 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
-#include "e2e/bs04/bs04_space_e2e.h"
+#include "core/vec.h"
 #include "geom/polygonize.h"
 #include "io/config.h"
 #include "rfunc/region.h"
 #include "rfunc/rfield.h"
 #include "rfunc/segment.h"
+#include "util/e2e_util.h"
 
 #define CFG "configs/paper/bs04/bs04_hetero.ini"
-#define PI 3.14159265358979323846
 
 static const double SQ[8] = {0.1, 0.1, 0.4, 0.1, 0.4, 0.4, 0.1, 0.4};
 static const double SEG[4] = {0.55, 0.2, 0.9, 0.75};
@@ -34,8 +35,7 @@ static double exact(const double *x)
 Test(e2e_bs04_hetero, metrics_and_boundary_normalization, .timeout = 60)
 {
     char out[512], csv[700];
-    bs_run(CFG, "--set grid.n=37", "bs04_hetero", out, sizeof out, csv, sizeof csv);
-    cr_assert_eq(e2e_csv_rows(csv), 2);
+    e2e_run_table(CFG, "--set grid.n=37", "bs04_hetero", 2, out, sizeof out, csv, sizeof csv);
     /* the config's geometry is what this test assumes */
     dfl_cfg *cfg;
     dfl_err err;
@@ -62,7 +62,7 @@ Test(e2e_bs04_hetero, metrics_and_boundary_normalization, .timeout = 60)
     for (int i = 0; i <= 2000; i++) {
         const double t = i / 2000.0;
         /* around the square (offset delta), along the segment, around the point */
-        const double ph = 2 * PI * t;
+        const double ph = 2 * DFL_PI * t;
         const double xs[2] = {0.1 + 0.3 * t, 0.1 - delta};
         const double xs2[2] = {0.4 + delta, 0.1 + 0.3 * t};
         const double xs3[2] = {0.1 + 0.3 * t, 0.4 + delta};
@@ -121,10 +121,7 @@ Test(e2e_bs04_hetero, metrics_and_boundary_normalization, .timeout = 60)
 
 Test(e2e_bs04_hetero, bad_input)
 {
-    char msg[2048];
-    int rc = bs_run_fail("[study]\nname = bs04_hetero\nregion = 0 0; 1 1; 0 1; 1 0\n"
-                         "segment = 2 2; 3 3\npoint = 5 5\n[grid]\nn = 5\n",
-                         msg, sizeof msg);
-    cr_expect_eq(rc, 2);
-    cr_expect(strstr(msg, "[study] region"), "%s", msg);
+    e2e_expect_bad_config("[study]\nname = bs04_hetero\nregion = 0 0; 1 1; 0 1; 1 0\n"
+                          "segment = 2 2; 3 3\npoint = 5 5\n[grid]\nn = 5\n",
+                          "[study] region", NULL);
 }

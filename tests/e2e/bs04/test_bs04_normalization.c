@@ -67,10 +67,9 @@ static int trim_index(const char *name)
 Test(e2e_bs04_norm, table_matches_theory, .timeout = 60)
 {
     char out[512], csv[700];
-    e2e_run_ok(CFG, "--set 'field.p=1, 2, 3, 6, 7, 12'", out, sizeof out);
-    snprintf(csv, sizeof csv, "%s/bs04_normalization.csv", out);
-    const long rows = e2e_csv_rows(csv);
-    cr_assert_eq(rows, 3 * 6 * 3, "one row per sweep point");
+    /* one row per sweep point */
+    const long rows = e2e_run_table(CFG, "--set 'field.p=1, 2, 3, 6, 7, 12'", "bs04_normalization",
+                                    3 * 6 * 3, out, sizeof out, csv, sizeof csv);
 
     /* the shipped polyline */
     dfl_cfg *cfg;
@@ -187,12 +186,10 @@ Test(e2e_bs04_norm, table_matches_theory, .timeout = 60)
 Test(e2e_bs04_norm, single_segment_trim_limits, .timeout = 30)
 {
     char out[512], csv[700];
-    e2e_run_ok(CFG,
-               "--set 'field.vertices=0.1 0.2; 0.8 0.6' --set field.join=requiv"
-               " --set field.p=3 --set study.K=12",
-               out, sizeof out);
-    snprintf(csv, sizeof csv, "%s/bs04_normalization.csv", out);
-    cr_assert_eq(e2e_csv_rows(csv), 3);
+    e2e_run_table(CFG,
+                  "--set 'field.vertices=0.1 0.2; 0.8 0.6' --set field.join=requiv"
+                  " --set field.p=3 --set study.K=12",
+                  "bs04_normalization", 3, out, sizeof out, csv, sizeof csv);
     const double a[2] = {0.1, 0.2}, b[2] = {0.8, 0.6};
     const seg2 s = seg_make(a, b);
     for (long r = 0; r < 3; r++) {
@@ -221,9 +218,9 @@ Test(e2e_bs04_norm, single_segment_trim_limits, .timeout = 30)
 Test(e2e_bs04_norm, corrected_end_cancellation, .timeout = 30)
 {
     char out[512], csv[700];
-    e2e_run_ok(CFG, "--set field.join=requiv_corrected --set field.p=2", out, sizeof out);
-    snprintf(csv, sizeof csv, "%s/bs04_normalization.csv", out);
-    for (long r = 0; r < e2e_csv_rows(csv); r++) {
+    const long rows = e2e_run_table(CFG, "--set field.join=requiv_corrected --set field.p=2",
+                                    "bs04_normalization", -1, out, sizeof out, csv, sizeof csv);
+    for (long r = 0; r < rows; r++) {
         const double mo = e2e_csv_get(csv, (size_t)r, "end_normal_order_min");
         cr_expect_eq(mo, e2e_csv_get(csv, (size_t)r, "end_normal_order_theory"));
         cr_expect(mo <= 2); /* p = 2 or the trim's own s^3 term */
@@ -232,7 +229,7 @@ Test(e2e_bs04_norm, corrected_end_cancellation, .timeout = 30)
 
 Test(e2e_bs04_norm, bad_input_exits_2_without_files)
 {
-    const char *sets[][2] = {
+    static const char *const sets[][2] = {
         {"--set 'study.fractions=0.5 1.0'", "study.fractions"},
         {"--set study.K=40", "study.K"},
         {"--set field.curve=W", "field.curve"},
@@ -240,6 +237,5 @@ Test(e2e_bs04_norm, bad_input_exits_2_without_files)
         {"--set 'field.vertices=0 0; 0 0'", "field.vertices"},
         {"--set study.colour=red", "study.colour"},
     };
-    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++)
-        e2e_run_expect_fail(CFG, sets[i][0], sets[i][1]);
+    e2e_expect_bad_runs(CFG, NULL, sets, sizeof sets / sizeof sets[0]);
 }

@@ -30,10 +30,8 @@ Test(e2e_bs04_poly, study_rows_files_and_growth, .timeout = 300)
 {
     char dir[256], out[512], path[700];
     e2e_tmpdir(dir, sizeof dir);
-    e2e_run_ok(CFG, NULL, out, sizeof out);
     /* 5 eps x 2 curves: 10 rows, 10 polylines + csv + config + manifest */
-    snprintf(path, sizeof path, "%s/bs04_polygonization.csv", out);
-    cr_assert_eq(e2e_csv_rows(path), 10);
+    e2e_run_table(CFG, NULL, "bs04_polygonization", 10, out, sizeof out, path, sizeof path);
     cr_expect_eq(e2e_count_entries(out), 13);
 
     dfl_bspline S, W;
@@ -77,19 +75,17 @@ Test(e2e_bs04_poly, study_rows_files_and_growth, .timeout = 300)
         /* the .vtp through VTK's reader: point count, z = 0, points on the curve */
         char *vtp = e2e_csv_cell(path, r, "vtp");
         cr_assert_not_null(vtp);
-        char cmd[2048], pyout[700];
-        snprintf(pyout, sizeof pyout, "%s/py.txt", dir);
-        snprintf(cmd, sizeof cmd,
-                 "%s -c \"import sys, vtk\n"
-                 "from vtk.util.numpy_support import vtk_to_numpy as v\n"
-                 "r = vtk.vtkXMLPolyDataReader(); r.SetFileName(sys.argv[1]); r.Update()\n"
-                 "d = r.GetOutput(); P = v(d.GetPoints().GetData())\n"
-                 "t = v(d.GetPointData().GetArray('t'))\n"
-                 "print(d.GetNumberOfPoints(), d.GetNumberOfLines(), abs(P[:,2]).max(), "
-                 "(t[1:] > t[:-1]).all(), repr(P[-1,0]), repr(P[-1,1]))\" %s/%s >%s 2>&1",
-                 e2e_python(), out, vtp, pyout);
-        int prc = system(cmd);
-        char *py = e2e_slurp(pyout);
+        char *py;
+        const int prc = e2e_python_run(
+            dir, &py,
+            "-c \"import sys, vtk\n"
+            "from vtk.util.numpy_support import vtk_to_numpy as v\n"
+            "r = vtk.vtkXMLPolyDataReader(); r.SetFileName(sys.argv[1]); r.Update()\n"
+            "d = r.GetOutput(); P = v(d.GetPoints().GetData())\n"
+            "t = v(d.GetPointData().GetArray('t'))\n"
+            "print(d.GetNumberOfPoints(), d.GetNumberOfLines(), abs(P[:,2]).max(), "
+            "(t[1:] > t[:-1]).all(), repr(P[-1,0]), repr(P[-1,1]))\" %s/%s",
+            out, vtp);
         cr_assert_eq(prc, 0, "VTK check failed: %s", py);
         long np = 0, nl = 0;
         double zmax = 1, lx = 0, ly = 0;
@@ -187,19 +183,14 @@ Test(e2e_bs04_poly, bad_shape_input)
 
 Test(e2e_bs04_poly, bad_study_input_exits_2_without_files)
 {
-    const char *sets[][2] = {
+    static const char *const sets[][2] = {
         {"--set study.eps=0", "study.eps: expected eps > 0"},
         {"--set study.eps=-1e-3", "study.eps"},
         {"--set study.fit_eps=1e-3", "study.fit_eps"},
         {"--set study.curves=S_X", "no section [S_X]"},
-        {"--set S.knots=0 1 2", "S.knots: 3 knots given, expected 13"},
+        {"--set 'S.knots=0 1 2'", "S.knots: 3 knots given, expected 13"},
         {"--set S.order=1", "S.order"},
         {"--set W.colour=red", "W.colour"},
     };
-    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++) {
-        /* the --set value has a blank for knots: keep it one argument */
-        char extra[512];
-        snprintf(extra, sizeof extra, "--set '%s'", sets[i][0] + 6);
-        e2e_run_expect_fail(CFG, extra, sets[i][1]);
-    }
+    e2e_expect_bad_runs(CFG, NULL, sets, sizeof sets / sizeof sets[0]);
 }

@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/vec.h"
 #include "util/e2e_util.h"
 
 #define CFG "configs/paper/bs04/bs04_recursive.ini"
@@ -21,7 +22,7 @@
 static double brute_dist(double a, double b, const double *x)
 {
     const int N = 2000;
-    const double tp = 2 * 3.14159265358979323846;
+    const double tp = 2 * DFL_PI;
     double best = INFINITY, tb = 0;
     for (int i = 0; i < N; i++) {
         const double t = tp * i / N, d = hypot(a * cos(t) - x[0], b * sin(t) - x[1]);
@@ -43,7 +44,7 @@ static double brute_dist(double a, double b, const double *x)
 
 Test(e2e_bs04_recursive, orders_slopes_and_fields, .timeout = 60)
 {
-    char dir[256], out[512], csv[700];
+    char dir[256], out[512], csv[700], path[800];
     e2e_tmpdir(dir, sizeof dir);
     const int N = 25;
     const double A = 1.0, B = 0.5, LO = -1.3, HI = 1.3;
@@ -51,9 +52,7 @@ Test(e2e_bs04_recursive, orders_slopes_and_fields, .timeout = 60)
     snprintf(extra, sizeof extra,
              "--set grid.n=%d --set 'study.m=1, 2, 3, 4' --set implicit.b=%g --set study.points=16",
              N, B);
-    e2e_run_ok(CFG, extra, out, sizeof out);
-    snprintf(csv, sizeof csv, "%s/bs04_recursive.csv", out);
-    cr_assert_eq(e2e_csv_rows(csv), 4);
+    e2e_run_table(CFG, extra, "bs04_recursive", 4, out, sizeof out, csv, sizeof csv);
     for (long r = 0; r < 4; r++) {
         const int m = (int)e2e_csv_get(csv, (size_t)r, "m");
         cr_assert_eq(m, r + 1);
@@ -74,26 +73,16 @@ Test(e2e_bs04_recursive, orders_slopes_and_fields, .timeout = 60)
 
         /* the image through VTK */
         char *vti = e2e_csv_cell(csv, r, "vti");
-        char cmd[2048], txt[700];
-        snprintf(txt, sizeof txt, "%s/vti_%ld.txt", dir, r);
-        snprintf(cmd, sizeof cmd,
-                 "%s -c \"import sys, vtk\n"
-                 "from vtk.util.numpy_support import vtk_to_numpy as v\n"
-                 "r = vtk.vtkXMLImageDataReader(); r.SetFileName(sys.argv[1]); r.Update()\n"
-                 "pd = r.GetOutput().GetPointData()\n"
-                 "a = [v(pd.GetArray(k)) for k in ('value', 'reference', 'grad_norm')]\n"
-                 "[print(repr(a[0][i]), repr(a[1][i]), repr(a[2][i])) for i in range(len(a[0]))]\""
-                 " %s/%s >%s 2>&1",
-                 e2e_python(), out, vti, txt);
-        cr_assert_eq(system(cmd), 0, "VTK read of %s failed", vti);
-        FILE *fp = fopen(txt, "r");
-        cr_assert_not_null(fp);
+        const char *arrays[] = {"value", "reference", "grad_norm"};
+        e2e_vti img;
+        snprintf(path, sizeof path, "%s/%s", out, vti);
+        e2e_vti_read(dir, path, arrays, 3, &img);
+        cr_assert_eq(img.npoints, (size_t)(N * N));
         const double band1 = e2e_csv_get(csv, (size_t)r, "band_1");
         double linf1 = 0, sum1 = 0;
         long n1 = 0;
         for (int j = 0; j < N * N; j++) {
-            double val, ref, gn;
-            cr_assert_eq(fscanf(fp, "%lf %lf %lf", &val, &ref, &gn), 3);
+            const double val = img.val[3 * (size_t)j], ref = img.val[3 * (size_t)j + 1];
             const double x[2] = {LO + (j % N) * (HI - LO) / (N - 1), LO + (j / N) * (HI - LO) / (N - 1)};
             const double f = x[0] * x[0] / (A * A) + x[1] * x[1] / (B * B) - 1;
             if (j % 3 == 0) {
@@ -110,10 +99,10 @@ Test(e2e_bs04_recursive, orders_slopes_and_fields, .timeout = 60)
             if (fabs(ref) <= band1) {
                 n1++;
                 sum1 += fabs(val - ref);
-                linf1 = fmax(linf1, fabs(val - ref));
+                linf1 = e2e_max(linf1, fabs(val - ref));
             }
         }
-        fclose(fp);
+        e2e_vti_free(&img);
         cr_expect_eq((long)e2e_csv_get(csv, (size_t)r, "band_nodes_1"), n1);
         cr_expect_float_eq(e2e_csv_get(csv, (size_t)r, "linf_band_1"), linf1, 1e-12 * (1 + linf1));
         cr_expect_float_eq(e2e_csv_get(csv, (size_t)r, "l1_band_1"), sum1 / (double)n1,
@@ -124,7 +113,7 @@ Test(e2e_bs04_recursive, orders_slopes_and_fields, .timeout = 60)
 
 Test(e2e_bs04_recursive, bad_input_exits_2_without_files)
 {
-    const char *sets[][2] = {
+    static const char *const sets[][2] = {
         {"--set study.m=7", "study.m"},
         {"--set study.K=3 --set study.m=3", "study.K"},
         {"--set 'study.deltas=0.01 0.005'", "study.deltas"},
@@ -133,6 +122,5 @@ Test(e2e_bs04_recursive, bad_input_exits_2_without_files)
         {"--set implicit.kind=circle", "implicit.kind"},
         {"--set implicit.a=0", "implicit.a"},
     };
-    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++)
-        e2e_run_expect_fail(CFG, sets[i][0], sets[i][1]);
+    e2e_expect_bad_runs(CFG, NULL, sets, sizeof sets / sizeof sets[0]);
 }

@@ -35,10 +35,9 @@ Test(e2e_bs04_scurve, curve_bound_bands_and_offsets, .timeout = 120)
              "--set field.eps=1e-2 --set study.rays=51"
              " --set study.cap_rays=4 --set grid.n=%d --set study.steps=%d --set study.smax=%g",
              GN, STEPS, SMAX);
-    e2e_run_ok(CFG, args, out, sizeof out);
-    snprintf(path, sizeof path, "%s/bs04_scurve.csv", out);
-    const long nrows = e2e_csv_rows(path);
-    cr_assert_eq(nrows, 2 * 5, "2 joins x 5 offsets");
+    /* 2 joins x 5 offsets */
+    const long nrows = e2e_run_table(CFG, args, "bs04_scurve", 2 * 5, out, sizeof out, path,
+                                     sizeof path);
     /* 2 u images (vti + exr) + 1 exact image + csv, config, manifest */
     cr_expect_eq(e2e_count_entries(out), 4 + 2 + 3);
 
@@ -114,17 +113,13 @@ Test(e2e_bs04_scurve, curve_bound_bands_and_offsets, .timeout = 120)
 
 Test(e2e_bs04_scurve, bad_input_exits_2_without_files)
 {
-    const char *sets[][2] = {
-        {"field.kind=exact", "needs kind = rfunc with a curve"},
-        {"study.levels=0", "study.levels: expected offsets > 0"},
-        {"field.curve=T", "no section [T]"},
-        {"field.eps=0", "field.eps"},
-        {"study.rays=1", "study.rays"},
-        {"study.colour=red", "study.colour: unknown key"},
+    static const char *const sets[][2] = {
+        {"--set field.kind=exact", "needs kind = rfunc with a curve"},
+        {"--set study.levels=0", "study.levels: expected offsets > 0"},
+        {"--set field.curve=T", "no section [T]"},
+        {"--set field.eps=0", "field.eps"},
+        {"--set study.rays=1", "study.rays"},
+        {"--set study.colour=red", "study.colour: unknown key"},
     };
-    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++) {
-        char extra[512];
-        snprintf(extra, sizeof extra, "--set '%s'", sets[i][0]);
-        e2e_run_expect_fail(CFG, extra, sets[i][1]);
-    }
+    e2e_expect_bad_runs(CFG, NULL, sets, sizeof sets / sizeof sets[0]);
 }

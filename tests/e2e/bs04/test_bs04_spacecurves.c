@@ -7,11 +7,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "e2e/bs04/bs04_space_e2e.h"
 #include "cfg/curve_cfg.h"
 #include "geom/polygonize.h"
 #include "io/config.h"
 #include "rfunc/rfield.h"
+#include "util/e2e_util.h"
 
 #define CFG "configs/paper/bs04/bs04_spacecurves.ini"
 #define NSAMP 100000
@@ -28,9 +28,8 @@ static void load(const char *file, dfl_bspline *c)
 Test(e2e_bs04_spacecurves, counts_and_slice_metrics, .timeout = 60)
 {
     char out[512], csv[700];
-    bs_run(CFG, "--set study.trim=disk --set grid.n=10 --set study.slice_n=12",
-           "bs04_spacecurves", out, sizeof out, csv, sizeof csv);
-    cr_assert_eq(e2e_csv_rows(csv), 2);
+    e2e_run_table(CFG, "--set study.trim=disk --set grid.n=10 --set study.slice_n=12",
+                  "bs04_spacecurves", 2, out, sizeof out, csv, sizeof csv);
     const char *files[2] = {"configs/shapes/space1.ini", "configs/shapes/space2.ini"};
     const long paper[2] = {56, 90}; /* bs04 Sec. 3.1 */
     for (long r = 0; r < 2; r++) {
@@ -93,19 +92,14 @@ Test(e2e_bs04_spacecurves, counts_and_slice_metrics, .timeout = 60)
 
 Test(e2e_bs04_spacecurves, bad_input)
 {
-    char msg[2048];
     /* a planar curve is not a space curve */
-    int rc = bs_run_fail("[study]\nname = bs04_spacecurves\ncurves = c\neps = 1e-2\n"
-                         "slices = z 0.5\nvolume = false\n"
-                         "[c]\nkind = bspline_curve\ncontrol = 0 0; 1 0; 1 1; 0 1\n",
-                         msg, sizeof msg);
-    cr_expect_eq(rc, 2);
-    cr_expect(strstr(msg, "[c] control") && strstr(msg, "space curve"), "%s", msg);
+    e2e_expect_bad_config("[study]\nname = bs04_spacecurves\ncurves = c\neps = 1e-2\n"
+                          "slices = z 0.5\nvolume = false\n"
+                          "[c]\nkind = bspline_curve\ncontrol = 0 0; 1 0; 1 1; 0 1\n",
+                          "[c] control", "space curve");
     /* a malformed slice */
-    rc = bs_run_fail("[study]\nname = bs04_spacecurves\ncurves = c\neps = 1e-2\n"
-                     "slices = w 0.5\nvolume = false\n"
-                     "[c]\nkind = bspline_curve\ncontrol = 0 0 0; 1 0 0; 1 1 0; 0 1 1\n",
-                     msg, sizeof msg);
-    cr_expect_eq(rc, 2);
-    cr_expect(strstr(msg, "[study] slices") && strstr(msg, "<x|y|z>"), "%s", msg);
+    e2e_expect_bad_config("[study]\nname = bs04_spacecurves\ncurves = c\neps = 1e-2\n"
+                          "slices = w 0.5\nvolume = false\n"
+                          "[c]\nkind = bspline_curve\ncontrol = 0 0 0; 1 0 0; 1 1 0; 0 1 1\n",
+                          "[study] slices", "<x|y|z>");
 }

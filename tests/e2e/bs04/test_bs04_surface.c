@@ -8,12 +8,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "e2e/bs04/bs04_space_e2e.h"
 #include "cfg/curve_cfg.h"
 #include "geom/polygonize.h"
 #include "io/config.h"
 #include "rfunc/rfield.h"
 #include "rfunc/tri3d.h"
+#include "util/e2e_util.h"
 
 #define CFG "configs/paper/bs04/bs04_surface.ini"
 #define NS 1000
@@ -21,9 +21,8 @@
 Test(e2e_bs04_surface, coarse_mesh_metrics, .timeout = 60)
 {
     char out[512], csv[700];
-    bs_run(CFG, "--set study.eps=0.5 --set study.p=2 --set study.slice_n=12", "bs04_surface", out,
-           sizeof out, csv, sizeof csv);
-    cr_assert_eq(e2e_csv_rows(csv), 1);
+    e2e_run_table(CFG, "--set study.eps=0.5 --set study.p=2 --set study.slice_n=12",
+                  "bs04_surface", 1, out, sizeof out, csv, sizeof csv);
     dfl_cfg *cfg;
     dfl_err err;
     dfl_surface_set S;
@@ -98,10 +97,7 @@ Test(e2e_bs04_surface, coarse_mesh_metrics, .timeout = 60)
 
 Test(e2e_bs04_surface, bad_input)
 {
-    char msg[2048];
-    int rc = bs_run_fail("[study]\nname = bs04_surface\nsurface = nowhere\neps = 0.1\n"
-                         "slices = y 0.5\n",
-                         msg, sizeof msg);
-    cr_expect_eq(rc, 2);
-    cr_expect(strstr(msg, "[study] surface") && strstr(msg, "no section [nowhere]"), "%s", msg);
+    e2e_expect_bad_config("[study]\nname = bs04_surface\nsurface = nowhere\neps = 0.1\n"
+                          "slices = y 0.5\n",
+                          "[study] surface", "no section [nowhere]");
 }

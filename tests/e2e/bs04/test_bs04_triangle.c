@@ -9,15 +9,14 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
-#include "e2e/bs04/bs04_space_e2e.h"
+#include "core/vec.h"
 #include "io/config.h"
 #include "rfunc/tri3d.h"
+#include "util/e2e_util.h"
 
 #define CFG "configs/paper/bs04/bs04_triangle.ini"
-#define PI 3.14159265358979323846
-
-static double dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 static double uni(uint64_t *s)
 {
@@ -33,18 +32,17 @@ static double uni(uint64_t *s)
 static double t2(const double *m1, const double *m2, const double *A, const double *x)
 {
     double w[3] = {x[0] - A[0], x[1] - A[1], x[2] - A[2]};
-    const double p1 = dot(w, m1), p2 = dot(w, m2);
+    const double p1 = dfl_vec3_dot(w, m1), p2 = dfl_vec3_dot(w, m2);
     return p1 + p2 - sqrt(p1 * p1 + p2 * p2);
 }
 
 Test(e2e_bs04_triangle, vertex_gradient_vs_theory, .timeout = 60)
 {
     char out[512], csv[700];
-    bs_run(CFG,
-           "--set 'study.vertices=0' --set study.radii=1e-3 --set study.samples=800 "
-           "--set study.slice_n=10 --set study.theory_samples=20000",
-           "bs04_triangle", out, sizeof out, csv, sizeof csv);
-    cr_assert_eq(e2e_csv_rows(csv), 2);
+    e2e_run_table(CFG,
+                  "--set 'study.vertices=0' --set study.radii=1e-3 --set study.samples=800 "
+                  "--set study.slice_n=10 --set study.theory_samples=20000",
+                  "bs04_triangle", 2, out, sizeof out, csv, sizeof csv);
     /* the triangle of the config */
     dfl_cfg *cfg;
     dfl_err err;
@@ -57,32 +55,25 @@ Test(e2e_bs04_triangle, vertex_gradient_vs_theory, .timeout = 60)
     const double *A = v, *B = v + 3, *C = v + 6;
     double ab[3], ac[3], nrm[3], m1[3], m2[3];
     for (int j = 0; j < 3; j++) ab[j] = B[j] - A[j], ac[j] = C[j] - A[j];
-    const double alpha = acos(dot(ab, ac) / sqrt(dot(ab, ab) * dot(ac, ac)));
-    nrm[0] = ab[1] * ac[2] - ab[2] * ac[1];
-    nrm[1] = ab[2] * ac[0] - ab[0] * ac[2];
-    nrm[2] = ab[0] * ac[1] - ab[1] * ac[0];
-    const double nn = sqrt(dot(nrm, nrm));
+    const double alpha =
+        acos(dfl_vec3_dot(ab, ac) / sqrt(dfl_vec3_dot(ab, ab) * dfl_vec3_dot(ac, ac)));
+    dfl_vec3_cross(ab, ac, nrm);
+    const double nn = sqrt(dfl_vec3_dot(nrm, nrm));
     for (int j = 0; j < 3; j++) nrm[j] /= nn;
     /* inward edge normals: n x AB points to C; AC x n points to B */
-    m1[0] = nrm[1] * ab[2] - nrm[2] * ab[1];
-    m1[1] = nrm[2] * ab[0] - nrm[0] * ab[2];
-    m1[2] = nrm[0] * ab[1] - nrm[1] * ab[0];
-    m2[0] = ac[1] * nrm[2] - ac[2] * nrm[1];
-    m2[1] = ac[2] * nrm[0] - ac[0] * nrm[2];
-    m2[2] = ac[0] * nrm[1] - ac[1] * nrm[0];
-    const double l1 = sqrt(dot(m1, m1)), l2 = sqrt(dot(m2, m2));
+    dfl_vec3_cross(nrm, ab, m1);
+    dfl_vec3_cross(ac, nrm, m2);
+    const double l1 = sqrt(dfl_vec3_dot(m1, m1)), l2 = sqrt(dfl_vec3_dot(m2, m2));
     for (int j = 0; j < 3; j++) m1[j] /= l1, m2[j] /= l2;
-    cr_assert(dot(m1, ac) > 0 && dot(m2, ab) > 0);
+    cr_assert(dfl_vec3_dot(m1, ac) > 0 && dfl_vec3_dot(m2, ab) > 0);
     /* the in-plane limit: max and min of |grad t| by central differences
      * over the exterior of the angle (t is homogeneous of degree 1) */
     double e1[3], e2[3];
-    for (int j = 0; j < 3; j++) e1[j] = ab[j] / sqrt(dot(ab, ab));
-    e2[0] = nrm[1] * e1[2] - nrm[2] * e1[1];
-    e2[1] = nrm[2] * e1[0] - nrm[0] * e1[2];
-    e2[2] = nrm[0] * e1[1] - nrm[1] * e1[0];
+    for (int j = 0; j < 3; j++) e1[j] = ab[j] / sqrt(dfl_vec3_dot(ab, ab));
+    dfl_vec3_cross(nrm, e1, e2);
     double qmax = 0, qmin = INFINITY;
     for (int i = 0; i < 20000; i++) {
-        const double th = alpha + (2 * PI - alpha) * (i + 0.5) / 20000.0;
+        const double th = alpha + (2 * DFL_PI - alpha) * (i + 0.5) / 20000.0;
         double x[3], g[3] = {0, 0, 0};
         for (int j = 0; j < 3; j++) x[j] = A[j] + cos(th) * e1[j] + sin(th) * e2[j];
         const double hs = 1e-6;
@@ -93,7 +84,7 @@ Test(e2e_bs04_triangle, vertex_gradient_vs_theory, .timeout = 60)
             const double d = (t2(m1, m2, A, xp) - t2(m1, m2, A, xm)) / (2 * hs);
             for (int j = 0; j < 3; j++) g[j] += d * dir[j];
         }
-        const double q = sqrt(dot(g, g));
+        const double q = sqrt(dfl_vec3_dot(g, g));
         qmax = fmax(qmax, q);
         qmin = fmin(qmin, q);
     }
@@ -104,7 +95,7 @@ Test(e2e_bs04_triangle, vertex_gradient_vs_theory, .timeout = 60)
         cr_assert_str_eq(trim, r == 0 ? "prism" : "conditional");
         free(trim);
         const double rad = e2e_csv_get(csv, (size_t)r, "radius");
-        cr_expect(fabs(e2e_csv_get(csv, (size_t)r, "alpha_deg") - alpha * 180 / PI) < 1e-9);
+        cr_expect(fabs(e2e_csv_get(csv, (size_t)r, "alpha_deg") - alpha * 180 / DFL_PI) < 1e-9);
         cr_expect(fabs(e2e_csv_get(csv, (size_t)r, "theory_plane_max") - qmax) < 1e-4,
                   "theory max %.9g vs %.9g", e2e_csv_get(csv, (size_t)r, "theory_plane_max"), qmax);
         cr_expect(fabs(e2e_csv_get(csv, (size_t)r, "theory_plane_min") - qmin) < 1e-4);
@@ -126,9 +117,10 @@ Test(e2e_bs04_triangle, vertex_gradient_vs_theory, .timeout = 60)
         uint64_t rng = 7;
         double bmax = 0, bmin = INFINITY;
         for (int i = 0; i < 20000; i++) {
-            const double z = 2 * uni(&rng) - 1, ph = 2 * PI * uni(&rng), s = sqrt(1 - z * z);
+            const double z = 2 * uni(&rng) - 1, ph = 2 * DFL_PI * uni(&rng), s = sqrt(1 - z * z);
             const double x[3] = {A[0] + rad * s * cos(ph), A[1] + rad * s * sin(ph), A[2] + rad * z};
-            if (fabs(dot((double[3]){x[0] - A[0], x[1] - A[1], x[2] - A[2]}, nrm)) < 1e-3 * rad)
+            const double w[3] = {x[0] - A[0], x[1] - A[1], x[2] - A[2]};
+            if (fabs(dfl_vec3_dot(w, nrm)) < 1e-3 * rad)
                 continue; /* h = |f| has a kink on the plane */
             double g[3];
             const double hs = 1e-7 * rad;
@@ -139,7 +131,7 @@ Test(e2e_bs04_triangle, vertex_gradient_vs_theory, .timeout = 60)
                 g[j] = (dfl_rfunc_tri_eval(&tri, xp, NULL) - dfl_rfunc_tri_eval(&tri, xm, NULL)) /
                        (xp[j] - xm[j]);
             }
-            const double q = sqrt(dot(g, g));
+            const double q = sqrt(dfl_vec3_dot(g, g));
             bmax = fmax(bmax, q);
             bmin = fmin(bmin, q);
         }
@@ -154,15 +146,10 @@ Test(e2e_bs04_triangle, vertex_gradient_vs_theory, .timeout = 60)
 
 Test(e2e_bs04_triangle, bad_input)
 {
-    char msg[2048];
-    int rc = bs_run_fail("[study]\nname = bs04_triangle\ntriangle = 0 0 0; 1 0 0; 2 0 0\n"
-                         "slices = z 0.1\n",
-                         msg, sizeof msg);
-    cr_expect_eq(rc, 2);
-    cr_expect(strstr(msg, "[study] triangle") && strstr(msg, "degenerate"), "%s", msg);
-    rc = bs_run_fail("[study]\nname = bs04_triangle\ntriangle = 0 0 0; 1 0 0; 0 1 0\n"
-                     "slices = z 0.1\nvertices = 0 3\n",
-                     msg, sizeof msg);
-    cr_expect_eq(rc, 2);
-    cr_expect(strstr(msg, "[study] vertices"), "%s", msg);
+    e2e_expect_bad_config("[study]\nname = bs04_triangle\ntriangle = 0 0 0; 1 0 0; 2 0 0\n"
+                          "slices = z 0.1\n",
+                          "[study] triangle", "degenerate");
+    e2e_expect_bad_config("[study]\nname = bs04_triangle\ntriangle = 0 0 0; 1 0 0; 0 1 0\n"
+                          "slices = z 0.1\nvertices = 0 3\n",
+                          "[study] vertices", NULL);
 }

@@ -8,26 +8,26 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "e2e/bs04/bs04_space_e2e.h"
+#include "core/vec.h"
 #include "geom/polygonize.h"
+#include "util/e2e_util.h"
 
 #define CFG "configs/paper/bs04/bs04_triedge.ini"
-#define PI 3.14159265358979323846
 
 Test(e2e_bs04_triedge, circle_vs_exact_distance_theory, .timeout = 60)
 {
     char out[512], csv[700];
-    bs_run(CFG, "--set study.dihedral=90 --set study.p=2 --set study.samples=720 "
-                "--set study.slice_n=10",
-           "bs04_triedge", out, sizeof out, csv, sizeof csv);
-    cr_assert_eq(e2e_csv_rows(csv), 1);
-    const double th = PI / 2, r = e2e_csv_get(csv, 0, "radius"), z0 = 0.35;
+    e2e_run_table(CFG,
+                  "--set study.dihedral=90 --set study.p=2 --set study.samples=720 "
+                  "--set study.slice_n=10",
+                  "bs04_triedge", 1, out, sizeof out, csv, sizeof csv);
+    const double th = DFL_PI / 2, r = e2e_csv_get(csv, 0, "radius"), z0 = 0.35;
     /* the geometry the study documents (apex = 1 0.5, section = 0.35) */
     const double P[3] = {0, 0, 0}, Q[3] = {0, 0, 1}, R1[3] = {1, 0, 0.5},
                  R2[3] = {cos(th), sin(th), 0.5};
     double tmin = INFINITY, tmax = 0;
     for (int i = 0; i < 720; i++) {
-        const double ph = 2 * PI * (i + 0.5) / 720;
+        const double ph = 2 * DFL_PI * (i + 0.5) / 720;
         const double x[3] = {r * cos(ph), r * sin(ph), z0};
         double h[2], g[2][3];
         for (int t = 0; t < 2; t++) {
@@ -70,14 +70,9 @@ Test(e2e_bs04_triedge, circle_vs_exact_distance_theory, .timeout = 60)
 
 Test(e2e_bs04_triedge, bad_input)
 {
-    char msg[2048];
-    int rc = bs_run_fail("[study]\nname = bs04_triedge\ndihedral = 180\nslices = z 0.35\n", msg,
-                         sizeof msg);
-    cr_expect_eq(rc, 2);
-    cr_expect(strstr(msg, "[study] dihedral") && strstr(msg, "coplanar"), "%s", msg);
-    rc = bs_run_fail("[study]\nname = bs04_triedge\ndihedral = 90\nslices = z 0.35\n"
-                     "join = rconj\np = 1\n",
-                     msg, sizeof msg);
-    cr_expect_eq(rc, 2);
-    cr_expect(strstr(msg, "[study] p"), "%s", msg);
+    e2e_expect_bad_config("[study]\nname = bs04_triedge\ndihedral = 180\nslices = z 0.35\n",
+                          "[study] dihedral", "coplanar");
+    e2e_expect_bad_config("[study]\nname = bs04_triedge\ndihedral = 90\nslices = z 0.35\n"
+                          "join = rconj\np = 1\n",
+                          "[study] p", NULL);
 }

@@ -37,8 +37,7 @@ Test(e2e_probe_rfunc, orders_for_every_join_trim_p, .timeout = 60)
                          "--set field.trim=%s --set field.p=%d",
                          dir, dir, K, joins[j], trims[t], p);
                 int rc = e2e_dflab(dir, args);
-                snprintf(path, sizeof path, "%s/err.txt", dir);
-                char *msg = e2e_slurp(path);
+                char *msg = e2e_err_text(dir);
                 cr_assert_eq(rc, 0, "%s: %s", args, msg);
                 free(msg);
                 snprintf(path, sizeof path, "%s/out.txt", dir);
@@ -61,7 +60,5 @@ Test(e2e_probe_rfunc, orders_for_every_join_trim_p, .timeout = 60)
                               joins[j], trims[t], p, col, next);
                 }
             }
-    char cmd[400];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    cr_expect_eq(system(cmd), 0);
+    cr_expect_eq(e2e_rmtree(dir), 0);
 }

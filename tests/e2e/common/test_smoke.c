@@ -20,8 +20,7 @@ Test(e2e_smoke, circle_files_and_metrics)
     snprintf(out, sizeof out, "%s/res", dir);
     snprintf(args, sizeof args, "run configs/smoke/smoke.ini --out %s --set grid.n=33 --quiet", out);
     int rc = e2e_dflab(dir, args);
-    snprintf(path, sizeof path, "%s/err.txt", dir);
-    char *msg = e2e_slurp(path);
+    char *msg = e2e_err_text(dir);
     cr_assert_eq(rc, 0, "dflab run failed: %s", msg);
     free(msg);
     const char *files[] = {"smoke.csv", "field.vti", "field.exr", "config.ini", "manifest.json"};
@@ -60,12 +59,9 @@ Test(e2e_smoke, circle_files_and_metrics)
     cr_expect_float_eq(e2e_csv_get(path, 0, "graddefect_max"), a, 1e-12);
 
     /* the .vti through VTK's own reader */
-    char cmd[1200];
-    snprintf(cmd, sizeof cmd, "%s tests/e2e/common/check_smoke.py %s/field.vti 33 0.5 0.5 0.3 0.02 0.005 >%s/py.txt 2>&1",
-             e2e_python(), out, dir);
-    int prc = system(cmd);
-    snprintf(path, sizeof path, "%s/py.txt", dir);
-    msg = e2e_slurp(path);
+    int prc = e2e_python_run(dir, &msg,
+                             "tests/e2e/common/check_smoke.py %s/field.vti 33 0.5 0.5 0.3 0.02 0.005",
+                             out);
     cr_expect_eq(prc, 0, "VTK check failed: %s", msg);
     free(msg);
 
@@ -86,8 +82,7 @@ Test(e2e_smoke, circle_files_and_metrics)
         }
     cr_expect_lt(maxdev, 1e-7, "exr value deviates by %g", maxdev);
     free(val);
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    cr_expect_eq(system(cmd), 0);
+    cr_expect_eq(e2e_rmtree(dir), 0);
 }
 
 Test(e2e_smoke, sweep_three_rows)
@@ -111,27 +106,22 @@ Test(e2e_smoke, sweep_three_rows)
         cr_expect_not_null(fp, "missing %s", path);
         if (fp) fclose(fp);
     }
-    char cmd[600];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    cr_expect_eq(system(cmd), 0);
+    cr_expect_eq(e2e_rmtree(dir), 0);
 }
 
 Test(e2e_smoke, sphere_3d)
 {
-    char dir[256], out[512], args[1024], path[600], cmd[1200];
+    char dir[256], out[512], args[1024];
     e2e_tmpdir(dir, sizeof dir);
     snprintf(out, sizeof out, "%s/res", dir);
     snprintf(args, sizeof args, "run configs/smoke/smoke3d.ini --out %s --set grid.n=17 --quiet", out);
     cr_assert_eq(e2e_dflab(dir, args), 0);
-    snprintf(cmd, sizeof cmd, "%s tests/e2e/common/check_smoke.py %s/field.vti 17 0.5 0.5 0.5 0.3 0.02 0.005 >%s/py.txt 2>&1",
-             e2e_python(), out, dir);
-    int prc = system(cmd);
-    snprintf(path, sizeof path, "%s/py.txt", dir);
-    char *msg = e2e_slurp(path);
+    char *msg;
+    int prc = e2e_python_run(
+        dir, &msg, "tests/e2e/common/check_smoke.py %s/field.vti 17 0.5 0.5 0.5 0.3 0.02 0.005", out);
     cr_expect_eq(prc, 0, "VTK check failed: %s", msg);
     free(msg);
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    cr_expect_eq(system(cmd), 0);
+    cr_expect_eq(e2e_rmtree(dir), 0);
 }
 
 /* probe reproduces the circle SDF and gradient at random points to 1e-12 */
@@ -167,9 +157,7 @@ Test(e2e_smoke, probe_random_points)
     }
     cr_expect_lt(worst, 1e-12, "value error %g", worst);
     cr_expect_lt(gworst, 1e-12, "gradient error %g", gworst);
-    char cmd[600];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    cr_expect_eq(system(cmd), 0);
+    cr_expect_eq(e2e_rmtree(dir), 0);
 }
 
 /* Along the tangent at a boundary point, d(s) = sqrt(r^2 + s^2) - r, whose
@@ -194,7 +182,5 @@ Test(e2e_smoke, probe_jets)
         snprintf(col, sizeof col, "d%d", k);
         cr_expect(fabs(e2e_csv_get(path, 1, col)) < 1e-10, "%s = %g", col, e2e_csv_get(path, 1, col));
     }
-    char cmd[600];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    cr_expect_eq(system(cmd), 0);
+    cr_expect_eq(e2e_rmtree(dir), 0);
 }

@@ -1,0 +1,18 @@
+/* scripts/report.py finds a paper's sections by folder, gives a study
+ * without a section its CSV as a table, and shows a broken section or
+ * folder as a failure (check_report.py builds the trees and checks). */
+#include <criterion/criterion.h>
+#include <stdlib.h>
+
+#include "util/e2e_util.h"
+
+Test(e2e_report, sections_by_folder_generic_table_and_failures, .timeout = 60)
+{
+    char dir[256], *py;
+    e2e_tmpdir(dir, sizeof dir);
+    cr_assert(dir[0], "no temporary directory");
+    const int rc = e2e_python_run(dir, &py, "tests/e2e/common/check_report.py %s", dir);
+    cr_expect_eq(rc, 0, "%s", py);
+    free(py);
+    cr_expect_eq(e2e_rmtree(dir), 0);
+}
