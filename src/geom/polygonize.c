@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "geom/segdist.h"
+
 #define KMAX DFL_BSPLINE_MAX_ORDER
 #define MAX_DEPTH 60
 #define DEFAULT_CAP 10000000u
@@ -17,26 +19,6 @@ static double dist2(int dim, const double *a, const double *b)
     double s = 0.0;
     for (int j = 0; j < dim; j++) s += (a[j] - b[j]) * (a[j] - b[j]);
     return s;
-}
-
-double dfl_point_segment_dist(int dim, const double *x, const double *a, const double *b)
-{
-    double e[3], w[3], ee = 0.0, we = 0.0;
-    for (int j = 0; j < dim; j++) {
-        e[j] = b[j] - a[j];
-        w[j] = x[j] - a[j];
-        ee += e[j] * e[j];
-        we += w[j] * e[j];
-    }
-    double s = ee > 0.0 ? we / ee : 0.0;
-    if (s < 0.0) s = 0.0;
-    if (s > 1.0) s = 1.0;
-    double d = 0.0;
-    for (int j = 0; j < dim; j++) {
-        double r = w[j] - s * e[j];
-        d += r * r;
-    }
-    return sqrt(d);
 }
 
 double dfl_bezier_chord_bound(const double *bez, int np, int dim)
