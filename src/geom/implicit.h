@@ -40,6 +40,11 @@
  *
  * Thread safety: a dfl_implicit is read-only after construction; all
  * queries may run concurrently (the Ceres context is shared, see lsq.h).
+ *
+ * Files: implicit.c (construction, g, samples), implicit_foot.c
+ * (footpoints), implicit_sdf.c (jets, Hermite data, the shape wrapper),
+ * implicit_surfaces.c (torus, Goursat, genus 2); the polynomial type is
+ * geom/poly3.h.
  */
 #ifndef DFL_GEOM_IMPLICIT_H
 #define DFL_GEOM_IMPLICIT_H
@@ -47,10 +52,11 @@
 #include "core/jet.h"
 #include "core/status.h"
 #include "geom/foot_backend.h"
+#include "geom/poly3.h"
 #include "geom/shape.h"
 
-#define DFL_IMPLICIT_MAX_TERMS 96
-#define DFL_IMPLICIT_MAX_DEGREE 12
+#define DFL_IMPLICIT_MAX_TERMS DFL_POLY3_MAX_TERMS
+#define DFL_IMPLICIT_MAX_DEGREE DFL_POLY3_MAX_DEGREE
 #define DFL_IMPLICIT_MAX_STARTS 16
 
 
