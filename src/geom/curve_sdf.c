@@ -102,8 +102,9 @@ void dfl_curve_sdf_from_foot(const dfl_curve_sdf *S, const double *x, const dfl_
     o->flags = f->flags & (DFL_FOOT_MEDIAL | DFL_FOOT_FOCAL);
     double cr12 = C1[0] * C2[1] - C1[1] * C2[0], cr13 = C1[0] * C3[1] - C1[1] * C3[0];
     double dot12 = C1[0] * C2[0] + C1[1] * C2[1];
-    o->kappa = -S->orient * cr12 / (v * v * v);
-    o->kappa_s = -S->orient * (cr13 / (v * v * v) - 3.0 * cr12 * dot12 / pow(v, 5)) / v;
+    /* dN/ds = kappa T with the outward N (curvature.h): o (C' x C'')/|C'|^3 */
+    o->kappa = S->orient * cr12 / (v * v * v);
+    o->kappa_s = S->orient * (cr13 / (v * v * v) - 3.0 * cr12 * dot12 / pow(v, 5)) / v;
     if ((f->flags & DFL_FOOT_END) && f->dist > 0.0) {
         /* footpoint at the joint of a clamped closed curve (a corner): there
          * d = sign |x - P| locally, whose derivatives are those of the
@@ -130,16 +131,16 @@ void dfl_curve_sdf_from_foot(const dfl_curve_sdf *S, const double *x, const dfl_
     }
     o->g[0] = N[0];
     o->g[1] = N[1];
-    double g = 1.0 - o->kappa * o->d;
+    double g = 1.0 + o->kappa * o->d;
     if (fabs(g) < 1e-6) o->flags |= DFL_FOOT_FOCAL;
     if (order >= 2) {
-        double a = -o->kappa / g;
+        double a = o->kappa / g;
         o->h[0] = a * T[0] * T[0];
         o->h[1] = a * T[0] * T[1];
         o->h[2] = a * T[1] * T[1];
     }
     if (order >= 3) {
-        double A = -o->kappa_s / (g * g * g), B = -o->kappa * o->kappa / (g * g);
+        double A = o->kappa_s / (g * g * g), B = -o->kappa * o->kappa / (g * g);
         static const int I[4][3] = {{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {1, 1, 1}};
         for (int q = 0; q < 4; q++) {
             int i = I[q][0], j = I[q][1], k = I[q][2];

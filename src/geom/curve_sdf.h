@@ -6,20 +6,21 @@
  *   d < 0 inside, where the winding number of the curve around x is
  *   non-zero; N is the unit normal at the footpoint pointing to the outside
  *   (the right normal of a counter-clockwise curve), T = C'/|C'| the unit
- *   tangent, kappa the signed curvature with dT/ds = kappa N (so a convex
- *   curve has kappa < 0: a circle of radius R has kappa = -1/R), and
- *   kappa_s = d kappa / ds its arc-length derivative.  With x = C(s) + d N
- *   and g = 1 - kappa d (> 0 off the focal set):
+ *   tangent, kappa the curvature in geom/curvature.h's convention for the
+ *   normal N: dN/ds = kappa T (a circle of radius R has kappa = +1/R, a
+ *   convex curve kappa >= 0), and kappa_s = d kappa / ds its arc-length
+ *   derivative.  With x = C(s) + d N and g = 1 + kappa d (> 0 off the focal
+ *   set):
  *     grad d = N
- *     H = -kappa / g  T T^T                       (Hessian)
- *     d_ijk = -kappa_s / g^3  T_i T_j T_k
+ *     H = kappa / g  T T^T                        (Hessian)
+ *     d_ijk = kappa_s / g^3  T_i T_j T_k
  *             - kappa^2 / g^2 (T_i T_j N_k + T_i N_j T_k + N_i T_j T_k)
- *   Derivation: dx = (1 - kappa d) T ds + N dd gives grad s = T / g and
- *   grad d = N; grad N = (dN/ds) grad s^T = -kappa T T^T / g; differentiate
- *   H = -f T T^T with f(s, d) = kappa/(1 - kappa d): df/ds = kappa_s / g^2,
- *   df/dd = kappa^2 / g^2, dT/dx_k = kappa N T_k / g.  Parametric forms:
- *   kappa = o (C' x C'') / |C'|^3 with o = -1 for a counter-clockwise curve
- *   (+1 clockwise), kappa_s = o [(C' x C''')/|C'|^3
+ *   Derivation: dT/ds = -kappa N, so dx = (1 + kappa d) T ds + N dd gives
+ *   grad s = T / g and grad d = N; grad N = (dN/ds) grad s^T = kappa T T^T / g;
+ *   differentiate H = f T T^T with f(s, d) = kappa / (1 + kappa d):
+ *   df/ds = kappa_s / g^2, df/dd = -kappa^2 / g^2, dT/dx_k = -kappa N T_k / g.
+ *   Parametric forms: kappa = o (C' x C'') / |C'|^3 with o = +1 for a
+ *   counter-clockwise curve (-1 clockwise), kappa_s = o [(C' x C''')/|C'|^3
  *   - 3 (C' x C'')(C'.C'')/|C'|^5] / |C'|.
  * The sign comes from the winding number of a certified polygonization
  * (Hausdorff bound h, 1e-4 of the curve's size) when |d| > h (the curve and
@@ -50,7 +51,7 @@ typedef struct dfl_curve_sdf_val {
     double t3[4];    /* d_xxx, d_xxy, d_xyy, d_yyy (order >= 3) */
     double t;        /* footpoint parameter */
     double foot[2];  /* footpoint */
-    double kappa;    /* signed curvature (convention above) */
+    double kappa;    /* curvature at the footpoint (convention above) */
     double kappa_s;  /* d kappa / ds */
     int winding;     /* winding number around x (0 outside; from N when |d| <= h) */
     int flags;       /* DFL_FOOT_MEDIAL | DFL_FOOT_FOCAL */

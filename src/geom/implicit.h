@@ -33,10 +33,9 @@
  * footpoint with the lexicographically smallest (x, y, z) is chosen, so the
  * choice does not depend on the order of the starts.
  *
- * Curvature sign convention (used in all of dflab, see geom/curvature.h):
- * principal curvatures are the eigenvalues of the differential of the
- * OUTWARD unit normal, so a sphere of radius r has kappa = +1/r.  With it the
- * SDF Hessian at x = p + d n is sum_i kappa_i / (1 + kappa_i d) e_i e_i^T.
+ * Curvatures: geom/curvature.h's convention with the outward normal n(p)
+ * (a sphere has kappa = +1/r, and the SDF Hessian at x = p + d n is
+ * sum_i kappa_i / (1 + kappa_i d) e_i e_i^T).
  *
  * Thread safety: a dfl_implicit is read-only after construction; all
  * queries may run concurrently (the Ceres context is shared, see lsq.h).

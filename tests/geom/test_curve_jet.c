@@ -20,7 +20,7 @@ Test(curve_jet, sdf_jets_match_closed_forms)
         double a = 6.283185307179586 * dfl_rng_lcg(&seed), dir[2] = {cos(a), sin(a)};
         dfl_curve_sdf_val v;
         cr_assert_eq(dfl_curve_sdf_eval(S, x, 3, &v, NULL), DFL_OK);
-        if (fabs(1.0 - v.kappa * v.d) < 0.2 || fabs(x[1]) < 0.05) continue;
+        if (fabs(1.0 + v.kappa * v.d) < 0.2 || fabs(x[1]) < 0.05) continue;
         tested++;
         dfl_jet j;
         dfl_err err;

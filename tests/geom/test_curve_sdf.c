@@ -1,6 +1,6 @@
 /* The closed-curve SDF (curve_sdf.c): sign and orientation, rejection of
  * open curves, derivatives of orders 1-3 (and mixed) against central finite
- * differences. */
+ * differences, and the curvature convention of geom/curvature.h. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdlib.h>
@@ -8,6 +8,7 @@
 
 #include "geom/curve_fixtures.h"
 #include "geom/footpoint.h"
+#include "geom/curvature.h"
 
 static double sdf_d(const dfl_curve_sdf *S, double x, double y, dfl_curve_sdf_val *v)
 {
@@ -57,8 +58,8 @@ Test(curve_sdf, sdf_derivatives_match_finite_differences)
         dfl_curve_sdf_val v, px, mx, py, my;
         sdf_d(S, x, y, &v);
         /* off the medial axis and the focal set: the stencil's footpoints
-         * must stay on one branch, and 1 - kappa d well away from 0 */
-        if (fabs(1.0 - v.kappa * v.d) < 0.2 || fabs(y) < 0.05) continue;
+         * must stay on one branch, and 1 + kappa d well away from 0 */
+        if (fabs(1.0 + v.kappa * v.d) < 0.2 || fabs(y) < 0.05) continue;
         sdf_d(S, x + h, y, &px);
         sdf_d(S, x - h, y, &mx);
         sdf_d(S, x, y + h, &py);
@@ -110,3 +111,46 @@ Test(curve_sdf, sdf_derivatives_match_finite_differences)
 }
 
 
+/* The curvature convention of geom/curvature.h: dN/ds = kappa T for the
+ * outward normal N, whatever the orientation of the curve.  The blob is
+ * convex, so kappa > 0 at every footpoint of both orientations; kappa
+ * equals dfl_curvature_curve2 with the outward normal, and the Hessian is
+ * curvature.h's kappa / (1 + kappa d) T T^T. */
+Test(curve_sdf, curvature_convention_of_curvature_h)
+{
+    for (int rev = 0; rev < 2; rev++) {
+        dfl_bspline c;
+        cf_make_blob(&c);
+        if (rev) { /* the same curve traversed clockwise */
+            dfl_bspline_free(&c);
+            static const double cp[] = {1.6, -0.9, 0.0, -1.0, -1.6, -0.9, -2.0, 0.0,
+                                        -1.6, 0.9, 0.0, 1.0,  1.6,  0.9,  2.0, 0.0};
+            cr_assert_eq(dfl_bspline_init_periodic(2, 4, 8, cp, NULL, 0, &c, NULL), DFL_OK);
+        }
+        dfl_curve_sdf *S;
+        cr_assert_eq(dfl_curve_sdf_new(&c, NULL, &S, NULL), DFL_OK);
+        cr_assert_eq(dfl_curve_sdf_orientation(S), rev ? -1 : 1);
+        uint64_t seed = 41;
+        for (int q = 0; q < 60; q++) {
+            double x[2] = {dfl_rng_splitmix(&seed, -3, 3), dfl_rng_splitmix(&seed, -2, 2)};
+            dfl_curve_sdf_val v;
+            cr_assert_eq(dfl_curve_sdf_eval(S, x, 2, &v, NULL), DFL_OK);
+            cr_assert(v.kappa > 0.0, "rev %d: kappa %g at (%g %g)", rev, v.kappa, x[0], x[1]);
+            double D[3 * 2];
+            dfl_bspline_eval(&c, v.t, 2, D);
+            double sp = hypot(D[2], D[3]), T[2] = {D[2] / sp, D[3] / sp};
+            double N[2] = {rev ? -T[1] : T[1], rev ? T[0] : -T[0]}; /* outward */
+            cr_assert((fabs(v.g[0] - N[0]) < 1e-12 && fabs(v.g[1] - N[1]) < 1e-12) ||
+                      (v.flags & DFL_FOOT_MEDIAL));
+            double k2 = dfl_curvature_curve2(D + 2, D + 4, N);
+            cr_assert(fabs(v.kappa - k2) < 1e-12 * (1 + fabs(k2)), "%.17g vs %.17g", v.kappa, k2);
+            if (v.flags & (DFL_FOOT_MEDIAL | DFL_FOOT_FOCAL)) continue;
+            double a = v.kappa / (1.0 + v.kappa * v.d);
+            cr_assert(fabs(v.h[0] - a * T[0] * T[0]) < 1e-12 * (1 + fabs(a)));
+            cr_assert(fabs(v.h[1] - a * T[0] * T[1]) < 1e-12 * (1 + fabs(a)));
+            cr_assert(fabs(v.h[2] - a * T[1] * T[1]) < 1e-12 * (1 + fabs(a)));
+        }
+        dfl_curve_sdf_free(S);
+        dfl_bspline_free(&c);
+    }
+}

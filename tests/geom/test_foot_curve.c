@@ -100,7 +100,9 @@ Test(foot_curve, newton_and_ceres_agree_on_hard_cases)
     }
     /* at and near the centre of curvature of the vertex of maximal
      * curvature, found by a dense scan + golden section on kappa(t): there
-     * the distance has a degenerate (quartic) minimum */
+     * the distance has a degenerate (quartic) minimum.  kappa =
+     * (C' x C'') / |C'|^3 is geom/curvature.h's curvature for the right
+     * normal, the outward one of this counter-clockwise curve (> 0 here) */
     {
         double best = 0, tb = 0;
         for (int q = 0; q < 8000; q++) {
