@@ -635,6 +635,19 @@ done:
     return st;
 }
 
+/* Hands the buffers of m over to *out. */
+static void mesh_take(const mesh_buf *m, double maxb, dfl_trimesh *out)
+{
+    out->nverts = m->nv;
+    out->verts = m->verts;
+    out->uv = m->uv;
+    out->ntris = m->nt;
+    out->tris = m->tris;
+    out->tri_patch = m->tp;
+    out->cell_bound = m->cb;
+    out->bound = maxb;
+}
+
 dfl_status dfl_polygonize_surface(const dfl_surface_set *s, double eps, size_t max_tris,
                                   dfl_trimesh *out, dfl_err *err)
 {
@@ -644,25 +657,16 @@ dfl_status dfl_polygonize_surface(const dfl_surface_set *s, double eps, size_t m
     mesh_buf m;
     memset(&m, 0, sizeof m);
     double maxb = 0.0;
+    dfl_trimesh t;
     for (size_t p = 0; p < s->npatch; p++) {
         dfl_status st = mesh_patch(&s->patch[p], p, eps, max_tris, &m, &maxb, err);
         if (st != DFL_OK) {
-            free(m.verts);
-            free(m.uv);
-            free(m.tris);
-            free(m.tp);
-            free(m.cb);
+            mesh_take(&m, maxb, &t); /* no partial output: release what was built */
+            dfl_trimesh_free(&t);
             return st;
         }
     }
-    out->nverts = m.nv;
-    out->verts = m.verts;
-    out->uv = m.uv;
-    out->ntris = m.nt;
-    out->tris = m.tris;
-    out->tri_patch = m.tp;
-    out->cell_bound = m.cb;
-    out->bound = maxb;
+    mesh_take(&m, maxb, out);
     return DFL_OK;
 }
 
