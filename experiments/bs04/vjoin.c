@@ -6,6 +6,7 @@
 
 #include "rfunc/rfield.h"
 #include "geom/segdist.h"
+#include "rfunc/exact_polyline.h"
 
 static const double PI = 3.14159265358979323846;
 
@@ -86,7 +87,7 @@ dfl_status dfl_vjoin_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_vjoin *ou
 dfl_status dfl_vjoin_field(const dfl_vjoin *vj, dfl_rfunc_join join, int p, dfl_field *out,
                            dfl_err *err)
 {
-    if (vj->parts == 0) return dfl_segdist_polyline_field(2, vj->v, 3, join, p, out, err);
+    if (vj->parts == 0) return dfl_rfunc_exact_polyline_field(2, vj->v, 3, join, p, out, err);
     return dfl_rfield_polyline(2, vj->v, 3, false, join, p, trim_of[vj->parts], out, err);
 }
 

@@ -4,7 +4,7 @@
  * polyline P1, O, P2 (so the corrected join registers O as the shared
  * vertex of parts 1 and 2).
  *
- * Parts are either exact segment distances (segdist.h; bs04's analysis
+ * Parts are either exact segment distances (geom/segdist.h; bs04's analysis
  * assumes them) or one of the library's trimmed segment fields
  * (rfunc/segment.h), named as in configs: "exact", "disk", "disk_smooth",
  * "strip", "strip_smooth".
@@ -46,7 +46,7 @@ dfl_status dfl_vjoin_init(double alpha_deg, double length, int parts, dfl_vjoin 
 dfl_status dfl_vjoin_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_vjoin *out, dfl_err *err);
 
 /* The joined field u (dfl_field_destroy releases it): the library's
- * dfl_rfield_polyline for trimmed parts, dfl_segdist_polyline_field for
+ * dfl_rfield_polyline for trimmed parts, dfl_rfunc_exact_polyline_field for
  * exact ones.  DFL_E_INPUT for a bad p. */
 dfl_status dfl_vjoin_field(const dfl_vjoin *vj, dfl_rfunc_join join, int p, dfl_field *out,
                            dfl_err *err);

@@ -1,6 +1,7 @@
 #include "cfg/shape_cfg.h"
 
 #include "cfg/curve_cfg.h"
+#include "geom/ellipse.h"
 #include "geom/implicit.h"
 
 #include <math.h>
@@ -52,13 +53,30 @@ static dfl_status ctor_fail(const dfl_cfg *cfg, const char *sec, dfl_status st, 
     return st;
 }
 
-enum kind {
-    K_CIRCLE, K_SPHERE, K_TORUS, K_CYLINDER, K_PLANE, K_CONE, K_BOX, K_SEGMENT,
-    K_BSPLINE_CURVE, K_BSPLINE_SURFACE, K_BEZIER_SURFACE, K_IMPLICIT, K_CSG, K_COUNT
-};
-static const char *const kind_names[] = {
-    "circle", "sphere", "torus", "cylinder", "plane", "cone", "box", "segment",
-    "bspline_curve", "bspline_surface", "bezier_surface", "implicit", "csg"};
+/* A constructor's status, its message naming the section on failure. */
+static dfl_status ctor_result(const dfl_cfg *cfg, const char *sec, dfl_status st, dfl_err *err)
+{
+    return st == DFL_OK ? DFL_OK : ctor_fail(cfg, sec, st, err);
+}
+
+static dfl_status get_dim(const dfl_cfg *cfg, const char *sec, long def, int *dim, dfl_err *err)
+{
+    long d;
+    dfl_status st = dfl_cfg_int_opt(cfg, sec, "dim", def, 2, 3, &d, err);
+    *dim = (int)d;
+    return st;
+}
+
+/* ---- one parser per kind ------------------------------------------------ */
+
+/* What a kind's parser is asked to build: section sec of cfg, of the given
+ * kind, at CSG nesting depth (0 at the top). */
+typedef struct shape_req {
+    const dfl_cfg *cfg;
+    const char *sec;
+    dfl_shape_kind kind;
+    int depth;
+} shape_req;
 
 /* CSG sections name other sections; a cycle would recurse forever, and no
  * sensible model nests deeper than this. */
@@ -67,9 +85,10 @@ static const char *const kind_names[] = {
 static dfl_status from_cfg(const dfl_cfg *cfg, const char *sec, int depth, dfl_shape *out,
                            dfl_err *err);
 
-static dfl_status csg_from_cfg(const dfl_cfg *cfg, const char *sec, int depth, dfl_shape *out,
-                               dfl_err *err)
+static dfl_status csg_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *err)
 {
+    const dfl_cfg *cfg = rq->cfg;
+    const char *sec = rq->sec;
     static const char *const ops[] = {"union", "intersection", "difference", "smooth_union",
                                       "smooth_intersection", "smooth_difference"};
     int op;
@@ -80,18 +99,30 @@ static dfl_status csg_from_cfg(const dfl_cfg *cfg, const char *sec, int depth, d
     const char *na, *nb;
     if ((st = dfl_cfg_string(cfg, sec, "a", &na, err)) != DFL_OK) return st;
     if ((st = dfl_cfg_string(cfg, sec, "b", &nb, err)) != DFL_OK) return st;
-    if (depth >= MAX_CSG_DEPTH)
+    if (rq->depth >= MAX_CSG_DEPTH)
         return bad_value(cfg, sec, "a", "csg nesting too deep (a cycle of sections?)", err);
     if (!dfl_cfg_has_section(cfg, na)) return bad_value(cfg, sec, "a", "no such section", err);
     if (!dfl_cfg_has_section(cfg, nb)) return bad_value(cfg, sec, "b", "no such section", err);
     dfl_shape a = {0}, b = {0};
-    if ((st = from_cfg(cfg, na, depth + 1, &a, err)) != DFL_OK) return st;
-    if ((st = from_cfg(cfg, nb, depth + 1, &b, err)) != DFL_OK) {
+    if ((st = from_cfg(cfg, na, rq->depth + 1, &a, err)) != DFL_OK) return st;
+    if ((st = from_cfg(cfg, nb, rq->depth + 1, &b, err)) != DFL_OK) {
         dfl_shape_free(&a);
         return st;
     }
-    if ((st = dfl_shape_csg((dfl_csg_op)op, k, &a, &b, out, err)) != DFL_OK)
-        return ctor_fail(cfg, sec, st, err);
+    return ctor_result(cfg, sec, dfl_shape_csg((dfl_csg_op)op, k, &a, &b, out, err), err);
+}
+
+/* The torus keys shared by kind = torus and the implicit torus: center,
+ * axis (non-zero), major > 0, minor in (0, major). */
+static dfl_status torus_keys(const dfl_cfg *cfg, const char *sec, double c[3], double ax[3],
+                             double *R, double *r, dfl_err *err)
+{
+    dfl_status st;
+    if ((st = dfl_cfg_vec(cfg, sec, "center", 3, c, err)) != DFL_OK) return st;
+    if ((st = get_nonzero_vec(cfg, sec, "axis", 3, ax, err)) != DFL_OK) return st;
+    if ((st = get_pos(cfg, sec, "major", R, err)) != DFL_OK) return st;
+    if ((st = get_pos(cfg, sec, "minor", r, err)) != DFL_OK) return st;
+    if (!(*r < *R)) return bad_value(cfg, sec, "minor", "expected minor < major", err);
     return DFL_OK;
 }
 
@@ -102,9 +133,10 @@ static dfl_status csg_from_cfg(const dfl_cfg *cfg, const char *sec, int depth, d
  * goursat: center (default 0 0 0), a (default 0), b (default -5),
  *          c (default 11.8; the tangle cube);
  * genus2: center (default 0 0 0), eps in (0, 0.25) (default 0.1). */
-static dfl_status implicit_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_shape *out,
-                                    dfl_err *err)
+static dfl_status implicit_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *err)
 {
+    const dfl_cfg *cfg = rq->cfg;
+    const char *sec = rq->sec;
     static const char *const surfaces[] = {"torus", "goursat", "genus2"};
     static const char *const solvers[] = {"newton", "ceres"};
     int surf, solver;
@@ -125,11 +157,7 @@ static dfl_status implicit_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_sha
     dfl_implicit *imp = NULL;
     switch (surf) {
     case 0:
-        if ((st = dfl_cfg_vec(cfg, sec, "center", 3, c, err)) != DFL_OK) return st;
-        if ((st = get_nonzero_vec(cfg, sec, "axis", 3, ax, err)) != DFL_OK) return st;
-        if ((st = get_pos(cfg, sec, "major", &R, err)) != DFL_OK) return st;
-        if ((st = get_pos(cfg, sec, "minor", &r, err)) != DFL_OK) return st;
-        if (!(r < R)) return bad_value(cfg, sec, "minor", "expected minor < major", err);
+        if ((st = torus_keys(cfg, sec, c, ax, &R, &r, err)) != DFL_OK) return st;
         st = dfl_implicit_torus(c, ax, R, r, &opt, &imp, err);
         break;
     case 1:
@@ -155,92 +183,157 @@ static dfl_status implicit_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_sha
         break;
     }
     if (st == DFL_OK) st = dfl_implicit_shape(&imp, out, err);
-    if (st != DFL_OK) return ctor_fail(cfg, sec, st, err);
-    return DFL_OK;
+    return ctor_result(cfg, sec, st, err);
 }
 
-static dfl_status get_dim(const dfl_cfg *cfg, const char *sec, long def, int *dim, dfl_err *err)
+/* circle, sphere: center, radius */
+static dfl_status ball_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *err)
 {
-    long d;
-    dfl_status st = dfl_cfg_int_opt(cfg, sec, "dim", def, 2, 3, &d, err);
-    *dim = (int)d;
-    return st;
+    const dfl_cfg *cfg = rq->cfg;
+    const char *sec = rq->sec;
+    const int dim = rq->kind == DFL_SHAPE_CIRCLE ? 2 : 3;
+    double c[3], r;
+    dfl_status st;
+    if ((st = dfl_cfg_vec(cfg, sec, "center", dim, c, err)) != DFL_OK) return st;
+    if ((st = get_pos(cfg, sec, "radius", &r, err)) != DFL_OK) return st;
+    st = dim == 2 ? dfl_shape_circle(c, r, out, err) : dfl_shape_sphere(c, r, out, err);
+    return ctor_result(cfg, sec, st, err);
 }
+
+static dfl_status torus_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *err)
+{
+    const dfl_cfg *cfg = rq->cfg;
+    const char *sec = rq->sec;
+    double c[3], ax[3], R, r;
+    dfl_status st = torus_keys(cfg, sec, c, ax, &R, &r, err);
+    if (st != DFL_OK) return st;
+    return ctor_result(cfg, sec, dfl_shape_torus(c, ax, R, r, out, err), err);
+}
+
+static dfl_status cylinder_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *err)
+{
+    const dfl_cfg *cfg = rq->cfg;
+    const char *sec = rq->sec;
+    double c[3], ax[3], r;
+    dfl_status st;
+    if ((st = dfl_cfg_vec(cfg, sec, "center", 3, c, err)) != DFL_OK) return st;
+    if ((st = get_nonzero_vec(cfg, sec, "axis", 3, ax, err)) != DFL_OK) return st;
+    if ((st = get_pos(cfg, sec, "radius", &r, err)) != DFL_OK) return st;
+    return ctor_result(cfg, sec, dfl_shape_cylinder(c, ax, r, out, err), err);
+}
+
+static dfl_status plane_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *err)
+{
+    const dfl_cfg *cfg = rq->cfg;
+    const char *sec = rq->sec;
+    double c[3], n[3];
+    int dim;
+    dfl_status st;
+    if ((st = get_dim(cfg, sec, 3, &dim, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_vec(cfg, sec, "point", dim, c, err)) != DFL_OK) return st;
+    if ((st = get_nonzero_vec(cfg, sec, "normal", dim, n, err)) != DFL_OK) return st;
+    return ctor_result(cfg, sec, dfl_shape_plane(dim, c, n, out, err), err);
+}
+
+static dfl_status cone_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *err)
+{
+    const dfl_cfg *cfg = rq->cfg;
+    const char *sec = rq->sec;
+    double a[3], b[3], ra, rb;
+    dfl_status st;
+    if ((st = dfl_cfg_vec(cfg, sec, "a", 3, a, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_vec(cfg, sec, "b", 3, b, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_double(cfg, sec, "ra", 0.0, HUGE_VAL, &ra, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_double(cfg, sec, "rb", 0.0, HUGE_VAL, &rb, err)) != DFL_OK) return st;
+    if (!(ra + rb > 0.0)) return bad_value(cfg, sec, "rb", "ra and rb are both 0", err);
+    if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
+        return bad_value(cfg, sec, "b", "a and b coincide", err);
+    return ctor_result(cfg, sec, dfl_shape_cone(a, b, ra, rb, out, err), err);
+}
+
+static dfl_status box_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *err)
+{
+    const dfl_cfg *cfg = rq->cfg;
+    const char *sec = rq->sec;
+    double c[3], h[3];
+    int dim;
+    dfl_status st;
+    if ((st = get_dim(cfg, sec, 3, &dim, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_vec(cfg, sec, "center", dim, c, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_vec(cfg, sec, "half", dim, h, err)) != DFL_OK) return st;
+    for (int j = 0; j < dim; j++)
+        if (!(h[j] > 0.0)) return bad_value(cfg, sec, "half", "expected all > 0", err);
+    return ctor_result(cfg, sec, dfl_shape_box(dim, c, h, out, err), err);
+}
+
+static dfl_status segment_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *err)
+{
+    const dfl_cfg *cfg = rq->cfg;
+    const char *sec = rq->sec;
+    double a[3], b[3];
+    int dim;
+    dfl_status st;
+    if ((st = get_dim(cfg, sec, 2, &dim, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_vec(cfg, sec, "a", dim, a, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_vec(cfg, sec, "b", dim, b, err)) != DFL_OK) return st;
+    return ctor_result(cfg, sec, dfl_shape_segment(dim, a, b, out, err), err);
+}
+
+/* ellipse: center = x y, a = semi-axis along x > 0, b = along y > 0 */
+static dfl_status ellipse_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *err)
+{
+    const dfl_cfg *cfg = rq->cfg;
+    const char *sec = rq->sec;
+    double c[2], a, b;
+    dfl_status st;
+    if ((st = dfl_cfg_vec(cfg, sec, "center", 2, c, err)) != DFL_OK) return st;
+    if ((st = get_pos(cfg, sec, "a", &a, err)) != DFL_OK) return st;
+    if ((st = get_pos(cfg, sec, "b", &b, err)) != DFL_OK) return st;
+    return ctor_result(cfg, sec, dfl_shape_ellipse(c, a, b, out, err), err);
+}
+
+/* bspline_curve, bspline_surface, bezier_surface: the curves module reads
+ * (and reports) its own keys */
+static dfl_status param_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *err)
+{
+    const dfl_cfg *cfg = rq->cfg;
+    const char *sec = rq->sec;
+    return dfl_param_shape_from_cfg(cfg, sec, dfl_shape_kind_name(rq->kind), out, err);
+}
+
+/* ---- the table: one parser per kind of geom/shape.h's DFL_SHAPE_KINDS ---- */
+
+typedef dfl_status (*shape_parser)(const shape_req *rq, dfl_shape *out, dfl_err *err);
+
+static const shape_parser parsers[DFL_SHAPE_KIND_COUNT] = {
+    [DFL_SHAPE_CIRCLE] = ball_from_cfg,
+    [DFL_SHAPE_SPHERE] = ball_from_cfg,
+    [DFL_SHAPE_TORUS] = torus_from_cfg,
+    [DFL_SHAPE_CYLINDER] = cylinder_from_cfg,
+    [DFL_SHAPE_PLANE] = plane_from_cfg,
+    [DFL_SHAPE_CONE] = cone_from_cfg,
+    [DFL_SHAPE_BOX] = box_from_cfg,
+    [DFL_SHAPE_SEGMENT] = segment_from_cfg,
+    [DFL_SHAPE_ELLIPSE] = ellipse_from_cfg,
+    [DFL_SHAPE_BSPLINE_CURVE] = param_from_cfg,
+    [DFL_SHAPE_BSPLINE_SURFACE] = param_from_cfg,
+    [DFL_SHAPE_BEZIER_SURFACE] = param_from_cfg,
+    [DFL_SHAPE_IMPLICIT] = implicit_from_cfg,
+    [DFL_SHAPE_CSG] = csg_from_cfg,
+};
 
 static dfl_status from_cfg(const dfl_cfg *cfg, const char *sec, int depth, dfl_shape *out,
                            dfl_err *err)
 {
     int kind;
-    dfl_status st = dfl_cfg_enum(cfg, sec, "kind", kind_names, K_COUNT, &kind, err);
+    dfl_status st = dfl_cfg_enum(cfg, sec, "kind", dfl_shape_kind_names, DFL_SHAPE_KIND_COUNT,
+                                 &kind, err);
     if (st != DFL_OK) return st;
-    double c[3], c2[3], ax[3], r, R;
-    int dim;
-    switch (kind) {
-    case K_CIRCLE:
-    case K_SPHERE:
-        dim = kind == K_CIRCLE ? 2 : 3;
-        if ((st = dfl_cfg_vec(cfg, sec, "center", dim, c, err)) != DFL_OK) return st;
-        if ((st = get_pos(cfg, sec, "radius", &r, err)) != DFL_OK) return st;
-        st = dim == 2 ? dfl_shape_circle(c, r, out, err) : dfl_shape_sphere(c, r, out, err);
-        break;
-    case K_TORUS:
-        if ((st = dfl_cfg_vec(cfg, sec, "center", 3, c, err)) != DFL_OK) return st;
-        if ((st = get_nonzero_vec(cfg, sec, "axis", 3, ax, err)) != DFL_OK) return st;
-        if ((st = get_pos(cfg, sec, "major", &R, err)) != DFL_OK) return st;
-        if ((st = get_pos(cfg, sec, "minor", &r, err)) != DFL_OK) return st;
-        if (!(r < R)) return bad_value(cfg, sec, "minor", "expected minor < major", err);
-        st = dfl_shape_torus(c, ax, R, r, out, err);
-        break;
-    case K_CYLINDER:
-        if ((st = dfl_cfg_vec(cfg, sec, "center", 3, c, err)) != DFL_OK) return st;
-        if ((st = get_nonzero_vec(cfg, sec, "axis", 3, ax, err)) != DFL_OK) return st;
-        if ((st = get_pos(cfg, sec, "radius", &r, err)) != DFL_OK) return st;
-        st = dfl_shape_cylinder(c, ax, r, out, err);
-        break;
-    case K_PLANE:
-        if ((st = get_dim(cfg, sec, 3, &dim, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_vec(cfg, sec, "point", dim, c, err)) != DFL_OK) return st;
-        if ((st = get_nonzero_vec(cfg, sec, "normal", dim, ax, err)) != DFL_OK) return st;
-        st = dfl_shape_plane(dim, c, ax, out, err);
-        break;
-    case K_CONE:
-        if ((st = dfl_cfg_vec(cfg, sec, "a", 3, c, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_vec(cfg, sec, "b", 3, c2, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_double(cfg, sec, "ra", 0.0, HUGE_VAL, &R, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_double(cfg, sec, "rb", 0.0, HUGE_VAL, &r, err)) != DFL_OK) return st;
-        if (!(R + r > 0.0)) return bad_value(cfg, sec, "rb", "ra and rb are both 0", err);
-        if (c[0] == c2[0] && c[1] == c2[1] && c[2] == c2[2])
-            return bad_value(cfg, sec, "b", "a and b coincide", err);
-        st = dfl_shape_cone(c, c2, R, r, out, err);
-        break;
-    case K_BOX:
-        if ((st = get_dim(cfg, sec, 3, &dim, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_vec(cfg, sec, "center", dim, c, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_vec(cfg, sec, "half", dim, c2, err)) != DFL_OK) return st;
-        for (int j = 0; j < dim; j++)
-            if (!(c2[j] > 0.0)) return bad_value(cfg, sec, "half", "expected all > 0", err);
-        st = dfl_shape_box(dim, c, c2, out, err);
-        break;
-    case K_SEGMENT:
-        if ((st = get_dim(cfg, sec, 2, &dim, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_vec(cfg, sec, "a", dim, c, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_vec(cfg, sec, "b", dim, c2, err)) != DFL_OK) return st;
-        st = dfl_shape_segment(dim, c, c2, out, err);
-        break;
-    case K_BSPLINE_CURVE:
-    case K_BSPLINE_SURFACE:
-    case K_BEZIER_SURFACE:
-        /* the curves module reports its own keys */
-        return dfl_param_shape_from_cfg(cfg, sec, kind_names[kind], out, err);
-    case K_IMPLICIT:
-        return implicit_from_cfg(cfg, sec, out, err);
-    case K_CSG:
-        return csg_from_cfg(cfg, sec, depth, out, err);
-    default:
-        return dfl_err_set(err, DFL_E_INTERNAL, "shape kind %d not handled", kind);
-    }
-    if (st != DFL_OK) return ctor_fail(cfg, sec, st, err);
-    return DFL_OK;
+    if (!parsers[kind])
+        return dfl_err_set(err, DFL_E_INTERNAL, "shape kind '%s' has no config parser",
+                           dfl_shape_kind_name((dfl_shape_kind)kind));
+    const shape_req rq = {cfg, sec, (dfl_shape_kind)kind, depth};
+    return parsers[kind](&rq, out, err);
 }
 
 dfl_status dfl_shape_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_shape *out, dfl_err *err)

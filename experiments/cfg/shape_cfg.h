@@ -1,8 +1,10 @@
 /* `[shape]` config section -> dfl_shape.
  *
  * Keys (contract):
- *   kind = circle | sphere | torus | cylinder | plane | cone | box | segment |
- *          bspline_curve | bspline_surface | bezier_surface | implicit | csg
+ *   kind = one of geom/shape.h's DFL_SHAPE_KINDS: circle | sphere | torus |
+ *          cylinder | plane | cone | box | segment | ellipse | bspline_curve |
+ *          bspline_surface | bezier_surface | implicit | csg (shape_cfg.c has
+ *          one parser per kind)
  *   circle:   center = x y,      radius = r > 0
  *   sphere:   center = x y z,    radius = r > 0
  *   torus:    center = x y z, axis = ax ay az (non-zero), major = R > 0,
@@ -13,8 +15,10 @@
  *   cone:     a = x y z, b = x y z (a != b), ra >= 0, rb >= 0, not both 0
  *   box:      dim = 2|3 (default 3), center, half = h... (all > 0)
  *   segment:  dim = 2|3 (default 2), a, b (a != b); unsigned distance
+ *   ellipse:  center = x y, a = semi-axis along x > 0, b = semi-axis along
+ *             y > 0 (axis-aligned; exact signed distance, no jets)
  *   bspline_curve | bspline_surface | bezier_surface: handed to
- *             dfl_param_shape_from_cfg (experiments/curve_cfg.h)
+ *             dfl_param_shape_from_cfg (experiments/cfg/curve_cfg.h)
  *   implicit: see geom/implicit.h; surface = torus | goursat | genus2,
  *             solver = newton | ceres (default newton), plus the surface's
  *             parameters (dfl_implicit_from_cfg in this module documents them)

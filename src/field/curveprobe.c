@@ -61,7 +61,8 @@ static int frame_at(const dfl_bspline *c, double t, double *P, double *T, double
     if (!(sp > 0.0) || !isfinite(sp)) return 0;
     P[0] = d[0], P[1] = d[1];
     T[0] = d[2] / sp, T[1] = d[3] / sp;
-    /* kappa = (C' x C'') / |C'|^3 with dT/ds = kappa N, N = (-T_y, T_x) */
+    /* curvature.h's kappa for n = (T_y, -T_x): dn/ds = kappa T, i.e.
+     * dT/ds = kappa N with N = (-T_y, T_x) */
     *kappa = (d[2] * d[5] - d[3] * d[4]) / (sp * sp * sp);
     return 1;
 }

@@ -14,10 +14,12 @@
  *         -N, whose end directions are SIDE rays already);
  *   JOINT +N and -N at given parameters (the vertices of a polygonization:
  *         where bs04's parts are joined).
- * Each ray records the signed curvature kappa at its origin (dT/ds = kappa
- * N, so a ray with side = +1 (v = +N) points to the inner side of the
- * turn, towards the centre of curvature, iff kappa > 0) and side = +1 / -1 (CAP: 0).  Tangents at knots are the
- * right-sided ones (left-sided at t1).
+ * Each ray records the curvature kappa at its origin, in geom/curvature.h's
+ * convention for the right normal n = (T_y, -T_x) = -N: kappa =
+ * (C' x C'') / |C'|^3, positive where the curve turns left (towards N), so
+ * a ray with side = +1 (v = +N) points to the inner side of the turn,
+ * towards the centre of curvature, iff kappa > 0; and side = +1 / -1
+ * (CAP: 0).  Tangents at knots are the right-sided ones (left-sided at t1).
  *
  * Displacement along a ray.  For an exact distance d to C, o + delta v lies
  * on the true offset curve {d = delta} iff o is its footpoint, i.e. iff
@@ -48,7 +50,7 @@ typedef struct dfl_rayset {
     double *o;         /* 2n origins (on the curve) */
     double *v;         /* 2n unit directions */
     double *t;         /* n curve parameters of the origins */
-    double *kappa;     /* n signed curvatures at the origins (see above) */
+    double *kappa;     /* n curvatures at the origins (convention above) */
     int *side;         /* n: +1 (v = +N), -1 (v = -N), 0 (CAP) */
     int *kind;         /* n: dfl_ray_kind */
     double kflat;      /* 1/3 quantile of |kappa| over SIDE rays */

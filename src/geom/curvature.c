@@ -4,19 +4,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/linalg.h"
 #include "core/vec.h"
-
-
-/* Eigen-decomposition of the symmetric [[a, b], [b, c]]: lo <= hi, unit
- * eigenvector (cos th, sin th) of hi, (-sin th, cos th) of lo.  The angle
- * form stays accurate near umbilics where the eigenvector is arbitrary. */
-static void sym2_eigen(double a, double b, double c, double *lo, double *hi, double *th)
-{
-    double m = 0.5 * (a + c), r = hypot(0.5 * (a - c), b);
-    *lo = m - r;
-    *hi = m + r;
-    *th = 0.5 * atan2(2.0 * b, a - c);
-}
 
 /* Fills k1 <= k2 and directions from the shape operator written in the
  * orthonormal tangent basis (t1, t2) with t1 x t2 = n. */
@@ -24,7 +13,7 @@ static void finish(const double t1[3], const double t2[3], double a, double b, d
                    dfl_curvature *out)
 {
     double lo, hi, th;
-    sym2_eigen(a, b, c, &lo, &hi, &th);
+    dfl_sym2_eigen(a, b, c, &lo, &hi, &th);
     double cs = cos(th), sn = sin(th);
     out->k1 = lo;
     out->k2 = hi;

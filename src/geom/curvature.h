@@ -2,7 +2,8 @@
  * curves), from an implicit function's gradient and Hessian or from a
  * parametrization's first and second partial derivatives.
  *
- * SIGN CONVENTION (stated once, used everywhere in dflab): curvatures are
+ * SIGN CONVENTION (stated here once; every dflab module, comment and test
+ * uses it): curvatures are
  * the eigenvalues of the differential of the unit normal n that the caller's
  * data define (implicit: n = grad g / |grad g|, the outward normal when g < 0
  * inside; parametric: n = S_u x S_v / |S_u x S_v|, or the side of n_ref),
@@ -55,9 +56,17 @@ double dfl_gaussian_curvature_ff(const dfl_fundamental_forms *f);
 /* H in the convention above: -(E N - 2 F M + G L) / (2 (E G - F^2)). */
 double dfl_mean_curvature_ff(const dfl_fundamental_forms *f);
 
-/* Plane curves, same convention (dn/ds = kappa t; a circle with outward
- * normal has kappa = +1/r).  Implicit: kappa = t^T Hess g t / |grad g|, t a
- * unit tangent, n = grad g / |grad g|.  NAN if grad g = 0. */
+/* Plane curves, same convention: dn/ds = kappa t for the unit normal n the
+ * caller's data define and the unit tangent t (a circle with outward normal
+ * has kappa = +1/r).  Where nothing else defines n (open curves,
+ * field/curveprobe.h), dflab takes the right normal n = (t_y, -t_x) of the
+ * parametrization, for which kappa = (c' x c'') / |c'|^3 is positive where
+ * the curve turns left; the right normal of a counter-clockwise closed
+ * curve is its outward one.  The closed-curve SDF (geom/curve_sdf.h) takes
+ * the outward normal, so kappa >= 0 on a convex curve of either
+ * orientation and Hess d = kappa / (1 + kappa d) t t^T.
+ * Implicit: kappa = t^T Hess g t / |grad g|, t a unit tangent,
+ * n = grad g / |grad g|.  NAN if grad g = 0. */
 double dfl_curvature_implicit2(const double grad[2], const double hess[4]);
 /* Parametric c(u) with c' = d1, c'' = d2 and unit normal n (either side):
  * kappa = -(c'' . n) / |c'|^2.  NAN if c' = 0. */

@@ -2,6 +2,9 @@
 
 #include <assert.h>
 #include <math.h>
+#include <stdlib.h>
+
+#include "geom/shape_impl.h"
 
 /* Root of G (see the header) by bisection; g = G(0) != 0.  The bracket:
  * G(z1 - 1) >= 0 because its second term is 1 there, and
@@ -90,4 +93,38 @@ double dfl_ellipse_sdist(double a, double b, const double *x, double *foot, doub
         grad[1] = sw ? n0 : n1;
     }
     return inside ? -dist : dist;
+}
+
+/* ---- as a shape ---------------------------------------------------------- */
+
+typedef struct ellipse {
+    double c[2], a, b;
+} ellipse;
+
+static void ellipse_eval(const void *impl, size_t m, const double *pts, double *val,
+                         double *grad)
+{
+    const ellipse *e = impl;
+    for (size_t i = 0; i < m; i++) {
+        const double u[2] = {pts[2 * i] - e->c[0], pts[2 * i + 1] - e->c[1]};
+        val[i] = dfl_ellipse_sdist(e->a, e->b, u, NULL, grad ? grad + 2 * i : NULL);
+    }
+}
+
+static const dfl_shape_ops ellipse_ops = {"ellipse", ellipse_eval, NULL, free};
+
+dfl_status dfl_shape_ellipse(const double c[2], double a, double b, dfl_shape *out,
+                             dfl_err *err)
+{
+    if (!finite_vec(2, c)) return dfl_err_set(err, DFL_E_INPUT, "ellipse: centre not finite");
+    if (!(a > 0.0) || !isfinite(a) || !(b > 0.0) || !isfinite(b))
+        return dfl_err_set(err, DFL_E_INPUT, "ellipse: semi-axes must be > 0, got %g and %g", a,
+                           b);
+    ellipse *e = calloc(1, sizeof *e);
+    if (!e) return dfl_err_set(err, DFL_E_NOMEM, "ellipse: out of memory");
+    e->c[0] = c[0];
+    e->c[1] = c[1];
+    e->a = a;
+    e->b = b;
+    return shape_set(2, &ellipse_ops, e, out);
 }

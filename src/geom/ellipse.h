@@ -1,6 +1,7 @@
-/* Exact signed distance to the ellipse x^2/a^2 + y^2/b^2 = 1 (centred at
- * the origin, axis-aligned), negative inside: the reference of the bs04
- * recursive normalization study.
+/* Exact signed distance to an axis-aligned ellipse, negative inside, as a
+ * function (dfl_ellipse_sdist: centred at the origin, the reference of the
+ * bs04 recursive normalization study) and as a shape kind
+ * (dfl_shape_ellipse: [shape] kind = ellipse).
  *
  * Method (D. Eberly, "Distance from a point to an ellipse, an ellipsoid,
  * or a hyperellipsoid", 2013): by symmetry the query is reflected into the
@@ -13,8 +14,11 @@
  * evolute.  Points on an axis are closed-form cases (the interior part of
  * the major axis has the footpoint x0 = e0^2 y0 / (e0^2 - e1^2)).
  */
-#ifndef DFL_EXPERIMENTS_ELLIPSE_DIST_H
-#define DFL_EXPERIMENTS_ELLIPSE_DIST_H
+#ifndef DFL_GEOM_ELLIPSE_H
+#define DFL_GEOM_ELLIPSE_H
+
+#include "core/status.h"
+#include "geom/shape.h"
 
 /* Signed distance of the point x[0..1] to the ellipse with semi-axes a, b
  * (> 0, finite; asserted).  foot (2 doubles, may be NULL) receives the
@@ -24,5 +28,15 @@
  * quadrant of x with ties going to +x, +y).  Pure, thread-safe, no
  * allocation. */
 double dfl_ellipse_sdist(double a, double b, const double *x, double *foot, double *grad);
+
+/* The ellipse with centre c and semi-axes a (along x) and b (along y) as a
+ * 2D shape: d(x) = dfl_ellipse_sdist(a, b, x - c) and its gradient, the
+ * outward unit normal at the footpoint (|grad d| = 1 everywhere, also on
+ * the medial axis and at the centre, where the footpoint rule of
+ * dfl_ellipse_sdist picks one side).  a == b is a circle.  No jets.
+ * DFL_E_INPUT "ellipse: ..." for a non-finite centre or semi-axes that are
+ * not finite and > 0; DFL_E_NOMEM; *out untouched on failure. */
+dfl_status dfl_shape_ellipse(const double c[2], double a, double b, dfl_shape *out,
+                             dfl_err *err);
 
 #endif

@@ -33,13 +33,17 @@
  * footpoint with the lexicographically smallest (x, y, z) is chosen, so the
  * choice does not depend on the order of the starts.
  *
- * Curvature sign convention (used in all of dflab, see geom/curvature.h):
- * principal curvatures are the eigenvalues of the differential of the
- * OUTWARD unit normal, so a sphere of radius r has kappa = +1/r.  With it the
- * SDF Hessian at x = p + d n is sum_i kappa_i / (1 + kappa_i d) e_i e_i^T.
+ * Curvatures: geom/curvature.h's convention with the outward normal n(p)
+ * (a sphere has kappa = +1/r, and the SDF Hessian at x = p + d n is
+ * sum_i kappa_i / (1 + kappa_i d) e_i e_i^T).
  *
  * Thread safety: a dfl_implicit is read-only after construction; all
  * queries may run concurrently (the Ceres context is shared, see lsq.h).
+ *
+ * Files: implicit.c (construction, g, samples), implicit_foot.c
+ * (footpoints), implicit_sdf.c (jets, Hermite data, the shape wrapper),
+ * implicit_surfaces.c (torus, Goursat, genus 2); the polynomial type is
+ * geom/poly3.h.
  */
 #ifndef DFL_GEOM_IMPLICIT_H
 #define DFL_GEOM_IMPLICIT_H
@@ -47,10 +51,11 @@
 #include "core/jet.h"
 #include "core/status.h"
 #include "geom/foot_backend.h"
+#include "geom/poly3.h"
 #include "geom/shape.h"
 
-#define DFL_IMPLICIT_MAX_TERMS 96
-#define DFL_IMPLICIT_MAX_DEGREE 12
+#define DFL_IMPLICIT_MAX_TERMS DFL_POLY3_MAX_TERMS
+#define DFL_IMPLICIT_MAX_DEGREE DFL_POLY3_MAX_DEGREE
 #define DFL_IMPLICIT_MAX_STARTS 16
 
 

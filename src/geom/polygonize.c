@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "geom/segdist.h"
+
 #define KMAX DFL_BSPLINE_MAX_ORDER
 #define MAX_DEPTH 60
 #define DEFAULT_CAP 10000000u
@@ -17,26 +19,6 @@ static double dist2(int dim, const double *a, const double *b)
     double s = 0.0;
     for (int j = 0; j < dim; j++) s += (a[j] - b[j]) * (a[j] - b[j]);
     return s;
-}
-
-double dfl_point_segment_dist(int dim, const double *x, const double *a, const double *b)
-{
-    double e[3], w[3], ee = 0.0, we = 0.0;
-    for (int j = 0; j < dim; j++) {
-        e[j] = b[j] - a[j];
-        w[j] = x[j] - a[j];
-        ee += e[j] * e[j];
-        we += w[j] * e[j];
-    }
-    double s = ee > 0.0 ? we / ee : 0.0;
-    if (s < 0.0) s = 0.0;
-    if (s > 1.0) s = 1.0;
-    double d = 0.0;
-    for (int j = 0; j < dim; j++) {
-        double r = w[j] - s * e[j];
-        d += r * r;
-    }
-    return sqrt(d);
 }
 
 double dfl_bezier_chord_bound(const double *bez, int np, int dim)
@@ -653,6 +635,19 @@ done:
     return st;
 }
 
+/* Hands the buffers of m over to *out. */
+static void mesh_take(const mesh_buf *m, double maxb, dfl_trimesh *out)
+{
+    out->nverts = m->nv;
+    out->verts = m->verts;
+    out->uv = m->uv;
+    out->ntris = m->nt;
+    out->tris = m->tris;
+    out->tri_patch = m->tp;
+    out->cell_bound = m->cb;
+    out->bound = maxb;
+}
+
 dfl_status dfl_polygonize_surface(const dfl_surface_set *s, double eps, size_t max_tris,
                                   dfl_trimesh *out, dfl_err *err)
 {
@@ -662,25 +657,16 @@ dfl_status dfl_polygonize_surface(const dfl_surface_set *s, double eps, size_t m
     mesh_buf m;
     memset(&m, 0, sizeof m);
     double maxb = 0.0;
+    dfl_trimesh t;
     for (size_t p = 0; p < s->npatch; p++) {
         dfl_status st = mesh_patch(&s->patch[p], p, eps, max_tris, &m, &maxb, err);
         if (st != DFL_OK) {
-            free(m.verts);
-            free(m.uv);
-            free(m.tris);
-            free(m.tp);
-            free(m.cb);
+            mesh_take(&m, maxb, &t); /* no partial output: release what was built */
+            dfl_trimesh_free(&t);
             return st;
         }
     }
-    out->nverts = m.nv;
-    out->verts = m.verts;
-    out->uv = m.uv;
-    out->ntris = m.nt;
-    out->tris = m.tris;
-    out->tri_patch = m.tp;
-    out->cell_bound = m.cb;
-    out->bound = maxb;
+    mesh_take(&m, maxb, out);
     return DFL_OK;
 }
 

@@ -41,6 +41,7 @@
 
 #include "core/status.h"
 #include "geom/bspline.h"
+#include "geom/segdist.h" /* dfl_point_segment_dist, used with polylines */
 #include "geom/surface.h"
 
 typedef struct dfl_polyline {
@@ -71,9 +72,6 @@ void dfl_polyline_free(dfl_polyline *p);
  * search.  Allocates scratch internally (DFL_E_NOMEM). */
 dfl_status dfl_polyline_deviation(const dfl_bspline *c, const dfl_polyline *p, int samples,
                                   double *out, dfl_err *err);
-
-/* Distance from x to the segment ab in dimension dim. */
-double dfl_point_segment_dist(int dim, const double *x, const double *a, const double *b);
 
 typedef struct dfl_trimesh {
     size_t nverts;

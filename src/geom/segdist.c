@@ -2,18 +2,9 @@
 
 #include <assert.h>
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 
-#include "rfunc/trim.h"
-
-/* |w| the way rfunc/rfield.c measures q_v = |x - v|, so that an exact
- * distance whose closest point is the vertex equals q_v bit for bit and
- * eq. 20 cancels exactly in the hatched sector. */
-static double norm_w(int dim, const double *w)
-{
-    return dim == 2 ? dfl_rfunc_hyp(w[0], w[1]) : dfl_rfunc_hyp(dfl_rfunc_hyp(w[0], w[1]), w[2]);
-}
+#include "core/hypot.h"
 
 double dfl_segdist_eval(int dim, const double *a, const double *b, const double *x, double *grad)
 {
@@ -36,7 +27,7 @@ double dfl_segdist_eval(int dim, const double *a, const double *b, const double 
         const double t = dot / len2;
         for (int j = 0; j < dim; j++) w[j] = xa[j] - t * ab[j];
     }
-    const double d = norm_w(dim, w);
+    const double d = dfl_hypot_vec(dim, w);
     if (grad)
         for (int j = 0; j < dim; j++) grad[j] = d > 0.0 ? w[j] / d : 0.0;
     return d;
@@ -49,90 +40,33 @@ bool dfl_segdist_closest_is_start(int dim, const double *a, const double *b, con
     return dot <= 0.0;
 }
 
-/* ---- polyline field ----------------------------------------------------- */
-
-typedef struct spoly {
-    int dim, p;
-    dfl_rfunc_join join;
-    size_t n;       /* vertices */
-    double *v;      /* n * dim */
-} spoly;
-
-static void spoly_eval(const void *ctx, size_t m, const double *pts, double *val, double *grad)
+double dfl_segdist_residual(int dim, const double *a, const double *e, double ee,
+                            const double *x, double *r)
 {
-    const spoly *s = ctx;
-    const int dim = s->dim, want = grad != NULL;
-    const int corrected = s->join == DFL_RFUNC_REQUIV_CORRECTED;
-    for (size_t i = 0; i < m; i++) {
-        const double *x = pts + i * (size_t)dim;
-        dfl_rfunc_acc acc;
-        double hprev = 0.0, gprev[3] = {0, 0, 0};
-        dfl_rfunc_acc_begin(&acc, s->join, s->p, dim, want);
-        for (size_t k = 0; k + 1 < s->n && !dfl_rfunc_acc_is_zero(&acc); k++) {
-            const double *a = s->v + k * (size_t)dim;
-            double g[3] = {0, 0, 0};
-            const double h = dfl_segdist_eval(dim, a, a + dim, x, g);
-            dfl_rfunc_acc_add(&acc, h, g);
-            if (corrected && k > 0) {
-                /* vertex k joins segments k - 1 and k */
-                double w[3] = {0, 0, 0}, gq[3] = {0, 0, 0}, gt[3];
-                for (int j = 0; j < dim; j++) w[j] = x[j] - a[j];
-                const double q = norm_w(dim, w);
-                for (int j = 0; j < dim; j++) gq[j] = q > 0.0 ? w[j] / q : 0.0;
-                const double qt = dfl_rfunc_guard(dim, q, gq, hprev, gprev, h, g, gt);
-                dfl_rfunc_acc_add_q(&acc, qt, gt);
-            }
-            hprev = h;
-            memcpy(gprev, g, sizeof g);
-        }
-        val[i] = dfl_rfunc_acc_end(&acc, want ? grad + i * (size_t)dim : NULL);
+    assert(dim >= 1 && dim <= 3);
+    double w[3], we = 0.0;
+    for (int j = 0; j < dim; j++) {
+        w[j] = x[j] - a[j];
+        we += w[j] * e[j];
     }
+    double s = ee > 0.0 ? we / ee : 0.0;
+    if (s < 0.0) s = 0.0;
+    if (s > 1.0) s = 1.0;
+    double d = 0.0;
+    for (int j = 0; j < dim; j++) {
+        r[j] = w[j] - s * e[j];
+        d += r[j] * r[j];
+    }
+    return sqrt(d);
 }
 
-static void spoly_destroy(void *ctx)
+double dfl_point_segment_dist(int dim, const double *x, const double *a, const double *b)
 {
-    spoly *s = ctx;
-    if (!s) return;
-    free(s->v);
-    free(s);
-}
-
-static const dfl_field_ops spoly_ops = {"segdist_polyline", spoly_eval, NULL, spoly_destroy};
-
-dfl_status dfl_segdist_polyline_field(int dim, const double *v, size_t n, dfl_rfunc_join join,
-                                      int p, dfl_field *out, dfl_err *err)
-{
-    if (dim != 2 && dim != 3)
-        return dfl_err_set(err, DFL_E_INPUT, "segment polyline: dimension %d (expected 2 or 3)",
-                           dim);
-    dfl_status st = dfl_rfunc_join_check(join, p, err);
-    if (st != DFL_OK) return st;
-    if (n < 2)
-        return dfl_err_set(err, DFL_E_INPUT, "segment polyline: %zu vertices (need at least 2)",
-                           n);
-    for (size_t i = 0; i < n * (size_t)dim; i++)
-        if (!isfinite(v[i]))
-            return dfl_err_set(err, DFL_E_INPUT, "segment polyline: vertex %zu is not finite",
-                               i / (size_t)dim + 1);
-    for (size_t i = 0; i + 1 < n; i++)
-        if (memcmp(v + i * (size_t)dim, v + (i + 1) * (size_t)dim, (size_t)dim * sizeof *v) == 0)
-            return dfl_err_set(err, DFL_E_INPUT,
-                               "segment polyline: vertices %zu and %zu coincide", i + 1, i + 2);
-    spoly *s = calloc(1, sizeof *s);
-    double *cv = malloc(n * (size_t)dim * sizeof *cv);
-    if (!s || !cv) {
-        free(s);
-        free(cv);
-        return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    assert(dim >= 1 && dim <= 3);
+    double e[3], r[3], ee = 0.0;
+    for (int j = 0; j < dim; j++) {
+        e[j] = b[j] - a[j];
+        ee += e[j] * e[j];
     }
-    memcpy(cv, v, n * (size_t)dim * sizeof *cv);
-    s->dim = dim;
-    s->p = p;
-    s->join = join;
-    s->n = n;
-    s->v = cv;
-    out->dim = dim;
-    out->ops = &spoly_ops;
-    out->ctx = s;
-    return DFL_OK;
+    return dfl_segdist_residual(dim, a, e, ee, x, r);
 }

@@ -1,50 +1,52 @@
-/* Exact Euclidean distances to straight segments, and open polylines of
- * exact segment distances joined by the bs04 R-functions.
+/* Euclidean distances from a point to straight segments: dflab's one
+ * family of point-segment distances (shapes, polygonization checks and the
+ * exact parts of bs04's joins all call these).
  *
- * Why this exists beside rfunc/segment.h: the trimmed fields of bs04 (eq. 4
- * and 5) are normalized only to first order at the end points, so near a
- * joining point |grad h_i| = 1 + O(|x - v| / length).  bs04's analysis of
- * joining points (eq. 13-14) and of the corrected join (eq. 20: "h1 = h2 =
- * q" in the hatched sector) assumes exact distances.  These parts realize
- * that assumption, so the claims can be checked to rounding error and the
- * trims' own contribution can be told apart.  The library lacks such a part
- * (it belongs to the bs04 studies in experiments/, not to src/rfunc).
+ *   dfl_segdist_eval(dim, a, b, x, grad)         end points exact, lengths of core/hypot.h
+ *   dfl_segdist_closest_is_start(dim, a, b, x)   is the closest point a?
+ *   dfl_segdist_residual(dim, a, e, ee, x, r)    clamped projection, residual r
+ *   dfl_point_segment_dist(dim, x, a, b)         dfl_segdist_residual with e = b - a
  *
- * Everything is pure, allocation-free per point and thread-safe.
- */
-#ifndef DFL_EXPERIMENTS_SEGDIST_H
-#define DFL_EXPERIMENTS_SEGDIST_H
+ * Two roundings, both exact to a few ulps, kept apart because results are
+ * reproduced bit for bit:
+ *   - eval treats the end-point regions as distances to the end point itself
+ *     (x - a, x - b) and measures lengths with dfl_hypot_vec, so that it
+ *     equals the vertex distances of rfunc's joins bit for bit (bs04's
+ *     corrected join cancels exactly in the hatched sector only then);
+ *   - residual projects, clamps the parameter to [0, 1] and subtracts
+ *     s e from x - a (also at the ends), and takes the square root of the
+ *     sum of squares accumulated from 0.0 in coordinate order.
+ *
+ * dim is 2 or 3 (residual and dfl_point_segment_dist: 1 to 3; asserted).
+ * Everything is pure, allocation-free and thread-safe. */
+#ifndef DFL_GEOM_SEGDIST_H
+#define DFL_GEOM_SEGDIST_H
 
 #include <stdbool.h>
-#include <stddef.h>
 
-#include "core/status.h"
-#include "field/field.h"
-#include "rfunc/join.h"
-
-/* Distance from x to the segment a-b (dim = 2 or 3 coordinates each) and,
- * when grad != NULL, its gradient (x - c) / |x - c| with c the closest
- * point (dim doubles; 0 on the segment, where the distance is not
- * differentiable).  a == b is allowed (distance to a point).  When the
- * closest point is an end point, c is that end point bit for bit, so the
- * result equals |x - a| (or |x - b|) computed the same way. */
+/* Distance from x to the segment a-b and, when grad != NULL, its gradient
+ * (x - c) / |x - c| with c the closest point (dim doubles; 0 on the
+ * segment, where the distance is not differentiable).  a == b is allowed
+ * (distance to a point).  When the closest point is an end point, c is that
+ * end point bit for bit, so the result equals dfl_hypot_vec(x - a) (or
+ * x - b). */
 double dfl_segdist_eval(int dim, const double *a, const double *b, const double *x,
                         double *grad);
 
-/* 1 when the closest point of the segment a-b to x is the end point a,
+/* 1 when the closest point of the segment a-b to x (dim coordinates) is a,
  * i.e. (x - a) . (b - a) <= 0 (exact geometric test, no tolerance). */
 bool dfl_segdist_closest_is_start(int dim, const double *a, const double *b, const double *x);
 
-/* The open polyline v[0..n-1] (n >= 2 vertices, dim coordinates each, no
- * two consecutive ones equal) as a field: the exact distances h_i to its
- * n - 1 segments joined by `join` of order p (rfunc/join.h); for
- * DFL_RFUNC_REQUIV_CORRECTED the interior vertices enter eq. 20 with
- * q_v = |x - v| and the library's guard max(q_v, h_i, h_j) (a no-op for
- * exact distances, where h_i, h_j <= q_v).  The field has no jets.
- * DFL_E_INPUT for a bad dim, n < 2, repeated consecutive vertices,
- * non-finite coordinates or bad p; DFL_E_NOMEM.  Release with
- * dfl_field_destroy. */
-dfl_status dfl_segdist_polyline_field(int dim, const double *v, size_t n, dfl_rfunc_join join,
-                                      int p, dfl_field *out, dfl_err *err);
+/* Distance from x to the segment from a along e (e = b - a, ee = e.e as
+ * the caller computed it: sum of e_j^2 from 0.0; ee == 0 means the point
+ * a).  With s = clamp((x - a).e / ee, 0, 1) it writes the residual
+ * r = (x - a) - s e (dim doubles, r may not alias the inputs) and returns
+ * sqrt(r.r).  Non-finite input propagates (NaN s stays NaN). */
+double dfl_segdist_residual(int dim, const double *a, const double *e, double ee,
+                            const double *x, double *r);
+
+/* dfl_segdist_residual for the segment a-b without the residual (note the
+ * argument order: the point first). */
+double dfl_point_segment_dist(int dim, const double *x, const double *a, const double *b);
 
 #endif

@@ -1,4 +1,5 @@
-/* Analytic shapes with exact signed distance functions, and CSG of SDFs.
+/* Shapes with signed distance functions: the interface, the analytic
+ * kinds with exact SDFs, CSG of SDFs, and the table of shape kinds.
  *
  * A dfl_shape is a region of R^2 or R^3 (dim) with a signed distance
  * function d: negative inside, zero on the boundary, positive outside, in the
@@ -15,9 +16,7 @@
  * direction of the local frame), so |grad d| = 1 holds everywhere for the
  * exact SDFs.
  *
- * Shapes of this module (all exact Euclidean SDFs, except CSG which is the
- * usual min/max composition and its smooth variants, a bound of the true
- * distance):
+ * Analytic kinds (shape_analytic.c; all exact Euclidean SDFs with jets):
  *   circle (2D), sphere (3D): |x - c| - r
  *   torus (3D): centre, axis, major R > 0, minor r > 0 (r < R not required
  *               for the formula but required here so the torus is a ring)
@@ -28,8 +27,12 @@
  *               ra, rb >= 0, not both 0; ra == rb is a capped cylinder
  *   box (2D/3D): axis-aligned, centre and half sizes > 0
  *   segment (2D/3D): UNSIGNED distance to the segment ab (>= 0 everywhere)
- *   csg: union / intersection / difference of two shapes, exact min/max or
- *        polynomial smooth min/max with smoothing width k > 0
+ * CSG (shape_csg.c): union / intersection / difference of two shapes, exact
+ *   min/max or polynomial smooth min/max with smoothing width k > 0 (a bound
+ *   of the true distance, not a distance).
+ * Kinds built elsewhere on the same interface: ellipse (geom/ellipse.h),
+ *   parametric curves and surfaces (geom/param_shape.h), implicit surfaces
+ *   (geom/implicit.h).
  *
  * Ownership: constructors allocate impl; dfl_shape_free releases it.  The
  * CSG constructor takes ownership of its children (their structs are zeroed).
@@ -41,6 +44,40 @@
 
 #include "core/jet.h"
 #include "core/status.h"
+
+/* The shape kinds, one row each: X(code, name) gives the code
+ * DFL_SHAPE_<code> and the name used in configs ([shape] kind = name).  A
+ * new kind adds one row here and one parser row in
+ * experiments/cfg/shape_cfg.c. */
+#define DFL_SHAPE_KINDS(X)                 \
+    X(CIRCLE, "circle")                    \
+    X(SPHERE, "sphere")                    \
+    X(TORUS, "torus")                      \
+    X(CYLINDER, "cylinder")                \
+    X(PLANE, "plane")                      \
+    X(CONE, "cone")                        \
+    X(BOX, "box")                          \
+    X(SEGMENT, "segment")                  \
+    X(ELLIPSE, "ellipse")                  \
+    X(BSPLINE_CURVE, "bspline_curve")      \
+    X(BSPLINE_SURFACE, "bspline_surface")  \
+    X(BEZIER_SURFACE, "bezier_surface")    \
+    X(IMPLICIT, "implicit")                \
+    X(CSG, "csg")
+
+typedef enum dfl_shape_kind {
+#define X(code, name) DFL_SHAPE_##code,
+    DFL_SHAPE_KINDS(X)
+#undef X
+    DFL_SHAPE_KIND_COUNT
+} dfl_shape_kind;
+
+/* Names indexed by kind (the list above, in its order). */
+extern const char *const dfl_shape_kind_names[DFL_SHAPE_KIND_COUNT];
+/* The name of kind, NULL outside 0..DFL_SHAPE_KIND_COUNT-1. */
+const char *dfl_shape_kind_name(dfl_shape_kind kind);
+/* The kind called name (exact match), -1 if there is none (or name is NULL). */
+int dfl_shape_kind_from_name(const char *name);
 
 typedef struct dfl_shape_ops {
     const char *kind;
@@ -140,6 +177,19 @@ typedef struct dfl_shape_derivs {
 } dfl_shape_derivs;
 dfl_status dfl_shape_derivs_at(const dfl_shape *s, const double *x, dfl_shape_derivs *out,
                                dfl_err *err);
+
+/* A directional jet: d(x + s dir) at s = 0+ to order K, for ctx (the
+ * signature of dfl_shape_ops.jet with a context). */
+typedef dfl_status (*dfl_dir_jet_fn)(const void *ctx, const double *x, const double *dir, int K,
+                                     dfl_jet *out, dfl_err *err);
+
+/* Hessian H (n x n, row-major) and, for n == 3, the mixed third derivative
+ * *dxyz of a function at x from its jets along coordinate directions and
+ * their sums (the polarization of dfl_shape_derivs_at); dxyz is not written
+ * for n == 2.  n is 2 or 3 (asserted).  Fails with the first failing jet's
+ * status; H is then partly written. */
+dfl_status dfl_jets_polarize(int n, dfl_dir_jet_fn jet, const void *ctx, const double *x,
+                             double *H, double *dxyz, dfl_err *err);
 
 /* Frees impl and zeroes *s.  s may be NULL or already freed. */
 void dfl_shape_free(dfl_shape *s);

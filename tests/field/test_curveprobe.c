@@ -9,6 +9,7 @@
 
 #include "field/curveprobe.h"
 #include "field/exact.h"
+#include "geom/curvature.h"
 #include "geom/footpoint.h"
 
 #define PI 3.14159265358979323846
@@ -117,8 +118,15 @@ Test(curveprobe, parabola_arc_length_and_curvature)
         /* uniform in arc length */
         cr_expect_float_eq(parabola_arc(x) - parabola_arc(-1), L * (double)i / (double)(ns - 1),
                            1e-9, "arc of origin %zu", i);
-        /* kappa of y = x^2: 2 / (1 + 4x^2)^(3/2), turning left */
+        /* kappa of y = x^2: 2 / (1 + 4x^2)^(3/2) > 0, turning left; this is
+         * geom/curvature.h's kappa for the right normal n = (T_y, -T_x) */
         cr_expect_float_eq(rs.kappa[2 * i], 2.0 / pow(1 + 4 * x * x, 1.5), 1e-12);
+        {
+            double D[3 * 2];
+            dfl_bspline_eval(&c, rs.t[2 * i], 2, D);
+            const double sp = hypot(D[2], D[3]), n[2] = {D[3] / sp, -D[2] / sp};
+            cr_expect_float_eq(rs.kappa[2 * i], dfl_curvature_curve2(D + 2, D + 4, n), 1e-12);
+        }
         /* left normal (-2x, 1) / sqrt(1 + 4x^2) */
         const double nn = sqrt(1 + 4 * x * x);
         cr_expect_float_eq(rs.v[4 * i], -2 * x / nn, 1e-12);

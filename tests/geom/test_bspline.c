@@ -5,38 +5,22 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/rng.h"
+#include "geom/bspline_ref.h"
 #include "geom/bspline.h"
-
-/* Cox-de Boor, straight from the definition (right-continuous), valid for
- * t in [tau_j, tau_{j+1}) of a non-empty span. */
-static double cox_de_boor(const double *U, size_t i, int k, double t)
-{
-    if (k == 1) return (U[i] <= t && t < U[i + 1]) ? 1.0 : 0.0;
-    double a = 0.0, b = 0.0;
-    double d1 = U[i + (size_t)k - 1] - U[i], d2 = U[i + (size_t)k] - U[i + 1];
-    if (d1 > 0.0) a = (t - U[i]) / d1 * cox_de_boor(U, i, k - 1, t);
-    if (d2 > 0.0) b = (U[i + (size_t)k] - t) / d2 * cox_de_boor(U, i + 1, k - 1, t);
-    return a + b;
-}
 
 static void naive_eval(const dfl_bspline *c, double t, double *out)
 {
     for (int j = 0; j < c->dim; j++) out[j] = 0.0;
     for (size_t i = 0; i < c->n; i++) {
-        double N = cox_de_boor(c->knots, i, c->order, t);
+        double N = ref_cox_de_boor(c->knots, i, c->order, t);
         for (int j = 0; j < c->dim; j++) out[j] += N * c->cp[i * (size_t)c->dim + (size_t)j];
     }
 }
 
-static double urand(unsigned *s)
-{
-    *s = *s * 1103515245u + 12345u;
-    return (double)((*s >> 8) & 0xFFFFFF) / (double)0x1000000;
-}
-
 static void random_cp(unsigned *seed, size_t n, int dim, double *cp)
 {
-    for (size_t i = 0; i < n * (size_t)dim; i++) cp[i] = 2.0 * urand(seed) - 1.0;
+    for (size_t i = 0; i < n * (size_t)dim; i++) cp[i] = 2.0 * dfl_rng_lcg(seed) - 1.0;
 }
 
 Test(bspline, matches_cox_de_boor_clamped_and_nonuniform)
@@ -52,7 +36,7 @@ Test(bspline, matches_cox_de_boor_clamped_and_nonuniform)
             for (size_t i = 0; i < nk; i++) knots[i] = 0.0;
             double v = 0.0;
             for (size_t i = (size_t)order; i < n; i++) {
-                if (!(i == (size_t)order + 2 && order > 2)) v += 0.3 + urand(&seed);
+                if (!(i == (size_t)order + 2 && order > 2)) v += 0.3 + dfl_rng_lcg(&seed);
                 knots[i] = v;
             }
             v += 0.5;
@@ -62,7 +46,7 @@ Test(bspline, matches_cox_de_boor_clamped_and_nonuniform)
             cr_assert_eq(dfl_bspline_init(dim, order, n, cp, knots, nk, &c, &err), DFL_OK, "%s",
                          err.msg);
             for (int s = 0; s < 200; s++) {
-                double t = c.t0 + (c.t1 - c.t0) * urand(&seed) * 0.999999;
+                double t = c.t0 + (c.t1 - c.t0) * dfl_rng_lcg(&seed) * 0.999999;
                 double a[3], b[3];
                 dfl_bspline_eval(&c, t, 0, a);
                 naive_eval(&c, t, b);
@@ -96,7 +80,7 @@ Test(bspline, unclamped_knots_match_cox_de_boor)
     cr_assert_float_eq(c.t0, knots[3], 0.0);
     cr_assert_float_eq(c.t1, knots[7], 0.0);
     for (int s = 0; s < 100; s++) {
-        double t = c.t0 + (c.t1 - c.t0) * urand(&seed) * 0.999999;
+        double t = c.t0 + (c.t1 - c.t0) * dfl_rng_lcg(&seed) * 0.999999;
         double a[2], b[2];
         dfl_bspline_eval(&c, t, 0, a);
         naive_eval(&c, t, b);
@@ -117,7 +101,7 @@ Test(bspline, derivatives_match_finite_differences)
         cr_assert_eq(dfl_bspline_init(dim, order, n, cp, NULL, 0, &c, NULL), DFL_OK);
         const double h = 1e-5;
         for (int s = 0; s < 50; s++) {
-            double t = c.t0 + (c.t1 - c.t0) * urand(&seed);
+            double t = c.t0 + (c.t1 - c.t0) * dfl_rng_lcg(&seed);
             /* stay away from knots (integers for the clamped uniform vector) */
             if (fabs(t - round(t)) < 1e-3) continue;
             double d[5 * 3], dp[5 * 3], dm[5 * 3];
@@ -223,7 +207,7 @@ Test(bspline, periodic_curve_is_periodic_and_smooth)
         double cp[7 * 2], br[8];
         random_cp(&seed, m, 2, cp);
         br[0] = -1.0;
-        for (size_t i = 1; i <= m; i++) br[i] = br[i - 1] + 0.5 + urand(&seed);
+        for (size_t i = 1; i <= m; i++) br[i] = br[i - 1] + 0.5 + dfl_rng_lcg(&seed);
         dfl_bspline c;
         dfl_err err;
         cr_assert_eq(dfl_bspline_init_periodic(2, order, m, cp, br, m + 1, &c, &err), DFL_OK, "%s",
@@ -232,7 +216,7 @@ Test(bspline, periodic_curve_is_periodic_and_smooth)
         cr_assert_eq(c.t1, br[m]);
         double T = c.t1 - c.t0;
         for (int s = 0; s < 30; s++) {
-            double t = c.t0 + T * urand(&seed), a[2], b[2], y[2];
+            double t = c.t0 + T * dfl_rng_lcg(&seed), a[2], b[2], y[2];
             dfl_bspline_eval(&c, t, 0, a);
             dfl_bspline_eval(&c, t + 3 * T, 0, b);
             naive_eval(&c, t, y);

@@ -8,15 +8,14 @@
 
 #include <math.h>
 
+#include "core/vec.h"
 #include "geom/curvature.h"
-
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 static void expect_dir(const double *e, const double *want)
 {
-    double wn = sqrt(dot3(want, want));
-    cr_assert(fabs(fabs(dot3(e, want)) / wn - 1.0) < 1e-12, "direction mismatch (|cos| = %.17g)",
-              fabs(dot3(e, want)) / wn);
+    double wn = sqrt(dfl_vec3_dot(want, want));
+    cr_assert(fabs(fabs(dfl_vec3_dot(e, want)) / wn - 1.0) < 1e-12, "direction mismatch (|cos| = %.17g)",
+              fabs(dfl_vec3_dot(e, want)) / wn);
 }
 
 Test(curvature, sphere_implicit_and_parametric)
@@ -39,7 +38,7 @@ Test(curvature, sphere_implicit_and_parametric)
         double Svv[3] = {-r * cos(u) * cos(v), -r * sin(u) * cos(v), -r * sin(v)};
         cr_assert_eq(dfl_curvature_parametric(Su, Sv, Suu, Suv, Svv, p, &c, NULL), DFL_OK);
         cr_assert(fabs(c.k1 - 1 / r) < 1e-13 && fabs(c.k2 - 1 / r) < 1e-13);
-        cr_assert(dot3(c.n, p) > 0);
+        cr_assert(dfl_vec3_dot(c.n, p) > 0);
         /* the inward normal flips both signs */
         double in[3] = {-p[0], -p[1], -p[2]};
         cr_assert_eq(dfl_curvature_parametric(Su, Sv, Suu, Suv, Svv, in, &c, NULL), DFL_OK);
@@ -69,7 +68,7 @@ Test(curvature, cylinder_implicit_and_parametric)
         expect_dir(c.e2, circ);
         double cr[3] = {c.e1[1] * c.e2[2] - c.e1[2] * c.e2[1], c.e1[2] * c.e2[0] - c.e1[0] * c.e2[2],
                         c.e1[0] * c.e2[1] - c.e1[1] * c.e2[0]};
-        cr_assert(fabs(dot3(cr, c.n) - 1) < 1e-12, "e1 x e2 = n");
+        cr_assert(fabs(dfl_vec3_dot(cr, c.n) - 1) < 1e-12, "e1 x e2 = n");
         cr_assert(fabs(c.K) < 1e-14);
     }
 }
@@ -93,7 +92,7 @@ Test(curvature, torus_closed_forms_and_corrected_gaussian)
         double Sphth[3] = {r * sin(th) * sin(ph), -r * sin(th) * cos(ph), 0};
         double Sthth[3] = {-r * cos(th) * cos(ph), -r * cos(th) * sin(ph), -r * sin(th)};
         /* implicit: g = (|p|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2) */
-        double A = dot3(p, p) + R * R - r * r;
+        double A = dfl_vec3_dot(p, p) + R * R - r * r;
         double G[3] = {4 * A * p[0] - 8 * R * R * p[0], 4 * A * p[1] - 8 * R * R * p[1], 4 * A * p[2]};
         double H[9] = {8 * p[0] * p[0] + 4 * A - 8 * R * R, 8 * p[0] * p[1], 8 * p[0] * p[2],
                        8 * p[0] * p[1], 8 * p[1] * p[1] + 4 * A - 8 * R * R, 8 * p[1] * p[2],
@@ -104,7 +103,7 @@ Test(curvature, torus_closed_forms_and_corrected_gaussian)
         double lo = fmin(km, kp), hi = fmax(km, kp);
         for (int m = 0; m < 2; m++) {
             const dfl_curvature *c = m ? &cp : &ci;
-            cr_assert(fabs(dot3(c->n, nrm) - 1) < 1e-12);
+            cr_assert(fabs(dfl_vec3_dot(c->n, nrm) - 1) < 1e-12);
             cr_assert(fabs(c->k1 - lo) < 1e-12 && fabs(c->k2 - hi) < 1e-12,
                       "%s t %d: k = %.17g %.17g, want %.17g %.17g", m ? "param" : "implicit", t,
                       c->k1, c->k2, lo, hi);

@@ -1,19 +1,15 @@
-/* experiments/ellipse_dist against brute force, closed forms and finite
- * differences. */
+/* geom/ellipse: the distance against brute force, closed forms and finite
+ * differences, and the ellipse shape kind against the shape checks of
+ * shape_check.h (boundary brute force, FD gradients, no jets). */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdint.h>
 
-#include "geom/ellipse.h"
+#include <string.h>
 
-static double uni(uint64_t *st, double lo, double hi)
-{
-    uint64_t z = (*st += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return lo + (hi - lo) * ((double)(z >> 11) * 0x1.0p-53);
-}
+#include "core/rng.h"
+#include "geom/ellipse.h"
+#include "geom/shape_check.h"
 
 /* Unsigned distance by dense sampling of the parameter and golden-section
  * refinement around every sampled local minimum. */
@@ -53,7 +49,7 @@ Test(ellipse_dist, brute_force_both_orientations)
     for (int s = 0; s < 3; s++) {
         const double a = ab[s][0], b = ab[s][1];
         for (int i = 0; i < 300; i++) {
-            const double x[2] = {uni(&st, -1.6 * a, 1.6 * a), uni(&st, -1.6 * b, 1.6 * b)};
+            const double x[2] = {dfl_rng_splitmix(&st, -1.6 * a, 1.6 * a), dfl_rng_splitmix(&st, -1.6 * b, 1.6 * b)};
             double foot[2], g[2];
             const double d = dfl_ellipse_sdist(a, b, x, foot, g);
             const double inside = x[0] * x[0] / (a * a) + x[1] * x[1] / (b * b) < 1;
@@ -77,7 +73,7 @@ Test(ellipse_dist, closed_forms)
 {
     uint64_t st = 3;
     for (int i = 0; i < 100; i++) {
-        const double x[2] = {uni(&st, -2, 2), uni(&st, -2, 2)};
+        const double x[2] = {dfl_rng_splitmix(&st, -2, 2), dfl_rng_splitmix(&st, -2, 2)};
         cr_assert_float_eq(dfl_ellipse_sdist(0.8, 0.8, x, NULL, NULL), hypot(x[0], x[1]) - 0.8,
                            1e-15);
     }
@@ -85,10 +81,10 @@ Test(ellipse_dist, closed_forms)
     cr_assert_float_eq(dfl_ellipse_sdist(a, b, o, NULL, NULL), -b, 1e-16);
     const double c = (a * a - b * b) / a;
     for (int i = 0; i < 20; i++) {
-        const double x[2] = {uni(&st, -c, c), 0.0};
+        const double x[2] = {dfl_rng_splitmix(&st, -c, c), 0.0};
         cr_assert_float_eq(dfl_ellipse_sdist(a, b, x, NULL, NULL),
                            -b * sqrt(1 - x[0] * x[0] / (a * a - b * b)), 1e-15);
-        const double y[2] = {uni(&st, 0, 1), uni(&st, -2, 2)};
+        const double y[2] = {dfl_rng_splitmix(&st, 0, 1), dfl_rng_splitmix(&st, -2, 2)};
         const double xy[2] = {0.0, y[1]}, xx[2] = {c + y[0], 0.0};
         cr_assert_float_eq(dfl_ellipse_sdist(a, b, xy, NULL, NULL), fabs(y[1]) - b, 1e-15);
         cr_assert_float_eq(dfl_ellipse_sdist(a, b, xx, NULL, NULL), c + y[0] - a, 1e-15);
@@ -101,7 +97,7 @@ Test(ellipse_dist, gradient)
     uint64_t st = 11;
     const double a = 1.3, b = 0.6, c = (a * a - b * b) / a;
     for (int i = 0; i < 200; i++) {
-        const double x[2] = {uni(&st, -2, 2), uni(&st, -1.2, 1.2)};
+        const double x[2] = {dfl_rng_splitmix(&st, -2, 2), dfl_rng_splitmix(&st, -1.2, 1.2)};
         if (fabs(x[1]) < 0.05 && fabs(x[0]) < c + 0.05) continue;
         double g[2];
         dfl_ellipse_sdist(a, b, x, NULL, g);
@@ -115,4 +111,76 @@ Test(ellipse_dist, gradient)
             cr_assert(fabs(fd - g[k]) < 1e-6, "(%g %g) %d: %g vs %g", x[0], x[1], k, fd, g[k]);
         }
     }
+}
+
+/* ---- the shape kind ---- */
+
+static const double EC[2] = {0.3, -0.2}, EA = 1.1, EB = 0.45;
+
+static void ellipse_pt(const void *ctx, const double *prm, double *p)
+{
+    (void)ctx;
+    p[0] = EC[0] + EA * cos(prm[0]);
+    p[1] = EC[1] + EB * sin(prm[0]);
+}
+
+static int ellipse_in(const double *x)
+{
+    const double u = (x[0] - EC[0]) / EA, v = (x[1] - EC[1]) / EB;
+    return u * u + v * v < 1;
+}
+
+Test(ellipse_shape, matches_brute_force_and_the_distance)
+{
+    dfl_shape s;
+    dfl_err err;
+    cr_assert_eq(dfl_shape_ellipse(EC, EA, EB, &s, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(s.dim, 2);
+    sc_patch P = {1, {0, 0}, {2 * SC_PI, 0}, ellipse_pt, NULL};
+    sc_check_shape(&s, &P, 1, ellipse_in, 1, -1.5, 1.5, 40, 1, 1, 0);
+    /* the shape is the distance function moved to the centre, bit for bit,
+     * in batches too */
+    double pts[2 * 64], val[64], grad[2 * 64];
+    for (int i = 0; i < 64; i++) {
+        pts[2 * i] = sc_urand(-2, 2);
+        pts[2 * i + 1] = sc_urand(-2, 2);
+    }
+    pts[0] = EC[0], pts[1] = EC[1]; /* the centre: one-sided gradient, |g| = 1 */
+    dfl_shape_eval(&s, 64, pts, val, grad);
+    for (int i = 0; i < 64; i++) {
+        const double u[2] = {pts[2 * i] - EC[0], pts[2 * i + 1] - EC[1]};
+        double g[2];
+        cr_assert_eq(val[i], dfl_ellipse_sdist(EA, EB, u, NULL, g));
+        cr_assert_eq(grad[2 * i], g[0]);
+        cr_assert_eq(grad[2 * i + 1], g[1]);
+        cr_assert(fabs(hypot(g[0], g[1]) - 1) < 1e-15);
+    }
+    cr_assert_float_eq(val[0], -EB, 1e-16);
+    dfl_shape_derivs D;
+    cr_assert_eq(dfl_shape_derivs_at(&s, pts, &D, &err), DFL_E_INPUT); /* no jets */
+    dfl_shape_free(&s);
+    /* a == b is the circle */
+    cr_assert_eq(dfl_shape_ellipse(EC, 0.7, 0.7, &s, NULL), DFL_OK);
+    dfl_shape c;
+    cr_assert_eq(dfl_shape_circle(EC, 0.7, &c, NULL), DFL_OK);
+    for (int i = 0; i < 100; i++) {
+        double x[2] = {sc_urand(-2, 2), sc_urand(-2, 2)};
+        cr_assert_float_eq(dfl_shape_eval1(&s, x, NULL), dfl_shape_eval1(&c, x, NULL), 1e-15);
+    }
+    dfl_shape_free(&s);
+    dfl_shape_free(&c);
+}
+
+Test(ellipse_shape, rejects_degenerate_input)
+{
+    dfl_shape s = {0};
+    dfl_err err;
+    const double c[2] = {0, 0}, bad[2] = {NAN, 0};
+    cr_assert_eq(dfl_shape_ellipse(c, 0.0, 1.0, &s, &err), DFL_E_INPUT);
+    cr_assert(strstr(err.msg, "semi-axes"), "%s", err.msg);
+    cr_assert_eq(dfl_shape_ellipse(c, 1.0, -1.0, &s, &err), DFL_E_INPUT);
+    cr_assert_eq(dfl_shape_ellipse(c, INFINITY, 1.0, &s, &err), DFL_E_INPUT);
+    cr_assert_eq(dfl_shape_ellipse(bad, 1.0, 1.0, &s, &err), DFL_E_INPUT);
+    cr_assert(strstr(err.msg, "centre"), "%s", err.msg);
+    cr_assert_null(s.impl);
 }

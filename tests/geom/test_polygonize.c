@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/rng.h"
 #include "geom/footpoint.h"
 #include "geom/polygonize.h"
 
@@ -14,12 +15,6 @@ static const double S_cp[] = {0.85, 0.85, 0.6, 1.0, 0.1, 0.95, 0.1, 0.6, 0.5,
                               0.5,  0.9,  0.4, 0.9, 0.05, 0.4, 0.0, 0.15, 0.15};
 static const double W_cp[] = {0.05, 0.95, 0.2, 0.05, 0.35, 0.05, 0.5,
                               0.75, 0.65, 0.05, 0.8, 0.05, 0.95, 0.95};
-
-static double urand(unsigned *s)
-{
-    *s = *s * 1103515245u + 12345u;
-    return (double)((*s >> 8) & 0xFFFFFF) / (double)0x1000000;
-}
 
 /* brute-force distance from x to the polyline */
 static double poly_dist(const dfl_polyline *p, const double *x)
@@ -197,13 +192,13 @@ Test(polygonize, piece_bound_dominates_hausdorff)
     for (int q = 0; q < 40; q++) {
         int np = 2 + q % 5, dim = 2 + q % 2;
         double bez[8 * 3];
-        for (int i = 0; i < np * dim; i++) bez[i] = urand(&seed);
+        for (int i = 0; i < np * dim; i++) bez[i] = dfl_rng_lcg(&seed);
         if (q % 3 == 0) /* nearly straight, sometimes folding back */
             for (int i = 1; i < np - 1; i++)
                 for (int j = 0; j < dim; j++)
                     bez[i * dim + j] = bez[j] + (bez[(np - 1) * dim + j] - bez[j]) *
-                                                    (1.4 * urand(&seed) - 0.2) +
-                                       0.01 * urand(&seed);
+                                                    (1.4 * dfl_rng_lcg(&seed) - 0.2) +
+                                       0.01 * dfl_rng_lcg(&seed);
         double b = dfl_bezier_chord_bound(bez, np, dim);
         double h = hausdorff_piece(bez, np, dim);
         cr_assert(h <= b * (1 + 1e-9) + 1e-12, "piece %d: Hausdorff %g > bound %g", q, h, b);
@@ -273,8 +268,8 @@ Test(polygonize, surface_bound_holds_both_ways)
     double worst = 0;
     for (int q = 0; q < 3000; q++) {
         const dfl_surface *sp = &s.patch[q % 2];
-        double u = sp->u0 + (sp->u1 - sp->u0) * urand(&seed);
-        double v = sp->v0 + (sp->v1 - sp->v0) * urand(&seed), x[3];
+        double u = sp->u0 + (sp->u1 - sp->u0) * dfl_rng_lcg(&seed);
+        double v = sp->v0 + (sp->v1 - sp->v0) * dfl_rng_lcg(&seed), x[3];
         dfl_surface_eval(sp, u, v, 0, x);
         double best = INFINITY;
         for (size_t t = 0; t < m.ntris; t++)
@@ -296,7 +291,7 @@ Test(polygonize, surface_bound_holds_both_ways)
         const double *A = m.verts + 3 * m.tris[3 * t], *B = m.verts + 3 * m.tris[3 * t + 1],
                      *C = m.verts + 3 * m.tris[3 * t + 2];
         for (int k = 0; k < 4; k++) {
-            double a = urand(&seed), b = urand(&seed);
+            double a = dfl_rng_lcg(&seed), b = dfl_rng_lcg(&seed);
             if (a + b > 1) {
                 a = 1 - a;
                 b = 1 - b;
@@ -319,7 +314,7 @@ Test(polygonize, surface_bound_property_and_growth)
     unsigned seed = 8;
     for (int q = 0; q < 30; q++) {
         double bez[16 * 3];
-        for (int i = 0; i < 48; i++) bez[i] = urand(&seed);
+        for (int i = 0; i < 48; i++) bez[i] = dfl_rng_lcg(&seed);
         double b = dfl_bezier_cell_bound(bez, 4, 4);
         /* brute force |S(u,v) - T(u,v)| over the two triangles */
         double worst = 0;

@@ -5,23 +5,9 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/rng.h"
+#include "geom/bspline_ref.h"
 #include "geom/surface.h"
-
-static double cdb(const double *U, size_t i, int k, double t)
-{
-    if (k == 1) return (U[i] <= t && t < U[i + 1]) ? 1.0 : 0.0;
-    double a = 0.0, b = 0.0;
-    double d1 = U[i + (size_t)k - 1] - U[i], d2 = U[i + (size_t)k] - U[i + 1];
-    if (d1 > 0.0) a = (t - U[i]) / d1 * cdb(U, i, k - 1, t);
-    if (d2 > 0.0) b = (U[i + (size_t)k] - t) / d2 * cdb(U, i + 1, k - 1, t);
-    return a + b;
-}
-
-static double urand(unsigned *s)
-{
-    *s = *s * 1103515245u + 12345u;
-    return (double)((*s >> 8) & 0xFFFFFF) / (double)0x1000000;
-}
 
 static void make_patch(unsigned *seed, int ku, int kv, size_t nu, size_t nv, dfl_surface *s)
 {
@@ -29,9 +15,9 @@ static void make_patch(unsigned *seed, int ku, int kv, size_t nu, size_t nv, dfl
     for (size_t j = 0; j < nv; j++)
         for (size_t i = 0; i < nu; i++) {
             double *P = cp + (i + nu * j) * 3;
-            P[0] = (double)i + 0.3 * urand(seed);
-            P[1] = (double)j + 0.3 * urand(seed);
-            P[2] = urand(seed) - 0.5;
+            P[0] = (double)i + 0.3 * dfl_rng_lcg(seed);
+            P[1] = (double)j + 0.3 * dfl_rng_lcg(seed);
+            P[2] = dfl_rng_lcg(seed) - 0.5;
         }
     dfl_err err;
     cr_assert_eq(dfl_surface_init(ku, kv, nu, nv, cp, NULL, 0, NULL, 0, s, &err), DFL_OK, "%s",
@@ -44,13 +30,13 @@ Test(surface, matches_naive_double_sum)
     dfl_surface s;
     make_patch(&seed, 4, 3, 6, 5, &s);
     for (int q = 0; q < 100; q++) {
-        double u = s.u0 + (s.u1 - s.u0) * urand(&seed) * 0.99999;
-        double v = s.v0 + (s.v1 - s.v0) * urand(&seed) * 0.99999;
+        double u = s.u0 + (s.u1 - s.u0) * dfl_rng_lcg(&seed) * 0.99999;
+        double v = s.v0 + (s.v1 - s.v0) * dfl_rng_lcg(&seed) * 0.99999;
         double d[3], r[3] = {0, 0, 0};
         dfl_surface_eval(&s, u, v, 0, d);
         for (size_t j = 0; j < s.nv; j++)
             for (size_t i = 0; i < s.nu; i++) {
-                double w = cdb(s.knots_u, i, s.ku, u) * cdb(s.knots_v, j, s.kv, v);
+                double w = ref_cox_de_boor(s.knots_u, i, s.ku, u) * ref_cox_de_boor(s.knots_v, j, s.kv, v);
                 for (int c = 0; c < 3; c++) r[c] += w * s.cp[(i + s.nu * j) * 3 + (size_t)c];
             }
         for (int c = 0; c < 3; c++) cr_assert(fabs(d[c] - r[c]) < 1e-13);
@@ -65,8 +51,8 @@ Test(surface, derivatives_match_finite_differences)
     make_patch(&seed, 4, 5, 7, 6, &s);
     const double h = 1e-5;
     for (int q = 0; q < 40; q++) {
-        double u = s.u0 + (s.u1 - s.u0) * urand(&seed);
-        double v = s.v0 + (s.v1 - s.v0) * urand(&seed);
+        double u = s.u0 + (s.u1 - s.u0) * dfl_rng_lcg(&seed);
+        double v = s.v0 + (s.v1 - s.v0) * dfl_rng_lcg(&seed);
         if (fabs(u - round(u)) < 1e-3 || fabs(v - round(v)) < 1e-3) continue;
         double d[30], pu[30], mu[30], pv[30], mv[30];
         dfl_surface_eval(&s, u, v, 3, d);
@@ -103,13 +89,13 @@ Test(surface, bezier_patch_is_bernstein_and_cells_reproduce)
     unsigned seed = 3;
     const int ku = 4, kv = 3;
     double cp[12 * 3];
-    for (int i = 0; i < 36; i++) cp[i] = urand(&seed);
+    for (int i = 0; i < 36; i++) cp[i] = dfl_rng_lcg(&seed);
     dfl_surface s;
     cr_assert_eq(dfl_surface_init_bezier(ku, kv, cp, &s, NULL), DFL_OK);
     double bez[12 * 3];
     dfl_surface_cell_bezier(&s, (size_t)ku - 1, (size_t)kv - 1, 0.2, 0.6, 0.1, 0.9, bez);
     for (int q = 0; q < 50; q++) {
-        double u = urand(&seed), v = urand(&seed), d[3], r[3] = {0, 0, 0};
+        double u = dfl_rng_lcg(&seed), v = dfl_rng_lcg(&seed), d[3], r[3] = {0, 0, 0};
         dfl_surface_eval(&s, u, v, 0, d);
         for (int j = 0; j < kv; j++)
             for (int i = 0; i < ku; i++)
@@ -117,7 +103,7 @@ Test(surface, bezier_patch_is_bernstein_and_cells_reproduce)
                     r[c] += bern(ku - 1, i, u) * bern(kv - 1, j, v) * cp[(i + ku * j) * 3 + c];
         for (int c = 0; c < 3; c++) cr_assert(fabs(d[c] - r[c]) < 1e-14);
         /* the cell's Bezier net evaluated at local (a, b) */
-        double a = urand(&seed), b = urand(&seed), e[3] = {0, 0, 0}, f[3];
+        double a = dfl_rng_lcg(&seed), b = dfl_rng_lcg(&seed), e[3] = {0, 0, 0}, f[3];
         for (int j = 0; j < kv; j++)
             for (int i = 0; i < ku; i++)
                 for (int c = 0; c < 3; c++)
