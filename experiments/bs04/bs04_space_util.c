@@ -7,28 +7,6 @@
 
 #include "io/vtk.h"
 
-dfl_status dfl_bs04_put_metrics(dfl_table *t, const char *sfx, const dfl_metrics *m,
-                                dfl_err *err)
-{
-    char col[96];
-    dfl_status st;
-    snprintf(col, sizeof col, "count%s", sfx);
-    st = dfl_table_set_int(t, col, (long)m->count, err);
-#define PUT(name, v)                                              \
-    do {                                                          \
-        snprintf(col, sizeof col, "%s%s", name, sfx);             \
-        if (st == DFL_OK) st = dfl_table_set_double(t, col, v, err);   \
-    } while (0)
-    PUT("l1", m->l1);
-    PUT("mse", m->mse);
-    PUT("rms", m->rms);
-    PUT("linf", m->linf);
-    PUT("graddefect_mean", m->gdef_mean);
-    PUT("graddefect_max", m->gdef_max);
-#undef PUT
-    return st;
-}
-
 void dfl_bs04_gradstat(size_t m, int dim, const double *grad, const unsigned char *mask,
                        dfl_gradstat *out)
 {

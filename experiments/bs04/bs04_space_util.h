@@ -16,11 +16,6 @@
 #include "rfunc/segment.h"
 #include "harness/slice.h"
 
-/* Sets count<sfx>, l1<sfx>, mse<sfx>, rms<sfx>, linf<sfx>,
- * graddefect_mean<sfx>, graddefect_max<sfx> in the current row. */
-dfl_status dfl_bs04_put_metrics(dfl_table *t, const char *sfx, const dfl_metrics *m,
-                                dfl_err *err);
-
 /* Statistics of |grad u| over the m samples whose mask entry is non-zero
  * (mask may be NULL: all): min, mean, max; NAN when none. */
 typedef struct dfl_gradstat {

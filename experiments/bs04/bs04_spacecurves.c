@@ -167,8 +167,8 @@ static dfl_status put_field(dfl_table *t, const char *sfx, size_t m, const doubl
     dfl_bs04_gradstat(m, 3, gu, mask, &gs);
     free(mask);
     snprintf(s2, sizeof s2, "%s_band", sfx);
-    st = dfl_bs04_put_metrics(t, sfx, &all, err);
-    if (st == DFL_OK) st = dfl_bs04_put_metrics(t, s2, &inb, err);
+    st = dfl_metrics_put(t, sfx, &all, err);
+    if (st == DFL_OK) st = dfl_metrics_put(t, s2, &inb, err);
     if (st == DFL_OK) st = dfl_bs04_put_gradstat(t, s2, &gs, err);
     return st;
 }

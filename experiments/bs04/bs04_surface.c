@@ -144,12 +144,12 @@ static dfl_status do_slice(const keys *k, int s, const dfl_field *f, const dfl_f
     dfl_gradstat gs;
     dfl_bs04_gradstat(m, 3, gu, mask, &gs);
     snprintf(sfx, sizeof sfx, "_s%d", s);
-    st = dfl_bs04_put_metrics(table, sfx, &all, err);
+    st = dfl_metrics_put(table, sfx, &all, err);
     snprintf(sfx, sizeof sfx, "_s%d_band", s);
-    if (!st) st = dfl_bs04_put_metrics(table, sfx, &inb, err);
+    if (!st) st = dfl_metrics_put(table, sfx, &inb, err);
     if (!st) st = dfl_bs04_put_gradstat(table, sfx, &gs, err);
     snprintf(sfx, sizeof sfx, "_s%d_mesh", s);
-    if (!st) st = dfl_bs04_put_metrics(table, sfx, &mesh, err);
+    if (!st) st = dfl_metrics_put(table, sfx, &mesh, err);
     snprintf(col, sizeof col, "mesh_dev_max_s%d", s);
     if (!st) st = dfl_table_set_double(table, col, dev, err);
     snprintf(col, sizeof col, "u_le_dmesh_s%d", s);
