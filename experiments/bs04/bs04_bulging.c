@@ -90,7 +90,7 @@ typedef struct bulge_keys {
     long p;
     double smax, valid_tol;
     long steps, rounds;
-    dfl_field_out_opts out;
+    dfl_field_write_opts out;
 } bulge_keys;
 
 static void keys_free(bulge_keys *k)

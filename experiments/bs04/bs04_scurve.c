@@ -80,7 +80,7 @@ typedef struct scurve_keys {
     long rays, cap_rays, max_joints, steps, rounds, csamples, crounds;
     double smax, valid_tol;
     dfl_grid grid;
-    dfl_field_out_opts out;
+    dfl_field_write_opts out;
 } scurve_keys;
 
 static dfl_status read_keys(const dfl_cfg *cfg, scurve_keys *k, dfl_err *err)

@@ -140,18 +140,18 @@ const char *dfl_bs04_base(const char *path)
 }
 
 dfl_status dfl_bs04_write_slices(const dfl_study_ctx *ctx, const dfl_field *f,
-                                 const dfl_slice *slices, int n, const char *prefix,
-                                 const dfl_field_out_opts *o, dfl_err *err)
+                                 const dfl_grid *slices, int n, const char *prefix,
+                                 const dfl_field_write_opts *o, dfl_err *err)
 {
     char stem[64];
     dfl_status st = DFL_OK;
     for (int s = 0; s < n && st == DFL_OK; s++) {
-        const size_t m = dfl_slice_size(&slices[s]);
+        const size_t m = dfl_grid_size(&slices[s]);
         double *u = malloc(m * sizeof *u), *gu = malloc(3 * m * sizeof *gu);
         if (!u || !gu) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-        if (!st) st = dfl_slice_sample(f, &slices[s], ctx->threads, u, gu, err);
+        if (!st) st = dfl_field_sample(f, &slices[s], ctx->threads, u, gu, err);
         snprintf(stem, sizeof stem, "%s%d", prefix, s);
-        if (!st) st = dfl_slice_write(ctx, stem, &slices[s], u, gu, NULL, o, err);
+        if (!st) st = dfl_field_out_write(ctx, stem, &slices[s], u, gu, NULL, o, err);
         free(u);
         free(gu);
     }

@@ -28,7 +28,7 @@ static dfl_status smoke_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_ta
     dfl_field f = {0};
     dfl_grid g;
     double scale, offset, band;
-    dfl_field_out_opts oo;
+    dfl_field_write_opts oo;
     double *d = NULL, *gd = NULL, *u = NULL, *gu = NULL;
     dfl_status st = dfl_field_from_cfg(cfg, "field", &f, err);
     if (st == DFL_OK) st = dfl_grid_from_cfg(cfg, "grid", f.dim, &g, err);
