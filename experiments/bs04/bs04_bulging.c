@@ -56,11 +56,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "field/bandstats.h"
 #include "cfg/curve_cfg.h"
 #include "field/curveprobe.h"
 #include "harness/experiment.h"
 #include "field/exact.h"
+#include "field/metrics.h"
 #include "field/sample.h"
 #include "harness/field_out.h"
 #include "geom/polygonize.h"
@@ -90,7 +90,7 @@ typedef struct bulge_keys {
     long p;
     double smax, valid_tol;
     long steps, rounds;
-    dfl_field_out_opts out;
+    dfl_field_write_opts out;
 } bulge_keys;
 
 static void keys_free(bulge_keys *k)
@@ -267,7 +267,7 @@ static dfl_status put_row(dfl_table *t, const bulge_keys *k, const bulge_case *c
                                                  : rs->kind[a] == DFL_RAY_CAP  ? "cap"
                                                                               : "side",
                                        err);
-    if (!st) st = dfl_bandstats_put(t, bs, err);
+    if (!st) st = dfl_metrics_put_bandstats(t, bs, err);
     if (!st) st = dfl_table_set_string(t, "u_vti", uname, err);
     if (!st) st = dfl_table_set_string(t, "exact_vti", dname, err);
     return st;
@@ -326,7 +326,7 @@ static dfl_status run_case(const bulge_keys *k, bulge_case *c, const dfl_study_c
             st = dfl_curveprobe_on_branch(&r.exact, &r.rays, r.s, k->valid_tol, ctx->threads,
                                           r.branch, err);
         if (st == DFL_OK) dfl_curveprobe_stats(&r.rays, r.s, r.valid, r.branch, delta, &rst);
-        if (st == DFL_OK) st = dfl_bandstats_compute(m, 2, r.uv, r.ug, r.dv, delta, &bs, err);
+        if (st == DFL_OK) st = dfl_metrics_bandstats(m, 2, r.uv, r.ug, r.dv, delta, &bs, err);
         if (st == DFL_OK)
             st = put_row(table, k, c, nseg, delta, &r.rays, &rst, &bs, base_name(upath),
                          base_name(dpath), err);

@@ -48,7 +48,7 @@ typedef struct cj_keys {
     long p, nr, nt;
     double rmax, band, vradius;
     dfl_grid grid;
-    dfl_field_out_opts oo;
+    dfl_field_write_opts oo;
 } cj_keys;
 
 static dfl_status read_keys(const dfl_cfg *cfg, cj_keys *k, dfl_err *err)

@@ -50,7 +50,7 @@ typedef struct fields_keys {
     long p;
     double band;
     dfl_grid grid;
-    dfl_field_out_opts out;
+    dfl_field_write_opts out;
 } fields_keys;
 
 static dfl_status read_segment(const dfl_cfg *cfg, const char *key, double *s, dfl_err *err)

@@ -62,7 +62,7 @@ typedef struct keys {
     long nb;
     bool compress;
     dfl_grid grid;
-    dfl_field_out_opts out;
+    dfl_field_write_opts out;
 } keys;
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
@@ -238,8 +238,8 @@ static dfl_status hetero_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
     if (!st) st = dfl_table_set_string(table, "join", dfl_rfunc_join_name(k.join), err);
     if (!st) st = dfl_table_set_int(table, "p", k.p, err);
     if (!st) st = dfl_table_set_string(table, "trim", dfl_rfunc_trim_name(k.trim), err);
-    if (!st) st = dfl_bs04_put_metrics(table, "", &all, err);
-    if (!st) st = dfl_bs04_put_metrics(table, "_band", &inb, err);
+    if (!st) st = dfl_metrics_put(table, "", &all, err);
+    if (!st) st = dfl_metrics_put(table, "_band", &inb, err);
     if (!st) st = dfl_bs04_put_gradstat(table, "_band", &gs, err);
     if (!st) st = dfl_table_set_double(table, "delta", k.delta, err);
     const double rmax = fmax(br.ratio, fmax(bs.ratio, bp.ratio));

@@ -68,7 +68,7 @@ typedef struct rec_keys {
     double *deltas, *bands;
     size_t ndeltas, nbands;
     dfl_grid grid;
-    dfl_field_out_opts out;
+    dfl_field_write_opts out;
 } rec_keys;
 
 static dfl_status read_keys(const dfl_cfg *cfg, rec_keys *k, dfl_err *err)

@@ -10,7 +10,7 @@
  *   per offset delta of [study] levels:
  *     band statistics of u against the exact curve distance d over the grid
  *     nodes with d <= delta (bias, relative bias, L1, RMS, Linf, |grad u|
- *     min/mean/max; bandstats.h);
+ *     min/mean/max; metrics.h);
  *     the level set u = delta against the true offset d = delta along the
  *     curve's normal rays (curveprobe.h): offset_* = (s - delta) / delta,
  *     s the first crossing of u = delta; mean, max, min, and the means on
@@ -59,11 +59,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "field/bandstats.h"
 #include "cfg/curve_cfg.h"
 #include "field/curveprobe.h"
 #include "harness/experiment.h"
 #include "field/exact.h"
+#include "field/metrics.h"
 #include "field/sample.h"
 #include "cfg/field_cfg.h"
 #include "harness/field_out.h"
@@ -80,7 +80,7 @@ typedef struct scurve_keys {
     long rays, cap_rays, max_joints, steps, rounds, csamples, crounds;
     double smax, valid_tol;
     dfl_grid grid;
-    dfl_field_out_opts out;
+    dfl_field_write_opts out;
 } scurve_keys;
 
 static dfl_status read_keys(const dfl_cfg *cfg, scurve_keys *k, dfl_err *err)
@@ -254,7 +254,7 @@ static dfl_status scurve_run_point(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
             st = dfl_curveprobe_on_branch(&r.exact, &r.rays, r.s, k.valid_tol, ctx->threads,
                                           r.branch, err);
         if (st == DFL_OK) dfl_curveprobe_stats(&r.rays, r.s, r.valid, r.branch, delta, &rs);
-        if (st == DFL_OK) st = dfl_bandstats_compute(m, 2, r.uv, r.ug, r.dv, delta, &bs, err);
+        if (st == DFL_OK) st = dfl_metrics_bandstats(m, 2, r.uv, r.ug, r.dv, delta, &bs, err);
         if (st != DFL_OK) break;
         st = dfl_table_row(t, err);
         if (!st) st = dfl_table_set_string(t, "curve", k.curve_sec, err);
@@ -272,7 +272,7 @@ static dfl_status scurve_run_point(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
         if (!st) st = dfl_table_set_double(t, "u_curve_max_over_eps", umax / k.eps, err);
         if (!st) st = dfl_table_set_double(t, "u_curve_bound", C * r.pl.bound, err);
         if (!st) st = dfl_table_set_double(t, "delta", delta, err);
-        if (!st) st = dfl_bandstats_put(t, &bs, err);
+        if (!st) st = dfl_metrics_put_bandstats(t, &bs, err);
         if (!st) st = dfl_table_set_int(t, "rays", (long)r.rays.n, err);
         if (!st) st = dfl_table_set_int(t, "rays_valid", (long)rs.valid, err);
         if (!st) st = dfl_table_set_int(t, "unresolved", (long)rs.unresolved, err);

@@ -7,28 +7,6 @@
 
 #include "io/vtk.h"
 
-dfl_status dfl_bs04_put_metrics(dfl_table *t, const char *sfx, const dfl_metrics *m,
-                                dfl_err *err)
-{
-    char col[96];
-    dfl_status st;
-    snprintf(col, sizeof col, "count%s", sfx);
-    st = dfl_table_set_int(t, col, (long)m->count, err);
-#define PUT(name, v)                                              \
-    do {                                                          \
-        snprintf(col, sizeof col, "%s%s", name, sfx);             \
-        if (st == DFL_OK) st = dfl_table_set_double(t, col, v, err);   \
-    } while (0)
-    PUT("l1", m->l1);
-    PUT("mse", m->mse);
-    PUT("rms", m->rms);
-    PUT("linf", m->linf);
-    PUT("graddefect_mean", m->gdef_mean);
-    PUT("graddefect_max", m->gdef_max);
-#undef PUT
-    return st;
-}
-
 void dfl_bs04_gradstat(size_t m, int dim, const double *grad, const unsigned char *mask,
                        dfl_gradstat *out)
 {
@@ -162,18 +140,18 @@ const char *dfl_bs04_base(const char *path)
 }
 
 dfl_status dfl_bs04_write_slices(const dfl_study_ctx *ctx, const dfl_field *f,
-                                 const dfl_slice *slices, int n, const char *prefix,
-                                 const dfl_field_out_opts *o, dfl_err *err)
+                                 const dfl_grid *slices, int n, const char *prefix,
+                                 const dfl_field_write_opts *o, dfl_err *err)
 {
     char stem[64];
     dfl_status st = DFL_OK;
     for (int s = 0; s < n && st == DFL_OK; s++) {
-        const size_t m = dfl_slice_size(&slices[s]);
+        const size_t m = dfl_grid_size(&slices[s]);
         double *u = malloc(m * sizeof *u), *gu = malloc(3 * m * sizeof *gu);
         if (!u || !gu) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-        if (!st) st = dfl_slice_sample(f, &slices[s], ctx->threads, u, gu, err);
+        if (!st) st = dfl_field_sample(f, &slices[s], ctx->threads, u, gu, err);
         snprintf(stem, sizeof stem, "%s%d", prefix, s);
-        if (!st) st = dfl_slice_write(ctx, stem, &slices[s], u, gu, NULL, o, err);
+        if (!st) st = dfl_field_out_write(ctx, stem, &slices[s], u, gu, NULL, o, err);
         free(u);
         free(gu);
     }

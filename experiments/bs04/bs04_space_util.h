@@ -14,12 +14,7 @@
 #include "io/table.h"
 #include "rfunc/join.h"
 #include "rfunc/segment.h"
-#include "harness/slice.h"
-
-/* Sets count<sfx>, l1<sfx>, mse<sfx>, rms<sfx>, linf<sfx>,
- * graddefect_mean<sfx>, graddefect_max<sfx> in the current row. */
-dfl_status dfl_bs04_put_metrics(dfl_table *t, const char *sfx, const dfl_metrics *m,
-                                dfl_err *err);
+#include "harness/field_out.h"
 
 /* Statistics of |grad u| over the m samples whose mask entry is non-zero
  * (mask may be NULL: all): min, mean, max; NAN when none. */
@@ -52,12 +47,13 @@ dfl_status dfl_bs04_vtp_trimesh(const char *path, size_t nv, const double *verts
 dfl_status dfl_bs04_vtp_points(const char *path, size_t n, const double *pts, const char *name,
                                const double *values, int compress, dfl_err *err);
 
-/* Samples the 3D field f (value and gradient) on each of the n slices and
- * writes slice s as <prefix><s> (see dfl_slice_write; no reference).
- * Stops at the first failure; temporary buffers are freed. */
+/* Samples the 3D field f (value and gradient) on each of the n slices
+ * (plane grids, cfg/slice_cfg.h) and writes slice s as <prefix><s> (see
+ * dfl_field_out_write; no reference).  Stops at the first failure;
+ * temporary buffers are freed. */
 dfl_status dfl_bs04_write_slices(const dfl_study_ctx *ctx, const dfl_field *f,
-                                 const dfl_slice *slices, int n, const char *prefix,
-                                 const dfl_field_out_opts *o, dfl_err *err);
+                                 const dfl_grid *slices, int n, const char *prefix,
+                                 const dfl_field_write_opts *o, dfl_err *err);
 
 /* Base name (after the last '/') of a path. */
 const char *dfl_bs04_base(const char *path);

@@ -14,8 +14,8 @@
  *   paper_segments = 56 90       bs04's counts, one per curve (optional)
  *   band    = 0.05               metrics also over |d| <= band
  *   volume  = true               sample [grid] (3D) and write <curve>_volume
- *   slices  = z 0.5; y 0.5       section planes (slice.h), slice_n, slice_lo,
- *                                slice_hi
+ *   slices  = z 0.5; y 0.5       section planes (cfg/slice_cfg.h), slice_n,
+ *                                slice_lo, slice_hi
  *   compress = true              zlib .vtp
  *   [grid] n, lo, hi             the volume grid   [output] see field_out.h
  * Rows (one per curve): curve, eps, segments, bound, paper_segments,
@@ -41,7 +41,7 @@
 #include "geom/polygonize.h"
 #include "cfg/grid_cfg.h"
 #include "rfunc/rfield.h"
-#include "harness/slice.h"
+#include "cfg/slice_cfg.h"
 
 #define MAX_CURVES 8
 #define MAX_SLICES 4
@@ -58,9 +58,9 @@ typedef struct keys {
     size_t npaper;
     bool volume, compress;
     dfl_grid grid;
-    dfl_slice slices[MAX_SLICES];
+    dfl_grid slices[MAX_SLICES];
     int nslices;
-    dfl_field_out_opts out;
+    dfl_field_write_opts out;
 } keys;
 
 static dfl_status read_names(const dfl_cfg *cfg, keys *k, dfl_err *err)
@@ -167,8 +167,8 @@ static dfl_status put_field(dfl_table *t, const char *sfx, size_t m, const doubl
     dfl_bs04_gradstat(m, 3, gu, mask, &gs);
     free(mask);
     snprintf(s2, sizeof s2, "%s_band", sfx);
-    st = dfl_bs04_put_metrics(t, sfx, &all, err);
-    if (st == DFL_OK) st = dfl_bs04_put_metrics(t, s2, &inb, err);
+    st = dfl_metrics_put(t, sfx, &all, err);
+    if (st == DFL_OK) st = dfl_metrics_put(t, s2, &inb, err);
     if (st == DFL_OK) st = dfl_bs04_put_gradstat(t, s2, &gs, err);
     return st;
 }
@@ -232,8 +232,8 @@ static dfl_status do_curve(const keys *k, int c, const dfl_bspline *curve, const
         if (st) goto done;
     }
     for (int s = 0; s < k->nslices && st == DFL_OK; s++) {
-        const dfl_slice *sl = &k->slices[s];
-        const size_t m = dfl_slice_size(sl);
+        const dfl_grid *sl = &k->slices[s];
+        const size_t m = dfl_grid_size(sl);
         u = malloc(m * sizeof *u);
         gu = malloc(3 * m * sizeof *gu);
         d = malloc(m * sizeof *d);
@@ -241,15 +241,15 @@ static dfl_status do_curve(const keys *k, int c, const dfl_bspline *curve, const
             st = dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu samples", m);
             break;
         }
-        st = dfl_slice_sample(&f, sl, ctx->threads, u, gu, err);
-        if (!st) st = dfl_slice_sample(exact, sl, ctx->threads, d, NULL, err);
+        st = dfl_field_sample(&f, sl, ctx->threads, u, gu, err);
+        if (!st) st = dfl_field_sample(exact, sl, ctx->threads, d, NULL, err);
         snprintf(sfx, sizeof sfx, "_s%d", s);
         if (!st) st = put_field(table, sfx, m, u, gu, d, k->band, err);
         snprintf(stem, sizeof stem, "%s_slice%d", name, s);
-        if (!st) st = dfl_slice_write(ctx, stem, sl, u, gu, d, &k->out, err);
+        if (!st) st = dfl_field_out_write(ctx, stem, sl, u, gu, d, &k->out, err);
         char col[32], desc[64];
         snprintf(col, sizeof col, "slice%d", s);
-        snprintf(desc, sizeof desc, "%c = %g", "xyz"[sl->axis], sl->at);
+        dfl_slice_label(sl, desc, sizeof desc);
         if (!st) st = dfl_table_set_string(table, col, desc, err);
         free(u), free(gu), free(d);
         u = gu = d = NULL;

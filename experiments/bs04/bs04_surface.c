@@ -18,7 +18,7 @@
  *   join, p                  (bs04_space_util.h; default requiv, 2)
  *   tri_trim = conditional   prism | conditional; a = 0.2, k = 2; smooth = false
  *   band     = 0.05          metrics also over d_S <= band
- *   slices, slice_n, slice_lo, slice_hi   section planes (slice.h)
+ *   slices, slice_n, slice_lo, slice_hi   section planes (cfg/slice_cfg.h)
  *   max_tris = 200000        refuse larger triangulations
  *   compress = true          [output] see field_out.h
  * Rows (one per eps): eps, triangles, vertices, bound, join, p, tri_trim, and
@@ -41,7 +41,8 @@
 #include "geom/polygonize.h"
 #include "rfunc/rfield.h"
 #include "rfunc/tri3d.h"
-#include "harness/slice.h"
+#include "cfg/slice_cfg.h"
+#include "harness/field_out.h"
 
 #define MAX_SLICES 4
 
@@ -52,10 +53,10 @@ typedef struct keys {
     int p;
     dfl_rfunc_tri_opts o;
     long max_tris;
-    dfl_slice slices[MAX_SLICES];
+    dfl_grid slices[MAX_SLICES];
     int nslices;
     bool compress;
-    dfl_field_out_opts out;
+    dfl_field_write_opts out;
 } keys;
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
@@ -97,13 +98,13 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 }
 
 /* Exact distance to the mesh at the slice samples (parallel brute force). */
-static void mesh_distance(const dfl_trimesh *M, const dfl_slice *s, int threads, double *dm)
+static void mesh_distance(const dfl_trimesh *M, const dfl_grid *s, int threads, double *dm)
 {
-    const long m = (long)dfl_slice_size(s);
+    const long m = (long)dfl_grid_size(s);
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads > 0 ? threads : 1)
     for (long i = 0; i < m; i++) {
         double x[3], best = INFINITY;
-        dfl_slice_point(s, (size_t)i, x);
+        dfl_grid_node(s, (size_t)i, x);
         for (size_t t = 0; t < M->ntris; t++) {
             const size_t *v = M->tris + 3 * t;
             best = fmin(best, dfl_point_triangle_dist(x, M->verts + 3 * v[0], M->verts + 3 * v[1],
@@ -117,16 +118,16 @@ static dfl_status do_slice(const keys *k, int s, const dfl_field *f, const dfl_f
                            const dfl_trimesh *M, const dfl_study_ctx *ctx, dfl_table *table,
                            dfl_err *err)
 {
-    const dfl_slice *sl = &k->slices[s];
-    const size_t m = dfl_slice_size(sl);
+    const dfl_grid *sl = &k->slices[s];
+    const size_t m = dfl_grid_size(sl);
     double *u = malloc(m * sizeof *u), *gu = malloc(3 * m * sizeof *gu);
     double *ds = malloc(m * sizeof *ds), *dm = malloc(m * sizeof *dm);
     unsigned char *mask = malloc(m);
     char sfx[48], col[64], stem[64];
     dfl_status st = DFL_OK;
     if (!u || !gu || !ds || !dm || !mask) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-    if (!st) st = dfl_slice_sample(f, sl, ctx->threads, u, gu, err);
-    if (!st) st = dfl_slice_sample(exact, sl, ctx->threads, ds, NULL, err);
+    if (!st) st = dfl_field_sample(f, sl, ctx->threads, u, gu, err);
+    if (!st) st = dfl_field_sample(exact, sl, ctx->threads, ds, NULL, err);
     if (st) goto done;
     mesh_distance(M, sl, ctx->threads, dm);
     dfl_metrics all, inb, mesh;
@@ -144,22 +145,22 @@ static dfl_status do_slice(const keys *k, int s, const dfl_field *f, const dfl_f
     dfl_gradstat gs;
     dfl_bs04_gradstat(m, 3, gu, mask, &gs);
     snprintf(sfx, sizeof sfx, "_s%d", s);
-    st = dfl_bs04_put_metrics(table, sfx, &all, err);
+    st = dfl_metrics_put(table, sfx, &all, err);
     snprintf(sfx, sizeof sfx, "_s%d_band", s);
-    if (!st) st = dfl_bs04_put_metrics(table, sfx, &inb, err);
+    if (!st) st = dfl_metrics_put(table, sfx, &inb, err);
     if (!st) st = dfl_bs04_put_gradstat(table, sfx, &gs, err);
     snprintf(sfx, sizeof sfx, "_s%d_mesh", s);
-    if (!st) st = dfl_bs04_put_metrics(table, sfx, &mesh, err);
+    if (!st) st = dfl_metrics_put(table, sfx, &mesh, err);
     snprintf(col, sizeof col, "mesh_dev_max_s%d", s);
     if (!st) st = dfl_table_set_double(table, col, dev, err);
     snprintf(col, sizeof col, "u_le_dmesh_s%d", s);
     if (!st) st = dfl_table_set_double(table, col, (double)le / (double)m, err);
     snprintf(col, sizeof col, "slice%d", s);
     char desc[64];
-    snprintf(desc, sizeof desc, "%c = %g", "xyz"[sl->axis], sl->at);
+    dfl_slice_label(sl, desc, sizeof desc);
     if (!st) st = dfl_table_set_string(table, col, desc, err);
     snprintf(stem, sizeof stem, "surface_slice%d", s);
-    if (!st) st = dfl_slice_write(ctx, stem, sl, u, gu, ds, &k->out, err);
+    if (!st) st = dfl_field_out_write(ctx, stem, sl, u, gu, ds, &k->out, err);
 done:
     free(u), free(gu), free(ds), free(dm), free(mask);
     return st;

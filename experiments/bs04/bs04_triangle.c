@@ -59,7 +59,8 @@
 #include "field/field.h"
 #include "rfunc/rfield.h"
 #include "rfunc/tri3d.h"
-#include "harness/slice.h"
+#include "cfg/slice_cfg.h"
+#include "harness/field_out.h"
 
 #define MAX_SLICES 4
 #define MAX_RADII 8
@@ -72,10 +73,10 @@ typedef struct keys {
     double radii[MAX_RADII];
     int nradii;
     long samples, theory_samples;
-    dfl_slice slices[MAX_SLICES];
+    dfl_grid slices[MAX_SLICES];
     int nslices;
     bool compress;
-    dfl_field_out_opts out;
+    dfl_field_write_opts out;
 } keys;
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)

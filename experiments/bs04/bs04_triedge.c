@@ -43,7 +43,8 @@
 #include "harness/experiment.h"
 #include "rfunc/rfield.h"
 #include "rfunc/tri3d.h"
-#include "harness/slice.h"
+#include "cfg/slice_cfg.h"
+#include "harness/field_out.h"
 
 #define MAX_SLICES 4
 #define PI 3.14159265358979323846
@@ -54,10 +55,10 @@ typedef struct keys {
     dfl_rfunc_join join;
     int p;
     long samples;
-    dfl_slice slices[MAX_SLICES];
+    dfl_grid slices[MAX_SLICES];
     int nslices;
     bool compress;
-    dfl_field_out_opts out;
+    dfl_field_write_opts out;
 } keys;
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)

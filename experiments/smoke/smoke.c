@@ -22,35 +22,13 @@
 #include "harness/field_out.h"
 #include "cfg/grid_cfg.h"
 
-static dfl_status put_metrics(dfl_table *t, const char *suffix, const dfl_metrics *m,
-                              dfl_err *err)
-{
-    char col[64];
-    dfl_status st = DFL_OK;
-#define PUT(name, v)                                                \
-    do {                                                            \
-        snprintf(col, sizeof col, "%s%s", name, suffix);            \
-        if (st == DFL_OK) st = dfl_table_set_double(t, col, v, err); \
-    } while (0)
-    snprintf(col, sizeof col, "count%s", suffix);
-    st = dfl_table_set_int(t, col, (long)m->count, err);
-    PUT("l1", m->l1);
-    PUT("mse", m->mse);
-    PUT("rms", m->rms);
-    PUT("linf", m->linf);
-    PUT("graddefect_mean", m->gdef_mean);
-    PUT("graddefect_max", m->gdef_max);
-#undef PUT
-    return st;
-}
-
 static dfl_status smoke_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
                             dfl_err *err)
 {
     dfl_field f = {0};
     dfl_grid g;
     double scale, offset, band;
-    dfl_field_out_opts oo;
+    dfl_field_write_opts oo;
     double *d = NULL, *gd = NULL, *u = NULL, *gu = NULL;
     dfl_status st = dfl_field_from_cfg(cfg, "field", &f, err);
     if (st == DFL_OK) st = dfl_grid_from_cfg(cfg, "grid", f.dim, &g, err);
@@ -88,8 +66,8 @@ static dfl_status smoke_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_ta
     if (st == DFL_OK) st = dfl_table_set_double(table, "scale", scale, err);
     if (st == DFL_OK) st = dfl_table_set_double(table, "offset", offset, err);
     if (st == DFL_OK) st = dfl_table_set_double(table, "band", band, err);
-    if (st == DFL_OK) st = put_metrics(table, "", &all, err);
-    if (st == DFL_OK) st = put_metrics(table, "_band", &inband, err);
+    if (st == DFL_OK) st = dfl_metrics_put(table, "", &all, err);
+    if (st == DFL_OK) st = dfl_metrics_put(table, "_band", &inband, err);
     if (st != DFL_OK) goto done;
     st = dfl_field_out_write(ctx, "field", &g, u, gu, d, &oo, err);
 done:

@@ -1,11 +1,33 @@
 /* Error metrics of a sampled field u against a reference (usually the exact
- * signed distance d), over all samples or over the band |d| <= band.
+ * signed distance d), over all samples or over a band of the reference.
  *
+ * Function index
+ *   dfl_metrics_compute        L1, MSE, RMS, Linf, gradient-norm defect
+ *   dfl_metrics_bandstats      bias, relative bias, L1, RMS, Linf, |grad u|
+ *   dfl_metrics_put            the dfl_metrics as cells of a table row
+ *   dfl_metrics_put_bandstats  the dfl_bandstats as cells of a table row
+ *
+ * The band rule (both computations): the band is the set of samples with
+ * |ref| <= band.  band <= 0 or band = +inf means every sample; a NaN band
+ * is DFL_E_INPUT.
+ *
+ * dfl_metrics:
  *   L1   = mean |u - d|          MSE  = mean (u - d)^2
  *   RMS  = sqrt(MSE)             Linf = max |u - d|
  *   gradient-norm defect: mean and max of | |grad u| - 1 |
- *
  * hvb25 calls MSE "L2"; dflab names each metric by what it is.
+ *
+ * dfl_bandstats (what the bs04 level-set studies report beside their
+ * level-set measures):
+ *   bias = mean (u - d)     l1 = mean |u - d|     rms = sqrt(mean (u - d)^2)
+ *   linf = max |u - d|      relative bias = mean ((u - d) / |d|) over the
+ *                           band's samples with d != 0
+ *   gmin, gmean, gmax       of |grad u| over the band's samples with u != 0
+ *                           (bs04 fields have gradient 0 by convention on
+ *                           their zero set, where they are not
+ *                           differentiable)
+ *
+ * |grad u| is sqrt(sum_j g_j^2) summed in axis order, in both.
  */
 #ifndef DFL_FIELD_METRICS_H
 #define DFL_FIELD_METRICS_H
@@ -13,6 +35,7 @@
 #include <stddef.h>
 
 #include "core/status.h"
+#include "io/table.h"
 
 typedef struct dfl_metrics {
     size_t count;        /* samples that entered the metrics */
@@ -20,10 +43,36 @@ typedef struct dfl_metrics {
     double gdef_mean, gdef_max;  /* NAN when no gradient was given */
 } dfl_metrics;
 
-/* u, ref: m values; gu: m*dim gradient of u (may be NULL).  band <= 0 or
- * infinite means all samples.  Non-finite u or ref: DFL_E_NUMERIC naming the
- * sample index.  count == 0 (empty band) gives NAN metrics and DFL_OK. */
+typedef struct dfl_bandstats {
+    size_t count;                 /* samples in the band */
+    double bias, rel_bias, l1, rms, linf;
+    size_t gcount;                /* band samples with u != 0 */
+    double gmin, gmean, gmax;
+} dfl_bandstats;
+
+/* u, ref: m values; gu: m*dim gradient of u (may be NULL).  Band: see the
+ * band rule above.  Non-finite u or ref at any sample (in the band or
+ * not): DFL_E_NUMERIC naming the first such sample.  count == 0 (empty
+ * band) gives NAN metrics and DFL_OK.  Parallel (OpenMP) over samples. */
 dfl_status dfl_metrics_compute(size_t m, int dim, const double *u, const double *gu,
                                const double *ref, double band, dfl_metrics *out, dfl_err *err);
+
+/* u, ref: m values; gu: m*dim gradient components (may be NULL: gradient
+ * statistics NAN).  Band: see the band rule above.  Empty band: count 0 and
+ * NAN statistics, DFL_OK.  DFL_E_NUMERIC naming the sample for a NaN ref
+ * anywhere or a non-finite u or ref inside the band.  Serial. */
+dfl_status dfl_metrics_bandstats(size_t m, int dim, const double *u, const double *gu,
+                                 const double *ref, double band, dfl_bandstats *out,
+                                 dfl_err *err);
+
+/* Sets count<sfx>, l1<sfx>, mse<sfx>, rms<sfx>, linf<sfx>,
+ * graddefect_mean<sfx>, graddefect_max<sfx> in the current row of t.
+ * Fails as the table setters do (table.h), at the first failed cell. */
+dfl_status dfl_metrics_put(dfl_table *t, const char *sfx, const dfl_metrics *m, dfl_err *err);
+
+/* Sets band_count, band_bias, band_rel_bias, band_l1, band_rms, band_linf,
+ * grad_min, grad_mean, grad_max in the current row of t.  Fails as the
+ * table setters do. */
+dfl_status dfl_metrics_put_bandstats(dfl_table *t, const dfl_bandstats *b, dfl_err *err);
 
 #endif

@@ -1,6 +1,8 @@
 /* Chunks of CHUNK nodes: large enough that the per-chunk call through the
  * field's function pointer is noise, small enough that the coordinates fit
- * in a stack buffer (no allocation inside the parallel loop). */
+ * in a stack buffer (no allocation inside the parallel loop).  Section
+ * planes are grids with a flat axis rather than a second sampler, so that a
+ * plane's nodes, chunks and evaluation order are those of any grid. */
 #include "field/sample.h"
 
 #include <assert.h>
@@ -13,7 +15,20 @@ dfl_status dfl_grid_check(const dfl_grid *g, dfl_err *err)
 {
     if (g->dim != 2 && g->dim != 3)
         return dfl_err_set(err, DFL_E_INPUT, "grid dimension %d (expected 2 or 3)", g->dim);
+    int flat = -1;
     for (int d = 0; d < g->dim; d++) {
+        if (g->dim == 3 && g->n[d] == 1) {
+            if (flat >= 0)
+                return dfl_err_set(err, DFL_E_INPUT,
+                                   "grid: one node on axes %d and %d (a plane has one flat axis)",
+                                   flat, d);
+            if (!(g->lo[d] == g->hi[d]) || !isfinite(g->lo[d]))
+                return dfl_err_set(err, DFL_E_INPUT,
+                                   "grid: one node on axis %d needs finite lo == hi, not [%g, %g]",
+                                   d, g->lo[d], g->hi[d]);
+            flat = d;
+            continue;
+        }
         if (g->n[d] < 2)
             return dfl_err_set(err, DFL_E_INPUT, "grid: %d nodes on axis %d (expected >= 2)",
                                g->n[d], d);
@@ -26,6 +41,30 @@ dfl_status dfl_grid_check(const dfl_grid *g, dfl_err *err)
     return DFL_OK;
 }
 
+void dfl_grid_plane(int axis, double at, const int n[2], const double lo[2], const double hi[2],
+                    dfl_grid *out)
+{
+    assert(axis >= 0 && axis <= 2);
+    const int a0 = axis == 0 ? 1 : 0, a1 = axis == 2 ? 1 : 2;
+    out->dim = 3;
+    out->n[axis] = 1;
+    out->lo[axis] = out->hi[axis] = at;
+    out->n[a0] = n[0];
+    out->lo[a0] = lo[0];
+    out->hi[a0] = hi[0];
+    out->n[a1] = n[1];
+    out->lo[a1] = lo[1];
+    out->hi[a1] = hi[1];
+}
+
+int dfl_grid_flat_axis(const dfl_grid *g)
+{
+    if (g->dim != 3) return -1;
+    for (int d = 0; d < 3; d++)
+        if (g->n[d] == 1) return d;
+    return -1;
+}
+
 size_t dfl_grid_size(const dfl_grid *g)
 {
     return (size_t)g->n[0] * (size_t)g->n[1] * (size_t)(g->dim == 3 ? g->n[2] : 1);
@@ -33,6 +72,7 @@ size_t dfl_grid_size(const dfl_grid *g)
 
 double dfl_grid_spacing(const dfl_grid *g, int axis)
 {
+    if (g->n[axis] == 1) return 0.0;
     return (g->hi[axis] - g->lo[axis]) / (double)(g->n[axis] - 1);
 }
 
@@ -45,8 +85,22 @@ void dfl_grid_node(const dfl_grid *g, size_t idx, double *x)
     /* lo + i*h is not exact at i = n-1; interpolate so that the last node is hi */
     size_t ijk[3] = {i, j, k};
     for (int d = 0; d < g->dim; d++) {
+        if (g->n[d] == 1) { /* a plane's flat axis */
+            x[d] = g->lo[d];
+            continue;
+        }
         double t = (double)ijk[d] / (double)(g->n[d] - 1);
         x[d] = (1.0 - t) * g->lo[d] + t * g->hi[d];
+    }
+}
+
+void dfl_grid_frame(const dfl_grid *g, int dims[3], double origin[3], double spacing[3])
+{
+    for (int d = 0; d < 3; d++) {
+        const int in = d < g->dim;
+        dims[d] = in ? g->n[d] : 1;
+        origin[d] = in ? g->lo[d] : 0.0;
+        spacing[d] = in && g->n[d] > 1 ? dfl_grid_spacing(g, d) : 1.0;
     }
 }
 

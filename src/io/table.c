@@ -18,14 +18,6 @@ struct dfl_table {
     size_t npre;
 };
 
-static char *dup(const char *s)
-{
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d) memcpy(d, s, n);
-    return d;
-}
-
 dfl_table *dfl_table_new(void) { return calloc(1, sizeof(dfl_table)); }
 
 void dfl_table_free(dfl_table *t)
@@ -69,8 +61,8 @@ dfl_status dfl_table_prefix_string(dfl_table *t, const char *col, const char *va
     char **pv = realloc(t->pval, (t->npre + 1) * sizeof *pv);
     if (!pv) return no_memory(err, col);
     t->pval = pv;
-    t->pcol[t->npre] = dup(col);
-    t->pval[t->npre] = dup(value);
+    t->pcol[t->npre] = strdup(col);
+    t->pval[t->npre] = strdup(value);
     if (!t->pcol[t->npre] || !t->pval[t->npre]) {
         free(t->pcol[t->npre]);
         free(t->pval[t->npre]);
@@ -92,7 +84,7 @@ static long col_index(dfl_table *t, const char *col, int create)
         t->cols = c;
         t->capcols = cap;
     }
-    t->cols[t->ncols] = dup(col);
+    t->cols[t->ncols] = strdup(col);
     if (!t->cols[t->ncols]) return -1;
     return (long)t->ncols++;
 }
@@ -112,7 +104,7 @@ static dfl_status set_text(dfl_table *t, const char *col, const char *text, dfl_
         t->rows[i] = r;
         t->rowcap[i] = cap;
     }
-    char *d = dup(text);
+    char *d = strdup(text);
     if (!d) return no_memory(err, col);
     free(t->rows[i][j]);
     t->rows[i][j] = d;

@@ -62,10 +62,8 @@ struct dfl_rfunc_batch {
 
 #if defined(__GNUC__)
 #define DFL_INLINE static inline __attribute__((always_inline))
-#define DFL_NOINLINE __attribute__((noinline))
 #else
 #define DFL_INLINE static inline
-#define DFL_NOINLINE
 #endif
 
 /* 1/sqrt(x) for normal x > 0 to ~1 ulp; see the top of the file. */
@@ -85,7 +83,7 @@ DFL_INLINE double rsqrt_newton(double x)
 }
 
 /* x^k (k >= 1) by repeated squaring; with k a compile-time constant this
- * unrolls into ipow_muls(k) multiplications. */
+ * unrolls into floor(log2 k) + popcount(k) - 1 multiplications. */
 DFL_INLINE double ipow_sq(double x, int k)
 {
     while (!(k & 1)) {
@@ -100,16 +98,10 @@ DFL_INLINE double ipow_sq(double x, int k)
     return r;
 }
 
-static int ipow_muls(int k)
-{
-    int n = -1;
-    for (; k; k >>= 1) n += 1 + (k & 1);
-    return n - 1;
-}
-
 /* One segment at one point: adds h^-p to *S and h^-(p+2) h grad h to *Vx,
  * *Vy.  Operation counts per line (mul, add; fabs is a logic op) are
- * summed in dfl_rfunc_batch_flops. */
+ * summed by the benchmark (tests/bench/bench_rfunc.c, kernel_ops): keep
+ * them in step with the code. */
 DFL_INLINE void seg_term(double x, double y, const dfl_rfunc_batch *b, size_t k, int p,
                          double *S, double *Vx, double *Vy)
 {
@@ -127,10 +119,10 @@ DFL_INLINE void seg_term(double x, double y, const dfl_rfunc_batch *b, size_t k,
     if (p & 1) {
         const double r = rsqrt_newton(h2);                /* 13, 4 */
         r2 = r * r;                                       /* 1, 0 */
-        w = p == 1 ? r : r * ipow_sq(r2, p / 2);          /* ipow_muls(p/2) + 1, 0 */
+        w = p == 1 ? r : r * ipow_sq(r2, p / 2);          /* muls of ipow_sq(p/2) + 1, 0 */
     } else {
         r2 = 1.0 / h2;                                    /* 1 division */
-        w = ipow_sq(r2, p / 2);                           /* ipow_muls(p/2), 0 */
+        w = ipow_sq(r2, p / 2);                           /* muls of ipow_sq(p/2), 0 */
     }
     const double q = w * r2;                             /* 1, 0 */
     *S += w;                                             /* 0, 1 */
@@ -194,30 +186,6 @@ int dfl_rfunc_batch_simd_width(void)
     return 2;
 }
 
-void dfl_rfunc_batch_ops(int p, int *mul, int *add, int *div)
-{
-    /* the per-line counts in seg_term; rsqrt_newton: 0.5 x, then 3 mul and
-     * 1 sub per step */
-    /*        x-a  x-b   f  -td  max  mt  mi  h^2  gx  gy   q   S   V */
-    *mul = 0 + 0 + 2 + 2 + 0 + 1 + 1 + 2 + 2 + 2 + 1 + 0 + 2;
-    *add = 2 + 2 + 1 + 1 + 1 + 0 + 0 + 1 + 2 + 2 + 0 + 1 + 2;
-    *div = 0;
-    if (p & 1) {
-        *mul += 13 + 1 + (p == 1 ? 0 : ipow_muls(p / 2) + 1);
-        *add += 4;
-    } else {
-        *div = 1;
-        *mul += ipow_muls(p / 2);
-    }
-}
-
-int dfl_rfunc_batch_flops(int p)
-{
-    int mul, add, div;
-    dfl_rfunc_batch_ops(p, &mul, &add, &div);
-    return mul + add + div;
-}
-
 /* u and grad u from the sums, or 0 when they are not trustworthy. */
 static int accept(int p, const double *s, double *u, double *g)
 {
@@ -272,64 +240,6 @@ size_t dfl_rfunc_batch_fallbacks(const dfl_rfunc_batch *b, size_t m, const doubl
         }
     }
     return cnt;
-}
-
-/* ---- naive baseline ----------------------------------------------------- */
-
-/* h and grad h of segment k, eq. 4 with the disk trim, written the obvious
- * way: the normal and the trim from scratch, a branch on the trim sign. */
-DFL_NOINLINE static double naive_seg(const dfl_rfunc_batch *b, size_t k, double x, double y,
-                                     double *gx, double *gy)
-{
-    const double axk = b->ax[k], ayk = b->ay[k];
-    const double bxk = b->bx[k], byk = b->by[k];
-    const double d = sqrt(pow(bxk - axk, 2) + pow(byk - ayk, 2));
-    const double nx = (byk - ayk) / d, ny = -(bxk - axk) / d;
-    const double f = (x - axk) * nx + (y - ayk) * ny;
-    const double cx = 0.5 * (axk + bxk), cy = 0.5 * (ayk + byk);
-    const double t = (pow(d / 2, 2) - pow(x - cx, 2) - pow(y - cy, 2)) / d;
-    if (t >= 0) {
-        *gx = f >= 0 ? nx : -nx;
-        *gy = f >= 0 ? ny : -ny;
-        return fabs(f);
-    }
-    const double h = sqrt(pow(f, 2) + pow(t, 2));
-    if (h == 0) {
-        *gx = *gy = 0;
-        return 0;
-    }
-    /* grad t = -2 (x - c) / d */
-    *gx = (f * nx + t * (-2 * (x - cx) / d)) / h;
-    *gy = (f * ny + t * (-2 * (y - cy) / d)) / h;
-    return h;
-}
-
-void dfl_rfunc_batch_eval_naive(const dfl_rfunc_batch *b, size_t m, const double *pts,
-                                double *val, double *grad)
-{
-    const int p = b->p;
-    for (size_t i = 0; i < m; i++) {
-        const double x = pts[2 * i], y = pts[2 * i + 1];
-        double S = 0, Vx = 0, Vy = 0;
-        int zero = 0;
-        for (size_t k = 0; k < b->n; k++) {
-            double gx, gy;
-            const double h = naive_seg(b, k, x, y, &gx, &gy);
-            if (h == 0) {
-                zero = 1;
-                break;
-            }
-            S += pow(h, -p);
-            Vx += pow(h, -(p + 1)) * gx;
-            Vy += pow(h, -(p + 1)) * gy;
-        }
-        const double u = zero ? 0.0 : pow(S, -1.0 / p);
-        val[i] = u;
-        if (grad) {
-            grad[2 * i] = zero ? 0.0 : pow(u, p + 1) * Vx;
-            grad[2 * i + 1] = zero ? 0.0 : pow(u, p + 1) * Vy;
-        }
-    }
 }
 
 /* ---- construction -------------------------------------------------------- */

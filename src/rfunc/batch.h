@@ -4,7 +4,7 @@
  * rfunc/rfield.h's dfl_rfield_polyline(2, ..., DFL_RFUNC_REQUIV, p,
  * DFL_RFUNC_TRIM_DISK) (to rounding, ~1e-13 relative) and exists for
  * throughput: `make bench` measures it against a naive scalar loop and
- * numpy (tests/bench/bench_rfunc.c).  rfield.h's fields use it as their
+ * numpy (tests/bench/bench_rfunc.c, which also counts its operations).  rfield.h's fields use it as their
  * eval whenever they are exactly such a polyline (rfield.c), so the
  * studies and `dflab probe` sample through it.
  *
@@ -64,16 +64,6 @@ int dfl_rfunc_batch_order(const dfl_rfunc_batch *b);
 void dfl_rfunc_batch_eval(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
                           double *grad);
 
-/* The naive baseline for the benchmark: a plain scalar loop that calls a
- * (non-inlined) function per segment and uses pow() for every power, with
- * no scaling (so it overflows where the fast path falls back; fine at the
- * benchmark's distances).  Where some h_i = 0 it returns 0 and gradient
- * 0, like the library; its trim, written about the centre c as
- * (d/2)^2 - |x - c|^2, is 0 only to rounding at the end points, so there u
- * is of the order of the rounding of the coordinates.  grad may be NULL. */
-void dfl_rfunc_batch_eval_naive(const dfl_rfunc_batch *b, size_t m, const double *pts,
-                                double *val, double *grad);
-
 /* The library's per-point field (rfield built with the fast path off, so
  * it does not recurse into a batch) for the same polyline: the reference
  * and the fallback.  Borrowed; lives as long as b. */
@@ -92,13 +82,5 @@ dfl_status dfl_rfunc_batch_field(const double *v, size_t n, bool closed, int p, 
 /* Vector width in doubles of the code the CPU dispatch selected for the
  * fast path (8: AVX-512, 4: AVX2, 2: SSE2), for flop-rate analysis. */
 int dfl_rfunc_batch_simd_width(void);
-
-/* Operations per segment evaluation of the fast path (value + gradient):
- * multiplications, additions/subtractions and divisions (|.| is a logic
- * operation and not counted), from the per-line counts in batch.c.
- * The benchmark uses them to place the measured rate against the peak. */
-void dfl_rfunc_batch_ops(int p, int *mul, int *add, int *div);
-/* mul + add + div of dfl_rfunc_batch_ops. */
-int dfl_rfunc_batch_flops(int p);
 
 #endif

@@ -24,36 +24,64 @@ static double lcg(unsigned *s)
     return (double)(*s >> 8) / (double)(1u << 24);
 }
 
-typedef struct surf_job {
-    dfl_surface_locator *L;
-    const double *pts;
-    double sum;
-} surf_job;
+/* One footpoint of x: its distance into *d; DFL_OK or the solver's failure. */
+typedef dfl_status (*foot_fn)(const void *ctx, const double *x, double *d);
 
-static void run_surface(void *a)
+typedef struct foot_job {
+    foot_fn foot;
+    const void *ctx;
+    const double *pts;
+    double sum; /* of the distances, to compare the backends */
+} foot_job;
+
+static void run_job(void *a)
 {
-    surf_job *j = a;
-    dfl_surface_foot f;
+    foot_job *j = a;
     j->sum = 0;
-    for (int i = 0; i < NPTS; i++)
-        if (dfl_surface_footpoint(j->L, j->pts + 3 * i, &f, NULL) == DFL_OK) j->sum += f.dist;
+    for (int i = 0; i < NPTS; i++) {
+        double d;
+        if (j->foot(j->ctx, j->pts + 3 * i, &d) == DFL_OK) j->sum += d;
+    }
 }
 
-typedef struct imp_job {
-    dfl_implicit *s;
-    dfl_foot_backend b;
-    const double *pts;
-    double sum;
-} imp_job;
-
-static void run_implicit(void *a)
+static dfl_status surface_foot(const void *ctx, const double *x, double *d)
 {
-    imp_job *j = a;
+    dfl_surface_foot f;
+    dfl_status st = dfl_surface_footpoint(ctx, x, &f, NULL);
+    if (st == DFL_OK) *d = f.dist;
+    return st;
+}
+
+typedef struct imp_ctx {
+    const dfl_implicit *s;
+    dfl_foot_backend b;
+} imp_ctx;
+
+static dfl_status implicit_foot(const void *ctx, const double *x, double *d)
+{
+    const imp_ctx *c = ctx;
     dfl_footpoint f;
-    j->sum = 0;
-    for (int i = 0; i < NPTS; i++)
-        if (dfl_implicit_footpoint_with(j->s, j->b, j->pts + 3 * i, &f, NULL) == DFL_OK)
-            j->sum += fabs(f.d);
+    dfl_status st = dfl_implicit_footpoint_with(c->s, c->b, x, &f, NULL);
+    if (st == DFL_OK) *d = fabs(f.d);
+    return st;
+}
+
+/* Times job[0] (Newton, best of 3) and job[1] (Ceres, once) and reports
+ * footpoint.<name>.{newton, ceres, newton_over_ceres,
+ * mean_distance_difference}. */
+static void compare_backends(const char *name, foot_job job[2])
+{
+    double rate[2];
+    char col[128];
+    for (int b = 0; b < 2; b++) rate[b] = NPTS / bench_best(b ? 1 : 3, run_job, &job[b]);
+    snprintf(col, sizeof col, "footpoint.%s.newton", name);
+    bench_report(col, rate[0], "footpoints/s");
+    snprintf(col, sizeof col, "footpoint.%s.ceres", name);
+    bench_report(col, rate[1], "footpoints/s");
+    snprintf(col, sizeof col, "footpoint.%s.newton_over_ceres", name);
+    bench_report(col, rate[0] / rate[1], "x");
+    snprintf(col, sizeof col, "footpoint.%s.mean_distance_difference", name);
+    bench_report(col, fabs(job[0].sum - job[1].sum) / NPTS, "units");
 }
 
 void bench_footpoint(void)
@@ -83,27 +111,21 @@ void bench_footpoint(void)
         pts[3 * i + 1] = -0.2 + 1.4 * lcg(&seed);
         pts[3 * i + 2] = -0.4 + 1.4 * lcg(&seed);
     }
-    double rate[2], sum[2];
+    dfl_surface_locator *L[2] = {NULL, NULL};
     for (int b = 0; b < 2; b++) {
         dfl_foot_opts o;
         dfl_foot_opts_default(&o);
         o.backend = b ? DFL_FOOT_CERES : DFL_FOOT_NEWTON;
-        surf_job j = {NULL, pts, 0};
-        if (dfl_surface_locator_new(&set, &o, &j.L, &err) != DFL_OK) {
+        if (dfl_surface_locator_new(&set, &o, &L[b], &err) != DFL_OK) {
             fprintf(stderr, "bench_footpoint: %s\n", err.msg);
+            dfl_surface_locator_free(L[0]);
             dfl_surface_set_free(&set);
             return;
         }
-        double t = bench_best(b ? 1 : 3, run_surface, &j);
-        rate[b] = NPTS / t;
-        sum[b] = j.sum;
-        dfl_surface_locator_free(j.L);
     }
-    bench_report("footpoint.bspline_surface.newton", rate[0], "footpoints/s");
-    bench_report("footpoint.bspline_surface.ceres", rate[1], "footpoints/s");
-    bench_report("footpoint.bspline_surface.newton_over_ceres", rate[0] / rate[1], "x");
-    bench_report("footpoint.bspline_surface.mean_distance_difference",
-                 fabs(sum[0] - sum[1]) / NPTS, "units");
+    foot_job sj[2] = {{surface_foot, L[0], pts, 0}, {surface_foot, L[1], pts, 0}};
+    compare_backends("bspline_surface", sj);
+    for (int b = 0; b < 2; b++) dfl_surface_locator_free(L[b]);
     dfl_surface_set_free(&set);
 
     /* implicit torus R = 0.5, r = 0.2 */
@@ -115,16 +137,8 @@ void bench_footpoint(void)
     }
     for (int i = 0; i < NPTS; i++)
         for (int k = 0; k < 3; k++) pts[3 * i + k] = -1.0 + 2.0 * lcg(&seed);
-    for (int b = 0; b < 2; b++) {
-        imp_job j = {tor, b ? DFL_FOOT_CERES : DFL_FOOT_NEWTON, pts, 0};
-        double t = bench_best(b ? 1 : 3, run_implicit, &j);
-        rate[b] = NPTS / t;
-        sum[b] = j.sum;
-    }
-    bench_report("footpoint.implicit_torus.newton", rate[0], "footpoints/s");
-    bench_report("footpoint.implicit_torus.ceres", rate[1], "footpoints/s");
-    bench_report("footpoint.implicit_torus.newton_over_ceres", rate[0] / rate[1], "x");
-    bench_report("footpoint.implicit_torus.mean_distance_difference", fabs(sum[0] - sum[1]) / NPTS,
-                 "units");
+    const imp_ctx ic[2] = {{tor, DFL_FOOT_NEWTON}, {tor, DFL_FOOT_CERES}};
+    foot_job ij[2] = {{implicit_foot, &ic[0], pts, 0}, {implicit_foot, &ic[1], pts, 0}};
+    compare_backends("implicit_torus", ij);
     dfl_implicit_free(tor);
 }

@@ -14,8 +14,9 @@
  *             the same function
  *
  * and the gap to the machine's floating-point peak: flops per segment
- * evaluation (counted in rfunc/batch.c) times the measured rate, against
- * cores x GHz x FMA pipes x vector width x 2 from /proc/cpuinfo. */
+ * evaluation (kernel_ops below, counted from the lines of rfunc/batch.c's
+ * seg_term) times the measured rate, against cores x GHz x FMA pipes x
+ * vector width x 2 from /proc/cpuinfo. */
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -23,6 +24,7 @@
 #include <string.h>
 
 #include "bench.h"
+#include "bench/rfunc_naive.h"
 #include "field/sample.h"
 #include "rfunc/batch.h"
 #include "rfunc/rfield.h"
@@ -31,7 +33,7 @@
 
 typedef struct job {
     const dfl_field *f;
-    const dfl_rfunc_batch *b;
+    const rfunc_naive *naive;
     dfl_grid g;
     int threads;
     double *pts, *v, *gr;
@@ -46,7 +48,34 @@ static void run_sampler(void *a)
 static void run_naive(void *a)
 {
     job *j = a;
-    dfl_rfunc_batch_eval_naive(j->b, dfl_grid_size(&j->g), j->pts, j->v, j->gr);
+    rfunc_naive_eval(j->naive, dfl_grid_size(&j->g), j->pts, j->v, j->gr);
+}
+
+/* Multiplications by x^k's repeated squaring (rfunc/batch.c ipow_sq). */
+static int ipow_muls(int k)
+{
+    int n = -1;
+    for (; k; k >>= 1) n += 1 + (k & 1);
+    return n - 1;
+}
+
+/* Operations per segment evaluation of the fast path (value + gradient):
+ * multiplications, additions/subtractions and divisions (|.| is a logic
+ * operation and not counted), from the per-line counts in rfunc/batch.c's
+ * seg_term; rsqrt_newton: 0.5 x, then 3 mul and 1 sub per step. */
+static void kernel_ops(int p, int *mul, int *add, int *div)
+{
+    /*        x-a  x-b   f  -td  max  mt  mi  h^2  gx  gy   q   S   V */
+    *mul = 0 + 0 + 2 + 2 + 0 + 1 + 1 + 2 + 2 + 2 + 1 + 0 + 2;
+    *add = 2 + 2 + 1 + 1 + 1 + 0 + 0 + 1 + 2 + 2 + 0 + 1 + 2;
+    *div = 0;
+    if (p & 1) {
+        *mul += 13 + 1 + (p == 1 ? 0 : ipow_muls(p / 2) + 1);
+        *add += 4;
+    } else {
+        *div = 1;
+        *mul += ipow_muls(p / 2);
+    }
 }
 
 /* The numpy script's polyline (same formula). */
@@ -157,11 +186,13 @@ static void bench_order(int p, const cpu_info *cpu)
         abort();
     }
     const dfl_rfunc_batch *b = fast.ctx;
+    rfunc_naive nv;
+    if (rfunc_naive_init(&nv, v, NSEG, 1, p)) abort();
     char name[128];
     const int threads = omp_get_max_threads();
 
     /* fast path: 512^2 points (3.9e8 segment evaluations) */
-    job j = {&fast, b, {2, {512, 512, 1}, {0, 0, 0}, {1, 1, 0}}, threads, NULL, NULL, NULL};
+    job j = {&fast, &nv, {2, {512, 512, 1}, {0, 0, 0}, {1, 1, 0}}, threads, NULL, NULL, NULL};
     size_t m = dfl_grid_size(&j.g);
     j.v = malloc(m * sizeof *j.v);
     j.gr = malloc(2 * m * sizeof *j.gr);
@@ -173,7 +204,7 @@ static void bench_order(int p, const cpu_info *cpu)
     free(j.pts);
 
     /* library field and naive loop: 64^2 points (6e6 segment evaluations) */
-    job jn = {&fast, b, {2, {64, 64, 1}, {0, 0, 0}, {1, 1, 0}}, threads, NULL, j.v, j.gr};
+    job jn = {&fast, &nv, {2, {64, 64, 1}, {0, 0, 0}, {1, 1, 0}}, threads, NULL, j.v, j.gr};
     jn.pts = grid_points(&jn.g);
     const size_t mn = dfl_grid_size(&jn.g);
     const double naive = (double)mn * NSEG / bench_best(3, run_naive, &jn);
@@ -216,7 +247,7 @@ static void bench_order(int p, const cpu_info *cpu)
      * pipes (additions have their own pipes on current x86 cores). */
     const int width = dfl_rfunc_batch_simd_width();
     int mul, add, dv;
-    dfl_rfunc_batch_ops(p, &mul, &add, &dv);
+    kernel_ops(p, &mul, &add, &dv);
     const int flops = mul + add + dv;
     const int lanes_per_pipe = cpu->amd_zen4 ? 4 : width;
     const double peak = cpu->cores * cpu->ghz * 1e9 * 2 /* pipes */ * lanes_per_pipe *
@@ -238,6 +269,7 @@ static void bench_order(int p, const cpu_info *cpu)
     bench_report(name, (double)mul / (2.0 * lanes_per_pipe), "cycles (muls / (2 pipes x lanes))");
     free(j.v);
     free(j.gr);
+    rfunc_naive_free(&nv);
     dfl_field_destroy(&fast);
 }
 

@@ -66,6 +66,17 @@ static void expect_same(const dfl_shape *a, const dfl_shape *b, double lo, doubl
     }
 }
 
+/* [sec] of cfg is the same shape as r (freed here). */
+static void expect_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_shape *r)
+{
+    dfl_shape s;
+    dfl_err err;
+    cr_assert_eq(dfl_shape_from_cfg(cfg, sec, &s, &err), DFL_OK, "[%s]: %s", sec, err.msg);
+    expect_same(&s, r, -1, 1);
+    dfl_shape_free(&s);
+    dfl_shape_free(r);
+}
+
 Test(exact, shapes_from_config)
 {
     dfl_cfg *cfg = parse("[shape]\nkind = torus\ncenter = 0 0 0\naxis = 0 0 1\nmajor = 0.5\n"
@@ -79,52 +90,28 @@ Test(exact, shapes_from_config)
                          "[sg]\nkind = segment\na = 0 0\nb = 1 0\n"
                          "[u]\nkind = csg\nop = smooth_union\na = s\nb = cyl\nk = 0.1\n");
     dfl_err err;
-    dfl_shape s, r;
+    dfl_shape r;
     double o[3] = {0, 0, 0}, z[3] = {0, 0, 1}, c2[2] = {0.5, 0.5}, ax[3] = {1, 1, 0},
            pp[3] = {0, 0, 0.1}, top[3] = {0, 0, 1}, h2[2] = {0.3, 0.2}, e2[2] = {1, 0};
-    cr_assert_eq(dfl_shape_from_cfg(cfg, "shape", &s, &err), DFL_OK, "%s", err.msg);
     dfl_shape_torus(o, z, 0.5, 0.2, &r, NULL);
-    expect_same(&s, &r, -1, 1);
-    dfl_shape_free(&s);
-    dfl_shape_free(&r);
-    cr_assert_eq(dfl_shape_from_cfg(cfg, "c", &s, &err), DFL_OK, "%s", err.msg);
+    expect_from_cfg(cfg, "shape", &r);
     dfl_shape_circle(c2, 0.3, &r, NULL);
-    expect_same(&s, &r, -1, 1);
-    dfl_shape_free(&s);
-    dfl_shape_free(&r);
-    cr_assert_eq(dfl_shape_from_cfg(cfg, "cyl", &s, &err), DFL_OK, "%s", err.msg);
+    expect_from_cfg(cfg, "c", &r);
     dfl_shape_cylinder(o, ax, 0.2, &r, NULL);
-    expect_same(&s, &r, -1, 1);
-    dfl_shape_free(&s);
-    dfl_shape_free(&r);
-    cr_assert_eq(dfl_shape_from_cfg(cfg, "pl", &s, &err), DFL_OK, "%s", err.msg);
+    expect_from_cfg(cfg, "cyl", &r);
     dfl_shape_plane(3, pp, z, &r, NULL);
-    expect_same(&s, &r, -1, 1);
-    dfl_shape_free(&s);
-    dfl_shape_free(&r);
-    cr_assert_eq(dfl_shape_from_cfg(cfg, "co", &s, &err), DFL_OK, "%s", err.msg);
+    expect_from_cfg(cfg, "pl", &r);
     dfl_shape_cone(o, top, 0.5, 0.1, &r, NULL);
-    expect_same(&s, &r, -1, 1);
-    dfl_shape_free(&s);
-    dfl_shape_free(&r);
-    cr_assert_eq(dfl_shape_from_cfg(cfg, "bx", &s, &err), DFL_OK, "%s", err.msg);
+    expect_from_cfg(cfg, "co", &r);
     dfl_shape_box(2, o, h2, &r, NULL);
-    expect_same(&s, &r, -1, 1);
-    dfl_shape_free(&s);
-    dfl_shape_free(&r);
-    cr_assert_eq(dfl_shape_from_cfg(cfg, "sg", &s, &err), DFL_OK, "%s", err.msg);
+    expect_from_cfg(cfg, "bx", &r);
     dfl_shape_segment(2, o, e2, &r, NULL);
-    expect_same(&s, &r, -1, 1);
-    dfl_shape_free(&s);
-    dfl_shape_free(&r);
-    cr_assert_eq(dfl_shape_from_cfg(cfg, "u", &s, &err), DFL_OK, "%s", err.msg);
+    expect_from_cfg(cfg, "sg", &r);
     dfl_shape a, b;
     dfl_shape_sphere(o, 0.5, &a, NULL);
     dfl_shape_cylinder(o, ax, 0.2, &b, NULL);
     dfl_shape_csg(DFL_CSG_SMOOTH_UNION, 0.1, &a, &b, &r, NULL);
-    expect_same(&s, &r, -1, 1);
-    dfl_shape_free(&s);
-    dfl_shape_free(&r);
+    expect_from_cfg(cfg, "u", &r);
     /* every key above was read */
     cr_assert_eq(dfl_cfg_check_used(cfg, &err), DFL_OK, "%s", err.msg);
     dfl_cfg_free(cfg);

@@ -1,8 +1,11 @@
+/* metrics: hand-computed metrics and band statistics of tiny samples, the
+ * band rule, the table cells. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <string.h>
 
 #include "field/metrics.h"
-#include "field/sample.h"
+#include "io/table.h"
 
 /* Hand-computed metrics of a 4-sample case. */
 Test(metrics, hand_computed)
@@ -36,35 +39,110 @@ Test(metrics, rejects_non_finite)
     cr_expect_eq(dfl_metrics_compute(2, 2, u, NULL, ref, 0.0, &m, &err), DFL_E_NUMERIC);
 }
 
-static void lin_eval(const void *ctx, size_t m, const double *p, double *v, double *g)
+Test(metrics, bandstats_hand_computed_band)
 {
-    (void)ctx;
-    for (size_t i = 0; i < m; i++) {
-        v[i] = p[3 * i] + 2 * p[3 * i + 1] + 3 * p[3 * i + 2];
-        if (g) g[3 * i] = 1, g[3 * i + 1] = 2, g[3 * i + 2] = 3;
-    }
+    /* nodes: ref 0 (u 0: zero set), 0.1, 0.2, 0.5 (outside band 0.3) */
+    const double ref[4] = {0.0, 0.1, 0.2, 0.5};
+    const double u[4] = {0.0, 0.12, 0.15, 7.0};
+    const double gu[8] = {0, 0, 0.6, 0.8, 0, 0.5, 3, 4};
+    dfl_bandstats b;
+    cr_assert_eq(dfl_metrics_bandstats(4, 2, u, gu, ref, 0.3, &b, NULL), DFL_OK);
+    cr_expect_eq(b.count, 3);
+    /* errors 0, 0.02, -0.05 */
+    cr_expect_float_eq(b.bias, (0.02 - 0.05) / 3, 1e-15);
+    cr_expect_float_eq(b.l1, 0.07 / 3, 1e-15);
+    cr_expect_float_eq(b.rms, sqrt((0.02 * 0.02 + 0.05 * 0.05) / 3), 1e-15);
+    cr_expect_float_eq(b.linf, 0.05, 1e-15);
+    /* relative: 0.02/0.1, -0.05/0.2 over the nodes with ref != 0 */
+    cr_expect_float_eq(b.rel_bias, (0.2 - 0.25) / 2, 1e-15);
+    /* |grad u| 1 and 0.5 (the u = 0 node is left out) */
+    cr_expect_eq(b.gcount, 2);
+    cr_expect_float_eq(b.gmin, 0.5, 1e-15);
+    cr_expect_float_eq(b.gmax, 1.0, 1e-15);
+    cr_expect_float_eq(b.gmean, 0.75, 1e-15);
+    /* every node: an infinite band, and band <= 0 (the band rule) */
+    cr_assert_eq(dfl_metrics_bandstats(4, 2, u, gu, ref, INFINITY, &b, NULL), DFL_OK);
+    cr_expect_eq(b.count, 4);
+    cr_expect_float_eq(b.gmax, 5.0, 1e-15);
+    dfl_bandstats b0;
+    cr_assert_eq(dfl_metrics_bandstats(4, 2, u, gu, ref, 0.0, &b0, NULL), DFL_OK);
+    cr_expect(b0.count == 4 && b0.gcount == b.gcount);
+    cr_expect(b0.bias == b.bias && b0.l1 == b.l1 && b0.rms == b.rms && b0.linf == b.linf);
+    cr_expect(b0.rel_bias == b.rel_bias && b0.gmin == b.gmin && b0.gmax == b.gmax);
+    cr_expect(b0.gmean == b.gmean);
+    /* no gradient: NAN gradient statistics */
+    cr_assert_eq(dfl_metrics_bandstats(4, 2, u, NULL, ref, 0.3, &b, NULL), DFL_OK);
+    cr_expect(isnan(b.gmin) && isnan(b.gmean) && b.gcount == 0);
 }
-static const dfl_field_ops lin_ops = {"linear", lin_eval, NULL, NULL};
 
-/* Sampling visits every node once at the right coordinates, x fastest,
- * whatever the thread count. */
-Test(sample, grid_order_and_threads)
+Test(metrics, bandstats_empty_band_and_errors)
 {
-    dfl_grid g = {3, {5, 4, 3}, {-1, 0, 2}, {1, 3, 3}};
-    dfl_field f = {3, &lin_ops, NULL};
-    size_t m = dfl_grid_size(&g);
-    cr_assert_eq(m, 60);
-    double v1[60], v2[60], gr[180];
+    const double ref[2] = {1.0, 2.0}, u[2] = {1.0, NAN};
+    dfl_bandstats b;
+    cr_assert_eq(dfl_metrics_bandstats(2, 2, u, NULL, ref, 0.5, &b, NULL), DFL_OK);
+    cr_expect(b.count == 0 && isnan(b.bias) && isnan(b.linf));
     dfl_err err;
-    cr_assert_eq(dfl_field_sample(&f, &g, 1, v1, gr, &err), DFL_OK);
-    cr_assert_eq(dfl_field_sample(&f, &g, 2, v2, NULL, &err), DFL_OK);
-    for (size_t idx = 0; idx < m; idx++) {
-        size_t i = idx % 5, j = (idx / 5) % 4, k = idx / 20;
-        double x = -1 + 0.5 * i, y = 0 + 1.0 * j, z = 2 + 0.5 * k;
-        cr_expect_float_eq(v1[idx], x + 2 * y + 3 * z, 1e-14);
-        cr_expect_eq(v1[idx], v2[idx]);
-        cr_expect_eq(gr[3 * idx + 2], 3);
+    cr_expect_eq(dfl_metrics_bandstats(2, 2, u, NULL, ref, 3.0, &b, &err), DFL_E_NUMERIC);
+    cr_expect(strstr(err.msg, "node 1") != NULL, "%s", err.msg);
+    /* band <= 0 means every node (the band rule): node 1's NaN is inside */
+    cr_expect_eq(dfl_metrics_bandstats(2, 2, u, NULL, ref, 0.0, &b, NULL), DFL_E_NUMERIC);
+    cr_expect_eq(dfl_metrics_bandstats(2, 2, u, NULL, ref, -1.0, &b, NULL), DFL_E_NUMERIC);
+    cr_expect_eq(dfl_metrics_bandstats(2, 2, u, NULL, ref, NAN, &b, NULL), DFL_E_INPUT);
+    /* a NaN reference is an error wherever it is */
+    const double nref[2] = {NAN, 0.1}, nu[2] = {0.0, 0.1};
+    cr_expect_eq(dfl_metrics_bandstats(2, 2, nu, NULL, nref, 0.3, &b, &err), DFL_E_NUMERIC);
+    cr_expect(strstr(err.msg, "node 0") != NULL, "%s", err.msg);
+}
+
+/* The band rule holds for dfl_metrics_compute too: band <= 0 and +inf are
+ * every sample, NaN is an input error. */
+Test(metrics, band_rule)
+{
+    const double ref[3] = {-0.2, 0.05, 0.5};
+    const double u[3] = {-0.1, 0.05, 0.2};
+    dfl_metrics all, m;
+    dfl_err err;
+    cr_assert_eq(dfl_metrics_compute(3, 2, u, NULL, ref, 0.0, &all, &err), DFL_OK);
+    cr_expect_eq(all.count, 3);
+    cr_expect(isnan(all.gdef_mean) && isnan(all.gdef_max));
+    const double every[2] = {-1.0, INFINITY};
+    for (int i = 0; i < 2; i++) {
+        cr_assert_eq(dfl_metrics_compute(3, 2, u, NULL, ref, every[i], &m, &err), DFL_OK);
+        cr_expect(m.count == 3 && m.l1 == all.l1 && m.linf == all.linf && m.mse == all.mse);
     }
-    dfl_grid bad = {2, {1, 4, 1}, {0, 0, 0}, {1, 1, 0}};
-    cr_expect_eq(dfl_field_sample(&f, &bad, 1, v1, NULL, &err), DFL_E_INPUT);
+    cr_expect_eq(dfl_metrics_compute(3, 2, u, NULL, ref, NAN, &m, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "band") != NULL, "%s", err.msg);
+    /* an empty band: NAN metrics, DFL_OK */
+    const double far[3] = {1, 2, 3};
+    cr_assert_eq(dfl_metrics_compute(3, 2, u, NULL, far, 0.5, &m, &err), DFL_OK);
+    cr_expect(m.count == 0 && isnan(m.l1) && isnan(m.rms) && isnan(m.linf));
+}
+
+/* The cells of a row, with their suffix, as the studies' tables hold them. */
+Test(metrics, table_cells)
+{
+    const dfl_metrics m = {3, 0.25, 0.5, 0.75, 1.0, 0.125, 2.0};
+    const dfl_bandstats b = {4, -0.5, 0.25, 1.5, 2.5, 3.5, 2, 0.5, 0.75, 1.0};
+    dfl_table *t = dfl_table_new();
+    dfl_err err;
+    cr_assert_eq(dfl_table_row(t, &err), DFL_OK);
+    cr_assert_eq(dfl_metrics_put(t, "_band", &m, &err), DFL_OK);
+    cr_assert_eq(dfl_metrics_put_bandstats(t, &b, &err), DFL_OK);
+    const char *cols[16] = {"count_band", "l1_band", "mse_band", "rms_band", "linf_band",
+                            "graddefect_mean_band", "graddefect_max_band", "band_count",
+                            "band_bias", "band_rel_bias", "band_l1", "band_rms", "band_linf",
+                            "grad_min", "grad_mean", "grad_max"};
+    const char *vals[16] = {"3", "0.25", "0.5", "0.75", "1", "0.125", "2", "4",
+                            "-0.5", "0.25", "1.5", "2.5", "3.5", "0.5", "0.75", "1"};
+    cr_assert_eq(dfl_table_cols(t), 16);
+    for (int j = 0; j < 16; j++) {
+        cr_expect_str_eq(dfl_table_col_name(t, (size_t)j), cols[j]);
+        cr_expect_str_eq(dfl_table_get(t, 0, cols[j]), vals[j], "%s", cols[j]);
+    }
+    dfl_table_free(t);
+    /* no row yet: the table's error comes through */
+    t = dfl_table_new();
+    cr_expect_eq(dfl_metrics_put(t, "", &m, &err), DFL_E_INTERNAL);
+    cr_expect(strstr(err.msg, "count") != NULL, "%s", err.msg);
+    dfl_table_free(t);
 }

@@ -1,5 +1,5 @@
-/* The fast (vectorized) and naive evaluators of rfunc/batch.h
- * against each other and against a brute-force sum over the library's
+/* The fast (vectorized) evaluator of rfunc/batch.h and the benchmark's
+ * naive one (tests/bench/rfunc_naive.h) against each other and against a brute-force sum over the library's
  * per-segment fields (rfunc/segment.h), which is how eq. 6 is defined.
  *
  * Tolerance.  Values: 1e-12 relative.  Gradients: the sum
@@ -15,6 +15,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 
+#include "bench/rfunc_naive.h"
 #include "field/sample.h"
 #include "rfunc/join.h"
 #include "rfunc/segment.h"
@@ -99,7 +100,10 @@ static void compare_random(size_t nv, int closed, int p, uint64_t seed)
     /* the fast path itself must be what is compared, not its fallback */
     cr_assert_eq(dfl_rfunc_batch_fallbacks(b, M, pts), 0);
     dfl_rfunc_batch_eval(b, M, pts, uf, gf);
-    dfl_rfunc_batch_eval_naive(b, M, pts, un, gn);
+    rfunc_naive naive;
+    cr_assert_eq(rfunc_naive_init(&naive, v, nv, closed, p), 0);
+    rfunc_naive_eval(&naive, M, pts, un, gn);
+    rfunc_naive_free(&naive);
     const dfl_field *ref = dfl_rfunc_batch_reference(b);
     ref->ops->eval(ref->ctx, M, pts, ul, gl);
     for (int i = 0; i < M; i++) {
@@ -138,6 +142,8 @@ Test(rfunc_batch, on_and_near_the_polyline)
         dfl_rfunc_batch *b;
         cr_assert_eq(dfl_rfunc_batch_new(v, nv, 0, ps[ip], &b, NULL), DFL_OK);
         const dfl_field *ref = dfl_rfunc_batch_reference(b);
+        rfunc_naive naive;
+        cr_assert_eq(rfunc_naive_init(&naive, v, nv, 0, ps[ip]), 0);
         for (size_t k = 0; k + 1 < nv; k++) {
             /* vertex and midpoint: u = 0, gradient 0 (the library's convention) */
             double x[2][2] = {{v[2 * k], v[2 * k + 1]},
@@ -145,7 +151,7 @@ Test(rfunc_batch, on_and_near_the_polyline)
             for (int w = 0; w < 2; w++) {
                 double u, g[2], un, gn[2];
                 dfl_rfunc_batch_eval(b, 1, x[w], &u, g);
-                dfl_rfunc_batch_eval_naive(b, 1, x[w], &un, gn);
+                rfunc_naive_eval(&naive, 1, x[w], &un, gn);
                 double ul = dfl_field_eval1(ref, x[w], NULL);
                 /* the naive trim (d/2)^2 - |x - c|^2 is 0 only to rounding at
                  * the end points (the library's (x - a).(x - b) is exactly
@@ -174,6 +180,7 @@ Test(rfunc_batch, on_and_near_the_polyline)
                       fabs(g[1] - gl[1]) <= 1e-12 * gn,
                   "p %d: u %.17g vs %.17g, grad %.17g %.17g vs %.17g %.17g", ps[ip], u, ul, g[0],
                   g[1], gl[0], gl[1]);
+        rfunc_naive_free(&naive);
         dfl_rfunc_batch_free(b);
     }
     /* 1e-170 off a segment (representable only near the origin): h^2 ~
