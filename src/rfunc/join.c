@@ -4,21 +4,31 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/names.h"
 #include "rfunc/trim.h"
+
+#define NAME_(code, name) [code] = name,
+const char *const dfl_rfunc_join_names[DFL_RFUNC_JOIN_COUNT] = {DFL_RFUNC_JOIN_LIST(NAME_)};
+#undef NAME_
 
 const char *dfl_rfunc_join_name(dfl_rfunc_join join)
 {
-    switch (join) {
-    case DFL_RFUNC_REQUIV: return "requiv";
-    case DFL_RFUNC_RCONJ: return "rconj";
-    case DFL_RFUNC_REQUIV_CORRECTED: return "requiv_corrected";
-    }
-    return "?";
+    if ((int)join < 0 || (int)join >= DFL_RFUNC_JOIN_COUNT) return "?";
+    return dfl_rfunc_join_names[join];
+}
+
+dfl_status dfl_rfunc_join_parse(const char *name, dfl_rfunc_join *out, dfl_err *err)
+{
+    int i;
+    dfl_status st =
+        dfl_names_parse("join", dfl_rfunc_join_names, DFL_RFUNC_JOIN_COUNT, name, &i, err);
+    if (st == DFL_OK) *out = (dfl_rfunc_join)i;
+    return st;
 }
 
 dfl_status dfl_rfunc_join_check(dfl_rfunc_join join, int p, dfl_err *err)
 {
-    if ((int)join < DFL_RFUNC_REQUIV || (int)join > DFL_RFUNC_REQUIV_CORRECTED)
+    if ((int)join < 0 || (int)join >= DFL_RFUNC_JOIN_COUNT)
         return dfl_err_set(err, DFL_E_INPUT, "unknown join %d", (int)join);
     if (p < 1 || p > DFL_RFUNC_P_MAX)
         return dfl_err_set(err, DFL_E_INPUT, "join order p = %d outside [1, %d]", p,

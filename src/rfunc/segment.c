@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/names.h"
 #include "rfunc/trim.h"
 
 static double dot(int dim, const double *u, const double *v)
@@ -20,25 +21,40 @@ static double amax(int dim, const double *u)
     return m;
 }
 
-static int is_smooth(dfl_rfunc_trim t)
-{
-    return t == DFL_RFUNC_TRIM_DISK_SMOOTH || t == DFL_RFUNC_TRIM_STRIP_SMOOTH;
-}
+#define NAME_(code, name, smooth, strip) [code] = name,
+const char *const dfl_rfunc_trim_names[DFL_RFUNC_TRIM_COUNT] = {DFL_RFUNC_TRIM_LIST(NAME_)};
+#undef NAME_
 
-static int is_strip(dfl_rfunc_trim t)
-{
-    return t == DFL_RFUNC_TRIM_STRIP || t == DFL_RFUNC_TRIM_STRIP_SMOOTH;
-}
+static int in_list(dfl_rfunc_trim t) { return (int)t >= 0 && (int)t < DFL_RFUNC_TRIM_COUNT; }
 
 const char *dfl_rfunc_trim_name(dfl_rfunc_trim trim)
 {
-    switch (trim) {
-    case DFL_RFUNC_TRIM_DISK: return "disk";
-    case DFL_RFUNC_TRIM_DISK_SMOOTH: return "disk_smooth";
-    case DFL_RFUNC_TRIM_STRIP: return "strip";
-    case DFL_RFUNC_TRIM_STRIP_SMOOTH: return "strip_smooth";
-    }
-    return "?";
+    return in_list(trim) ? dfl_rfunc_trim_names[trim] : "?";
+}
+
+dfl_status dfl_rfunc_trim_parse(const char *name, dfl_rfunc_trim *out, dfl_err *err)
+{
+    int i;
+    dfl_status st =
+        dfl_names_parse("trim", dfl_rfunc_trim_names, DFL_RFUNC_TRIM_COUNT, name, &i, err);
+    if (st == DFL_OK) *out = (dfl_rfunc_trim)i;
+    return st;
+}
+
+int dfl_rfunc_trim_smooth(dfl_rfunc_trim trim)
+{
+#define SMOOTH_(code, name, smooth, strip) [code] = smooth,
+    static const unsigned char smooth_of[DFL_RFUNC_TRIM_COUNT] = {DFL_RFUNC_TRIM_LIST(SMOOTH_)};
+#undef SMOOTH_
+    return in_list(trim) ? smooth_of[trim] : 0;
+}
+
+int dfl_rfunc_trim_strip(dfl_rfunc_trim trim)
+{
+#define STRIP_(code, name, smooth, strip) [code] = strip,
+    static const unsigned char strip_of[DFL_RFUNC_TRIM_COUNT] = {DFL_RFUNC_TRIM_LIST(STRIP_)};
+#undef STRIP_
+    return in_list(trim) ? strip_of[trim] : 0;
 }
 
 dfl_status dfl_rfunc_seg_init(int dim, const double *a, const double *b, dfl_rfunc_trim trim,
@@ -46,7 +62,7 @@ dfl_status dfl_rfunc_seg_init(int dim, const double *a, const double *b, dfl_rfu
 {
     if (dim != 2 && dim != 3)
         return dfl_err_set(err, DFL_E_INPUT, "segment: dimension %d (expected 2 or 3)", dim);
-    if ((int)trim < DFL_RFUNC_TRIM_DISK || (int)trim > DFL_RFUNC_TRIM_STRIP_SMOOTH)
+    if (!in_list(trim))
         return dfl_err_set(err, DFL_E_INPUT, "segment: unknown trim %d", (int)trim);
     for (int j = 0; j < dim; j++)
         if (!isfinite(a[j]) || !isfinite(b[j]))
@@ -126,7 +142,7 @@ double dfl_rfunc_seg_line(const dfl_rfunc_seg *s, const double *x, double *grad)
 static double trim_eval(const dfl_rfunc_seg *s, const double *wa, const double *wb, double *gt)
 {
     const int dim = s->dim;
-    if (!is_strip(s->trim)) {
+    if (!dfl_rfunc_trim_strip(s->trim)) {
         for (int j = 0; j < dim; j++) gt[j] = -(wa[j] + wb[j]) / s->d;
         return -dot(dim, wa, wb) / s->d;
     }
@@ -159,7 +175,7 @@ double dfl_rfunc_seg_eval(const dfl_rfunc_seg *s, const double *x, double *grad)
     }
     const double fa = carrier(s, wa, hgF);
     const double t = trim_eval(s, wa, wb, gt);
-    return dfl_rfunc_compose(s->dim, is_smooth(s->trim), fa, hgF, t, gt, grad);
+    return dfl_rfunc_compose(s->dim, dfl_rfunc_trim_smooth(s->trim), fa, hgF, t, gt, grad);
 }
 
 /* Jet of a linear function c0 + c1 s whose constant vanishes on a line or
@@ -195,7 +211,7 @@ dfl_status dfl_rfunc_seg_jet(const dfl_rfunc_seg *s, const double *x, const doub
     }
 
     dfl_status st;
-    if (!is_strip(s->trim)) {
+    if (!dfl_rfunc_trim_strip(s->trim)) {
         /* t(x + s dir) = -(wa.wb + s dir.(wa + wb) + s^2 |dir|^2) / d */
         double wab = 0.0, dw = 0.0;
         for (int j = 0; j < dim; j++) {
@@ -215,5 +231,5 @@ dfl_status dfl_rfunc_seg_jet(const dfl_rfunc_seg *s, const double *x, const doub
         snapped_linear(-dot(dim, wb, s->e), xs, -de, dn, K, &p2);
         if ((st = dfl_rfunc_conj0_jet(&p1, &p2, NULL, &t, err)) != DFL_OK) return st;
     }
-    return dfl_rfunc_compose_jet(is_smooth(s->trim), &F, &t, out, err);
+    return dfl_rfunc_compose_jet(dfl_rfunc_trim_smooth(s->trim), &F, &t, out, err);
 }

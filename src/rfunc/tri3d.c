@@ -4,7 +4,28 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/names.h"
 #include "rfunc/trim.h"
+
+#define NAME_(code, name) [code] = name,
+const char *const dfl_rfunc_tri_trim_names[DFL_RFUNC_TRI_TRIM_COUNT] = {
+    DFL_RFUNC_TRI_TRIM_LIST(NAME_)};
+#undef NAME_
+
+const char *dfl_rfunc_tri_trim_name(dfl_rfunc_tri_trim trim)
+{
+    if ((int)trim < 0 || (int)trim >= DFL_RFUNC_TRI_TRIM_COUNT) return "?";
+    return dfl_rfunc_tri_trim_names[trim];
+}
+
+dfl_status dfl_rfunc_tri_trim_parse(const char *name, dfl_rfunc_tri_trim *out, dfl_err *err)
+{
+    int i;
+    dfl_status st = dfl_names_parse("triangle trim", dfl_rfunc_tri_trim_names,
+                                    DFL_RFUNC_TRI_TRIM_COUNT, name, &i, err);
+    if (st == DFL_OK) *out = (dfl_rfunc_tri_trim)i;
+    return st;
+}
 
 static double dot3(const double *u, const double *v)
 {

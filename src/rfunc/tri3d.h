@@ -25,10 +25,33 @@
 #include "core/jet.h"
 #include "core/status.h"
 
+/* The triangle trims: one list from which the codes (0, 1 in this order)
+ * and their config names come.  X(code, name). */
+#define DFL_RFUNC_TRI_TRIM_LIST(X)                                             \
+    X(DFL_RFUNC_TRI_PRISM, "prism")             /* R0-conjunction of the planes */ \
+    X(DFL_RFUNC_TRI_CONDITIONAL, "conditional") /* eq. 15-16 */
+
 typedef enum dfl_rfunc_tri_trim {
-    DFL_RFUNC_TRI_PRISM = 0,
-    DFL_RFUNC_TRI_CONDITIONAL
+#define DFL_RFUNC_TRI_TRIM_CODE_(code, name) code,
+    DFL_RFUNC_TRI_TRIM_LIST(DFL_RFUNC_TRI_TRIM_CODE_)
+#undef DFL_RFUNC_TRI_TRIM_CODE_
 } dfl_rfunc_tri_trim;
+
+/* Number of triangle trims. */
+#define DFL_RFUNC_TRI_TRIM_ONE_(code, name) +1
+enum { DFL_RFUNC_TRI_TRIM_COUNT = 0 DFL_RFUNC_TRI_TRIM_LIST(DFL_RFUNC_TRI_TRIM_ONE_) };
+#undef DFL_RFUNC_TRI_TRIM_ONE_
+
+/* Config names indexed by code (for dfl_cfg_enum-style readers). */
+extern const char *const dfl_rfunc_tri_trim_names[DFL_RFUNC_TRI_TRIM_COUNT];
+
+/* Config name of a triangle trim ("prism", "conditional"); "?" for a value
+ * outside the list. */
+const char *dfl_rfunc_tri_trim_name(dfl_rfunc_tri_trim trim);
+
+/* The triangle trim whose config name is name into *out; DFL_E_INPUT
+ * naming the value and the accepted names otherwise (*out untouched). */
+dfl_status dfl_rfunc_tri_trim_parse(const char *name, dfl_rfunc_tri_trim *out, dfl_err *err);
 
 typedef struct dfl_rfunc_tri_opts {
     dfl_rfunc_tri_trim trim;
