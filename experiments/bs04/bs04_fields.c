@@ -41,13 +41,15 @@
 #include "field/sample.h"
 #include "harness/field_out.h"
 #include "cfg/grid_cfg.h"
+#include "cfg/rfunc_cfg.h"
 #include "rfunc/rfield.h"
 #include "rfunc/segment.h"
 
 typedef struct fields_keys {
     double seg[2][4];   /* a0 a1 b0 b1 per segment */
-    int join, trim;
-    long p;
+    dfl_rfunc_join join;
+    dfl_rfunc_trim trim;
+    int p;
     double band;
     dfl_grid grid;
     dfl_field_out_opts out;
@@ -72,20 +74,13 @@ static dfl_status read_segment(const dfl_cfg *cfg, const char *key, double *s, d
 
 static dfl_status read_keys(const dfl_cfg *cfg, fields_keys *k, dfl_err *err)
 {
-    static const char *const joins[] = {"requiv", "rconj", "requiv_corrected"};
-    static const char *const trims[] = {"disk", "disk_smooth", "strip", "strip_smooth"};
     char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
     if ((st = read_segment(cfg, "segment_a", k->seg[0], err))) return st;
     if ((st = read_segment(cfg, "segment_b", k->seg[1], err))) return st;
-    if ((st = dfl_cfg_enum_opt(cfg, "study", "join", joins, 3, 0, &k->join, err))) return st;
-    if ((st = dfl_cfg_int_opt(cfg, "study", "p", 2, 1, DFL_RFUNC_P_MAX, &k->p, err))) return st;
-    if ((st = dfl_rfunc_join_check((dfl_rfunc_join)k->join, (int)k->p, err))) {
-        dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "p", w, sizeof w));
-        return st;
-    }
-    if ((st = dfl_cfg_enum_opt(cfg, "study", "trim", trims, 4, 0, &k->trim, err))) return st;
+    if ((st = dfl_rfunc_join_p_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
+    if ((st = dfl_rfunc_trim_from_cfg(cfg, "study", &k->trim, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.1, 0.0, 1e300, &k->band, err))) return st;
     if (!(k->band > 0.0))
         return dfl_err_set(err, DFL_E_INPUT, "%s: expected band > 0, got %g",
@@ -108,10 +103,10 @@ static dfl_status build(const fields_keys *k, int sel, const char *where, dfl_fi
                         dfl_err *err)
 {
     dfl_rfield *r = NULL;
-    dfl_status st = dfl_rfield_new(2, (dfl_rfunc_join)k->join, (int)k->p, &r, err);
+    dfl_status st = dfl_rfield_new(2, k->join, k->p, &r, err);
     for (int i = 0; i < 2 && st == DFL_OK; i++)
         if (sel >> i & 1)
-            st = dfl_rfield_add_segment(r, k->seg[i], k->seg[i] + 2, (dfl_rfunc_trim)k->trim, err);
+            st = dfl_rfield_add_segment(r, k->seg[i], k->seg[i] + 2, k->trim, err);
     if (st == DFL_OK && sel == 3 && k->seg[0][2] == k->seg[1][0] && k->seg[0][3] == k->seg[1][1])
         st = dfl_rfield_add_vertex(r, k->seg[1], 0, 1, err);
     if (st != DFL_OK) {
@@ -166,7 +161,7 @@ static dfl_status fields_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
 
     dfl_rfunc_seg seg[2];
     for (int i = 0; i < 2 && st == DFL_OK; i++)
-        st = dfl_rfunc_seg_init(2, k.seg[i], k.seg[i] + 2, (dfl_rfunc_trim)k.trim, &seg[i], err);
+        st = dfl_rfunc_seg_init(2, k.seg[i], k.seg[i] + 2, k.trim, &seg[i], err);
     if (st != DFL_OK) goto done;
 
     const size_t m = dfl_grid_size(&k.grid);

@@ -40,6 +40,7 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "cfg/rfunc_cfg.h"
 #include "harness/experiment.h"
 #include "field/metrics.h"
 #include "field/sample.h"
@@ -82,8 +83,8 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
     memcpy(k->seg, s, sizeof k->seg);
     free(s);
     if ((st = dfl_cfg_vec(cfg, "study", "point", 2, k->pt, err))) return st;
-    if ((st = dfl_bs04_join_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
-    if ((st = dfl_bs04_trim_from_cfg(cfg, "study", &k->trim, err))) return st;
+    if ((st = dfl_rfunc_join_p_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
+    if ((st = dfl_rfunc_trim_from_cfg(cfg, "study", &k->trim, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.05, 0.0, 1e300, &k->band, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "delta", 1e-4, 1e-12, 1.0, &k->delta, err)))
         return st;

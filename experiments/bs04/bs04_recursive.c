@@ -2,7 +2,7 @@
  * distance, the ellipse's f = x^2/a^2 + y^2/b^2 - 1, to order m (A.1, A.4;
  * rfunc/normalize.h), with the order measured by exact jets at boundary
  * points and the field compared with the exact signed distance to the
- * ellipse (experiments/ellipse_dist.h).  One sweep point = one (m, shape);
+ * ellipse (geom/ellipse.h).  One sweep point = one (m, shape);
  * one CSV row per point.
  *
  * Keys.

@@ -63,35 +63,6 @@ dfl_status dfl_bs04_put_gradstat(dfl_table *t, const char *sfx, const dfl_gradst
     return st;
 }
 
-dfl_status dfl_bs04_join_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_rfunc_join *join,
-                                  int *p, dfl_err *err)
-{
-    static const char *const joins[] = {"requiv", "rconj", "requiv_corrected"};
-    int j;
-    long pp;
-    char w[600];
-    dfl_status st;
-    if ((st = dfl_cfg_enum_opt(cfg, sec, "join", joins, 3, 0, &j, err))) return st;
-    if ((st = dfl_cfg_int_opt(cfg, sec, "p", 2, 1, DFL_RFUNC_P_MAX, &pp, err))) return st;
-    if ((st = dfl_rfunc_join_check((dfl_rfunc_join)j, (int)pp, err))) {
-        dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, sec, "p", w, sizeof w));
-        return st;
-    }
-    *join = (dfl_rfunc_join)j;
-    *p = (int)pp;
-    return DFL_OK;
-}
-
-dfl_status dfl_bs04_trim_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_rfunc_trim *trim,
-                                  dfl_err *err)
-{
-    static const char *const trims[] = {"disk", "disk_smooth", "strip", "strip_smooth"};
-    int t;
-    dfl_status st = dfl_cfg_enum_opt(cfg, sec, "trim", trims, 4, 0, &t, err);
-    if (st == DFL_OK) *trim = (dfl_rfunc_trim)t;
-    return st;
-}
-
 static double *to3d(int dim, size_t n, const double *pts)
 {
     double *p3 = malloc((n ? n : 1) * 3 * sizeof *p3);

@@ -31,14 +31,6 @@ void dfl_bs04_gradstat(size_t m, int dim, const double *grad, const unsigned cha
 /* Sets grad_min<sfx>, grad_mean<sfx>, grad_max<sfx>. */
 dfl_status dfl_bs04_put_gradstat(dfl_table *t, const char *sfx, const dfl_gradstat *g);
 
-/* Reads [sec] join (requiv | rconj | requiv_corrected, default requiv),
- * p (1..DFL_RFUNC_P_MAX, default 2; checked against the join). */
-dfl_status dfl_bs04_join_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_rfunc_join *join,
-                                  int *p, dfl_err *err);
-/* Reads [sec] trim (disk | disk_smooth | strip | strip_smooth, default disk). */
-dfl_status dfl_bs04_trim_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_rfunc_trim *trim,
-                                  dfl_err *err);
-
 /* .vtp writers (through dfl_vtp_write: atomic, optional zlib).
  *   polyline: n points of dimension dim (2D gets z = 0), one line;
  *   trimesh: nv 3D points, nt triangles (3 indices each);

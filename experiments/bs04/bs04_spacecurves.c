@@ -9,7 +9,7 @@
  * Keys ([study]):
  *   curves  = space1 space2      curve sections (kind = bspline_curve, 3D)
  *   eps     = 3e-3               polygonization bound (> 0)
- *   join, p                      joining operation (bs04_space_util.h)
+ *   join, p                      joining operation (cfg/rfunc_cfg.h)
  *   trim    = disk               disk = sphere trim of eq. 3/4 (strip = slab)
  *   paper_segments = 56 90       bs04's counts, one per curve (optional)
  *   band    = 0.05               metrics also over |d| <= band
@@ -32,6 +32,7 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "cfg/rfunc_cfg.h"
 #include "cfg/curve_cfg.h"
 #include "harness/experiment.h"
 #include "field/exact.h"
@@ -95,8 +96,8 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
     memset(k, 0, sizeof *k);
     if ((st = read_names(cfg, k, err))) return st;
     if ((st = dfl_cfg_double(cfg, "study", "eps", 1e-9, 1e3, &k->eps, err))) return st;
-    if ((st = dfl_bs04_join_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
-    if ((st = dfl_bs04_trim_from_cfg(cfg, "study", &k->trim, err))) return st;
+    if ((st = dfl_rfunc_join_p_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
+    if ((st = dfl_rfunc_trim_from_cfg(cfg, "study", &k->trim, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.05, 0.0, 1e300, &k->band, err))) return st;
     if ((st = dfl_cfg_bool_opt(cfg, "study", "volume", true, &k->volume, err))) return st;
     if ((st = dfl_cfg_bool_opt(cfg, "study", "compress", true, &k->compress, err))) return st;

@@ -55,6 +55,7 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "cfg/rfunc_cfg.h"
 #include "harness/experiment.h"
 #include "field/field.h"
 #include "rfunc/rfield.h"
@@ -80,11 +81,6 @@ typedef struct keys {
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 {
-    static const char *const trims[] = {"prism", "conditional"};
-    double a;
-    long kk;
-    bool smooth;
-    int trim;
     double *pts = NULL;
     size_t n = 0;
     char w[600];
@@ -116,15 +112,7 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
         k->vertices[k->nvert++] = vi;
     }
     free(list);
-    if ((st = dfl_cfg_enum_opt(cfg, "study", "tri_trim", trims, 2, 1, &trim, err))) return st;
-    if ((st = dfl_cfg_double_opt(cfg, "study", "a", 0.2, 1e-12, 1e12, &a, err))) return st;
-    if ((st = dfl_cfg_int_opt(cfg, "study", "k", 2, 2, 64, &kk, err))) return st;
-    if ((st = dfl_cfg_bool_opt(cfg, "study", "smooth", false, &smooth, err))) return st;
-    k->o = dfl_rfunc_tri_defaults();
-    k->o.trim = (dfl_rfunc_tri_trim)trim;
-    k->o.a = a;
-    k->o.k = (int)kk;
-    k->o.smooth = smooth;
+    if ((st = dfl_rfunc_tri_opts_from_cfg(cfg, "study", true, &k->o, err))) return st;
     dfl_rfunc_tri tri;
     if ((st = dfl_rfunc_tri_init(k->v, k->v + 3, k->v + 6, &k->o, &tri, err))) {
         dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "triangle", w, sizeof w));
@@ -260,7 +248,7 @@ static dfl_status do_sphere(const keys *k, const dfl_rfunc_tri *tri, int vi, int
     if (!st) st = dfl_table_set_int(table, "vertex", vi);
     if (!st)
         st = dfl_table_set_string(table, "tri_trim",
-                                  k->o.trim == DFL_RFUNC_TRI_PRISM ? "prism" : "conditional");
+                                  dfl_rfunc_tri_trim_name(k->o.trim));
     if (!st) st = dfl_table_set_double(table, "radius", r);
     if (!st) st = dfl_table_set_double(table, "alpha_deg", fr.alpha * 180.0 / PI);
     if (!st) st = dfl_table_set_int(table, "samples", (long)cnt);

@@ -40,6 +40,7 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "cfg/rfunc_cfg.h"
 #include "harness/experiment.h"
 #include "rfunc/rfield.h"
 #include "rfunc/tri3d.h"
@@ -62,11 +63,8 @@ typedef struct keys {
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 {
-    static const char *const trims[] = {"prism", "conditional"};
     const double dapex[2] = {1.0, 0.5};
-    double apex[2], deg, a;
-    long kk;
-    int trim;
+    double apex[2], deg;
     char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
@@ -84,14 +82,8 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
     k->zc = apex[1];
     if ((st = dfl_cfg_double_opt(cfg, "study", "section", 0.35, 1e-9, 1 - 1e-9, &k->z0, err)))
         return st;
-    if ((st = dfl_cfg_enum_opt(cfg, "study", "tri_trim", trims, 2, 1, &trim, err))) return st;
-    if ((st = dfl_cfg_double_opt(cfg, "study", "a", 0.2, 1e-12, 1e12, &a, err))) return st;
-    if ((st = dfl_cfg_int_opt(cfg, "study", "k", 2, 2, 64, &kk, err))) return st;
-    k->o = dfl_rfunc_tri_defaults();
-    k->o.trim = (dfl_rfunc_tri_trim)trim;
-    k->o.a = a;
-    k->o.k = (int)kk;
-    if ((st = dfl_bs04_join_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
+    if ((st = dfl_rfunc_tri_opts_from_cfg(cfg, "study", false, &k->o, err))) return st;
+    if ((st = dfl_rfunc_join_p_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "radius", 1e-3, 1e-12, 1e3, &k->radius, err)))
         return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "samples", 3600, 8, 10000000, &k->samples, err)))
@@ -187,7 +179,7 @@ static dfl_status edge_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     if (!st) st = dfl_table_set_double(table, "dihedral", k.theta * 180.0 / PI);
     if (!st)
         st = dfl_table_set_string(table, "tri_trim",
-                                  k.o.trim == DFL_RFUNC_TRI_PRISM ? "prism" : "conditional");
+                                  dfl_rfunc_tri_trim_name(k.o.trim));
     if (!st) st = dfl_table_set_string(table, "join", dfl_rfunc_join_name(k.join));
     if (!st) st = dfl_table_set_int(table, "p", k.p);
     if (!st) st = dfl_table_set_double(table, "radius", k.radius);

@@ -9,13 +9,18 @@
 
 static const double PI = 3.14159265358979323846;
 
-const char *const dfl_vjoin_part_names[DFL_VJOIN_NPARTS] = {"exact", "disk", "disk_smooth",
-                                                            "strip", "strip_smooth"};
+/* "exact", then the trims' names in their order (parts = 1 + trim). */
+#define PART_NAME_(code, name, smooth, strip) [1 + code] = name,
+const char *const dfl_vjoin_part_names[DFL_VJOIN_NPARTS] = {
+    [0] = "exact", DFL_RFUNC_TRIM_LIST(PART_NAME_)};
+#undef PART_NAME_
 
-/* The trims' order in rfunc/segment.h; the names above must follow it. */
-static const dfl_rfunc_trim trim_of[DFL_VJOIN_NPARTS] = {
-    DFL_RFUNC_TRIM_DISK, DFL_RFUNC_TRIM_DISK, DFL_RFUNC_TRIM_DISK_SMOOTH, DFL_RFUNC_TRIM_STRIP,
-    DFL_RFUNC_TRIM_STRIP_SMOOTH};
+/* The trim of a trimmed part kind (parts >= 1). */
+static dfl_rfunc_trim trim_of(int parts)
+{
+    assert(parts >= 1 && parts < DFL_VJOIN_NPARTS);
+    return (dfl_rfunc_trim)(parts - 1);
+}
 
 dfl_status dfl_vjoin_init(double alpha_deg, double length, int parts, dfl_vjoin *out,
                           dfl_err *err)
@@ -53,9 +58,9 @@ dfl_status dfl_vjoin_init(double alpha_deg, double length, int parts, dfl_vjoin 
     vj.v[4] = length * c;
     vj.v[5] = length * s;
     if (parts > 0) {
-        dfl_status st = dfl_rfunc_seg_init(2, vj.v, vj.v + 2, trim_of[parts], &vj.seg[0], err);
+        dfl_status st = dfl_rfunc_seg_init(2, vj.v, vj.v + 2, trim_of(parts), &vj.seg[0], err);
         if (st == DFL_OK)
-            st = dfl_rfunc_seg_init(2, vj.v + 2, vj.v + 4, trim_of[parts], &vj.seg[1], err);
+            st = dfl_rfunc_seg_init(2, vj.v + 2, vj.v + 4, trim_of(parts), &vj.seg[1], err);
         if (st != DFL_OK) return st;
     }
     *out = vj;
@@ -87,7 +92,7 @@ dfl_status dfl_vjoin_field(const dfl_vjoin *vj, dfl_rfunc_join join, int p, dfl_
                            dfl_err *err)
 {
     if (vj->parts == 0) return dfl_segdist_polyline_field(2, vj->v, 3, join, p, out, err);
-    return dfl_rfield_polyline(2, vj->v, 3, false, join, p, trim_of[vj->parts], out, err);
+    return dfl_rfield_polyline(2, vj->v, 3, false, join, p, trim_of(vj->parts), out, err);
 }
 
 void dfl_vjoin_parts(const dfl_vjoin *vj, const double *x, double *h, double *g)

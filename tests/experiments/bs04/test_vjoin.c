@@ -123,3 +123,17 @@ Test(vjoin, bad_input_names_the_key)
     cr_expect(strstr(err.msg, "v.ini:3") && strstr(err.msg, "strip_smooth"), "%s", err.msg);
     dfl_cfg_free(cfg);
 }
+
+/* The part kinds are "exact" and then the trims, by their library names. */
+Test(vjoin, part_names_follow_the_trim_list)
+{
+    cr_assert_eq(DFL_VJOIN_NPARTS, 1 + DFL_RFUNC_TRIM_COUNT);
+    cr_expect_str_eq(dfl_vjoin_part_names[0], "exact");
+    for (int t = 0; t < DFL_RFUNC_TRIM_COUNT; t++) {
+        cr_expect_str_eq(dfl_vjoin_part_names[1 + t], dfl_rfunc_trim_name((dfl_rfunc_trim)t));
+        dfl_vjoin vj;
+        cr_assert_eq(dfl_vjoin_init(90, 1.0, 1 + t, &vj, NULL), DFL_OK);
+        cr_expect_eq(vj.seg[0].trim, (dfl_rfunc_trim)t);
+        cr_expect_eq(vj.seg[1].trim, (dfl_rfunc_trim)t);
+    }
+}
