@@ -10,6 +10,11 @@ int dfl_names_find(const char *const *names, int count, const char *name)
     return -1;
 }
 
+const char *dfl_names_at(const char *const *names, int count, int i)
+{
+    return i >= 0 && i < count ? names[i] : "?";
+}
+
 const char *dfl_names_list(const char *const *names, int count, char *buf, size_t size)
 {
     if (size == 0) return buf;

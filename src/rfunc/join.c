@@ -4,27 +4,10 @@
 #include <math.h>
 #include <string.h>
 
-#include "core/names.h"
 #include "rfunc/trim.h"
 
-#define NAME_(code, name) [code] = name,
-const char *const dfl_rfunc_join_names[DFL_RFUNC_JOIN_COUNT] = {DFL_RFUNC_JOIN_LIST(NAME_)};
-#undef NAME_
-
-const char *dfl_rfunc_join_name(dfl_rfunc_join join)
-{
-    if ((int)join < 0 || (int)join >= DFL_RFUNC_JOIN_COUNT) return "?";
-    return dfl_rfunc_join_names[join];
-}
-
-dfl_status dfl_rfunc_join_parse(const char *name, dfl_rfunc_join *out, dfl_err *err)
-{
-    int i;
-    dfl_status st =
-        dfl_names_parse("join", dfl_rfunc_join_names, DFL_RFUNC_JOIN_COUNT, name, &i, err);
-    if (st == DFL_OK) *out = (dfl_rfunc_join)i;
-    return st;
-}
+DFL_NAMES_DEFINE(dfl_rfunc_join, DFL_RFUNC_JOIN_LIST, DFL_RFUNC_JOIN_COUNT, dfl_rfunc_join_names,
+                 dfl_rfunc_join_name, dfl_rfunc_join_parse, "join")
 
 dfl_status dfl_rfunc_join_check(dfl_rfunc_join join, int p, dfl_err *err)
 {

@@ -50,25 +50,20 @@
 #include <stddef.h>
 
 #include "core/jet.h"
+#include "core/names.h"
 #include "core/status.h"
 
 /* The joins: one list from which the codes (0, 1, ... in this order) and
- * their config names come.  X(code, name). */
-#define DFL_RFUNC_JOIN_LIST(X)                                                  \
-    X(DFL_RFUNC_REQUIV, "requiv")                     /* eq. 6 */                 \
-    X(DFL_RFUNC_RCONJ, "rconj")                       /* eq. 7, left fold */      \
-    X(DFL_RFUNC_REQUIV_CORRECTED, "requiv_corrected") /* eq. 20, guard + floor */
+ * their config names come (core/names.h).  X(code, name, where in bs04). */
+#define DFL_RFUNC_JOIN_LIST(X)                                      \
+    X(DFL_RFUNC_REQUIV, "requiv", "eq. 6")                          \
+    X(DFL_RFUNC_RCONJ, "rconj", "eq. 7, left fold")                 \
+    X(DFL_RFUNC_REQUIV_CORRECTED, "requiv_corrected", "eq. 20, guard and floor above")
 
-typedef enum dfl_rfunc_join {
-#define DFL_RFUNC_JOIN_CODE_(code, name) code,
-    DFL_RFUNC_JOIN_LIST(DFL_RFUNC_JOIN_CODE_)
-#undef DFL_RFUNC_JOIN_CODE_
-} dfl_rfunc_join;
+typedef enum dfl_rfunc_join { DFL_RFUNC_JOIN_LIST(DFL_NAMES_CODE) } dfl_rfunc_join;
 
 /* Number of joins. */
-#define DFL_RFUNC_JOIN_ONE_(code, name) +1
-enum { DFL_RFUNC_JOIN_COUNT = 0 DFL_RFUNC_JOIN_LIST(DFL_RFUNC_JOIN_ONE_) };
-#undef DFL_RFUNC_JOIN_ONE_
+enum { DFL_RFUNC_JOIN_COUNT = 0 DFL_RFUNC_JOIN_LIST(DFL_NAMES_ONE) };
 
 /* Config names indexed by code (for dfl_cfg_enum-style readers: names,
  * DFL_RFUNC_JOIN_COUNT). */

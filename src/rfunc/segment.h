@@ -27,27 +27,22 @@
 #define DFL_RFUNC_SEGMENT_H
 
 #include "core/jet.h"
+#include "core/names.h"
 #include "core/status.h"
 
 /* The trims: one list from which the codes (0, 1, ... in this order),
- * their config names and their two properties come.
- * X(code, name, smooth (eq. 5 rather than eq. 4), strip (rather than disk)). */
-#define DFL_RFUNC_TRIM_LIST(X)                                                 \
-    X(DFL_RFUNC_TRIM_DISK, "disk", 0, 0)                 /* disk (sphere), eq. 4 */ \
-    X(DFL_RFUNC_TRIM_DISK_SMOOTH, "disk_smooth", 1, 0)   /* disk (sphere), eq. 5 */ \
-    X(DFL_RFUNC_TRIM_STRIP, "strip", 0, 1)               /* strip (slab), eq. 4 */  \
-    X(DFL_RFUNC_TRIM_STRIP_SMOOTH, "strip_smooth", 1, 1) /* strip (slab), eq. 5 */
+ * their config names and their two properties come (core/names.h).
+ * X(code, name, smooth: eq. 5 rather than eq. 4, strip: rather than disk). */
+#define DFL_RFUNC_TRIM_LIST(X)                                    \
+    X(DFL_RFUNC_TRIM_DISK, "disk", 0, 0)                          \
+    X(DFL_RFUNC_TRIM_DISK_SMOOTH, "disk_smooth", 1, 0)            \
+    X(DFL_RFUNC_TRIM_STRIP, "strip", 0, 1)                        \
+    X(DFL_RFUNC_TRIM_STRIP_SMOOTH, "strip_smooth", 1, 1)
 
-typedef enum dfl_rfunc_trim {
-#define DFL_RFUNC_TRIM_CODE_(code, name, smooth, strip) code,
-    DFL_RFUNC_TRIM_LIST(DFL_RFUNC_TRIM_CODE_)
-#undef DFL_RFUNC_TRIM_CODE_
-} dfl_rfunc_trim;
+typedef enum dfl_rfunc_trim { DFL_RFUNC_TRIM_LIST(DFL_NAMES_CODE) } dfl_rfunc_trim;
 
 /* Number of trims. */
-#define DFL_RFUNC_TRIM_ONE_(code, name, smooth, strip) +1
-enum { DFL_RFUNC_TRIM_COUNT = 0 DFL_RFUNC_TRIM_LIST(DFL_RFUNC_TRIM_ONE_) };
-#undef DFL_RFUNC_TRIM_ONE_
+enum { DFL_RFUNC_TRIM_COUNT = 0 DFL_RFUNC_TRIM_LIST(DFL_NAMES_ONE) };
 
 /* Config names indexed by code (for dfl_cfg_enum-style readers: names,
  * DFL_RFUNC_TRIM_COUNT). */

@@ -23,24 +23,19 @@
 #define DFL_RFUNC_TRI3D_H
 
 #include "core/jet.h"
+#include "core/names.h"
 #include "core/status.h"
 
 /* The triangle trims: one list from which the codes (0, 1 in this order)
- * and their config names come.  X(code, name). */
-#define DFL_RFUNC_TRI_TRIM_LIST(X)                                             \
-    X(DFL_RFUNC_TRI_PRISM, "prism")             /* R0-conjunction of the planes */ \
-    X(DFL_RFUNC_TRI_CONDITIONAL, "conditional") /* eq. 15-16 */
+ * and their config names come (core/names.h).  X(code, name, what it is). */
+#define DFL_RFUNC_TRI_TRIM_LIST(X)                                            \
+    X(DFL_RFUNC_TRI_PRISM, "prism", "R0-conjunction of the edge planes")      \
+    X(DFL_RFUNC_TRI_CONDITIONAL, "conditional", "eq. 15-16")
 
-typedef enum dfl_rfunc_tri_trim {
-#define DFL_RFUNC_TRI_TRIM_CODE_(code, name) code,
-    DFL_RFUNC_TRI_TRIM_LIST(DFL_RFUNC_TRI_TRIM_CODE_)
-#undef DFL_RFUNC_TRI_TRIM_CODE_
-} dfl_rfunc_tri_trim;
+typedef enum dfl_rfunc_tri_trim { DFL_RFUNC_TRI_TRIM_LIST(DFL_NAMES_CODE) } dfl_rfunc_tri_trim;
 
 /* Number of triangle trims. */
-#define DFL_RFUNC_TRI_TRIM_ONE_(code, name) +1
-enum { DFL_RFUNC_TRI_TRIM_COUNT = 0 DFL_RFUNC_TRI_TRIM_LIST(DFL_RFUNC_TRI_TRIM_ONE_) };
-#undef DFL_RFUNC_TRI_TRIM_ONE_
+enum { DFL_RFUNC_TRI_TRIM_COUNT = 0 DFL_RFUNC_TRI_TRIM_LIST(DFL_NAMES_ONE) };
 
 /* Config names indexed by code (for dfl_cfg_enum-style readers). */
 extern const char *const dfl_rfunc_tri_trim_names[DFL_RFUNC_TRI_TRIM_COUNT];

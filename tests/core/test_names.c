@@ -18,6 +18,38 @@ Test(core_names, find_is_exact)
     cr_expect_eq(dfl_names_find(fruit, 2, "plum"), -1, "only the first count names");
 }
 
+Test(core_names, at_is_total)
+{
+    cr_expect_str_eq(dfl_names_at(fruit, 3, 0), "apple");
+    cr_expect_str_eq(dfl_names_at(fruit, 3, 2), "plum");
+    cr_expect_str_eq(dfl_names_at(fruit, 3, 3), "?");
+    cr_expect_str_eq(dfl_names_at(fruit, 3, -1), "?");
+}
+
+/* The X-macro columns build an enum, its count and its table. */
+#define TEST_LIST(X) X(TEST_A, "a", 0) X(TEST_B, "bee", 1) X(TEST_C, "c", 2)
+typedef enum test_code { TEST_LIST(DFL_NAMES_CODE) } test_code;
+enum { TEST_COUNT = 0 TEST_LIST(DFL_NAMES_ONE) };
+DFL_NAMES_DEFINE(test_code, TEST_LIST, TEST_COUNT, letter_names, letter_name, letter_parse,
+                 "letter")
+
+Test(core_names, x_macro_columns)
+{
+    cr_assert_eq(TEST_COUNT, 3);
+    cr_expect_eq((int)TEST_A, 0);
+    cr_expect_eq((int)TEST_C, 2);
+    cr_expect_str_eq(letter_names[1], "bee");
+    cr_expect_str_eq(letter_name(TEST_C), "c");
+    cr_expect_str_eq(letter_name((test_code)3), "?");
+    test_code c = TEST_A;
+    cr_expect_eq(letter_parse("bee", &c, NULL), DFL_OK);
+    cr_expect_eq(c, TEST_B);
+    dfl_err err;
+    cr_expect_eq(letter_parse("d", &c, &err), DFL_E_INPUT);
+    cr_expect_eq(c, TEST_B);
+    cr_expect_str_eq(err.msg, "unknown letter 'd' (expected one of a|bee|c)");
+}
+
 Test(core_names, list_and_truncation)
 {
     char buf[64];
