@@ -67,11 +67,12 @@
 #include "geom/polygonize.h"
 #include "io/path.h"
 #include "cfg/grid_cfg.h"
+#include "cfg/list_cfg.h"
 #include "cfg/rfunc_cfg.h"
 #include "rfunc/rfield.h"
 
 #define MAX_CASES 8
-#define NAME_LEN 64
+#define NAME_LEN DFL_SECTION_NAME_LEN
 
 typedef struct bulge_case {
     char name[NAME_LEN];
@@ -92,8 +93,7 @@ typedef struct bulge_keys {
     int ncases;
     bulge_case c[MAX_CASES];
     long p;
-    double smax, valid_tol;
-    long steps, rounds;
+    dfl_bs04_offset_opts search;
     dfl_field_out_opts out;
 } bulge_keys;
 
@@ -108,7 +108,7 @@ static void keys_free(bulge_keys *k)
 
 static dfl_status read_case(const dfl_cfg *cfg, bulge_case *c, dfl_err *err)
 {
-    const char *sec = c->name, *kind, *gsec;
+    const char *sec = c->name, *gsec;
     char w[600];
     dfl_status st;
     if (!dfl_cfg_has_section(cfg, sec))
@@ -118,11 +118,7 @@ static dfl_status read_case(const dfl_cfg *cfg, bulge_case *c, dfl_err *err)
     if (!dfl_cfg_has_section(cfg, c->curve_sec))
         return dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s]",
                            dfl_cfg_where(cfg, sec, "curve", w, sizeof w), c->curve_sec);
-    if ((st = dfl_cfg_string(cfg, c->curve_sec, "kind", &kind, err))) return st;
-    if (strcmp(kind, "bspline_curve") != 0)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected bspline_curve, got '%s'",
-                           dfl_cfg_where(cfg, c->curve_sec, "kind", w, sizeof w), kind);
-    if ((st = dfl_curve_from_cfg(cfg, c->curve_sec, &c->curve, err))) return st;
+    if ((st = dfl_curve_section_from_cfg(cfg, c->curve_sec, &c->curve, err))) return st;
     c->have_curve = 1;
     if (c->curve.dim != 2)
         return dfl_err_set(err, DFL_E_INPUT, "%s: a planar curve is required",
@@ -149,35 +145,16 @@ static dfl_status read_case(const dfl_cfg *cfg, bulge_case *c, dfl_err *err)
 
 static dfl_status read_keys(const dfl_cfg *cfg, bulge_keys *k, dfl_err *err)
 {
-    const char *list;
+    char names[MAX_CASES][NAME_LEN];
     char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
-    if ((st = dfl_cfg_string(cfg, "study", "cases", &list, err))) return st;
-    for (const char *s = list; *s;) {
-        while (*s == ' ' || *s == '\t') s++;
-        if (!*s) break;
-        const size_t len = strcspn(s, " \t");
-        if (k->ncases == MAX_CASES || len >= NAME_LEN)
-            return dfl_err_set(err, DFL_E_INPUT,
-                               "%s: expected at most %d section names of < %d characters",
-                               dfl_cfg_where(cfg, "study", "cases", w, sizeof w), MAX_CASES,
-                               NAME_LEN);
-        memcpy(k->c[k->ncases].name, s, len);
-        k->c[k->ncases].name[len] = '\0';
-        k->ncases++;
-        s += len;
-    }
-    if (k->ncases == 0)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected at least one case section",
-                           dfl_cfg_where(cfg, "study", "cases", w, sizeof w));
+    if ((st = dfl_section_names_from_cfg(cfg, "study", "cases", MAX_CASES, names, &k->ncases,
+                                         "case section", err)))
+        return st;
+    for (int i = 0; i < k->ncases; i++) memcpy(k->c[i].name, names[i], NAME_LEN);
     if ((st = dfl_cfg_int(cfg, "study", "p", 1, DFL_RFUNC_P_MAX, &k->p, err))) return st;
-    if ((st = dfl_cfg_double_opt(cfg, "study", "smax", 8.0, 1.0, 1e6, &k->smax, err))) return st;
-    if ((st = dfl_cfg_int_opt(cfg, "study", "steps", 128, 1, DFL_CROSS_MAX_STEPS, &k->steps, err)))
-        return st;
-    if ((st = dfl_cfg_int_opt(cfg, "study", "rounds", 6, 0, 40, &k->rounds, err))) return st;
-    if ((st = dfl_cfg_double_opt(cfg, "study", "valid_tol", 1e-6, 0.0, 0.5, &k->valid_tol, err)))
-        return st;
+    if ((st = dfl_bs04_offset_opts_from_cfg(cfg, "study", &k->search, err))) return st;
     for (int i = 0; i < k->ncases; i++) {
         if ((st = read_case(cfg, &k->c[i], err))) return st;
         if ((st = dfl_rfunc_join_check(k->c[i].join, (int)k->p, err)))
@@ -285,8 +262,7 @@ static dfl_status run_case(const bulge_keys *k, bulge_case *c, const dfl_study_c
         const double delta = c->levels[l];
         dfl_ray_stats rst;
         dfl_bandstats bs;
-        st = dfl_bs04_offsets_level(&r, m, delta, k->smax, (int)k->steps, (int)k->rounds,
-                                    k->valid_tol, ctx->threads, &rst, &bs, err);
+        st = dfl_bs04_offsets_level(&r, m, delta, &k->search, ctx->threads, &rst, &bs, err);
         if (st == DFL_OK &&
             (st = put_row(table, k, c, nseg, delta, &r.rays, &rst, &bs, dfl_path_base(upath),
                           dfl_path_base(dpath))) != DFL_OK &&

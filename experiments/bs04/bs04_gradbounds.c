@@ -52,12 +52,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/vec.h"
 #include "harness/experiment.h"
 #include "rfunc/gradbound.h"
 #include "bs04/vjoin.h"
 
-static const double PI = 3.14159265358979323846;
-static const double DEG = 180.0 / 3.14159265358979323846;
+static const double DEG = 180.0 / DFL_PI;
 /* Rounding allowance of the band tests: F_i (pow) and |grad u| (the
  * field's own arithmetic) each carry a few ulps. */
 static const double BAND_TOL = 1e-12;
@@ -172,9 +172,9 @@ static dfl_status write_fig5(const dfl_study_ctx *ctx, const gb_keys *k, dfl_err
             }
             double phi_min, smax, dmax, F1, F2, S0a, S0b, S9a, S9b;
             const double smin = dfl_gradbound_sum_min(join_of(j), p, &phi_min, &smax, &dmax);
-            dfl_gradbound_partials(join_of(j), p, 0.25 * PI, &F1, &F2);
+            dfl_gradbound_partials(join_of(j), p, 0.25 * DFL_PI, &F1, &F2);
             dfl_gradbound_partials(join_of(j), p, 0.0, &S0a, &S0b);
-            dfl_gradbound_partials(join_of(j), p, 0.5 * PI, &S9a, &S9b);
+            dfl_gradbound_partials(join_of(j), p, 0.5 * DFL_PI, &S9a, &S9b);
             if (!st) st = dfl_table_row(tc);
             if (!st) st = dfl_table_set_string(tc, "join", join_names[j]);
             if (!st) st = dfl_table_set_int(tc, "p", p);
@@ -223,8 +223,8 @@ static double circ_grad(void *ctx, double theta)
 /* Angular distance (radians, in [0, pi]) between two directions. */
 static double ang_dist(double a, double b)
 {
-    double d = fmod(fabs(a - b), 2.0 * PI);
-    return d > PI ? 2.0 * PI - d : d;
+    double d = fmod(fabs(a - b), 2.0 * DFL_PI);
+    return d > DFL_PI ? 2.0 * DFL_PI - d : d;
 }
 
 typedef struct circle_stats {
@@ -248,7 +248,7 @@ static dfl_status measure_circle(const gb_keys *k, const dfl_field *f, double r,
     const double hfd = k->fd_rel * r;
     const dfl_rfunc_join join = join_of(k->join);
     for (size_t i = 0; i < n; i++) {
-        const double t = 2.0 * PI * ((double)i + 0.5) / (double)n;
+        const double t = 2.0 * DFL_PI * ((double)i + 0.5) / (double)n;
         double *x = ws->pts + 2 * i;
         x[0] = r * cos(t);
         x[1] = r * sin(t);
@@ -295,7 +295,7 @@ static dfl_status measure_circle(const gb_keys *k, const dfl_field *f, double r,
         const double gy = (fv[2] - fv[3]) / (fp[5] - fp[7]);
         cs->fd_maxdiff = fmax(cs->fd_maxdiff, fabs(hypot(gx, gy) - G));
         if (prof && i % stride == stride / 2) {
-            const double t = 2.0 * PI * ((double)i + 0.5) / (double)n;
+            const double t = 2.0 * DFL_PI * ((double)i + 0.5) / (double)n;
             st = dfl_table_row(prof);
             if (!st) st = dfl_table_set_double(prof, "r_rel", r / k->vj.length);
             if (!st) st = dfl_table_set_double(prof, "theta_deg", t * DEG);
@@ -315,15 +315,15 @@ static dfl_status measure_circle(const gb_keys *k, const dfl_field *f, double r,
     if (!isfinite(cs->gmin))
         return dfl_err_set(err, DFL_E_NUMERIC, "bs04_gradbounds: every sample lies on the set");
     /* refine the minimum between the neighbouring samples */
-    const double dt = 2.0 * PI / (double)n;
-    const double t0 = 2.0 * PI * ((double)imin + 0.5) / (double)n;
+    const double dt = 2.0 * DFL_PI / (double)n;
+    const double t0 = 2.0 * DFL_PI * ((double)imin + 0.5) / (double)n;
     circ c = {f, r};
     double gref;
     const double tref = dfl_gradbound_golden(circ_grad, &c, t0 - dt, t0 + dt, 1e-12, &gref);
     cs->theta_min = t0;
     if (gref < cs->gmin) {
         cs->gmin = gref;
-        cs->theta_min = fmod(tref + 2.0 * PI, 2.0 * PI);
+        cs->theta_min = fmod(tref + 2.0 * DFL_PI, 2.0 * DFL_PI);
     }
     return DFL_OK;
 }
@@ -335,7 +335,8 @@ static dfl_status put_row(dfl_table *t, const gb_keys *k, double r, const circle
     const int p = (int)k->p;
     const double bis = dfl_vjoin_bisector(&k->vj);
     double dmin = ang_dist(cs->theta_min, bis);
-    if (fabs(k->vj.alpha - PI) < 1e-15) dmin = fmin(dmin, ang_dist(cs->theta_min, bis + PI));
+    if (fabs(k->vj.alpha - DFL_PI) < 1e-15)
+        dmin = fmin(dmin, ang_dist(cs->theta_min, bis + DFL_PI));
     circ c = {f, r};
     const double gbis = circ_grad(&c, bis);
     int where;
@@ -343,7 +344,7 @@ static dfl_status put_row(dfl_table *t, const gb_keys *k, double r, const circle
     double phi_min;
     const double smin = dfl_gradbound_sum_min(join, p, &phi_min, NULL, NULL);
     double F1, F2;
-    dfl_gradbound_partials(join, p, 0.25 * PI, &F1, &F2);
+    dfl_gradbound_partials(join, p, 0.25 * DFL_PI, &F1, &F2);
     dfl_status st = dfl_table_row(t);
     if (!st) st = dfl_table_set_double(t, "alpha", k->alpha_deg);
     if (!st) st = dfl_table_set_int(t, "p", p);

@@ -81,8 +81,8 @@ typedef struct scurve_keys {
     long p;
     double *levels;
     size_t nlevels;
-    long rays, cap_rays, max_joints, steps, rounds, csamples, crounds;
-    double smax, valid_tol;
+    long rays, cap_rays, max_joints, csamples, crounds;
+    dfl_bs04_offset_opts search;
     dfl_grid grid;
     dfl_field_out_opts out;
 } scurve_keys;
@@ -115,12 +115,7 @@ static dfl_status read_keys(const dfl_cfg *cfg, scurve_keys *k, dfl_err *err)
         return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "max_joints", 200, 0, 1000000, &k->max_joints, err)))
         return st;
-    if ((st = dfl_cfg_double_opt(cfg, "study", "smax", 8.0, 1.0, 1e6, &k->smax, err))) return st;
-    if ((st = dfl_cfg_int_opt(cfg, "study", "steps", 128, 1, DFL_CROSS_MAX_STEPS, &k->steps, err)))
-        return st;
-    if ((st = dfl_cfg_int_opt(cfg, "study", "rounds", 6, 0, 40, &k->rounds, err))) return st;
-    if ((st = dfl_cfg_double_opt(cfg, "study", "valid_tol", 1e-6, 0.0, 0.5, &k->valid_tol, err)))
-        return st;
+    if ((st = dfl_bs04_offset_opts_from_cfg(cfg, "study", &k->search, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "curve_samples", 16, 2, 1024, &k->csamples, err)))
         return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "curve_rounds", 8, 0, 40, &k->crounds, err)))
@@ -220,8 +215,7 @@ static dfl_status scurve_run_point(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
         const double delta = k.levels[l];
         dfl_ray_stats rs;
         dfl_bandstats bs;
-        st = dfl_bs04_offsets_level(&r, m, delta, k.smax, (int)k.steps, (int)k.rounds,
-                                    k.valid_tol, ctx->threads, &rs, &bs, err);
+        st = dfl_bs04_offsets_level(&r, m, delta, &k.search, ctx->threads, &rs, &bs, err);
         if (st != DFL_OK) break;
         st = dfl_table_row(t);
         if (!st) st = dfl_table_set_string(t, "curve", k.curve_sec);

@@ -7,27 +7,6 @@
 
 #include "io/vtk.h"
 
-dfl_status dfl_bs04_put_metrics(dfl_table *t, const char *sfx, const dfl_metrics *m)
-{
-    char col[96];
-    dfl_status st;
-    snprintf(col, sizeof col, "count%s", sfx);
-    st = dfl_table_set_int(t, col, (long)m->count);
-#define PUT(name, v)                                              \
-    do {                                                          \
-        snprintf(col, sizeof col, "%s%s", name, sfx);             \
-        if (st == DFL_OK) st = dfl_table_set_double(t, col, v);   \
-    } while (0)
-    PUT("l1", m->l1);
-    PUT("mse", m->mse);
-    PUT("rms", m->rms);
-    PUT("linf", m->linf);
-    PUT("graddefect_mean", m->gdef_mean);
-    PUT("graddefect_max", m->gdef_max);
-#undef PUT
-    return st;
-}
-
 void dfl_bs04_gradstat(size_t m, int dim, const double *grad, const unsigned char *mask,
                        dfl_gradstat *out)
 {
@@ -63,6 +42,20 @@ dfl_status dfl_bs04_put_gradstat(dfl_table *t, const char *sfx, const dfl_gradst
     return st;
 }
 
+double dfl_bs04_loglog_slope(size_t n, const double *x, const double *y)
+{
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (size_t i = 0; i < n; i++) {
+        const double lx = log(x[i]), ly = log(y[i]);
+        sx += lx;
+        sy += ly;
+        sxx += lx * lx;
+        sxy += lx * ly;
+    }
+    const double dn = (double)n;
+    return (dn * sxy - sx * sy) / (dn * sxx - sx * sx);
+}
+
 static double *to3d(int dim, size_t n, const double *pts)
 {
     double *p3 = malloc((n ? n : 1) * 3 * sizeof *p3);
@@ -74,7 +67,7 @@ static double *to3d(int dim, size_t n, const double *pts)
 }
 
 dfl_status dfl_bs04_vtp_polyline(const char *path, int dim, size_t n, const double *pts,
-                                 int compress, dfl_err *err)
+                                 const dfl_vtk_array *arr, int compress, dfl_err *err)
 {
     double *p3 = to3d(dim, n, pts);
     size_t *conn = malloc((n ? n : 1) * sizeof *conn);
@@ -85,7 +78,7 @@ dfl_status dfl_bs04_vtp_polyline(const char *path, int dim, size_t n, const doub
     }
     for (size_t i = 0; i < n; i++) conn[i] = i;
     size_t off[2] = {0, n};
-    dfl_vtp_data d = {n, p3, 1, off, conn, 0, NULL, NULL, 0};
+    dfl_vtp_data d = {n, p3, 1, off, conn, 0, NULL, arr, arr ? 1 : 0};
     dfl_status st = dfl_vtp_write(path, &d, compress, err);
     free(p3);
     free(conn);
@@ -122,12 +115,6 @@ dfl_status dfl_bs04_vtp_points(const char *path, size_t n, const double *pts, co
     free(conn);
     free(off);
     return st;
-}
-
-const char *dfl_bs04_base(const char *path)
-{
-    const char *b = strrchr(path, '/');
-    return b ? b + 1 : path;
 }
 
 dfl_status dfl_bs04_write_slices(const dfl_study_ctx *ctx, const dfl_field *f,

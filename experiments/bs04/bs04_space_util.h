@@ -1,7 +1,9 @@
-/* Helpers shared by the bs04 space studies (bs04_spacecurves,
- * bs04_triangle, bs04_triedge, bs04_surface, bs04_hetero): table cells for
- * error metrics and gradient statistics, and .vtp output of polylines,
- * triangle meshes and point samples.
+/* Helpers shared by the bs04 studies (bs04_spacecurves, bs04_triangle,
+ * bs04_triedge, bs04_surface, bs04_hetero, bs04_polygonization): table
+ * cells for gradient statistics (error metrics: harness/metrics_cols.h),
+ * log-log slopes,
+ * .vtp output of polylines, triangle meshes and point samples, and slices
+ * of 3D fields.
  */
 #ifndef DFL_EXPERIMENTS_BS04_SPACE_UTIL_H
 #define DFL_EXPERIMENTS_BS04_SPACE_UTIL_H
@@ -10,15 +12,13 @@
 
 #include "core/status.h"
 #include "field/metrics.h"
+#include "harness/metrics_cols.h"
 #include "io/config.h"
 #include "io/table.h"
+#include "io/vtk.h"
 #include "rfunc/join.h"
 #include "rfunc/segment.h"
 #include "harness/slice.h"
-
-/* Sets count<sfx>, l1<sfx>, mse<sfx>, rms<sfx>, linf<sfx>,
- * graddefect_mean<sfx>, graddefect_max<sfx> in the current row. */
-dfl_status dfl_bs04_put_metrics(dfl_table *t, const char *sfx, const dfl_metrics *m);
 
 /* Statistics of |grad u| over the m samples whose mask entry is non-zero
  * (mask may be NULL: all): min, mean, max; NAN when none. */
@@ -31,12 +31,17 @@ void dfl_bs04_gradstat(size_t m, int dim, const double *grad, const unsigned cha
 /* Sets grad_min<sfx>, grad_mean<sfx>, grad_max<sfx>. */
 dfl_status dfl_bs04_put_gradstat(dfl_table *t, const char *sfx, const dfl_gradstat *g);
 
+/* Least-squares slope of log(y) against log(x) over n >= 2 pairs (x, y >
+ * 0, not all x equal): the growth exponent of y in x. */
+double dfl_bs04_loglog_slope(size_t n, const double *x, const double *y);
+
 /* .vtp writers (through dfl_vtp_write: atomic, optional zlib).
- *   polyline: n points of dimension dim (2D gets z = 0), one line;
+ *   polyline: n points of dimension dim (2D gets z = 0), one line, and
+ *             the point array arr when not NULL (n tuples);
  *   trimesh: nv 3D points, nt triangles (3 indices each);
  *   points:  n 3D points with one scalar point array (name, values). */
 dfl_status dfl_bs04_vtp_polyline(const char *path, int dim, size_t n, const double *pts,
-                                 int compress, dfl_err *err);
+                                 const dfl_vtk_array *arr, int compress, dfl_err *err);
 dfl_status dfl_bs04_vtp_trimesh(const char *path, size_t nv, const double *verts, size_t nt,
                                 const size_t *tris, int compress, dfl_err *err);
 dfl_status dfl_bs04_vtp_points(const char *path, size_t n, const double *pts, const char *name,
@@ -48,8 +53,5 @@ dfl_status dfl_bs04_vtp_points(const char *path, size_t n, const double *pts, co
 dfl_status dfl_bs04_write_slices(const dfl_study_ctx *ctx, const dfl_field *f,
                                  const dfl_slice *slices, int n, const char *prefix,
                                  const dfl_field_out_opts *o, dfl_err *err);
-
-/* Base name (after the last '/') of a path. */
-const char *dfl_bs04_base(const char *path);
 
 #endif

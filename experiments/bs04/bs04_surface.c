@@ -37,6 +37,7 @@
 #include "cfg/rfunc_cfg.h"
 #include "cfg/curve_cfg.h"
 #include "harness/experiment.h"
+#include "io/path.h"
 #include "field/exact.h"
 #include "field/metrics.h"
 #include "geom/polygonize.h"
@@ -132,12 +133,12 @@ static dfl_status do_slice(const keys *k, int s, const dfl_field *f, const dfl_f
     dfl_gradstat gs;
     dfl_bs04_gradstat(m, 3, gu, mask, &gs);
     snprintf(sfx, sizeof sfx, "_s%d", s);
-    st = dfl_bs04_put_metrics(table, sfx, &all);
+    st = dfl_metrics_put(table, sfx, &all);
     snprintf(sfx, sizeof sfx, "_s%d_band", s);
-    if (!st) st = dfl_bs04_put_metrics(table, sfx, &inb);
+    if (!st) st = dfl_metrics_put(table, sfx, &inb);
     if (!st) st = dfl_bs04_put_gradstat(table, sfx, &gs);
     snprintf(sfx, sizeof sfx, "_s%d_mesh", s);
-    if (!st) st = dfl_bs04_put_metrics(table, sfx, &mesh);
+    if (!st) st = dfl_metrics_put(table, sfx, &mesh);
     snprintf(col, sizeof col, "mesh_dev_max_s%d", s);
     if (!st) st = dfl_table_set_double(table, col, dev);
     snprintf(col, sizeof col, "u_le_dmesh_s%d", s);
@@ -202,7 +203,7 @@ static dfl_status surf_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
                                   dfl_rfunc_tri_trim_name(k.o.trim));
     if (!st) st = dfl_bs04_vtp_trimesh(dfl_study_path(ctx, "mesh", "vtp", path, sizeof path),
                                        M.nverts, M.verts, M.ntris, M.tris, k.compress, err);
-    if (!st) st = dfl_table_set_string(table, "mesh_vtp", dfl_bs04_base(path));
+    if (!st) st = dfl_table_set_string(table, "mesh_vtp", dfl_path_base(path));
     for (int s = 0; s < k.nslices && !st; s++)
         st = do_slice(&k, s, &f, &exact, &M, ctx, table, err);
 done:

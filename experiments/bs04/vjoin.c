@@ -4,10 +4,9 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/vec.h"
 #include "rfunc/rfield.h"
 #include "geom/segdist.h"
-
-static const double PI = 3.14159265358979323846;
 
 /* "exact", then the trims' names in their order (parts = 1 + trim). */
 #define PART_NAME_(code, name, smooth, strip) [1 + code] = name,
@@ -39,7 +38,7 @@ dfl_status dfl_vjoin_init(double alpha_deg, double length, int parts, dfl_vjoin 
     memset(&vj, 0, sizeof vj);
     vj.parts = parts;
     vj.alpha_deg = alpha_deg;
-    vj.alpha = alpha_deg == 180.0 ? PI : alpha_deg * (PI / 180.0);
+    vj.alpha = alpha_deg == 180.0 ? DFL_PI : alpha_deg * (DFL_PI / 180.0);
     vj.length = length;
     /* exact multiples of 90 degrees give exact coordinates, so that the
      * hatched test of collinear segments is not spoiled by cos(pi) */
@@ -118,25 +117,25 @@ double dfl_vjoin_dist(const dfl_vjoin *vj, const double *x, double *g)
 bool dfl_vjoin_hatched(const dfl_vjoin *vj, const double *x)
 {
     /* O is the origin: (x - O) . e_i */
-    return x[0] * vj->e1[0] + x[1] * vj->e1[1] <= 0.0 && x[0] * vj->e2[0] + x[1] * vj->e2[1] <= 0.0;
+    return dfl_vecn_dot(2, x, vj->e1) <= 0.0 && dfl_vecn_dot(2, x, vj->e2) <= 0.0;
 }
 
 void dfl_vjoin_hatched_range(const dfl_vjoin *vj, double *t0, double *t1, int *nrays)
 {
     /* directions t with cos t <= 0 and cos(t - alpha) <= 0 */
-    if (vj->alpha <= PI) {
-        *t0 = vj->alpha + 0.5 * PI;
-        *t1 = 1.5 * PI;
+    if (vj->alpha <= DFL_PI) {
+        *t0 = vj->alpha + 0.5 * DFL_PI;
+        *t1 = 1.5 * DFL_PI;
     } else {
-        *t0 = 0.5 * PI;
-        *t1 = vj->alpha - 0.5 * PI;
+        *t0 = 0.5 * DFL_PI;
+        *t1 = vj->alpha - 0.5 * DFL_PI;
     }
     if (*t1 < *t0) *t1 = *t0; /* rounding at alpha = pi */
     *nrays = *t1 - *t0 <= 1e-15 ? 2 : 1;
-    assert(*t0 >= 0.0 && *t0 < 2.0 * PI);
+    assert(*t0 >= 0.0 && *t0 < 2.0 * DFL_PI);
 }
 
 double dfl_vjoin_bisector(const dfl_vjoin *vj)
 {
-    return vj->alpha <= PI ? 0.5 * vj->alpha : 0.5 * vj->alpha + PI;
+    return vj->alpha <= DFL_PI ? 0.5 * vj->alpha : 0.5 * vj->alpha + DFL_PI;
 }

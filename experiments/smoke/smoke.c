@@ -20,28 +20,8 @@
 #include "field/sample.h"
 #include "cfg/field_cfg.h"
 #include "harness/field_out.h"
+#include "harness/metrics_cols.h"
 #include "cfg/grid_cfg.h"
-
-static dfl_status put_metrics(dfl_table *t, const char *suffix, const dfl_metrics *m)
-{
-    char col[64];
-    dfl_status st = DFL_OK;
-#define PUT(name, v)                                                \
-    do {                                                            \
-        snprintf(col, sizeof col, "%s%s", name, suffix);            \
-        if (st == DFL_OK) st = dfl_table_set_double(t, col, v);     \
-    } while (0)
-    snprintf(col, sizeof col, "count%s", suffix);
-    st = dfl_table_set_int(t, col, (long)m->count);
-    PUT("l1", m->l1);
-    PUT("mse", m->mse);
-    PUT("rms", m->rms);
-    PUT("linf", m->linf);
-    PUT("graddefect_mean", m->gdef_mean);
-    PUT("graddefect_max", m->gdef_max);
-#undef PUT
-    return st;
-}
 
 static dfl_status smoke_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
                             dfl_err *err)
@@ -87,8 +67,8 @@ static dfl_status smoke_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_ta
     if (st == DFL_OK) st = dfl_table_set_double(table, "scale", scale);
     if (st == DFL_OK) st = dfl_table_set_double(table, "offset", offset);
     if (st == DFL_OK) st = dfl_table_set_double(table, "band", band);
-    if (st == DFL_OK) st = put_metrics(table, "", &all);
-    if (st == DFL_OK) st = put_metrics(table, "_band", &inband);
+    if (st == DFL_OK) st = dfl_metrics_put(table, "", &all);
+    if (st == DFL_OK) st = dfl_metrics_put(table, "_band", &inband);
     if (st != DFL_OK) {
         if (err && err->code == DFL_OK) dfl_err_set(err, st, "smoke: cannot fill the table");
         goto done;

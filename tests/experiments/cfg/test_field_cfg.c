@@ -5,17 +5,10 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cfg_util.h"
 #include "cfg/field_cfg.h"
 #include "cfg/rfunc_cfg.h"
 #include "io/config.h"
-
-static dfl_cfg *parse(const char *text)
-{
-    dfl_cfg *cfg;
-    dfl_err err;
-    cr_assert_eq(dfl_cfg_parse_string("f.ini", text, &cfg, &err), DFL_OK, "%s", err.msg);
-    return cfg;
-}
 
 Test(field_cfg, table_rows)
 {
@@ -28,7 +21,7 @@ Test(field_cfg, table_rows)
     for (size_t i = 0; i < n; i++) {
         char text[64];
         snprintf(text, sizeof text, "[field]\nkind = %s\n", kinds[i].name);
-        dfl_cfg *cfg = parse(text);
+        dfl_cfg *cfg = tu_cfg("f.ini", text);
         const dfl_field_kind *k = NULL;
         cr_expect_eq(dfl_field_kind_from_cfg(cfg, "field", &k, NULL), DFL_OK);
         cr_expect_eq(k, &kinds[i]);
@@ -38,7 +31,7 @@ Test(field_cfg, table_rows)
 
 Test(field_cfg, unknown_kind_lists_the_rows)
 {
-    dfl_cfg *cfg = parse("[field]\nkind = magic\n");
+    dfl_cfg *cfg = tu_cfg("f.ini", "[field]\nkind = magic\n");
     const dfl_field_kind *k = NULL;
     dfl_err err;
     cr_expect_eq(dfl_field_kind_from_cfg(cfg, "field", &k, &err), DFL_E_INPUT);
@@ -49,7 +42,7 @@ Test(field_cfg, unknown_kind_lists_the_rows)
     dfl_field f;
     cr_expect_eq(dfl_field_from_cfg(cfg, "field", &f, &err), DFL_E_INPUT);
     dfl_cfg_free(cfg);
-    cfg = parse("[field]\njoin = requiv\n");
+    cfg = tu_cfg("f.ini", "[field]\njoin = requiv\n");
     cr_expect_eq(dfl_field_kind_from_cfg(cfg, "field", &k, &err), DFL_E_INPUT);
     cr_expect(strstr(err.msg, "kind"), "%s", err.msg);
     dfl_cfg_free(cfg);
@@ -59,8 +52,8 @@ Test(field_cfg, unknown_kind_lists_the_rows)
  * its own keys. */
 Test(field_cfg, factories_build)
 {
-    dfl_cfg *cfg =
-        parse("[field]\nkind = exact\n[shape]\nkind = circle\ncenter = 0 0\nradius = 1\n");
+    dfl_cfg *cfg = tu_cfg("f.ini", "[field]\nkind = exact\n"
+                                   "[shape]\nkind = circle\ncenter = 0 0\nradius = 1\n");
     dfl_field f;
     dfl_err err;
     cr_assert_eq(dfl_field_from_cfg(cfg, "field", &f, &err), DFL_OK, "%s", err.msg);
@@ -68,7 +61,7 @@ Test(field_cfg, factories_build)
     cr_expect_float_eq(dfl_field_eval1(&f, x, NULL), 1.0, 1e-15);
     dfl_field_destroy(&f);
     dfl_cfg_free(cfg);
-    cfg = parse("[field]\nkind = rfunc\nvertices = 0 0; 1 0\n");
+    cfg = tu_cfg("f.ini", "[field]\nkind = rfunc\nvertices = 0 0; 1 0\n");
     cr_assert_eq(dfl_field_from_cfg(cfg, "field", &f, &err), DFL_OK, "%s", err.msg);
     const double y[2] = {0.5, 0.0};
     cr_expect_eq(dfl_field_eval1(&f, y, NULL), 0.0);

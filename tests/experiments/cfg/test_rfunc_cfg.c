@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cfg_util.h"
 #include "cfg/curve_cfg.h"
 #include "cfg/field_cfg.h"
 #include "geom/polygonize.h"
@@ -130,19 +131,12 @@ Test(rfunc_cfg, curve_polygonized)
     dfl_field_destroy(&f);
 }
 
-static dfl_cfg *parse(const char *text)
-{
-    dfl_cfg *cfg;
-    dfl_err err;
-    cr_assert_eq(dfl_cfg_parse_string("s.ini", text, &cfg, &err), DFL_OK, "%s", err.msg);
-    return cfg;
-}
-
 /* The parsed spec says what the section says; defaults are those of the
  * header; the field built from it is the library's polyline field. */
 Test(rfunc_cfg, spec_holds_what_was_parsed)
 {
-    dfl_cfg *cfg = parse("[field]\nkind = rfunc\nvertices = 0 0; 1 0.5; 2 0.2\nclosed = true\n"
+    dfl_cfg *cfg = tu_cfg("s.ini",
+                          "[field]\nkind = rfunc\nvertices = 0 0; 1 0.5; 2 0.2\nclosed = true\n"
                          "join = requiv_corrected\np = 5\ntrim = strip_smooth\n");
     dfl_rfunc_field_spec s;
     dfl_err err;
@@ -171,7 +165,7 @@ Test(rfunc_cfg, spec_holds_what_was_parsed)
     dfl_rfunc_spec_free(&s); /* safe twice */
     dfl_cfg_free(cfg);
 
-    cfg = parse("[field]\nkind = rfunc\nvertices = 0 0 0; 1 0 1\n");
+    cfg = tu_cfg("s.ini", "[field]\nkind = rfunc\nvertices = 0 0 0; 1 0 1\n");
     cr_assert_eq(dfl_rfunc_spec_from_cfg(cfg, "field", &s, &err), DFL_OK, "%s", err.msg);
     cr_expect_eq(s.join, DFL_RFUNC_REQUIV);
     cr_expect_eq(s.p, 2);
@@ -186,7 +180,8 @@ Test(rfunc_cfg, spec_holds_what_was_parsed)
  * curve drops the repeated point and closes the polyline. */
 Test(rfunc_cfg, spec_of_a_curve)
 {
-    dfl_cfg *cfg = parse("[field]\nkind = rfunc\ncurve = c\neps = 0.01\njoin = rconj\np = 3\n"
+    dfl_cfg *cfg = tu_cfg("s.ini",
+                          "[field]\nkind = rfunc\ncurve = c\neps = 0.01\njoin = rconj\np = 3\n"
                          "[c]\nkind = bspline_curve\norder = 3\nclosed = true\n"
                          "control = 0 0; 1 0; 1 1; 0 1\n");
     dfl_rfunc_field_spec s;
@@ -212,7 +207,8 @@ Test(rfunc_cfg, spec_of_a_curve)
  * key p; the spec is zeroed when parsing fails. */
 Test(rfunc_cfg, pair_checked_when_built)
 {
-    dfl_cfg *cfg = parse("[field]\nkind = rfunc\nvertices = 0 0; 1 1\njoin = rconj\np = 1\n");
+    dfl_cfg *cfg =
+        tu_cfg("s.ini", "[field]\nkind = rfunc\nvertices = 0 0; 1 1\njoin = rconj\np = 1\n");
     dfl_rfunc_field_spec s;
     dfl_err err;
     cr_assert_eq(dfl_rfunc_spec_from_cfg(cfg, "field", &s, &err), DFL_OK, "%s", err.msg);
@@ -223,14 +219,14 @@ Test(rfunc_cfg, pair_checked_when_built)
     cr_expect(strstr(err.msg, "s.ini:5") && strstr(err.msg, "p"), "%s", err.msg);
     dfl_rfunc_spec_free(&s);
     dfl_cfg_free(cfg);
-    cfg = parse("[field]\nkind = rfunc\nvertices = 0 0; 1 1\ntrim = box\n");
+    cfg = tu_cfg("s.ini", "[field]\nkind = rfunc\nvertices = 0 0; 1 1\ntrim = box\n");
     memset(&s, 0xff, sizeof s);
     cr_expect_eq(dfl_rfunc_spec_from_cfg(cfg, "field", &s, &err), DFL_E_INPUT);
     cr_expect(strstr(err.msg, "disk|disk_smooth|strip|strip_smooth"), "%s", err.msg);
     cr_expect_null(s.v);
     cr_expect_eq(s.n, 0);
     dfl_cfg_free(cfg);
-    cfg = parse("[field]\nkind = rfunc\nvertices = 0 0; 1 1\ncurve = c\n");
+    cfg = tu_cfg("s.ini", "[field]\nkind = rfunc\nvertices = 0 0; 1 1\ncurve = c\n");
     cr_expect_eq(dfl_rfunc_spec_from_cfg(cfg, "field", &s, &err), DFL_E_INPUT);
     cr_expect(strstr(err.msg, "s.ini:4") && strstr(err.msg, "both"), "%s", err.msg);
     dfl_cfg_free(cfg);
@@ -239,7 +235,7 @@ Test(rfunc_cfg, pair_checked_when_built)
 /* The shared readers of [study]-style keys. */
 Test(rfunc_cfg, join_trim_tri_readers)
 {
-    dfl_cfg *cfg = parse("[a]\njoin = rconj\np = 7\ntrim = disk_smooth\n"
+    dfl_cfg *cfg = tu_cfg("s.ini", "[a]\njoin = rconj\np = 7\ntrim = disk_smooth\n"
                          "[b]\n"
                          "[c]\njoin = rconj\np = 1\n"
                          "[d]\njoin = union\n"
