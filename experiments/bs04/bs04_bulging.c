@@ -56,6 +56,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bs04/bs04_offsets.h"
 #include "cfg/curve_cfg.h"
 #include "field/curveprobe.h"
 #include "harness/experiment.h"
@@ -64,17 +65,21 @@
 #include "field/sample.h"
 #include "harness/field_out.h"
 #include "geom/polygonize.h"
+#include "io/path.h"
 #include "cfg/grid_cfg.h"
+#include "cfg/list_cfg.h"
+#include "cfg/rfunc_cfg.h"
 #include "rfunc/rfield.h"
 
 #define MAX_CASES 8
-#define NAME_LEN 64
+#define NAME_LEN DFL_SECTION_NAME_LEN
 
 typedef struct bulge_case {
     char name[NAME_LEN];
     const char *curve_sec;
     double eps;
-    int join, trim;
+    dfl_rfunc_join join;
+    dfl_rfunc_trim trim;
     double *levels;
     size_t nlevels;
     long rays, cap_rays;
@@ -88,8 +93,7 @@ typedef struct bulge_keys {
     int ncases;
     bulge_case c[MAX_CASES];
     long p;
-    double smax, valid_tol;
-    long steps, rounds;
+    dfl_bs04_offset_opts search;
     dfl_field_write_opts out;
 } bulge_keys;
 
@@ -104,9 +108,7 @@ static void keys_free(bulge_keys *k)
 
 static dfl_status read_case(const dfl_cfg *cfg, bulge_case *c, dfl_err *err)
 {
-    static const char *const joins[] = {"requiv", "rconj", "requiv_corrected"};
-    static const char *const trims[] = {"disk", "disk_smooth", "strip", "strip_smooth"};
-    const char *sec = c->name, *kind, *gsec;
+    const char *sec = c->name, *gsec;
     char w[600];
     dfl_status st;
     if (!dfl_cfg_has_section(cfg, sec))
@@ -116,11 +118,7 @@ static dfl_status read_case(const dfl_cfg *cfg, bulge_case *c, dfl_err *err)
     if (!dfl_cfg_has_section(cfg, c->curve_sec))
         return dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s]",
                            dfl_cfg_where(cfg, sec, "curve", w, sizeof w), c->curve_sec);
-    if ((st = dfl_cfg_string(cfg, c->curve_sec, "kind", &kind, err))) return st;
-    if (strcmp(kind, "bspline_curve") != 0)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected bspline_curve, got '%s'",
-                           dfl_cfg_where(cfg, c->curve_sec, "kind", w, sizeof w), kind);
-    if ((st = dfl_curve_from_cfg(cfg, c->curve_sec, &c->curve, err))) return st;
+    if ((st = dfl_curve_section_from_cfg(cfg, c->curve_sec, &c->curve, err))) return st;
     c->have_curve = 1;
     if (c->curve.dim != 2)
         return dfl_err_set(err, DFL_E_INPUT, "%s: a planar curve is required",
@@ -129,8 +127,8 @@ static dfl_status read_case(const dfl_cfg *cfg, bulge_case *c, dfl_err *err)
         return st;
     c->have_shape = 1;
     if ((st = dfl_cfg_double(cfg, sec, "eps", 1e-300, 1e300, &c->eps, err))) return st;
-    if ((st = dfl_cfg_enum_opt(cfg, sec, "join", joins, 3, 0, &c->join, err))) return st;
-    if ((st = dfl_cfg_enum_opt(cfg, sec, "trim", trims, 4, 0, &c->trim, err))) return st;
+    if ((st = dfl_rfunc_join_from_cfg(cfg, sec, &c->join, err))) return st;
+    if ((st = dfl_rfunc_trim_from_cfg(cfg, sec, &c->trim, err))) return st;
     if ((st = dfl_cfg_doubles(cfg, sec, "levels", 1, &c->levels, &c->nlevels, err))) return st;
     for (size_t i = 0; i < c->nlevels; i++)
         if (!(c->levels[i] > 0.0))
@@ -147,41 +145,22 @@ static dfl_status read_case(const dfl_cfg *cfg, bulge_case *c, dfl_err *err)
 
 static dfl_status read_keys(const dfl_cfg *cfg, bulge_keys *k, dfl_err *err)
 {
-    const char *list;
+    char names[MAX_CASES][NAME_LEN];
     char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
-    if ((st = dfl_cfg_string(cfg, "study", "cases", &list, err))) return st;
-    for (const char *s = list; *s;) {
-        while (*s == ' ' || *s == '\t') s++;
-        if (!*s) break;
-        const size_t len = strcspn(s, " \t");
-        if (k->ncases == MAX_CASES || len >= NAME_LEN)
-            return dfl_err_set(err, DFL_E_INPUT,
-                               "%s: expected at most %d section names of < %d characters",
-                               dfl_cfg_where(cfg, "study", "cases", w, sizeof w), MAX_CASES,
-                               NAME_LEN);
-        memcpy(k->c[k->ncases].name, s, len);
-        k->c[k->ncases].name[len] = '\0';
-        k->ncases++;
-        s += len;
-    }
-    if (k->ncases == 0)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected at least one case section",
-                           dfl_cfg_where(cfg, "study", "cases", w, sizeof w));
+    if ((st = dfl_section_names_from_cfg(cfg, "study", "cases", MAX_CASES, names, &k->ncases,
+                                         "case section", err)))
+        return st;
+    for (int i = 0; i < k->ncases; i++) memcpy(k->c[i].name, names[i], NAME_LEN);
     if ((st = dfl_cfg_int(cfg, "study", "p", 1, DFL_RFUNC_P_MAX, &k->p, err))) return st;
-    if ((st = dfl_cfg_double_opt(cfg, "study", "smax", 8.0, 1.0, 1e6, &k->smax, err))) return st;
-    if ((st = dfl_cfg_int_opt(cfg, "study", "steps", 128, 1, DFL_CROSS_MAX_STEPS, &k->steps, err)))
-        return st;
-    if ((st = dfl_cfg_int_opt(cfg, "study", "rounds", 6, 0, 40, &k->rounds, err))) return st;
-    if ((st = dfl_cfg_double_opt(cfg, "study", "valid_tol", 1e-6, 0.0, 0.5, &k->valid_tol, err)))
-        return st;
+    if ((st = dfl_bs04_offset_opts_from_cfg(cfg, "study", &k->search, err))) return st;
     for (int i = 0; i < k->ncases; i++) {
         if ((st = read_case(cfg, &k->c[i], err))) return st;
-        if ((st = dfl_rfunc_join_check((dfl_rfunc_join)k->c[i].join, (int)k->p, err)))
+        if ((st = dfl_rfunc_join_check(k->c[i].join, (int)k->p, err)))
             return dfl_err_prefix(err, "%s (join %s of [%s])",
                                   dfl_cfg_where(cfg, "study", "p", w, sizeof w),
-                                  dfl_rfunc_join_name((dfl_rfunc_join)k->c[i].join), k->c[i].name);
+                                  dfl_rfunc_join_name(k->c[i].join), k->c[i].name);
     }
     return dfl_field_out_from_cfg(cfg, &k->out, err);
 }
@@ -199,28 +178,9 @@ static dfl_status build_field(const bulge_case *c, int p, dfl_polyline *pl, dfl_
                                         (size_t)dim * sizeof *pl->pts) == 0;
     *nseg = n - 1;
     if (closed) n--;
-    st = dfl_rfield_polyline(dim, pl->pts, n, closed, (dfl_rfunc_join)c->join, p,
-                             (dfl_rfunc_trim)c->trim, u, err);
+    st = dfl_rfield_polyline(dim, pl->pts, n, closed, c->join, p, c->trim, u, err);
     if (st != DFL_OK) return dfl_err_prefix(err, "[%s]", c->name);
     return DFL_OK;
-}
-
-typedef struct case_run {
-    dfl_field u, exact;
-    dfl_polyline pl;
-    dfl_rayset rays;
-    double *uv, *ug, *dv, *dg, *s;
-    int *valid, *branch;
-} case_run;
-
-static void run_free(case_run *r)
-{
-    dfl_field_destroy(&r->u);
-    dfl_field_destroy(&r->exact);
-    dfl_polyline_free(&r->pl);
-    dfl_curveprobe_free(&r->rays);
-    free(r->uv), free(r->ug), free(r->dv), free(r->dg), free(r->s);
-    free(r->valid), free(r->branch);
 }
 
 static dfl_status put_row(dfl_table *t, const bulge_keys *k, const bulge_case *c, size_t nseg,
@@ -228,8 +188,7 @@ static dfl_status put_row(dfl_table *t, const bulge_keys *k, const bulge_case *c
                           const dfl_bandstats *bs, const char *uname, const char *dname,
                           dfl_err *err)
 {
-    static const char *const joins[] = {"requiv", "rconj", "requiv_corrected"};
-    static const char *const trims[] = {"disk", "disk_smooth", "strip", "strip_smooth"};
+    const char *const *joins = dfl_rfunc_join_names, *const *trims = dfl_rfunc_trim_names;
     const double limit =
         c->join == DFL_RFUNC_REQUIV ? pow(2.0, 1.0 / (double)k->p) - 1.0 : NAN;
     const size_t a = rst->argmax;
@@ -273,16 +232,10 @@ static dfl_status put_row(dfl_table *t, const bulge_keys *k, const bulge_case *c
     return st;
 }
 
-static const char *base_name(const char *path)
-{
-    const char *b = strrchr(path, '/');
-    return b ? b + 1 : path;
-}
-
 static dfl_status run_case(const bulge_keys *k, bulge_case *c, const dfl_study_ctx *ctx,
                            dfl_table *table, dfl_err *err)
 {
-    case_run r;
+    dfl_bs04_offsets r;
     memset(&r, 0, sizeof r);
     size_t nseg = 0;
     dfl_status st = build_field(c, (int)k->p, &r.pl, &r.u, &nseg, err);
@@ -297,16 +250,10 @@ static dfl_status run_case(const bulge_keys *k, bulge_case *c, const dfl_study_c
                                  closed ? r.pl.t : r.pl.t + 1, nj, &r.rays, err);
     }
     const size_t m = dfl_grid_size(&c->grid);
-    if (st == DFL_OK) {
-        r.uv = malloc(m * sizeof *r.uv), r.ug = malloc(2 * m * sizeof *r.ug);
-        r.dv = malloc(m * sizeof *r.dv), r.dg = malloc(2 * m * sizeof *r.dg);
-        r.s = malloc(r.rays.n * sizeof *r.s), r.valid = malloc(r.rays.n * sizeof *r.valid);
-        r.branch = malloc(r.rays.n * sizeof *r.branch);
-        if (!r.uv || !r.ug || !r.dv || !r.dg || !r.s || !r.valid || !r.branch)
-            st = dfl_err_set(err, DFL_E_NOMEM, "[%s]: out of memory", c->name);
-    }
-    if (st == DFL_OK) st = dfl_field_sample(&r.u, &c->grid, ctx->threads, r.uv, r.ug, err);
-    if (st == DFL_OK) st = dfl_field_sample(&r.exact, &c->grid, ctx->threads, r.dv, r.dg, err);
+    char what[NAME_LEN + 2];
+    snprintf(what, sizeof what, "[%s]", c->name);
+    if (st == DFL_OK) st = dfl_bs04_offsets_alloc(&r, m, what, err);
+    if (st == DFL_OK) st = dfl_bs04_offsets_sample(&r, &c->grid, ctx->threads, err);
     char ustem[NAME_LEN + 8], dstem[NAME_LEN + 8], upath[4400], dpath[4400];
     snprintf(ustem, sizeof ustem, "%s_u", c->name);
     snprintf(dstem, sizeof dstem, "%s_exact", c->name);
@@ -315,26 +262,17 @@ static dfl_status run_case(const bulge_keys *k, bulge_case *c, const dfl_study_c
     dfl_study_path_at(ctx, 0, dstem, "vti", dpath, sizeof dpath);
     for (size_t l = 0; l < c->nlevels && st == DFL_OK; l++) {
         const double delta = c->levels[l];
-        const dfl_cross_opts co = {k->smax * delta, (int)k->steps, (int)k->rounds};
         dfl_ray_stats rst;
         dfl_bandstats bs;
-        st = dfl_curveprobe_valid(&r.exact, &r.rays, delta, k->valid_tol, ctx->threads, r.valid,
-                                  err);
+        st = dfl_bs04_offsets_level(&r, m, delta, &k->search, ctx->threads, &rst, &bs, err);
         if (st == DFL_OK)
-            st = dfl_curveprobe_cross(&r.u, &r.rays, delta, &co, ctx->threads, r.s, err);
-        if (st == DFL_OK)
-            st = dfl_curveprobe_on_branch(&r.exact, &r.rays, r.s, k->valid_tol, ctx->threads,
-                                          r.branch, err);
-        if (st == DFL_OK) dfl_curveprobe_stats(&r.rays, r.s, r.valid, r.branch, delta, &rst);
-        if (st == DFL_OK) st = dfl_metrics_bandstats(m, 2, r.uv, r.ug, r.dv, delta, &bs, err);
-        if (st == DFL_OK)
-            st = put_row(table, k, c, nseg, delta, &r.rays, &rst, &bs, base_name(upath),
-                         base_name(dpath), err);
+            st = put_row(table, k, c, nseg, delta, &r.rays, &rst, &bs, dfl_path_base(upath),
+                         dfl_path_base(dpath), err);
     }
     if (st == DFL_OK) st = dfl_field_out_write(ctx, ustem, &c->grid, r.uv, r.ug, r.dv, &k->out, err);
     if (st == DFL_OK && ctx->point == 0)
         st = dfl_field_out_write(ctx, dstem, &c->grid, r.dv, r.dg, NULL, &k->out, err);
-    run_free(&r);
+    dfl_bs04_offsets_free(&r);
     return st;
 }
 

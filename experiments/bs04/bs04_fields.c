@@ -41,51 +41,34 @@
 #include "field/sample.h"
 #include "harness/field_out.h"
 #include "cfg/grid_cfg.h"
+#include "cfg/list_cfg.h"
+#include "cfg/rfunc_cfg.h"
 #include "rfunc/rfield.h"
 #include "rfunc/segment.h"
+#include "io/path.h"
 
 typedef struct fields_keys {
     double seg[2][4];   /* a0 a1 b0 b1 per segment */
-    int join, trim;
-    long p;
+    dfl_rfunc_join join;
+    dfl_rfunc_trim trim;
+    int p;
     double band;
     dfl_grid grid;
     dfl_field_write_opts out;
 } fields_keys;
 
-static dfl_status read_segment(const dfl_cfg *cfg, const char *key, double *s, dfl_err *err)
-{
-    double *pts = NULL;
-    size_t n = 0;
-    char w[600];
-    dfl_status st = dfl_cfg_points(cfg, "study", key, 2, 2, &pts, &n, err);
-    if (st != DFL_OK) return st;
-    if (n != 2) {
-        free(pts);
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected the 2 end points of a segment, got %zu",
-                           dfl_cfg_where(cfg, "study", key, w, sizeof w), n);
-    }
-    memcpy(s, pts, 4 * sizeof *s);
-    free(pts);
-    return DFL_OK;
-}
-
 static dfl_status read_keys(const dfl_cfg *cfg, fields_keys *k, dfl_err *err)
 {
-    static const char *const joins[] = {"requiv", "rconj", "requiv_corrected"};
-    static const char *const trims[] = {"disk", "disk_smooth", "strip", "strip_smooth"};
     char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
-    if ((st = read_segment(cfg, "segment_a", k->seg[0], err))) return st;
-    if ((st = read_segment(cfg, "segment_b", k->seg[1], err))) return st;
-    if ((st = dfl_cfg_enum_opt(cfg, "study", "join", joins, 3, 0, &k->join, err))) return st;
-    if ((st = dfl_cfg_int_opt(cfg, "study", "p", 2, 1, DFL_RFUNC_P_MAX, &k->p, err))) return st;
-    if ((st = dfl_rfunc_join_check((dfl_rfunc_join)k->join, (int)k->p, err))) {
-        dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "p", w, sizeof w));
+    static const char *const seg_what = "the 2 end points of a segment";
+    if ((st = dfl_points_n_from_cfg(cfg, "study", "segment_a", 2, 2, k->seg[0], seg_what, err)))
         return st;
-    }
-    if ((st = dfl_cfg_enum_opt(cfg, "study", "trim", trims, 4, 0, &k->trim, err))) return st;
+    if ((st = dfl_points_n_from_cfg(cfg, "study", "segment_b", 2, 2, k->seg[1], seg_what, err)))
+        return st;
+    if ((st = dfl_rfunc_join_p_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
+    if ((st = dfl_rfunc_trim_from_cfg(cfg, "study", &k->trim, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.1, 0.0, 1e300, &k->band, err))) return st;
     if (!(k->band > 0.0))
         return dfl_err_set(err, DFL_E_INPUT, "%s: expected band > 0, got %g",
@@ -108,10 +91,10 @@ static dfl_status build(const fields_keys *k, int sel, const char *where, dfl_fi
                         dfl_err *err)
 {
     dfl_rfield *r = NULL;
-    dfl_status st = dfl_rfield_new(2, (dfl_rfunc_join)k->join, (int)k->p, &r, err);
+    dfl_status st = dfl_rfield_new(2, k->join, k->p, &r, err);
     for (int i = 0; i < 2 && st == DFL_OK; i++)
         if (sel >> i & 1)
-            st = dfl_rfield_add_segment(r, k->seg[i], k->seg[i] + 2, (dfl_rfunc_trim)k->trim, err);
+            st = dfl_rfield_add_segment(r, k->seg[i], k->seg[i] + 2, k->trim, err);
     if (st == DFL_OK && sel == 3 && k->seg[0][2] == k->seg[1][0] && k->seg[0][3] == k->seg[1][1])
         st = dfl_rfield_add_vertex(r, k->seg[1], 0, 1, err);
     if (st != DFL_OK) {
@@ -145,6 +128,82 @@ static void gs_add(gstats *s, double v)
     if (v > s->max) s->max = v;
 }
 
+/* u, grad u of the three fields (a, b, join) on the grid, and the exact
+ * distances d to A, to B and to their union; the arrays are allocated
+ * here (the caller frees them, also on failure). */
+static dfl_status sample_fields(const fields_keys *k, const dfl_field *f, int threads,
+                                double **u, double **gu, double **d, dfl_err *err)
+{
+    const size_t m = dfl_grid_size(&k->grid);
+    for (int i = 0; i < 3; i++) {
+        u[i] = malloc(m * sizeof(double));
+        gu[i] = malloc(2 * m * sizeof(double));
+        d[i] = malloc(m * sizeof(double));
+        if (!u[i] || !gu[i] || !d[i])
+            return dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu nodes", m);
+    }
+    dfl_status st = DFL_OK;
+    for (int i = 0; i < 3 && st == DFL_OK; i++)
+        st = dfl_field_sample(&f[i], &k->grid, threads, u[i], gu[i], err);
+    if (st != DFL_OK) return st;
+    for (size_t j = 0; j < m; j++) {
+        double x[2];
+        dfl_grid_node(&k->grid, j, x);
+        d[0][j] = seg_dist(k->seg[0], x);
+        d[1][j] = seg_dist(k->seg[1], x);
+        d[2][j] = fmin(d[0][j], d[1][j]);
+    }
+    return DFL_OK;
+}
+
+/* One field's statistics over the grid (see the rows at the top). */
+typedef struct field_stats {
+    gstats all, band, trim;   /* |grad u| off the set; in the band; ||grad u| - 1| in the trim */
+    double l1, linf, l1b, linfb; /* sum and max of |u - d|: all nodes, band */
+    long nb;                  /* band nodes */
+    double vdev;              /* single segments: max |u - |f|| where t > 0 */
+    double rmin, rmax;        /* the join: range of u / min(h_a, h_b) */
+} field_stats;
+
+static void field_stats_compute(const fields_keys *k, const dfl_rfunc_seg *seg, int i, size_t m,
+                                double *const *u, double *const *gu, double *const *d,
+                                field_stats *fs)
+{
+    gstats all, band, trim;
+    gs_init(&all);
+    gs_init(&band);
+    gs_init(&trim);
+    double l1 = 0, linf = 0, l1b = 0, linfb = 0, vdev = 0, rmin = INFINITY, rmax = -INFINITY;
+    long nb = 0;
+    for (size_t j = 0; j < m; j++) {
+        const double e = fabs(u[i][j] - d[i][j]);
+        l1 += e;
+        if (e > linf) linf = e;
+        if (d[i][j] <= k->band) {
+            nb++;
+            l1b += e;
+            if (e > linfb) linfb = e;
+        }
+        if (!(u[i][j] > 0.0)) continue;
+        const double gn = hypot(gu[i][2 * j], gu[i][2 * j + 1]);
+        gs_add(&all, gn);
+        if (d[i][j] <= k->band) gs_add(&band, gn);
+        double x[2];
+        dfl_grid_node(&k->grid, j, x);
+        if (i < 2 && dfl_rfunc_seg_trim(&seg[i], x, NULL) > 0.0) {
+            gs_add(&trim, fabs(gn - 1.0));
+            const double fe = fabs(fabs(dfl_rfunc_seg_line(&seg[i], x, NULL)) - u[i][j]);
+            if (fe > vdev) vdev = fe;
+        }
+        if (i == 2) {
+            const double r = u[2][j] / fmin(u[0][j], u[1][j]);
+            if (r < rmin) rmin = r;
+            if (r > rmax) rmax = r;
+        }
+    }
+    *fs = (field_stats){all, band, trim, l1, linf, l1b, linfb, nb, vdev, rmin, rmax};
+}
+
 static dfl_status fields_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
                              dfl_err *err)
 {
@@ -166,70 +225,24 @@ static dfl_status fields_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
 
     dfl_rfunc_seg seg[2];
     for (int i = 0; i < 2 && st == DFL_OK; i++)
-        st = dfl_rfunc_seg_init(2, k.seg[i], k.seg[i] + 2, (dfl_rfunc_trim)k.trim, &seg[i], err);
+        st = dfl_rfunc_seg_init(2, k.seg[i], k.seg[i] + 2, k.trim, &seg[i], err);
+    if (st == DFL_OK) st = sample_fields(&k, f, ctx->threads, u, gu, d, err);
     if (st != DFL_OK) goto done;
 
     const size_t m = dfl_grid_size(&k.grid);
-    for (int i = 0; i < 3; i++) {
-        u[i] = malloc(m * sizeof(double));
-        gu[i] = malloc(2 * m * sizeof(double));
-        d[i] = malloc(m * sizeof(double));
-        if (!u[i] || !gu[i] || !d[i]) {
-            st = dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu nodes", m);
-            goto done;
-        }
-    }
-    for (int i = 0; i < 3 && st == DFL_OK; i++)
-        st = dfl_field_sample(&f[i], &k.grid, ctx->threads, u[i], gu[i], err);
-    if (st != DFL_OK) goto done;
-    for (size_t j = 0; j < m; j++) {
-        double x[2];
-        dfl_grid_node(&k.grid, j, x);
-        d[0][j] = seg_dist(k.seg[0], x);
-        d[1][j] = seg_dist(k.seg[1], x);
-        d[2][j] = fmin(d[0][j], d[1][j]);
-    }
-
     const int p = (int)k.p;
     static const char *const names[3] = {"a", "b", "join"};
     for (int i = 0; i < 3 && st == DFL_OK; i++) {
-        gstats all, band, trim;
-        gs_init(&all);
-        gs_init(&band);
-        gs_init(&trim);
-        double l1 = 0, linf = 0, l1b = 0, linfb = 0, vdev = 0, rmin = INFINITY, rmax = -INFINITY;
-        long nb = 0;
-        for (size_t j = 0; j < m; j++) {
-            const double e = fabs(u[i][j] - d[i][j]);
-            l1 += e;
-            if (e > linf) linf = e;
-            if (d[i][j] <= k.band) {
-                nb++;
-                l1b += e;
-                if (e > linfb) linfb = e;
-            }
-            if (!(u[i][j] > 0.0)) continue;
-            const double gn = hypot(gu[i][2 * j], gu[i][2 * j + 1]);
-            gs_add(&all, gn);
-            if (d[i][j] <= k.band) gs_add(&band, gn);
-            double x[2];
-            dfl_grid_node(&k.grid, j, x);
-            if (i < 2 && dfl_rfunc_seg_trim(&seg[i], x, NULL) > 0.0) {
-                gs_add(&trim, fabs(gn - 1.0));
-                const double fe = fabs(fabs(dfl_rfunc_seg_line(&seg[i], x, NULL)) - u[i][j]);
-                if (fe > vdev) vdev = fe;
-            }
-            if (i == 2) {
-                const double r = u[2][j] / fmin(u[0][j], u[1][j]);
-                if (r < rmin) rmin = r;
-                if (r > rmax) rmax = r;
-            }
-        }
+        field_stats fs;
+        field_stats_compute(&k, seg, i, m, u, gu, d, &fs);
+        const gstats all = fs.all, band = fs.band, trim = fs.trim;
+        const double l1 = fs.l1, linf = fs.linf, l1b = fs.l1b, linfb = fs.linfb, vdev = fs.vdev;
+        const double rmin = fs.rmin, rmax = fs.rmax;
+        const long nb = fs.nb;
         char stem[32], path[4400];
         snprintf(stem, sizeof stem, "field_%s", names[i]);
         dfl_study_path(ctx, stem, "vti", path, sizeof path);
-        const char *base = strrchr(path, '/');
-        base = base ? base + 1 : path;
+        const char *base = dfl_path_base(path);
         st = dfl_table_row(table, err);
 #define SETI(c, v) \
     if (!st) st = dfl_table_set_int(table, c, (long)(v), err)

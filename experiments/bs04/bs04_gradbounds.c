@@ -52,18 +52,22 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/vec.h"
 #include "harness/experiment.h"
 #include "rfunc/gradbound.h"
 #include "bs04/vjoin.h"
 
-static const double PI = 3.14159265358979323846;
-static const double DEG = 180.0 / 3.14159265358979323846;
+static const double DEG = 180.0 / DFL_PI;
 /* Rounding allowance of the band tests: F_i (pow) and |grad u| (the
  * field's own arithmetic) each carry a few ulps. */
 static const double BAND_TOL = 1e-12;
 
-static const char *const join_names[2] = {"requiv", "rconj"};
-static const dfl_rfunc_join join_of[2] = {DFL_RFUNC_REQUIV, DFL_RFUNC_RCONJ};
+/* eq. 13-14 have two arguments: the study offers the first two joins of
+ * rfunc/join.h's list (requiv, rconj) under their names there. */
+#define GB_NJOINS 2
+_Static_assert(DFL_RFUNC_REQUIV == 0 && DFL_RFUNC_RCONJ == 1, "requiv, rconj lead the join list");
+static const char *const *const join_names = dfl_rfunc_join_names;
+static dfl_rfunc_join join_of(int j) { return (dfl_rfunc_join)j; }
 
 typedef struct gb_keys {
     dfl_vjoin vj;
@@ -96,9 +100,10 @@ static dfl_status read_keys(const dfl_cfg *cfg, gb_keys *k, dfl_err *err)
     memset(k, 0, sizeof *k);
     if ((st = dfl_vjoin_from_cfg(cfg, "study", &k->vj, err))) return st;
     k->alpha_deg = k->vj.alpha_deg;
-    if ((st = dfl_cfg_enum_opt(cfg, "study", "join", join_names, 2, 0, &k->join, err))) return st;
+    if ((st = dfl_cfg_enum_opt(cfg, "study", "join", join_names, GB_NJOINS, 0, &k->join, err)))
+        return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "p", 2, 1, DFL_RFUNC_P_MAX, &k->p, err))) return st;
-    if ((st = dfl_gradbound_check(join_of[k->join], (int)k->p, err)))
+    if ((st = dfl_gradbound_check(join_of(k->join), (int)k->p, err)))
         return dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "p", w, sizeof w));
     if ((st = dfl_cfg_doubles(cfg, "study", "radii", 1, &k->radii, &k->nradii, err))) return st;
     for (size_t i = 0; i < k->nradii; i++)
@@ -141,13 +146,13 @@ static dfl_status write_fig5(const dfl_study_ctx *ctx, const gb_keys *k, dfl_err
 {
     dfl_table *tb = dfl_table_new(), *tc = dfl_table_new();
     dfl_status st = tb && tc ? DFL_OK : dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-    for (int j = 0; j < 2 && st == DFL_OK; j++)
+    for (int j = 0; j < GB_NJOINS && st == DFL_OK; j++)
         for (size_t i = 0; i < k->nfig5 && st == DFL_OK; i++) {
             const int p = (int)k->fig5_p[i];
             for (long m = 0; m < k->fig5_nphi && st == DFL_OK; m++) {
                 const double phi_deg = 90.0 * (double)m / (double)(k->fig5_nphi - 1);
                 double F1, F2, lo, hi;
-                dfl_gradbound_partials(join_of[j], p, phi_deg / DEG, &F1, &F2);
+                dfl_gradbound_partials(join_of(j), p, phi_deg / DEG, &F1, &F2);
                 dfl_gradbound_band(F1, F2, 1.0, 1.0, &lo, &hi);
                 st = dfl_table_row(tb, err);
                 if (!st) st = dfl_table_set_string(tb, "join", join_names[j], err);
@@ -159,10 +164,10 @@ static dfl_status write_fig5(const dfl_study_ctx *ctx, const gb_keys *k, dfl_err
                 if (!st) st = dfl_table_set_double(tb, "upper", hi, err);
             }
             double phi_min, smax, dmax, F1, F2, S0a, S0b, S9a, S9b;
-            const double smin = dfl_gradbound_sum_min(join_of[j], p, &phi_min, &smax, &dmax);
-            dfl_gradbound_partials(join_of[j], p, 0.25 * PI, &F1, &F2);
-            dfl_gradbound_partials(join_of[j], p, 0.0, &S0a, &S0b);
-            dfl_gradbound_partials(join_of[j], p, 0.5 * PI, &S9a, &S9b);
+            const double smin = dfl_gradbound_sum_min(join_of(j), p, &phi_min, &smax, &dmax);
+            dfl_gradbound_partials(join_of(j), p, 0.25 * DFL_PI, &F1, &F2);
+            dfl_gradbound_partials(join_of(j), p, 0.0, &S0a, &S0b);
+            dfl_gradbound_partials(join_of(j), p, 0.5 * DFL_PI, &S9a, &S9b);
             if (!st) st = dfl_table_row(tc, err);
             if (!st) st = dfl_table_set_string(tc, "join", join_names[j], err);
             if (!st) st = dfl_table_set_int(tc, "p", p, err);
@@ -211,8 +216,8 @@ static double circ_grad(void *ctx, double theta)
 /* Angular distance (radians, in [0, pi]) between two directions. */
 static double ang_dist(double a, double b)
 {
-    double d = fmod(fabs(a - b), 2.0 * PI);
-    return d > PI ? 2.0 * PI - d : d;
+    double d = fmod(fabs(a - b), 2.0 * DFL_PI);
+    return d > DFL_PI ? 2.0 * DFL_PI - d : d;
 }
 
 typedef struct circle_stats {
@@ -234,9 +239,9 @@ static dfl_status measure_circle(const gb_keys *k, const dfl_field *f, double r,
 {
     const size_t n = (size_t)k->samples;
     const double hfd = k->fd_rel * r;
-    const dfl_rfunc_join join = join_of[k->join];
+    const dfl_rfunc_join join = join_of(k->join);
     for (size_t i = 0; i < n; i++) {
-        const double t = 2.0 * PI * ((double)i + 0.5) / (double)n;
+        const double t = 2.0 * DFL_PI * ((double)i + 0.5) / (double)n;
         double *x = ws->pts + 2 * i;
         x[0] = r * cos(t);
         x[1] = r * sin(t);
@@ -283,7 +288,7 @@ static dfl_status measure_circle(const gb_keys *k, const dfl_field *f, double r,
         const double gy = (fv[2] - fv[3]) / (fp[5] - fp[7]);
         cs->fd_maxdiff = fmax(cs->fd_maxdiff, fabs(hypot(gx, gy) - G));
         if (prof && i % stride == stride / 2) {
-            const double t = 2.0 * PI * ((double)i + 0.5) / (double)n;
+            const double t = 2.0 * DFL_PI * ((double)i + 0.5) / (double)n;
             st = dfl_table_row(prof, err);
             if (!st) st = dfl_table_set_double(prof, "r_rel", r / k->vj.length, err);
             if (!st) st = dfl_table_set_double(prof, "theta_deg", t * DEG, err);
@@ -302,15 +307,15 @@ static dfl_status measure_circle(const gb_keys *k, const dfl_field *f, double r,
     if (!isfinite(cs->gmin))
         return dfl_err_set(err, DFL_E_NUMERIC, "bs04_gradbounds: every sample lies on the set");
     /* refine the minimum between the neighbouring samples */
-    const double dt = 2.0 * PI / (double)n;
-    const double t0 = 2.0 * PI * ((double)imin + 0.5) / (double)n;
+    const double dt = 2.0 * DFL_PI / (double)n;
+    const double t0 = 2.0 * DFL_PI * ((double)imin + 0.5) / (double)n;
     circ c = {f, r};
     double gref;
     const double tref = dfl_gradbound_golden(circ_grad, &c, t0 - dt, t0 + dt, 1e-12, &gref);
     cs->theta_min = t0;
     if (gref < cs->gmin) {
         cs->gmin = gref;
-        cs->theta_min = fmod(tref + 2.0 * PI, 2.0 * PI);
+        cs->theta_min = fmod(tref + 2.0 * DFL_PI, 2.0 * DFL_PI);
     }
     return DFL_OK;
 }
@@ -318,11 +323,12 @@ static dfl_status measure_circle(const gb_keys *k, const dfl_field *f, double r,
 static dfl_status put_row(dfl_table *t, const gb_keys *k, double r, const circle_stats *cs,
                           const dfl_field *f, dfl_err *err)
 {
-    const dfl_rfunc_join join = join_of[k->join];
+    const dfl_rfunc_join join = join_of(k->join);
     const int p = (int)k->p;
     const double bis = dfl_vjoin_bisector(&k->vj);
     double dmin = ang_dist(cs->theta_min, bis);
-    if (fabs(k->vj.alpha - PI) < 1e-15) dmin = fmin(dmin, ang_dist(cs->theta_min, bis + PI));
+    if (fabs(k->vj.alpha - DFL_PI) < 1e-15)
+        dmin = fmin(dmin, ang_dist(cs->theta_min, bis + DFL_PI));
     circ c = {f, r};
     const double gbis = circ_grad(&c, bis);
     int where;
@@ -330,7 +336,7 @@ static dfl_status put_row(dfl_table *t, const gb_keys *k, double r, const circle
     double phi_min;
     const double smin = dfl_gradbound_sum_min(join, p, &phi_min, NULL, NULL);
     double F1, F2;
-    dfl_gradbound_partials(join, p, 0.25 * PI, &F1, &F2);
+    dfl_gradbound_partials(join, p, 0.25 * DFL_PI, &F1, &F2);
     dfl_status st = dfl_table_row(t, err);
     if (!st) st = dfl_table_set_double(t, "alpha", k->alpha_deg, err);
     if (!st) st = dfl_table_set_int(t, "p", p, err);
@@ -375,7 +381,7 @@ static dfl_status gb_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table
     dfl_table *prof = NULL;
     dfl_status st = read_keys(cfg, &k, err);
     if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
-    if (st == DFL_OK) st = dfl_vjoin_field(&k.vj, join_of[k.join], (int)k.p, &f, err);
+    if (st == DFL_OK) st = dfl_vjoin_field(&k.vj, join_of(k.join), (int)k.p, &f, err);
     if (st != DFL_OK) goto done;
     int want_profile = 0;
     for (size_t i = 0; i < k.nprofile; i++)

@@ -40,6 +40,8 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "cfg/rfunc_cfg.h"
+#include "core/vec.h"
 #include "harness/experiment.h"
 #include "field/metrics.h"
 #include "field/sample.h"
@@ -47,9 +49,9 @@
 #include "geom/polygonize.h"
 #include "io/vtk.h"
 #include "cfg/grid_cfg.h"
+#include "cfg/list_cfg.h"
 #include "rfunc/rfield.h"
 
-#define PI 3.14159265358979323846
 
 typedef struct keys {
     double *region;
@@ -67,23 +69,14 @@ typedef struct keys {
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 {
-    double *s = NULL;
-    size_t n;
-    char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
     if ((st = dfl_cfg_points(cfg, "study", "region", 2, 3, &k->region, &k->nreg, err))) return st;
-    if ((st = dfl_cfg_points(cfg, "study", "segment", 2, 2, &s, &n, err))) return st;
-    if (n != 2) {
-        free(s);
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected 2 end points, got %zu",
-                           dfl_cfg_where(cfg, "study", "segment", w, sizeof w), n);
-    }
-    memcpy(k->seg, s, sizeof k->seg);
-    free(s);
+    if ((st = dfl_points_n_from_cfg(cfg, "study", "segment", 2, 2, k->seg, "2 end points", err)))
+        return st;
     if ((st = dfl_cfg_vec(cfg, "study", "point", 2, k->pt, err))) return st;
-    if ((st = dfl_bs04_join_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
-    if ((st = dfl_bs04_trim_from_cfg(cfg, "study", &k->trim, err))) return st;
+    if ((st = dfl_rfunc_join_p_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
+    if ((st = dfl_rfunc_trim_from_cfg(cfg, "study", &k->trim, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.05, 0.0, 1e300, &k->band, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "delta", 1e-4, 1e-12, 1.0, &k->delta, err)))
         return st;
@@ -134,6 +127,81 @@ static void probe(const dfl_field *f, const double *x, double delta, bstat *b)
     b->grad = fmax(b->grad, fabs(hypot(g[0], g[1]) - 1.0));
 }
 
+/* The region, the segment and the point, in that order (the join's part
+ * order); geometry errors name the key. */
+static dfl_status add_parts(const dfl_cfg *cfg, const keys *k, dfl_rfield *rf, dfl_err *err)
+{
+    char w[600];
+    dfl_status st = dfl_rfield_add_region(rf, k->region, k->nreg, err);
+    if (st) return dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "region", w, sizeof w));
+    st = dfl_rfield_add_segment(rf, k->seg, k->seg + 2, k->trim, err);
+    if (st) return dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "segment", w, sizeof w));
+    return dfl_rfield_add_point(rf, k->pt, err);
+}
+
+/* Metrics over the m samples whose mask is set (through compacted copies). */
+static dfl_status masked_metrics(size_t m, const double *u, const double *gu, const double *d,
+                                 const unsigned char *mask, dfl_metrics *out, dfl_err *err)
+{
+    size_t nb2 = 0;
+    double *bu = malloc(m * sizeof *bu), *bg = malloc(2 * m * sizeof *bg),
+           *bd = malloc(m * sizeof *bd);
+    dfl_status st = DFL_OK;
+    if (!bu || !bg || !bd) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    for (size_t i = 0; i < m && !st; i++) {
+        if (!mask[i]) continue;
+        bu[nb2] = u[i];
+        bg[2 * nb2] = gu[2 * i];
+        bg[2 * nb2 + 1] = gu[2 * i + 1];
+        bd[nb2++] = d[i];
+    }
+    if (!st) st = dfl_metrics_compute(nb2, 2, bu, bg, bd, 0.0, out, err);
+    free(bu), free(bg), free(bd);
+    return st;
+}
+
+/* Samples at offset delta along the outward normals of the parts (see the
+ * top): the region's edges (orientation o), both sides of the segment, a
+ * circle around the point. */
+static void boundary_probes(const keys *k, const dfl_field *f, double o, bstat *br, bstat *bs,
+                            bstat *bp)
+{
+    *br = *bs = *bp = (bstat){0, 0};
+    const size_t nb = (size_t)k->nb;
+    for (size_t e = 0; e < k->nreg; e++) {
+        const double *a = k->region + 2 * e, *b = k->region + 2 * ((e + 1) % k->nreg);
+        const double L = hypot(b[0] - a[0], b[1] - a[1]);
+        const double nx = o * (b[1] - a[1]) / L, ny = -o * (b[0] - a[0]) / L; /* outward */
+        for (size_t i = 0; i < nb; i++) {
+            /* the middle 80% of the edge: at the corners two half-planes
+             * are violated and h is the corner distance (still exact for a
+             * rectangle, but not at offset delta along one normal) */
+            const double t = 0.1 + 0.8 * ((double)i + 0.5) / (double)nb;
+            const double x[2] = {a[0] + t * (b[0] - a[0]) + k->delta * nx,
+                                 a[1] + t * (b[1] - a[1]) + k->delta * ny};
+            probe(f, x, k->delta, br);
+        }
+    }
+    {
+        const double *a = k->seg, *b = k->seg + 2;
+        const double L = hypot(b[0] - a[0], b[1] - a[1]);
+        const double nx = (b[1] - a[1]) / L, ny = -(b[0] - a[0]) / L;
+        for (size_t i = 0; i < nb; i++) {
+            const double t = 0.1 + 0.8 * ((double)i + 0.5) / (double)nb;
+            for (int sgn = -1; sgn <= 1; sgn += 2) {
+                const double x[2] = {a[0] + t * (b[0] - a[0]) + sgn * k->delta * nx,
+                                     a[1] + t * (b[1] - a[1]) + sgn * k->delta * ny};
+                probe(f, x, k->delta, bs);
+            }
+        }
+    }
+    for (size_t i = 0; i < nb; i++) {
+        const double ph = 2 * DFL_PI * ((double)i + 0.5) / (double)nb;
+        const double x[2] = {k->pt[0] + k->delta * cos(ph), k->pt[1] + k->delta * sin(ph)};
+        probe(f, x, k->delta, bp);
+    }
+}
+
 static dfl_status hetero_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
                              dfl_err *err)
 {
@@ -141,15 +209,11 @@ static dfl_status hetero_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
     dfl_field f = {0};
     double *u = NULL, *gu = NULL, *d = NULL, *outline = NULL;
     unsigned char *mask = NULL;
-    char path[4400], w[600];
+    char path[4400];
     dfl_rfield *rf = NULL;
     dfl_status st = read_keys(cfg, &k, err);
     if (!st) st = dfl_rfield_new(2, k.join, k.p, &rf, err);
-    if (!st && (st = dfl_rfield_add_region(rf, k.region, k.nreg, err)))
-        dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "region", w, sizeof w));
-    if (!st && (st = dfl_rfield_add_segment(rf, k.seg, k.seg + 2, k.trim, err)))
-        dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "segment", w, sizeof w));
-    if (!st) st = dfl_rfield_add_point(rf, k.pt, err);
+    if (!st) st = add_parts(cfg, &k, rf, err);
     if (!st) st = dfl_cfg_check_used(cfg, err);
     if (st) {
         dfl_rfield_free(rf);
@@ -179,60 +243,10 @@ static dfl_status hetero_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
     dfl_metrics all, inb;
     dfl_gradstat gs;
     if ((st = dfl_metrics_compute(m, 2, u, gu, d, 0.0, &all, err))) goto done;
-    /* band metrics over the masked samples (compacted copies) */
-    {
-        size_t nb2 = 0;
-        double *bu = malloc(m * sizeof *bu), *bg = malloc(2 * m * sizeof *bg),
-               *bd = malloc(m * sizeof *bd);
-        if (!bu || !bg || !bd) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-        for (size_t i = 0; i < m && !st; i++) {
-            if (!mask[i]) continue;
-            bu[nb2] = u[i];
-            bg[2 * nb2] = gu[2 * i];
-            bg[2 * nb2 + 1] = gu[2 * i + 1];
-            bd[nb2++] = d[i];
-        }
-        if (!st) st = dfl_metrics_compute(nb2, 2, bu, bg, bd, 0.0, &inb, err);
-        free(bu), free(bg), free(bd);
-        if (st) goto done;
-    }
+    if ((st = masked_metrics(m, u, gu, d, mask, &inb, err))) goto done;
     dfl_bs04_gradstat(m, 2, gu, mask, &gs);
-
-    /* boundary samples at offset delta along the outward normal */
-    bstat br = {0, 0}, bs = {0, 0}, bp = {0, 0};
-    const size_t nb = (size_t)k.nb;
-    for (size_t e = 0; e < k.nreg; e++) {
-        const double *a = k.region + 2 * e, *b = k.region + 2 * ((e + 1) % k.nreg);
-        const double L = hypot(b[0] - a[0], b[1] - a[1]);
-        const double nx = o * (b[1] - a[1]) / L, ny = -o * (b[0] - a[0]) / L; /* outward */
-        for (size_t i = 0; i < nb; i++) {
-            /* the middle 80% of the edge: at the corners two half-planes
-             * are violated and h is the corner distance (still exact for a
-             * rectangle, but not at offset delta along one normal) */
-            const double t = 0.1 + 0.8 * ((double)i + 0.5) / (double)nb;
-            const double x[2] = {a[0] + t * (b[0] - a[0]) + k.delta * nx,
-                                 a[1] + t * (b[1] - a[1]) + k.delta * ny};
-            probe(&f, x, k.delta, &br);
-        }
-    }
-    {
-        const double *a = k.seg, *b = k.seg + 2;
-        const double L = hypot(b[0] - a[0], b[1] - a[1]);
-        const double nx = (b[1] - a[1]) / L, ny = -(b[0] - a[0]) / L;
-        for (size_t i = 0; i < nb; i++) {
-            const double t = 0.1 + 0.8 * ((double)i + 0.5) / (double)nb;
-            for (int sgn = -1; sgn <= 1; sgn += 2) {
-                const double x[2] = {a[0] + t * (b[0] - a[0]) + sgn * k.delta * nx,
-                                     a[1] + t * (b[1] - a[1]) + sgn * k.delta * ny};
-                probe(&f, x, k.delta, &bs);
-            }
-        }
-    }
-    for (size_t i = 0; i < nb; i++) {
-        const double ph = 2 * PI * ((double)i + 0.5) / (double)nb;
-        const double x[2] = {k.pt[0] + k.delta * cos(ph), k.pt[1] + k.delta * sin(ph)};
-        probe(&f, x, k.delta, &bp);
-    }
+    bstat br, bs, bp;
+    boundary_probes(&k, &f, o, &br, &bs, &bp);
 
     st = dfl_table_row(table, err);
     if (!st) st = dfl_table_set_string(table, "join", dfl_rfunc_join_name(k.join), err);

@@ -3,15 +3,16 @@
  * jets, beside the order the theory predicts.  One sweep point = one
  * (join, p, trim); one CSV row per point.
  *
- * Keys.  [field] is the polyline field of experiments/rfunc_cfg.h, read
- * here too because the measurement needs its segments: kind = rfunc,
- * vertices (2D, required: `curve` is not accepted), closed, join, p, trim.
+ * Keys.  [field] is the polyline field of experiments/cfg/rfunc_cfg.h,
+ * whose parsed description (dfl_rfunc_field_spec) also gives the
+ * measurement its segments: kind = rfunc, vertices (2D, required: `curve`
+ * is not accepted), closed, join, p, trim.
  * [study]:
  *   fractions = 0.2 0.35 0.5 0.65 0.8   interior points x = a + l (b - a) of
  *               every segment, l in (0, 1); rays along +n and -n
  *   K         = 16     jet order (2..24); must exceed the predicted order
  *                      to see the first non-zero coefficient
- *   tol       = 1e-9   zero test of experiments/normorder.h, length scale
+ *   tol       = 1e-9   zero test of field/normorder.h, length scale
  *                      L = the segment's length
  *   fan       = 9      rays per free end point, spread over the open
  *                      half-plane of outward directions (Rvachev's
@@ -75,20 +76,23 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/vec.h"
 #include "harness/experiment.h"
 #include "cfg/field_cfg.h"
+#include "cfg/rfunc_cfg.h"
 #include "field/normorder.h"
 #include "rfunc/join.h"
 #include "rfunc/segment.h"
 
 #define NORM_MAX_FRAC 64
-#define NORM_PI 3.14159265358979323846
 
 typedef struct norm_keys {
-    int join, trim;
+    dfl_rfunc_field_spec spec; /* [field] as parsed; owns v */
+    dfl_rfunc_join join;       /* the spec's values, for short */
+    dfl_rfunc_trim trim;
     long p;
     bool closed;
-    double *v;          /* 2n vertex coordinates */
+    const double *v;           /* 2n vertex coordinates */
     size_t n;
     double *frac;
     size_t nfrac;
@@ -129,27 +133,31 @@ static void ext_add(extremes *e, const dfl_normorder *r)
 
 static dfl_status read_keys(const dfl_cfg *cfg, norm_keys *k, dfl_err *err)
 {
-    static const char *const joins[] = {"requiv", "rconj", "requiv_corrected"};
-    static const char *const trims[] = {"disk", "disk_smooth", "strip", "strip_smooth"};
     char w[600];
-    const char *kind;
+    const dfl_field_kind *kind;
     dfl_status st;
     memset(k, 0, sizeof *k);
-    if ((st = dfl_cfg_string(cfg, "field", "kind", &kind, err))) return st;
-    if (strcmp(kind, "rfunc") != 0)
+    if ((st = dfl_field_kind_from_cfg(cfg, "field", &kind, err))) return st;
+    if (kind->build != dfl_rfunc_field_from_cfg)
         return dfl_err_set(err, DFL_E_INPUT, "%s: bs04_normalization needs kind = rfunc, got '%s'",
-                           dfl_cfg_where(cfg, "field", "kind", w, sizeof w), kind);
-    if (dfl_cfg_has(cfg, "field", "curve"))
+                           dfl_cfg_where(cfg, "field", "kind", w, sizeof w), kind->name);
+    if ((st = dfl_rfunc_spec_from_cfg(cfg, "field", &k->spec, err))) return st;
+    if (k->spec.curve)
         return dfl_err_set(err, DFL_E_INPUT,
                            "%s: bs04_normalization measures at the segments of [field] vertices;"
                            " give vertices, not a curve",
                            dfl_cfg_where(cfg, "field", "curve", w, sizeof w));
-    if ((st = dfl_cfg_enum_opt(cfg, "field", "join", joins, 3, 0, &k->join, err))) return st;
-    if ((st = dfl_cfg_int_opt(cfg, "field", "p", 2, 1, DFL_RFUNC_P_MAX, &k->p, err))) return st;
-    if ((st = dfl_cfg_enum_opt(cfg, "field", "trim", trims, 4, 0, &k->trim, err))) return st;
-    if ((st = dfl_cfg_bool_opt(cfg, "field", "closed", false, &k->closed, err))) return st;
-    if ((st = dfl_cfg_points(cfg, "field", "vertices", 2, k->closed ? 3 : 2, &k->v, &k->n, err)))
-        return st;
+    if (k->spec.dim != 2)
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "%s: bs04_normalization measures planar polylines, expected points of"
+                           " 2 numbers, got %d",
+                           dfl_cfg_where(cfg, "field", "vertices", w, sizeof w), k->spec.dim);
+    k->join = k->spec.join;
+    k->trim = k->spec.trim;
+    k->p = k->spec.p;
+    k->closed = k->spec.closed;
+    k->v = k->spec.v;
+    k->n = k->spec.n;
     if ((st = dfl_cfg_doubles(cfg, "study", "fractions", 1, &k->frac, &k->nfrac, err))) return st;
     if (k->nfrac > NORM_MAX_FRAC)
         return dfl_err_set(err, DFL_E_INPUT, "%s: at most %d fractions",
@@ -164,11 +172,6 @@ static dfl_status read_keys(const dfl_cfg *cfg, norm_keys *k, dfl_err *err)
     if ((st = dfl_cfg_double_opt(cfg, "study", "tol", 1e-9, 1e-15, 1e-2, &k->tol, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "fan", 9, 1, 1000, &k->fan, err))) return st;
     return DFL_OK;
-}
-
-static int smooth_trim(int trim)
-{
-    return trim == DFL_RFUNC_TRIM_DISK_SMOOTH || trim == DFL_RFUNC_TRIM_STRIP_SMOOTH;
 }
 
 /* Predicted first non-zero coefficient along the normal at x on segment i
@@ -284,6 +287,156 @@ static dfl_status measure(const dfl_field *f, const double *x, const double *dir
     return st;
 }
 
+/* The polyline's segments as library parts, for the theory (the field
+ * builder has accepted the same geometry). */
+static dfl_status make_segments(const norm_keys *k, dfl_rfunc_seg **out, size_t *nseg,
+                                dfl_err *err)
+{
+    const size_t ns = k->closed ? k->n : k->n - 1;
+    dfl_rfunc_seg *seg = calloc(ns, sizeof *seg);
+    if (!seg) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    dfl_status st = DFL_OK;
+    for (size_t i = 0; i < ns && st == DFL_OK; i++)
+        st = dfl_rfunc_seg_init(2, k->v + 2 * i, k->v + 2 * ((i + 1) % k->n), k->trim, &seg[i],
+                                err);
+    if (st != DFL_OK) {
+        free(seg);
+        return st;
+    }
+    *out = seg;
+    *nseg = ns;
+    return DFL_OK;
+}
+
+/* Interior rays: the minimum order over them and where it is reached. */
+typedef struct interior {
+    extremes ext;
+    dfl_normorder rmin;  /* the ray of the minimum (ties: the first) */
+    theory thmin;        /* predicted there */
+    size_t at_seg;
+    double at_frac, at_side;
+    double d1dev;        /* max |d1 - 1| */
+    double relerr;       /* max relative error of the predicted coefficient */
+    int capped_min;
+} interior;
+
+/* Rays along +n and -n at the fractions of every segment. */
+static dfl_status interior_rays(const norm_keys *k, const dfl_field *f, const dfl_rfunc_seg *seg,
+                                size_t nseg, interior *out, dfl_err *err)
+{
+    const int K = (int)k->K;
+    interior r;
+    memset(&r, 0, sizeof r);
+    ext_init(&r.ext);
+    dfl_status st = DFL_OK;
+    for (size_t i = 0; i < nseg && st == DFL_OK; i++)
+        for (size_t l = 0; l < k->nfrac && st == DFL_OK; l++)
+            for (int side = 1; side >= -1 && st == DFL_OK; side -= 2) {
+                const dfl_rfunc_seg *s = &seg[i];
+                const double x[2] = {s->a[0] + k->frac[l] * (s->b[0] - s->a[0]),
+                                     s->a[1] + k->frac[l] * (s->b[1] - s->a[1])};
+                const double dir[2] = {side * s->n1[0], side * s->n1[1]};
+                dfl_normorder m;
+                dfl_jet j;
+                if ((st = measure(f, x, dir, K, s->d, k->tol, &m, &j, err))) break;
+                double T = 0.0;
+                if (dfl_rfunc_trim_smooth(k->trim)) {
+                    const double t0 = dfl_rfunc_seg_trim(s, x, NULL);
+                    T = 1.0 / (32.0 * t0 * t0);
+                }
+                const theory th = predict(k, seg, nseg, i, x, 7, T);
+                if (th.k >= 1 && th.k <= K) {
+                    const double e = fabs(dfl_jet_coeff(&j, th.k) - th.coef) / fabs(th.coef);
+                    if (!(e <= r.relerr)) r.relerr = e; /* NAN propagates */
+                }
+                if (fabs(m.d1 - 1.0) > r.d1dev) r.d1dev = fabs(m.d1 - 1.0);
+                if (m.order < r.ext.omin) {
+                    r.rmin = m;
+                    r.thmin = th;
+                    r.at_seg = i;
+                    r.at_frac = k->frac[l];
+                    r.at_side = side;
+                    r.capped_min = m.capped;
+                }
+                ext_add(&r.ext, &m);
+            }
+    if (st == DFL_OK) *out = r;
+    return st;
+}
+
+/* Free end points (open polylines): a fan of outward directions. */
+static dfl_status end_fan_rays(const norm_keys *k, const dfl_field *f, const dfl_rfunc_seg *seg,
+                               size_t nseg, extremes *out, dfl_err *err)
+{
+    dfl_status st = DFL_OK;
+    ext_init(out);
+    if (k->closed) return DFL_OK;
+    for (int e = 0; e < 2 && st == DFL_OK; e++) {
+        const dfl_rfunc_seg *s = &seg[e ? nseg - 1 : 0];
+        const double *x = e ? s->b : s->a;
+        const double eo[2] = {e ? s->e[0] : -s->e[0], e ? s->e[1] : -s->e[1]};
+        for (long m = 0; m < k->fan && st == DFL_OK; m++) {
+            const double ph = -DFL_PI / 2 + DFL_PI * ((double)m + 0.5) / (double)k->fan;
+            const double dir[2] = {cos(ph) * eo[0] + sin(ph) * s->n1[0],
+                                   cos(ph) * eo[1] + sin(ph) * s->n1[1]};
+            dfl_normorder r;
+            if ((st = measure(f, x, dir, (int)k->K, s->d, k->tol, &r, NULL, err))) break;
+            ext_add(out, &r);
+        }
+    }
+    return st;
+}
+
+/* Free end points along the segment's normal (both sides), and the
+ * predicted minimum order there (*theory_min; 1 << 30 when none). */
+static dfl_status end_normal_rays(const norm_keys *k, const dfl_field *f,
+                                  const dfl_rfunc_seg *seg, size_t nseg, extremes *out,
+                                  int *theory_min, dfl_err *err)
+{
+    const int K = (int)k->K;
+    dfl_status st = DFL_OK;
+    ext_init(out);
+    *theory_min = 1 << 30;
+    if (k->closed) return DFL_OK;
+    for (int e = 0; e < 4 && st == DFL_OK; e++) {
+        const size_t i = e & 1 ? nseg - 1 : 0;
+        const dfl_rfunc_seg *s = &seg[i];
+        const double *x = e & 1 ? s->b : s->a;
+        const double sg = e & 2 ? -1.0 : 1.0;
+        const double dir[2] = {sg * s->n1[0], sg * s->n1[1]};
+        dfl_normorder r;
+        if ((st = measure(f, x, dir, K, s->d, k->tol, &r, NULL, err))) break;
+        ext_add(out, &r);
+        const theory th = predict(k, seg, nseg, i, x, 3, end_normal_a3(k->trim, s->d));
+        const int o = th.k ? th.k - 1 : K;
+        if (o < *theory_min) *theory_min = o;
+    }
+    return st;
+}
+
+/* Joining points: the outer bisector of every vertex with an outer side. */
+static dfl_status joint_rays(const norm_keys *k, const dfl_field *f, extremes *out, dfl_err *err)
+{
+    dfl_status st = DFL_OK;
+    ext_init(out);
+    for (size_t v = k->closed ? 0 : 1; v < (k->closed ? k->n : k->n - 1) && st == DFL_OK; v++) {
+        const double *pv = k->v + 2 * v;
+        const double *pa = k->v + 2 * (v == 0 ? k->n - 1 : v - 1),
+                     *pb = k->v + 2 * ((v + 1) % k->n);
+        double a1[2] = {pa[0] - pv[0], pa[1] - pv[1]}, a2[2] = {pb[0] - pv[0], pb[1] - pv[1]};
+        const double l1 = hypot(a1[0], a1[1]), l2 = hypot(a2[0], a2[1]);
+        double w[2] = {-(a1[0] / l1 + a2[0] / l2), -(a1[1] / l1 + a2[1] / l2)};
+        const double wl = hypot(w[0], w[1]);
+        if (!(wl > 1e-9)) continue; /* a straight continuation: no outer side */
+        w[0] /= wl;
+        w[1] /= wl;
+        dfl_normorder r;
+        if ((st = measure(f, pv, w, (int)k->K, fmin(l1, l2), k->tol, &r, NULL, err))) break;
+        ext_add(out, &r);
+    }
+    return st;
+}
+
 static dfl_status norm_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
                            dfl_err *err)
 {
@@ -293,7 +446,7 @@ static dfl_status norm_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     dfl_rfunc_seg *seg = NULL;
     dfl_status st = read_keys(cfg, &k, err);
     const int na = st == DFL_OK && k.join == DFL_RFUNC_RCONJ && k.p == 1;
-    if (st == DFL_OK && !na) st = dfl_field_from_cfg(cfg, "field", &f, err);
+    if (st == DFL_OK && !na) st = dfl_rfunc_field_from_spec(cfg, "field", &k.spec, &f, err);
     if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
     if (st != DFL_OK) goto done;
     if (na) {
@@ -301,121 +454,27 @@ static dfl_status norm_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
         goto done;
     }
 
-    const size_t nseg = k.closed ? k.n : k.n - 1;
-    seg = calloc(nseg, sizeof *seg);
-    if (!seg) {
-        st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-        goto done;
-    }
-    for (size_t i = 0; i < nseg && st == DFL_OK; i++)
-        st = dfl_rfunc_seg_init(2, k.v + 2 * i, k.v + 2 * ((i + 1) % k.n), (dfl_rfunc_trim)k.trim,
-                                &seg[i], err);
-    if (st != DFL_OK) goto done; /* the field builder already accepted them */
+    size_t nseg = 0;
+    interior ir;
+    extremes en, enn, jo;
+    int enn_theory;
+    if ((st = make_segments(&k, &seg, &nseg, err))) goto done;
+    if ((st = interior_rays(&k, &f, seg, nseg, &ir, err))) goto done;
+    if ((st = end_fan_rays(&k, &f, seg, nseg, &en, err))) goto done;
+    if ((st = end_normal_rays(&k, &f, seg, nseg, &enn, &enn_theory, err))) goto done;
+    if ((st = joint_rays(&k, &f, &jo, err))) goto done;
 
+    /* the row's values */
     const int p = (int)k.p, K = (int)k.K;
     const int order_join = k.join == DFL_RFUNC_RCONJ ? p - 1 : p;
-    const int trim_limit = smooth_trim(k.trim) ? 6 : 0; /* 0: none */
+    const int trim_limit = dfl_rfunc_trim_smooth(k.trim) ? 6 : 0; /* 0: none */
     const int order_theory = trim_limit && trim_limit < order_join ? trim_limit : order_join;
-
-    /* interior rays */
-    extremes in;
-    ext_init(&in);
-    dfl_normorder rmin = {0};
-    theory thmin = {0, 0.0};
-    size_t at_seg = 0;
-    double at_frac = 0, at_side = 0, d1dev = 0, relerr = 0;
-    int capped_min = 0;
-    for (size_t i = 0; i < nseg && st == DFL_OK; i++)
-        for (size_t l = 0; l < k.nfrac && st == DFL_OK; l++)
-            for (int side = 1; side >= -1 && st == DFL_OK; side -= 2) {
-                const dfl_rfunc_seg *s = &seg[i];
-                const double x[2] = {s->a[0] + k.frac[l] * (s->b[0] - s->a[0]),
-                                     s->a[1] + k.frac[l] * (s->b[1] - s->a[1])};
-                const double dir[2] = {side * s->n1[0], side * s->n1[1]};
-                dfl_normorder r;
-                dfl_jet j;
-                if ((st = measure(&f, x, dir, K, s->d, k.tol, &r, &j, err))) break;
-                double T = 0.0;
-                if (smooth_trim(k.trim)) {
-                    const double t0 = dfl_rfunc_seg_trim(s, x, NULL);
-                    T = 1.0 / (32.0 * t0 * t0);
-                }
-                const theory th = predict(&k, seg, nseg, i, x, 7, T);
-                if (th.k >= 1 && th.k <= K) {
-                    const double e = fabs(dfl_jet_coeff(&j, th.k) - th.coef) / fabs(th.coef);
-                    if (!(e <= relerr)) relerr = e; /* NAN propagates */
-                }
-                if (fabs(r.d1 - 1.0) > d1dev) d1dev = fabs(r.d1 - 1.0);
-                if (r.order < in.omin) {
-                    rmin = r;
-                    thmin = th;
-                    at_seg = i;
-                    at_frac = k.frac[l];
-                    at_side = side;
-                    capped_min = r.capped;
-                }
-                ext_add(&in, &r);
-            }
-    if (st != DFL_OK) goto done;
-
-    /* free end points: a fan of outward directions */
-    extremes en;
-    ext_init(&en);
-    if (!k.closed)
-        for (int e = 0; e < 2 && st == DFL_OK; e++) {
-            const dfl_rfunc_seg *s = &seg[e ? nseg - 1 : 0];
-            const double *x = e ? s->b : s->a;
-            const double eo[2] = {e ? s->e[0] : -s->e[0], e ? s->e[1] : -s->e[1]};
-            for (long m = 0; m < k.fan && st == DFL_OK; m++) {
-                const double ph = -NORM_PI / 2 + NORM_PI * ((double)m + 0.5) / (double)k.fan;
-                const double dir[2] = {cos(ph) * eo[0] + sin(ph) * s->n1[0],
-                                       cos(ph) * eo[1] + sin(ph) * s->n1[1]};
-                dfl_normorder r;
-                if ((st = measure(&f, x, dir, K, s->d, k.tol, &r, NULL, err))) break;
-                ext_add(&en, &r);
-            }
-        }
-    if (st != DFL_OK) goto done;
-
-    /* free end points along the segment's normal (both sides) */
-    extremes enn;
-    ext_init(&enn);
-    int enn_theory = 1 << 30;
-    if (!k.closed)
-        for (int e = 0; e < 4 && st == DFL_OK; e++) {
-            const size_t i = e & 1 ? nseg - 1 : 0;
-            const dfl_rfunc_seg *s = &seg[i];
-            const double *x = e & 1 ? s->b : s->a;
-            const double sg = e & 2 ? -1.0 : 1.0;
-            const double dir[2] = {sg * s->n1[0], sg * s->n1[1]};
-            dfl_normorder r;
-            if ((st = measure(&f, x, dir, K, s->d, k.tol, &r, NULL, err))) break;
-            ext_add(&enn, &r);
-            const theory th = predict(&k, seg, nseg, i, x, 3, end_normal_a3(k.trim, s->d));
-            const int o = th.k ? th.k - 1 : K;
-            if (o < enn_theory) enn_theory = o;
-        }
-    if (st != DFL_OK) goto done;
-
-    /* joining points: outer bisector */
-    extremes jo;
-    ext_init(&jo);
-    for (size_t v = k.closed ? 0 : 1; v < (k.closed ? k.n : k.n - 1) && st == DFL_OK; v++) {
-        const double *pv = k.v + 2 * v;
-        const double *pa = k.v + 2 * (v == 0 ? k.n - 1 : v - 1), *pb = k.v + 2 * ((v + 1) % k.n);
-        double a1[2] = {pa[0] - pv[0], pa[1] - pv[1]}, a2[2] = {pb[0] - pv[0], pb[1] - pv[1]};
-        const double l1 = hypot(a1[0], a1[1]), l2 = hypot(a2[0], a2[1]);
-        double w[2] = {-(a1[0] / l1 + a2[0] / l2), -(a1[1] / l1 + a2[1] / l2)};
-        const double wl = hypot(w[0], w[1]);
-        if (!(wl > 1e-9)) continue; /* a straight continuation: no outer side */
-        w[0] /= wl;
-        w[1] /= wl;
-        dfl_normorder r;
-        if ((st = measure(&f, pv, w, K, fmin(l1, l2), k.tol, &r, NULL, err))) break;
-        ext_add(&jo, &r);
-    }
-    if (st != DFL_OK) goto done;
-
+    const extremes in = ir.ext;
+    const dfl_normorder rmin = ir.rmin;
+    const theory thmin = ir.thmin;
+    const size_t at_seg = ir.at_seg;
+    const double at_frac = ir.at_frac, at_side = ir.at_side, d1dev = ir.d1dev, relerr = ir.relerr;
+    const int capped_min = ir.capped_min;
     const double joint_d1 = k.join == DFL_RFUNC_REQUIV ? pow(2.0, -1.0 / p)
                             : k.join == DFL_RFUNC_RCONJ ? 2.0 - pow(2.0, 1.0 / p)
                                                         : 1.0;
@@ -476,7 +535,7 @@ static dfl_status norm_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
 #undef SETD
 done:
     free(seg);
-    free(k.v);
+    dfl_rfunc_spec_free(&k.spec);
     free(k.frac);
     dfl_field_destroy(&f);
     return st;

@@ -26,27 +26,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bs04/bs04_space_util.h"
 #include "cfg/curve_cfg.h"
+#include "cfg/list_cfg.h"
 #include "harness/experiment.h"
 #include "geom/polygonize.h"
 #include "io/vtk.h"
+#include "io/path.h"
 
 #define MAX_CURVES 16
-#define NAME_MAX_LEN 64
-
-static double fit_slope(size_t n, const double *eps, const double *cnt)
-{
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    for (size_t i = 0; i < n; i++) {
-        double x = log(eps[i]), y = log(cnt[i]);
-        sx += x;
-        sy += y;
-        sxx += x * x;
-        sxy += x * y;
-    }
-    double dn = (double)n;
-    return (dn * sxy - sx * sy) / (dn * sxx - sx * sx);
-}
+#define NAME_MAX_LEN DFL_SECTION_NAME_LEN
 
 typedef struct study_keys {
     int ncurves;
@@ -71,27 +60,11 @@ static void keys_free(study_keys *k)
 static dfl_status read_keys(const dfl_cfg *cfg, study_keys *k, dfl_err *err)
 {
     char w[600];
-    const char *list;
     dfl_status st;
     memset(k, 0, sizeof *k);
-    if ((st = dfl_cfg_string(cfg, "study", "curves", &list, err))) return st;
-    for (const char *s = list; *s;) {
-        while (*s == ' ' || *s == '\t') s++;
-        if (!*s) break;
-        size_t len = strcspn(s, " \t");
-        if (k->ncurves == MAX_CURVES || len >= NAME_MAX_LEN)
-            return dfl_err_set(err, DFL_E_INPUT,
-                               "%s: expected at most %d section names of < %d characters",
-                               dfl_cfg_where(cfg, "study", "curves", w, sizeof w), MAX_CURVES,
-                               NAME_MAX_LEN);
-        memcpy(k->names[k->ncurves], s, len);
-        k->names[k->ncurves][len] = '\0';
-        k->ncurves++;
-        s += len;
-    }
-    if (k->ncurves == 0)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected at least one curve section name",
-                           dfl_cfg_where(cfg, "study", "curves", w, sizeof w));
+    if ((st = dfl_section_names_from_cfg(cfg, "study", "curves", MAX_CURVES, k->names,
+                                         &k->ncurves, "curve section name", err)))
+        return st;
     if ((st = dfl_cfg_double(cfg, "study", "eps", 0.0, 1e300, &k->eps, err))) return st;
     if (!(k->eps > 0.0))
         return dfl_err_set(err, DFL_E_INPUT, "%s: expected eps > 0, got %g",
@@ -131,28 +104,12 @@ static dfl_status read_keys(const dfl_cfg *cfg, study_keys *k, dfl_err *err)
     return DFL_OK;
 }
 
-/* The polyline as VTK PolyData (z = 0 for planar curves). */
+/* The polyline as VTK PolyData (z = 0 for planar curves) with its
+ * parameters t as point data. */
 static dfl_status write_vtp(const char *path, const dfl_polyline *p, int compress, dfl_err *err)
 {
-    double *pts = malloc(p->n * 3 * sizeof(double));
-    size_t *conn = malloc(p->n * sizeof(size_t));
-    if (!pts || !conn) {
-        free(pts);
-        free(conn);
-        return dfl_err_set(err, DFL_E_NOMEM, "out of memory writing %s", path);
-    }
-    for (size_t i = 0; i < p->n; i++) {
-        for (int j = 0; j < 3; j++)
-            pts[3 * i + (size_t)j] = j < p->dim ? p->pts[i * (size_t)p->dim + (size_t)j] : 0.0;
-        conn[i] = i;
-    }
-    size_t off[2] = {0, p->n};
-    dfl_vtk_array arr = {"t", 1, p->t};
-    dfl_vtp_data d = {p->n, pts, 1, off, conn, 0, NULL, &arr, 1};
-    dfl_status st = dfl_vtp_write(path, &d, compress, err);
-    free(pts);
-    free(conn);
-    return st;
+    const dfl_vtk_array arr = {"t", 1, p->t};
+    return dfl_bs04_vtp_polyline(path, p->dim, p->n, p->pts, &arr, compress, err);
 }
 
 static dfl_status bs04_poly_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
@@ -167,25 +124,20 @@ static dfl_status bs04_poly_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, df
     char w[600];
     dfl_status st = read_keys(cfg, &k, err);
     for (int c = 0; c < k.ncurves && st == DFL_OK; c++) {
-        const char *sec = k.names[c], *kind;
+        const char *sec = k.names[c];
         if (!dfl_cfg_has_section(cfg, sec)) {
             st = dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s] for curve '%s'",
                              dfl_cfg_where(cfg, "study", "curves", w, sizeof w), sec, sec);
             break;
         }
-        if ((st = dfl_cfg_string(cfg, sec, "kind", &kind, err))) break;
-        if (strcmp(kind, "bspline_curve") != 0) {
-            st = dfl_err_set(err, DFL_E_INPUT, "%s: expected bspline_curve, got '%s'",
-                             dfl_cfg_where(cfg, sec, "kind", w, sizeof w), kind);
-            break;
-        }
-        if ((st = dfl_curve_from_cfg(cfg, sec, &curves[c], err))) break;
+        if ((st = dfl_curve_section_from_cfg(cfg, sec, &curves[c], err))) break;
         nbuilt++;
     }
     /* every key read and validated before any computation or file */
     if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
     double paper_fit = NAN;
-    if (st == DFL_OK && k.npaper >= 2) paper_fit = fit_slope(k.npaper, k.paper_eps, k.paper_seg);
+    if (st == DFL_OK && k.npaper >= 2)
+        paper_fit = dfl_bs04_loglog_slope(k.npaper, k.paper_eps, k.paper_seg);
     for (int c = 0; c < k.ncurves && st == DFL_OK; c++) {
         /* fitted exponent over fit_eps */
         double *cnt = malloc(k.nfit * sizeof(double));
@@ -203,7 +155,7 @@ static dfl_status bs04_poly_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, df
             cnt[i] = (double)(q.n - 1);
             dfl_polyline_free(&q);
         }
-        double fit = st == DFL_OK ? fit_slope(k.nfit, k.fit_eps, cnt) : NAN;
+        double fit = st == DFL_OK ? dfl_bs04_loglog_slope(k.nfit, k.fit_eps, cnt) : NAN;
         free(cnt);
         if (st != DFL_OK) break;
         st = dfl_polygonize_curve(&curves[c], k.eps, 0, &polys[c], err);
@@ -218,8 +170,7 @@ static dfl_status bs04_poly_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, df
         char stem[NAME_MAX_LEN + 16], path[4096];
         snprintf(stem, sizeof stem, "%s_polyline", k.names[c]);
         dfl_study_path(ctx, stem, "vtp", path, sizeof path);
-        const char *base = strrchr(path, '/');
-        base = base ? base + 1 : path;
+        const char *base = dfl_path_base(path);
         double paper = NAN;
         if (k.paper_curve && strcmp(k.paper_curve, k.names[c]) == 0)
             for (size_t i = 0; i < k.npaper; i++)

@@ -2,7 +2,7 @@
  * distance, the ellipse's f = x^2/a^2 + y^2/b^2 - 1, to order m (A.1, A.4;
  * rfunc/normalize.h), with the order measured by exact jets at boundary
  * points and the field compared with the exact signed distance to the
- * ellipse (experiments/ellipse_dist.h).  One sweep point = one (m, shape);
+ * ellipse (geom/ellipse.h).  One sweep point = one (m, shape);
  * one CSV row per point.
  *
  * Keys.
@@ -50,17 +50,19 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bs04/bs04_space_util.h"
 #include "geom/ellipse.h"
+#include "core/vec.h"
 #include "harness/experiment.h"
 #include "field/sample.h"
 #include "harness/field_out.h"
 #include "cfg/grid_cfg.h"
 #include "field/normorder.h"
 #include "rfunc/normalize.h"
+#include "io/path.h"
 
 #define REC_MAX_DELTAS 8
 #define REC_MAX_BANDS 8
-#define REC_PI 3.14159265358979323846
 
 typedef struct rec_keys {
     double a, b, tol;
@@ -119,20 +121,6 @@ static dfl_status read_keys(const dfl_cfg *cfg, rec_keys *k, dfl_err *err)
     return dfl_field_out_from_cfg(cfg, &k->out, err);
 }
 
-static double fit_slope(size_t n, const double *x, const double *y)
-{
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    for (size_t i = 0; i < n; i++) {
-        const double lx = log(x[i]), ly = log(y[i]);
-        sx += lx;
-        sy += ly;
-        sxx += lx * lx;
-        sxy += lx * ly;
-    }
-    const double dn = (double)n;
-    return (dn * sxy - sx * sy) / (dn * sxx - sx * sx);
-}
-
 /* Error metrics over the nodes with |d| <= band; a non-finite value or
  * gradient makes linf (and the means) infinite instead of failing: far
  * from the curve the recursion may overflow. */
@@ -167,44 +155,40 @@ static band_metrics band_compute(size_t nn, const double *u, const double *gu, c
     return b;
 }
 
-static dfl_status rec_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
-                          dfl_err *err)
-{
-    rec_keys k;
-    dfl_rfunc_poly poly;
-    dfl_field f = {0};
-    double *u = NULL, *gu = NULL, *d = NULL;
-    int have_poly = 0;
-    memset(&poly, 0, sizeof poly);
-    dfl_status st = read_keys(cfg, &k, err);
-    if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
-    if (st == DFL_OK && (st = dfl_rfunc_poly_ellipse(k.a, k.b, &poly, err)) == DFL_OK) have_poly = 1;
-    if (st == DFL_OK) st = dfl_rfunc_normalized_field(&poly, (int)k.m, &f, err);
-    if (st != DFL_OK) goto done;
+/* Jets at the boundary points, both sides of the normal. */
+typedef struct jet_stats {
+    int omin, omax, kmin;    /* measured orders; k of the minimum */
+    double cmin, cmax;       /* |a_(m+1)| over the rays of order m */
+    double d1dev;            /* max |d1 - side| */
+    double lerr[REC_MAX_DELTAS]; /* normal-line errors per delta */
+} jet_stats;
 
-    const int m = (int)k.m, K = (int)k.K;
-    /* jets at boundary points, both sides */
+static dfl_status boundary_jets(const rec_keys *k, const dfl_field *f, jet_stats *out,
+                                dfl_err *err)
+{
+    const int m = (int)k->m, K = (int)k->K;
     int omin = 1 << 30, omax = -1, kmin = 0;
     double cmin = INFINITY, cmax = 0, d1dev = 0;
     double lerr[REC_MAX_DELTAS] = {0};
-    for (long i = 0; i < k.points && st == DFL_OK; i++) {
-        const double th = 2 * REC_PI * ((double)i + 0.5) / (double)k.points;
-        const double p[2] = {k.a * cos(th), k.b * sin(th)};
-        double nu[2] = {p[0] / (k.a * k.a), p[1] / (k.b * k.b)};
+    dfl_status st = DFL_OK;
+    for (long i = 0; i < k->points && st == DFL_OK; i++) {
+        const double th = 2 * DFL_PI * ((double)i + 0.5) / (double)k->points;
+        const double p[2] = {k->a * cos(th), k->b * sin(th)};
+        double nu[2] = {p[0] / (k->a * k->a), p[1] / (k->b * k->b)};
         const double nn = hypot(nu[0], nu[1]);
         nu[0] /= nn;
         nu[1] /= nn;
         /* radius of curvature of (a cos th, b sin th): (a^2 s^2 + b^2 c^2)^(3/2) / (a b) */
-        const double sp = hypot(k.a * sin(th), k.b * cos(th));
-        const double rho = sp * sp * sp / (k.a * k.b);
+        const double sp = hypot(k->a * sin(th), k->b * cos(th));
+        const double rho = sp * sp * sp / (k->a * k->b);
         for (int side = 1; side >= -1 && st == DFL_OK; side -= 2) {
             const double dir[2] = {side * nu[0], side * nu[1]};
             dfl_jet j;
             dfl_normorder r;
-            st = dfl_field_jet(&f, p, dir, K, &j, err);
+            st = dfl_field_jet(f, p, dir, K, &j, err);
             if (st == DFL_OK)
                 st = dfl_normorder_measure(&j, (double)side, fmin(rho, dfl_normorder_scale(&j)),
-                                           k.tol, &r, err);
+                                           k->tol, &r, err);
             if (st != DFL_OK) {
                 dfl_err_prefix(err, "bs04_recursive: jet at (%g, %g)", p[0], p[1]);
                 break;
@@ -219,15 +203,62 @@ static dfl_status rec_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
                 cmax = fmax(cmax, fabs(r.coef));
             }
             d1dev = fmax(d1dev, fabs(r.d1 - side));
-            for (size_t q = 0; q < k.ndeltas; q++) {
-                const double dl = k.deltas[q];
+            for (size_t q = 0; q < k->ndeltas; q++) {
+                const double dl = k->deltas[q];
                 const double x[2] = {p[0] + side * dl * nu[0], p[1] + side * dl * nu[1]};
-                const double e = fabs(dfl_field_eval1(&f, x, NULL) - side * dl);
+                const double e = fabs(dfl_field_eval1(f, x, NULL) - side * dl);
                 if (!(e <= lerr[q])) lerr[q] = e; /* NAN propagates */
             }
         }
     }
+    if (st != DFL_OK) return st;
+    out->omin = omin, out->omax = omax, out->kmin = kmin;
+    out->cmin = cmin, out->cmax = cmax, out->d1dev = d1dev;
+    memcpy(out->lerr, lerr, sizeof lerr);
+    return DFL_OK;
+}
+
+/* u, grad u on the grid, the exact signed distance d, and the number of
+ * nodes where u or its gradient is not finite. */
+static dfl_status sample_grid(const rec_keys *k, const dfl_field *f, int threads, double *u,
+                              double *gu, double *d, long *nonfinite, dfl_err *err)
+{
+    const size_t nn = dfl_grid_size(&k->grid);
+    dfl_status st = dfl_field_sample(f, &k->grid, threads, u, gu, err);
+    if (st != DFL_OK) return st;
+    long bad = 0;
+    for (size_t i = 0; i < nn; i++) {
+        double x[2];
+        dfl_grid_node(&k->grid, i, x);
+        d[i] = dfl_ellipse_sdist(k->a, k->b, x, NULL, NULL);
+        if (!isfinite(u[i]) || !isfinite(gu[2 * i]) || !isfinite(gu[2 * i + 1])) bad++;
+    }
+    *nonfinite = bad;
+    return DFL_OK;
+}
+
+static dfl_status rec_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
+                          dfl_err *err)
+{
+    rec_keys k;
+    dfl_rfunc_poly poly;
+    dfl_field f = {0};
+    double *u = NULL, *gu = NULL, *d = NULL;
+    int have_poly = 0;
+    memset(&poly, 0, sizeof poly);
+    dfl_status st = read_keys(cfg, &k, err);
+    if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
+    if (st == DFL_OK && (st = dfl_rfunc_poly_ellipse(k.a, k.b, &poly, err)) == DFL_OK)
+        have_poly = 1;
+    if (st == DFL_OK) st = dfl_rfunc_normalized_field(&poly, (int)k.m, &f, err);
     if (st != DFL_OK) goto done;
+
+    const int m = (int)k.m, K = (int)k.K;
+    jet_stats js;
+    if ((st = boundary_jets(&k, &f, &js, err))) goto done;
+    const int omin = js.omin, omax = js.omax, kmin = js.kmin;
+    const double cmin = js.cmin, cmax = js.cmax, d1dev = js.d1dev;
+    const double *lerr = js.lerr;
 
     /* the grid against the exact signed distance */
     const size_t nn = dfl_grid_size(&k.grid);
@@ -238,19 +269,12 @@ static dfl_status rec_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
         st = dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu nodes", nn);
         goto done;
     }
-    if ((st = dfl_field_sample(&f, &k.grid, ctx->threads, u, gu, err))) goto done;
     long nonfinite = 0;
-    for (size_t i = 0; i < nn; i++) {
-        double x[2];
-        dfl_grid_node(&k.grid, i, x);
-        d[i] = dfl_ellipse_sdist(k.a, k.b, x, NULL, NULL);
-        if (!isfinite(u[i]) || !isfinite(gu[2 * i]) || !isfinite(gu[2 * i + 1])) nonfinite++;
-    }
+    if ((st = sample_grid(&k, &f, ctx->threads, u, gu, d, &nonfinite, err))) goto done;
 
     char path[4400];
     dfl_study_path(ctx, "normalized", "vti", path, sizeof path);
-    const char *base = strrchr(path, '/');
-    base = base ? base + 1 : path;
+    const char *base = dfl_path_base(path);
     st = dfl_table_row(table, err);
 #define SETI(c, v) \
     if (!st) st = dfl_table_set_int(table, c, (long)(v), err)
@@ -278,7 +302,7 @@ static dfl_status rec_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
         snprintf(c, sizeof c, "line_err_%zu", q + 1);
         SETD(c, lerr[q]);
     }
-    SETD("line_slope", fit_slope(k.ndeltas, k.deltas, lerr));
+    SETD("line_slope", dfl_bs04_loglog_slope(k.ndeltas, k.deltas, lerr));
     SETI("line_slope_theory", m + 1);
     SETI("nodes", nn);
     SETI("nonfinite_nodes", nonfinite);

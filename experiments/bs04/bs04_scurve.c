@@ -59,6 +59,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bs04/bs04_offsets.h"
 #include "cfg/curve_cfg.h"
 #include "field/curveprobe.h"
 #include "harness/experiment.h"
@@ -68,17 +69,20 @@
 #include "cfg/field_cfg.h"
 #include "harness/field_out.h"
 #include "geom/polygonize.h"
+#include "io/path.h"
 #include "cfg/grid_cfg.h"
+#include "cfg/rfunc_cfg.h"
 #include "rfunc/join.h"
 
 typedef struct scurve_keys {
-    const char *curve_sec, *join, *trim;
+    dfl_rfunc_field_spec spec; /* [field] as parsed: the curve and its polygonization */
+    const char *curve_sec, *join, *trim; /* the spec's curve section and names */
     double eps;
     long p;
     double *levels;
     size_t nlevels;
-    long rays, cap_rays, max_joints, steps, rounds, csamples, crounds;
-    double smax, valid_tol;
+    long rays, cap_rays, max_joints, csamples, crounds;
+    dfl_bs04_offset_opts search;
     dfl_grid grid;
     dfl_field_write_opts out;
 } scurve_keys;
@@ -86,18 +90,21 @@ typedef struct scurve_keys {
 static dfl_status read_keys(const dfl_cfg *cfg, scurve_keys *k, dfl_err *err)
 {
     char w[600];
-    const char *kind;
+    const dfl_field_kind *kind;
     dfl_status st;
-    if ((st = dfl_cfg_string(cfg, "field", "kind", &kind, err))) return st;
-    if (strcmp(kind, "rfunc") != 0 || !dfl_cfg_has(cfg, "field", "curve"))
+    if ((st = dfl_field_kind_from_cfg(cfg, "field", &kind, err))) return st;
+    if (kind->build == dfl_rfunc_field_from_cfg &&
+        (st = dfl_rfunc_spec_from_cfg(cfg, "field", &k->spec, err)))
+        return st;
+    if (kind->build != dfl_rfunc_field_from_cfg || !k->spec.curve)
         return dfl_err_set(err, DFL_E_INPUT,
                            "%s: bs04_scurve needs kind = rfunc with a curve (curve = <section>)",
                            dfl_cfg_where(cfg, "field", "kind", w, sizeof w));
-    if ((st = dfl_cfg_string(cfg, "field", "curve", &k->curve_sec, err))) return st;
-    if ((st = dfl_cfg_double(cfg, "field", "eps", 1e-300, 1e300, &k->eps, err))) return st;
-    if ((st = dfl_cfg_int_opt(cfg, "field", "p", 2, 1, DFL_RFUNC_P_MAX, &k->p, err))) return st;
-    if ((st = dfl_cfg_string_opt(cfg, "field", "join", "requiv", &k->join, err))) return st;
-    if ((st = dfl_cfg_string_opt(cfg, "field", "trim", "disk", &k->trim, err))) return st;
+    k->curve_sec = k->spec.curve;
+    k->eps = k->spec.eps;
+    k->p = k->spec.p;
+    k->join = dfl_rfunc_join_name(k->spec.join);
+    k->trim = dfl_rfunc_trim_name(k->spec.trim);
     if ((st = dfl_cfg_doubles(cfg, "study", "levels", 1, &k->levels, &k->nlevels, err))) return st;
     for (size_t i = 0; i < k->nlevels; i++)
         if (!(k->levels[i] > 0.0))
@@ -108,12 +115,7 @@ static dfl_status read_keys(const dfl_cfg *cfg, scurve_keys *k, dfl_err *err)
         return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "max_joints", 200, 0, 1000000, &k->max_joints, err)))
         return st;
-    if ((st = dfl_cfg_double_opt(cfg, "study", "smax", 8.0, 1.0, 1e6, &k->smax, err))) return st;
-    if ((st = dfl_cfg_int_opt(cfg, "study", "steps", 128, 1, DFL_CROSS_MAX_STEPS, &k->steps, err)))
-        return st;
-    if ((st = dfl_cfg_int_opt(cfg, "study", "rounds", 6, 0, 40, &k->rounds, err))) return st;
-    if ((st = dfl_cfg_double_opt(cfg, "study", "valid_tol", 1e-6, 0.0, 0.5, &k->valid_tol, err)))
-        return st;
+    if ((st = dfl_bs04_offset_opts_from_cfg(cfg, "study", &k->search, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "curve_samples", 16, 2, 1024, &k->csamples, err)))
         return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "curve_rounds", 8, 0, 40, &k->crounds, err)))
@@ -122,74 +124,67 @@ static dfl_status read_keys(const dfl_cfg *cfg, scurve_keys *k, dfl_err *err)
     return dfl_field_out_from_cfg(cfg, &k->out, err);
 }
 
-typedef struct scurve_run {
-    dfl_bspline curve;
-    dfl_shape shape;
-    int have_curve, have_shape;
-    dfl_field u, exact;
-    dfl_polyline pl;
-    dfl_rayset rays;
-    double *uv, *ug, *dv, *dg, *s;
-    int *valid, *branch;
-} scurve_run;
-
-static void run_free(scurve_run *r)
-{
-    if (r->have_curve) dfl_bspline_free(&r->curve);
-    if (r->have_shape) dfl_shape_free(&r->shape);
-    dfl_field_destroy(&r->u);
-    dfl_field_destroy(&r->exact);
-    dfl_polyline_free(&r->pl);
-    dfl_curveprobe_free(&r->rays);
-    free(r->uv), free(r->ug), free(r->dv), free(r->dg), free(r->s);
-    free(r->valid), free(r->branch);
-}
-
 /* C of the header comment. */
 static double curve_bound_factor(const scurve_keys *k, double bound, double seg_min, int closed)
 {
-    const int smooth = strstr(k->trim, "smooth") != NULL;
-    const double kj = (closed && strcmp(k->join, "requiv_corrected") == 0) ? 2.0 : 1.0;
+    const int smooth = dfl_rfunc_trim_smooth(k->spec.trim);
+    const double kj = (closed && k->spec.join == DFL_RFUNC_REQUIV_CORRECTED) ? 2.0 : 1.0;
     const double b = 1.0 + bound / seg_min + (smooth ? bound / 2.0 : 0.0);
     return kj * sqrt(1.0 + b * b);
 }
 
-static const char *base_name(const char *path)
+/* Rays from the curve: rays side origins, cap_rays around each end, and
+ * joint rays at every j-th vertex, j chosen so that at most max_joints
+ * vertices are used (the joints' count grows like eps^-1/2 and every ray
+ * costs one field evaluation per part). */
+static dfl_status make_rays(const scurve_keys *k, const dfl_polyline *pl, int closed,
+                            dfl_rayset *out, dfl_err *err)
 {
-    const char *b = strrchr(path, '/');
-    return b ? b + 1 : path;
+    const size_t nseg = pl->n - 1;
+    const double *vt = closed ? pl->t : pl->t + 1;
+    const size_t nv = closed ? nseg : nseg - 1;
+    const size_t stride =
+        k->max_joints > 0 ? (nv + (size_t)k->max_joints - 1) / (size_t)k->max_joints : 0;
+    double *jt = malloc((nv ? nv : 1) * sizeof *jt);
+    if (!jt) return dfl_err_set(err, DFL_E_NOMEM, "bs04_scurve: out of memory");
+    size_t nj = 0;
+    for (size_t i = 0; stride && i < nv; i += stride) jt[nj++] = vt[i];
+    dfl_status st = dfl_curveprobe_rays(&k->spec.bspline, (size_t)k->rays, (size_t)k->cap_rays,
+                                        jt, nj, out, err);
+    free(jt);
+    return st;
 }
 
 static dfl_status scurve_run_point(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *t,
                                    dfl_err *err)
 {
     scurve_keys k;
-    scurve_run r;
+    dfl_bs04_offsets r;
+    dfl_shape shape;
+    int have_shape = 0;
     char w[600];
     memset(&k, 0, sizeof k);
     memset(&r, 0, sizeof r);
     dfl_status st = read_keys(cfg, &k, err);
-    if (st == DFL_OK) st = dfl_field_from_cfg(cfg, "field", &r.u, err);
-    if (st == DFL_OK) {
-        /* [field] curve was checked to exist by dfl_field_from_cfg */
-        st = dfl_curve_from_cfg(cfg, k.curve_sec, &r.curve, err);
-        r.have_curve = st == DFL_OK;
-    }
-    if (st == DFL_OK && r.curve.dim != 2)
+    if (st == DFL_OK) st = dfl_rfunc_field_from_spec(cfg, "field", &k.spec, &r.u, err);
+    if (st == DFL_OK && k.spec.dim != 2)
         st = dfl_err_set(err, DFL_E_INPUT, "%s: a planar curve is required",
                          dfl_cfg_where(cfg, "field", "curve", w, sizeof w));
     if (st == DFL_OK) {
-        st = dfl_param_shape_from_cfg(cfg, k.curve_sec, "bspline_curve", &r.shape, err);
-        r.have_shape = st == DFL_OK;
+        st = dfl_param_shape_from_cfg(cfg, k.curve_sec, "bspline_curve", &shape, err);
+        have_shape = st == DFL_OK;
     }
     if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
     /* everything read and validated: compute */
     if (st == DFL_OK) {
-        st = dfl_field_exact_new(&r.shape, &r.exact, err);
-        if (st == DFL_OK) r.have_shape = 0;
+        st = dfl_field_exact_new(&shape, &r.exact, err);
+        if (st == DFL_OK) have_shape = 0;
     }
-    if (st == DFL_OK) st = dfl_polygonize_curve(&r.curve, k.eps, 0, &r.pl, err);
-    const int closed = r.curve.closed ||
+    /* u's polygonization, which the spec hands over */
+    r.pl = k.spec.pl;
+    memset(&k.spec.pl, 0, sizeof k.spec.pl);
+    const dfl_bspline *curve = &k.spec.bspline;
+    const int closed = curve->closed ||
                        (r.pl.n >= 4 && memcmp(r.pl.pts, r.pl.pts + 2 * (r.pl.n - 1),
                                               2 * sizeof *r.pl.pts) == 0);
     double seg_min = INFINITY, seg_max = 0, seg_sum = 0;
@@ -202,38 +197,13 @@ static dfl_status scurve_run_point(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
     }
     double umax = NAN, tmax = NAN;
     if (st == DFL_OK)
-        st = dfl_curveprobe_max(&r.u, &r.curve, r.pl.t, r.pl.n, (int)k.csamples, (int)k.crounds,
+        st = dfl_curveprobe_max(&r.u, curve, r.pl.t, r.pl.n, (int)k.csamples, (int)k.crounds,
                                 ctx->threads, &umax, &tmax, err);
     const size_t nseg = r.pl.n - 1;
-    /* joint rays at every j-th vertex, j chosen so that at most max_joints
-     * vertices are used (the joints' count grows like eps^-1/2 and every ray
-     * costs one field evaluation per part) */
-    double *jt = NULL;
-    size_t nj = 0;
-    if (st == DFL_OK) {
-        const double *vt = closed ? r.pl.t : r.pl.t + 1;
-        const size_t nv = closed ? nseg : nseg - 1;
-        const size_t stride =
-            k.max_joints > 0 ? (nv + (size_t)k.max_joints - 1) / (size_t)k.max_joints : 0;
-        jt = malloc((nv ? nv : 1) * sizeof *jt);
-        if (!jt) st = dfl_err_set(err, DFL_E_NOMEM, "bs04_scurve: out of memory");
-        for (size_t i = 0; st == DFL_OK && stride && i < nv; i += stride) jt[nj++] = vt[i];
-    }
-    if (st == DFL_OK)
-        st = dfl_curveprobe_rays(&r.curve, (size_t)k.rays, (size_t)k.cap_rays, jt, nj, &r.rays,
-                                 err);
-    free(jt);
+    if (st == DFL_OK) st = make_rays(&k, &r.pl, closed, &r.rays, err);
     const size_t m = dfl_grid_size(&k.grid);
-    if (st == DFL_OK) {
-        r.uv = malloc(m * sizeof *r.uv), r.ug = malloc(2 * m * sizeof *r.ug);
-        r.dv = malloc(m * sizeof *r.dv), r.dg = malloc(2 * m * sizeof *r.dg);
-        r.s = malloc(r.rays.n * sizeof *r.s), r.valid = malloc(r.rays.n * sizeof *r.valid);
-        r.branch = malloc(r.rays.n * sizeof *r.branch);
-        if (!r.uv || !r.ug || !r.dv || !r.dg || !r.s || !r.valid || !r.branch)
-            st = dfl_err_set(err, DFL_E_NOMEM, "bs04_scurve: out of memory");
-    }
-    if (st == DFL_OK) st = dfl_field_sample(&r.u, &k.grid, ctx->threads, r.uv, r.ug, err);
-    if (st == DFL_OK) st = dfl_field_sample(&r.exact, &k.grid, ctx->threads, r.dv, r.dg, err);
+    if (st == DFL_OK) st = dfl_bs04_offsets_alloc(&r, m, "bs04_scurve", err);
+    if (st == DFL_OK) st = dfl_bs04_offsets_sample(&r, &k.grid, ctx->threads, err);
     char ustem[128], dstem[128], upath[4400], dpath[4400];
     snprintf(ustem, sizeof ustem, "%s_u", k.curve_sec ? k.curve_sec : "curve");
     snprintf(dstem, sizeof dstem, "%s_exact", k.curve_sec ? k.curve_sec : "curve");
@@ -243,18 +213,9 @@ static dfl_status scurve_run_point(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
     const double C = st == DFL_OK ? curve_bound_factor(&k, r.pl.bound, seg_min, closed) : NAN;
     for (size_t l = 0; l < k.nlevels && st == DFL_OK; l++) {
         const double delta = k.levels[l];
-        const dfl_cross_opts co = {k.smax * delta, (int)k.steps, (int)k.rounds};
         dfl_ray_stats rs;
         dfl_bandstats bs;
-        st = dfl_curveprobe_valid(&r.exact, &r.rays, delta, k.valid_tol, ctx->threads, r.valid,
-                                  err);
-        if (st == DFL_OK)
-            st = dfl_curveprobe_cross(&r.u, &r.rays, delta, &co, ctx->threads, r.s, err);
-        if (st == DFL_OK)
-            st = dfl_curveprobe_on_branch(&r.exact, &r.rays, r.s, k.valid_tol, ctx->threads,
-                                          r.branch, err);
-        if (st == DFL_OK) dfl_curveprobe_stats(&r.rays, r.s, r.valid, r.branch, delta, &rs);
-        if (st == DFL_OK) st = dfl_metrics_bandstats(m, 2, r.uv, r.ug, r.dv, delta, &bs, err);
+        st = dfl_bs04_offsets_level(&r, m, delta, &k.search, ctx->threads, &rs, &bs, err);
         if (st != DFL_OK) break;
         st = dfl_table_row(t, err);
         if (!st) st = dfl_table_set_string(t, "curve", k.curve_sec, err);
@@ -287,13 +248,15 @@ static dfl_status scurve_run_point(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
         if (!st) st = dfl_table_set_double(t, "offset_outer_mean", rs.outer_mean, err);
         if (!st) st = dfl_table_set_double(t, "offset_inner_mean", rs.inner_mean, err);
         if (!st) st = dfl_table_set_double(t, "widening", rs.flat_mean - rs.curved_mean, err);
-        if (!st) st = dfl_table_set_string(t, "u_vti", base_name(upath), err);
-        if (!st) st = dfl_table_set_string(t, "exact_vti", base_name(dpath), err);
+        if (!st) st = dfl_table_set_string(t, "u_vti", dfl_path_base(upath), err);
+        if (!st) st = dfl_table_set_string(t, "exact_vti", dfl_path_base(dpath), err);
     }
     if (st == DFL_OK) st = dfl_field_out_write(ctx, ustem, &k.grid, r.uv, r.ug, r.dv, &k.out, err);
     if (st == DFL_OK && ctx->point == 0)
         st = dfl_field_out_write(ctx, dstem, &k.grid, r.dv, r.dg, NULL, &k.out, err);
-    run_free(&r);
+    dfl_bs04_offsets_free(&r);
+    if (have_shape) dfl_shape_free(&shape);
+    dfl_rfunc_spec_free(&k.spec);
     free(k.levels);
     return st;
 }

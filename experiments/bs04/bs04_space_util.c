@@ -43,33 +43,18 @@ dfl_status dfl_bs04_put_gradstat(dfl_table *t, const char *sfx, const dfl_gradst
     return st;
 }
 
-dfl_status dfl_bs04_join_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_rfunc_join *join,
-                                  int *p, dfl_err *err)
+double dfl_bs04_loglog_slope(size_t n, const double *x, const double *y)
 {
-    static const char *const joins[] = {"requiv", "rconj", "requiv_corrected"};
-    int j;
-    long pp;
-    char w[600];
-    dfl_status st;
-    if ((st = dfl_cfg_enum_opt(cfg, sec, "join", joins, 3, 0, &j, err))) return st;
-    if ((st = dfl_cfg_int_opt(cfg, sec, "p", 2, 1, DFL_RFUNC_P_MAX, &pp, err))) return st;
-    if ((st = dfl_rfunc_join_check((dfl_rfunc_join)j, (int)pp, err))) {
-        dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, sec, "p", w, sizeof w));
-        return st;
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (size_t i = 0; i < n; i++) {
+        const double lx = log(x[i]), ly = log(y[i]);
+        sx += lx;
+        sy += ly;
+        sxx += lx * lx;
+        sxy += lx * ly;
     }
-    *join = (dfl_rfunc_join)j;
-    *p = (int)pp;
-    return DFL_OK;
-}
-
-dfl_status dfl_bs04_trim_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_rfunc_trim *trim,
-                                  dfl_err *err)
-{
-    static const char *const trims[] = {"disk", "disk_smooth", "strip", "strip_smooth"};
-    int t;
-    dfl_status st = dfl_cfg_enum_opt(cfg, sec, "trim", trims, 4, 0, &t, err);
-    if (st == DFL_OK) *trim = (dfl_rfunc_trim)t;
-    return st;
+    const double dn = (double)n;
+    return (dn * sxy - sx * sy) / (dn * sxx - sx * sx);
 }
 
 static double *to3d(int dim, size_t n, const double *pts)
@@ -83,7 +68,7 @@ static double *to3d(int dim, size_t n, const double *pts)
 }
 
 dfl_status dfl_bs04_vtp_polyline(const char *path, int dim, size_t n, const double *pts,
-                                 int compress, dfl_err *err)
+                                 const dfl_vtk_array *arr, int compress, dfl_err *err)
 {
     double *p3 = to3d(dim, n, pts);
     size_t *conn = malloc((n ? n : 1) * sizeof *conn);
@@ -94,7 +79,7 @@ dfl_status dfl_bs04_vtp_polyline(const char *path, int dim, size_t n, const doub
     }
     for (size_t i = 0; i < n; i++) conn[i] = i;
     size_t off[2] = {0, n};
-    dfl_vtp_data d = {n, p3, 1, off, conn, 0, NULL, NULL, 0};
+    dfl_vtp_data d = {n, p3, 1, off, conn, 0, NULL, arr, arr ? 1 : 0};
     dfl_status st = dfl_vtp_write(path, &d, compress, err);
     free(p3);
     free(conn);
@@ -131,12 +116,6 @@ dfl_status dfl_bs04_vtp_points(const char *path, size_t n, const double *pts, co
     free(conn);
     free(off);
     return st;
-}
-
-const char *dfl_bs04_base(const char *path)
-{
-    const char *b = strrchr(path, '/');
-    return b ? b + 1 : path;
 }
 
 dfl_status dfl_bs04_write_slices(const dfl_study_ctx *ctx, const dfl_field *f,

@@ -1,7 +1,9 @@
-/* Helpers shared by the bs04 space studies (bs04_spacecurves,
- * bs04_triangle, bs04_triedge, bs04_surface, bs04_hetero): table cells for
- * error metrics and gradient statistics, and .vtp output of polylines,
- * triangle meshes and point samples.
+/* Helpers shared by the bs04 studies (bs04_spacecurves, bs04_triangle,
+ * bs04_triedge, bs04_surface, bs04_hetero, bs04_polygonization): table
+ * cells for gradient statistics (error metrics: field/metrics.h),
+ * log-log slopes,
+ * .vtp output of polylines, triangle meshes and point samples, and slices
+ * of 3D fields.
  */
 #ifndef DFL_EXPERIMENTS_BS04_SPACE_UTIL_H
 #define DFL_EXPERIMENTS_BS04_SPACE_UTIL_H
@@ -12,6 +14,7 @@
 #include "field/metrics.h"
 #include "io/config.h"
 #include "io/table.h"
+#include "io/vtk.h"
 #include "rfunc/join.h"
 #include "rfunc/segment.h"
 #include "harness/field_out.h"
@@ -28,20 +31,17 @@ void dfl_bs04_gradstat(size_t m, int dim, const double *grad, const unsigned cha
 dfl_status dfl_bs04_put_gradstat(dfl_table *t, const char *sfx, const dfl_gradstat *g,
                                  dfl_err *err);
 
-/* Reads [sec] join (requiv | rconj | requiv_corrected, default requiv),
- * p (1..DFL_RFUNC_P_MAX, default 2; checked against the join). */
-dfl_status dfl_bs04_join_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_rfunc_join *join,
-                                  int *p, dfl_err *err);
-/* Reads [sec] trim (disk | disk_smooth | strip | strip_smooth, default disk). */
-dfl_status dfl_bs04_trim_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_rfunc_trim *trim,
-                                  dfl_err *err);
+/* Least-squares slope of log(y) against log(x) over n >= 2 pairs (x, y >
+ * 0, not all x equal): the growth exponent of y in x. */
+double dfl_bs04_loglog_slope(size_t n, const double *x, const double *y);
 
 /* .vtp writers (through dfl_vtp_write: atomic, optional zlib).
- *   polyline: n points of dimension dim (2D gets z = 0), one line;
+ *   polyline: n points of dimension dim (2D gets z = 0), one line, and
+ *             the point array arr when not NULL (n tuples);
  *   trimesh: nv 3D points, nt triangles (3 indices each);
  *   points:  n 3D points with one scalar point array (name, values). */
 dfl_status dfl_bs04_vtp_polyline(const char *path, int dim, size_t n, const double *pts,
-                                 int compress, dfl_err *err);
+                                 const dfl_vtk_array *arr, int compress, dfl_err *err);
 dfl_status dfl_bs04_vtp_trimesh(const char *path, size_t nv, const double *verts, size_t nt,
                                 const size_t *tris, int compress, dfl_err *err);
 dfl_status dfl_bs04_vtp_points(const char *path, size_t n, const double *pts, const char *name,
@@ -54,8 +54,5 @@ dfl_status dfl_bs04_vtp_points(const char *path, size_t n, const double *pts, co
 dfl_status dfl_bs04_write_slices(const dfl_study_ctx *ctx, const dfl_field *f,
                                  const dfl_grid *slices, int n, const char *prefix,
                                  const dfl_field_write_opts *o, dfl_err *err);
-
-/* Base name (after the last '/') of a path. */
-const char *dfl_bs04_base(const char *path);
 
 #endif

@@ -9,7 +9,7 @@
  * Keys ([study]):
  *   curves  = space1 space2      curve sections (kind = bspline_curve, 3D)
  *   eps     = 3e-3               polygonization bound (> 0)
- *   join, p                      joining operation (bs04_space_util.h)
+ *   join, p                      joining operation (cfg/rfunc_cfg.h)
  *   trim    = disk               disk = sphere trim of eq. 3/4 (strip = slab)
  *   paper_segments = 56 90       bs04's counts, one per curve (optional)
  *   band    = 0.05               metrics also over |d| <= band
@@ -32,8 +32,11 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "cfg/rfunc_cfg.h"
 #include "cfg/curve_cfg.h"
+#include "cfg/list_cfg.h"
 #include "harness/experiment.h"
+#include "io/path.h"
 #include "field/exact.h"
 #include "field/metrics.h"
 #include "field/sample.h"
@@ -45,7 +48,7 @@
 
 #define MAX_CURVES 8
 #define MAX_SLICES 4
-#define NAME_LEN 64
+#define NAME_LEN DFL_SECTION_NAME_LEN
 
 typedef struct keys {
     int ncurves;
@@ -63,40 +66,17 @@ typedef struct keys {
     dfl_field_write_opts out;
 } keys;
 
-static dfl_status read_names(const dfl_cfg *cfg, keys *k, dfl_err *err)
-{
-    const char *list;
-    char w[600];
-    dfl_status st = dfl_cfg_string(cfg, "study", "curves", &list, err);
-    if (st) return st;
-    for (const char *s = list; *s;) {
-        while (*s == ' ' || *s == '\t') s++;
-        if (!*s) break;
-        const size_t len = strcspn(s, " \t");
-        if (k->ncurves == MAX_CURVES || len >= NAME_LEN)
-            return dfl_err_set(err, DFL_E_INPUT,
-                               "%s: expected at most %d section names of < %d characters",
-                               dfl_cfg_where(cfg, "study", "curves", w, sizeof w), MAX_CURVES,
-                               NAME_LEN);
-        memcpy(k->names[k->ncurves], s, len);
-        k->names[k->ncurves++][len] = '\0';
-        s += len;
-    }
-    if (k->ncurves == 0)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected at least one curve section",
-                           dfl_cfg_where(cfg, "study", "curves", w, sizeof w));
-    return DFL_OK;
-}
-
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 {
     char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
-    if ((st = read_names(cfg, k, err))) return st;
+    if ((st = dfl_section_names_from_cfg(cfg, "study", "curves", MAX_CURVES, k->names,
+                                         &k->ncurves, "curve section", err)))
+        return st;
     if ((st = dfl_cfg_double(cfg, "study", "eps", 1e-9, 1e3, &k->eps, err))) return st;
-    if ((st = dfl_bs04_join_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
-    if ((st = dfl_bs04_trim_from_cfg(cfg, "study", &k->trim, err))) return st;
+    if ((st = dfl_rfunc_join_p_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
+    if ((st = dfl_rfunc_trim_from_cfg(cfg, "study", &k->trim, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.05, 0.0, 1e300, &k->band, err))) return st;
     if ((st = dfl_cfg_bool_opt(cfg, "study", "volume", true, &k->volume, err))) return st;
     if ((st = dfl_cfg_bool_opt(cfg, "study", "compress", true, &k->compress, err))) return st;
@@ -123,16 +103,11 @@ static dfl_status load_curve(const dfl_cfg *cfg, const char *sec, dfl_bspline *c
                              dfl_err *err)
 {
     char w[600];
-    const char *kind;
     dfl_status st;
     if (!dfl_cfg_has_section(cfg, sec))
         return dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s]",
                            dfl_cfg_where(cfg, "study", "curves", w, sizeof w), sec);
-    if ((st = dfl_cfg_string(cfg, sec, "kind", &kind, err))) return st;
-    if (strcmp(kind, "bspline_curve") != 0)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected bspline_curve, got '%s'",
-                           dfl_cfg_where(cfg, sec, "kind", w, sizeof w), kind);
-    if ((st = dfl_curve_from_cfg(cfg, sec, c, err))) return st;
+    if ((st = dfl_curve_section_from_cfg(cfg, sec, c, err))) return st;
     if (c->dim != 3) {
         dfl_bspline_free(c);
         return dfl_err_set(err, DFL_E_INPUT, "%s: expected a space curve (3D control points)",
@@ -205,8 +180,8 @@ static dfl_status do_curve(const keys *k, int c, const dfl_bspline *curve, const
 
     snprintf(stem, sizeof stem, "%s_polyline", name);
     st = dfl_bs04_vtp_polyline(dfl_study_path(ctx, stem, "vtp", path, sizeof path), 3, pl.n,
-                               pl.pts, k->compress, err);
-    if (!st) st = dfl_table_set_string(table, "vtp", dfl_bs04_base(path), err);
+                               pl.pts, NULL, k->compress, err);
+    if (!st) st = dfl_table_set_string(table, "vtp", dfl_path_base(path), err);
     if (st) goto done;
 
     if (k->volume) {
@@ -226,7 +201,7 @@ static dfl_status do_curve(const keys *k, int c, const dfl_bspline *curve, const
         if (!st && k->out.vti)
             st = dfl_table_set_string(
                 table, "volume_vti",
-                dfl_bs04_base(dfl_study_path(ctx, stem, "vti", path, sizeof path)), err);
+                dfl_path_base(dfl_study_path(ctx, stem, "vti", path, sizeof path)), err);
         free(u), free(gu), free(d);
         u = gu = d = NULL;
         if (st) goto done;

@@ -15,7 +15,7 @@
  * Keys ([study]):
  *   surface  = surface       section with kind = bspline_surface | bezier_surface
  *   eps      = 0.05          triangulation bound (> 0)
- *   join, p                  (bs04_space_util.h; default requiv, 2)
+ *   join, p                  (cfg/rfunc_cfg.h; default requiv, 2)
  *   tri_trim = conditional   prism | conditional; a = 0.2, k = 2; smooth = false
  *   band     = 0.05          metrics also over d_S <= band
  *   slices, slice_n, slice_lo, slice_hi   section planes (cfg/slice_cfg.h)
@@ -34,8 +34,10 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "cfg/rfunc_cfg.h"
 #include "cfg/curve_cfg.h"
 #include "harness/experiment.h"
+#include "io/path.h"
 #include "field/exact.h"
 #include "field/metrics.h"
 #include "geom/polygonize.h"
@@ -61,12 +63,7 @@ typedef struct keys {
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 {
-    static const char *const trims[] = {"prism", "conditional"};
     char w[600];
-    double a;
-    long kk;
-    int trim;
-    bool smooth;
     dfl_status st;
     memset(k, 0, sizeof *k);
     if ((st = dfl_cfg_string(cfg, "study", "surface", &k->sec, err))) return st;
@@ -78,16 +75,8 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
         return dfl_err_set(err, DFL_E_INPUT, "%s: expected bspline_surface or bezier_surface",
                            dfl_cfg_where(cfg, k->sec, "kind", w, sizeof w));
     if ((st = dfl_cfg_double(cfg, "study", "eps", 1e-9, 1e3, &k->eps, err))) return st;
-    if ((st = dfl_bs04_join_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
-    if ((st = dfl_cfg_enum_opt(cfg, "study", "tri_trim", trims, 2, 1, &trim, err))) return st;
-    if ((st = dfl_cfg_double_opt(cfg, "study", "a", 0.2, 1e-12, 1e12, &a, err))) return st;
-    if ((st = dfl_cfg_int_opt(cfg, "study", "k", 2, 2, 64, &kk, err))) return st;
-    if ((st = dfl_cfg_bool_opt(cfg, "study", "smooth", false, &smooth, err))) return st;
-    k->o = dfl_rfunc_tri_defaults();
-    k->o.trim = (dfl_rfunc_tri_trim)trim;
-    k->o.a = a;
-    k->o.k = (int)kk;
-    k->o.smooth = smooth;
+    if ((st = dfl_rfunc_join_p_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
+    if ((st = dfl_rfunc_tri_opts_from_cfg(cfg, "study", true, &k->o, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.05, 0.0, 1e300, &k->band, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "max_tris", 200000, 1, 10000000, &k->max_tris, err)))
         return st;
@@ -212,10 +201,10 @@ static dfl_status surf_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     if (!st) st = dfl_table_set_int(table, "p", k.p, err);
     if (!st)
         st = dfl_table_set_string(table, "tri_trim",
-                                  k.o.trim == DFL_RFUNC_TRI_PRISM ? "prism" : "conditional", err);
+                                  dfl_rfunc_tri_trim_name(k.o.trim), err);
     if (!st) st = dfl_bs04_vtp_trimesh(dfl_study_path(ctx, "mesh", "vtp", path, sizeof path),
                                        M.nverts, M.verts, M.ntris, M.tris, k.compress, err);
-    if (!st) st = dfl_table_set_string(table, "mesh_vtp", dfl_bs04_base(path), err);
+    if (!st) st = dfl_table_set_string(table, "mesh_vtp", dfl_path_base(path), err);
     for (int s = 0; s < k.nslices && !st; s++)
         st = do_slice(&k, s, &f, &exact, &M, ctx, table, err);
 done:

@@ -55,7 +55,11 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "core/vec.h"
+#include "cfg/list_cfg.h"
+#include "cfg/rfunc_cfg.h"
 #include "harness/experiment.h"
+#include "io/path.h"
 #include "field/field.h"
 #include "rfunc/rfield.h"
 #include "rfunc/tri3d.h"
@@ -64,7 +68,6 @@
 
 #define MAX_SLICES 4
 #define MAX_RADII 8
-#define PI 3.14159265358979323846
 
 typedef struct keys {
     double v[9];
@@ -81,24 +84,12 @@ typedef struct keys {
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 {
-    static const char *const trims[] = {"prism", "conditional"};
-    double a;
-    long kk;
-    bool smooth;
-    int trim;
-    double *pts = NULL;
-    size_t n = 0;
     char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
-    if ((st = dfl_cfg_points(cfg, "study", "triangle", 3, 3, &pts, &n, err))) return st;
-    if (n != 3) {
-        free(pts);
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected exactly 3 vertices, got %zu",
-                           dfl_cfg_where(cfg, "study", "triangle", w, sizeof w), n);
-    }
-    memcpy(k->v, pts, sizeof k->v);
-    free(pts);
+    if ((st = dfl_points_n_from_cfg(cfg, "study", "triangle", 3, 3, k->v, "exactly 3 vertices",
+                                    err)))
+        return st;
     double *list = NULL;
     size_t nl = 0;
     if (!dfl_cfg_has(cfg, "study", "vertices")) {
@@ -117,15 +108,7 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
         k->vertices[k->nvert++] = vi;
     }
     free(list);
-    if ((st = dfl_cfg_enum_opt(cfg, "study", "tri_trim", trims, 2, 1, &trim, err))) return st;
-    if ((st = dfl_cfg_double_opt(cfg, "study", "a", 0.2, 1e-12, 1e12, &a, err))) return st;
-    if ((st = dfl_cfg_int_opt(cfg, "study", "k", 2, 2, 64, &kk, err))) return st;
-    if ((st = dfl_cfg_bool_opt(cfg, "study", "smooth", false, &smooth, err))) return st;
-    k->o = dfl_rfunc_tri_defaults();
-    k->o.trim = (dfl_rfunc_tri_trim)trim;
-    k->o.a = a;
-    k->o.k = (int)kk;
-    k->o.smooth = smooth;
+    if ((st = dfl_rfunc_tri_opts_from_cfg(cfg, "study", true, &k->o, err))) return st;
     dfl_rfunc_tri tri;
     if ((st = dfl_rfunc_tri_init(k->v, k->v + 3, k->v + 6, &k->o, &tri, err))) {
         dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "triangle", w, sizeof w));
@@ -162,10 +145,9 @@ static void sub3(const double *a, const double *b, double *c)
 {
     for (int j = 0; j < 3; j++) c[j] = a[j] - b[j];
 }
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 static void unit3(double *a)
 {
-    const double n = sqrt(dot3(a, a));
+    const double n = sqrt(dfl_vec3_dot(a, a));
     for (int j = 0; j < 3; j++) a[j] /= n;
 }
 
@@ -191,13 +173,13 @@ static frame vertex_frame(const double *v, int vi)
     sub3(B, A, f.e1);
     unit3(f.e1);
     sub3(C, A, ac);
-    const double c = dot3(ac, f.e1);
+    const double c = dfl_vec3_dot(ac, f.e1);
     for (int j = 0; j < 3; j++) f.e2[j] = ac[j] - c * f.e1[j];
     unit3(f.e2);
     f.n[0] = f.e1[1] * f.e2[2] - f.e1[2] * f.e2[1];
     f.n[1] = f.e1[2] * f.e2[0] - f.e1[0] * f.e2[2];
     f.n[2] = f.e1[0] * f.e2[1] - f.e1[1] * f.e2[0];
-    f.alpha = atan2(dot3(ac, f.e2), c);
+    f.alpha = atan2(dfl_vec3_dot(ac, f.e2), c);
     return f;
 }
 
@@ -216,7 +198,7 @@ static dfl_status do_sphere(const keys *k, const dfl_rfunc_tri *tri, int vi, int
         goto done;
     }
     /* sphere: Fibonacci points (uniform in area) */
-    const double golden = PI * (3.0 - sqrt(5.0));
+    const double golden = DFL_PI * (3.0 - sqrt(5.0));
     double gmin = INFINITY, gmax = -INFINITY, gsum = 0, tmin = INFINITY, tmax = -INFINITY;
     double dmin[3] = {0, 0, 0}, dmax[3] = {0, 0, 0};
     size_t cnt = 0;
@@ -228,8 +210,8 @@ static dfl_status do_sphere(const keys *k, const dfl_rfunc_tri *tri, int vi, int
         for (int j = 0; j < 3; j++) x[j] = fr.A[j] + r * d[j];
         const double h = dfl_rfunc_tri_eval(tri, x, g);
         (void)dfl_rfunc_tri_trim_eval(tri, x, gt);
-        gn[i] = sqrt(dot3(g, g));
-        const double tn = sqrt(dot3(gt, gt));
+        gn[i] = sqrt(dfl_vec3_dot(g, g));
+        const double tn = sqrt(dfl_vec3_dot(gt, gt));
         tmin = fmin(tmin, tn);
         tmax = fmax(tmax, tn);
         if (!(h > 0.0)) continue; /* on the triangle: no gradient */
@@ -241,17 +223,17 @@ static dfl_status do_sphere(const keys *k, const dfl_rfunc_tri *tri, int vi, int
     /* the exterior arc of the in-plane circle, and the closed form */
     double pmin = INFINITY, pmax = -INFINITY, qmin = INFINITY, qmax = -INFINITY;
     for (size_t i = 0; i < N; i++) {
-        const double th = fr.alpha + (2 * PI - fr.alpha) * ((double)i + 0.5) / (double)N;
+        const double th = fr.alpha + (2 * DFL_PI - fr.alpha) * ((double)i + 0.5) / (double)N;
         double x[3], g[3];
         for (int j = 0; j < 3; j++) x[j] = fr.A[j] + r * (cos(th) * fr.e1[j] + sin(th) * fr.e2[j]);
         (void)dfl_rfunc_tri_eval(tri, x, g);
-        const double q = sqrt(dot3(g, g));
+        const double q = sqrt(dfl_vec3_dot(g, g));
         pmin = fmin(pmin, q);
         pmax = fmax(pmax, q);
     }
     for (long i = 0; i < k->theory_samples; i++) {
         const double th =
-            fr.alpha + (2 * PI - fr.alpha) * ((double)i + 0.5) / (double)k->theory_samples;
+            fr.alpha + (2 * DFL_PI - fr.alpha) * ((double)i + 0.5) / (double)k->theory_samples;
         const double q = plane_theory(fr.alpha, th);
         qmin = fmin(qmin, q);
         qmax = fmax(qmax, q);
@@ -261,9 +243,9 @@ static dfl_status do_sphere(const keys *k, const dfl_rfunc_tri *tri, int vi, int
     if (!st) st = dfl_table_set_int(table, "vertex", vi, err);
     if (!st)
         st = dfl_table_set_string(table, "tri_trim",
-                                  k->o.trim == DFL_RFUNC_TRI_PRISM ? "prism" : "conditional", err);
+                                  dfl_rfunc_tri_trim_name(k->o.trim), err);
     if (!st) st = dfl_table_set_double(table, "radius", r, err);
-    if (!st) st = dfl_table_set_double(table, "alpha_deg", fr.alpha * 180.0 / PI, err);
+    if (!st) st = dfl_table_set_double(table, "alpha_deg", fr.alpha * 180.0 / DFL_PI, err);
     if (!st) st = dfl_table_set_int(table, "samples", (long)cnt, err);
     if (!st) st = dfl_table_set_double(table, "grad_min", gmin, err);
     if (!st) st = dfl_table_set_double(table, "grad_mean", gsum / (double)cnt, err);
@@ -281,14 +263,15 @@ static dfl_status do_sphere(const keys *k, const dfl_rfunc_tri *tri, int vi, int
     /* directions in the vertex frame (e1, e2, n) */
     const char *cols[6] = {"argmin_e1", "argmin_e2", "argmin_n",
                            "argmax_e1", "argmax_e2", "argmax_n"};
-    const double vals[6] = {dot3(dmin, fr.e1), dot3(dmin, fr.e2), dot3(dmin, fr.n),
-                            dot3(dmax, fr.e1), dot3(dmax, fr.e2), dot3(dmax, fr.n)};
+    const double vals[6] = {dfl_vec3_dot(dmin, fr.e1), dfl_vec3_dot(dmin, fr.e2),
+                            dfl_vec3_dot(dmin, fr.n),  dfl_vec3_dot(dmax, fr.e1),
+                            dfl_vec3_dot(dmax, fr.e2), dfl_vec3_dot(dmax, fr.n)};
     for (int c = 0; c < 6 && !st; c++) st = dfl_table_set_double(table, cols[c], vals[c], err);
     snprintf(stem, sizeof stem, "sphere_v%d_r%d", vi, ri);
     if (!st)
         st = dfl_bs04_vtp_points(dfl_study_path(ctx, stem, "vtp", path, sizeof path), N, sph,
                                  "grad_norm", gn, k->compress, err);
-    if (!st) st = dfl_table_set_string(table, "sphere_vtp", dfl_bs04_base(path), err);
+    if (!st) st = dfl_table_set_string(table, "sphere_vtp", dfl_path_base(path), err);
 done:
     free(sph);
     free(gn);

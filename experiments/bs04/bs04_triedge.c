@@ -40,6 +40,8 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "core/vec.h"
+#include "cfg/rfunc_cfg.h"
 #include "harness/experiment.h"
 #include "rfunc/rfield.h"
 #include "rfunc/tri3d.h"
@@ -47,7 +49,6 @@
 #include "harness/field_out.h"
 
 #define MAX_SLICES 4
-#define PI 3.14159265358979323846
 
 typedef struct keys {
     double theta, L, zc, z0, radius;
@@ -63,11 +64,8 @@ typedef struct keys {
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 {
-    static const char *const trims[] = {"prism", "conditional"};
     const double dapex[2] = {1.0, 0.5};
-    double apex[2], deg, a;
-    long kk;
-    int trim;
+    double apex[2], deg;
     char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
@@ -76,7 +74,7 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
         return dfl_err_set(err, DFL_E_INPUT,
                            "%s: 180 degrees makes the triangles coplanar (no joining edge)",
                            dfl_cfg_where(cfg, "study", "dihedral", w, sizeof w));
-    k->theta = deg * PI / 180.0;
+    k->theta = deg * DFL_PI / 180.0;
     if ((st = dfl_cfg_vec_opt(cfg, "study", "apex", 2, dapex, apex, err))) return st;
     if (!(apex[0] > 0.0) || !(apex[1] > 0.0 && apex[1] < 1.0))
         return dfl_err_set(err, DFL_E_INPUT, "%s: expected L > 0 and 0 < zc < 1",
@@ -85,14 +83,8 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
     k->zc = apex[1];
     if ((st = dfl_cfg_double_opt(cfg, "study", "section", 0.35, 1e-9, 1 - 1e-9, &k->z0, err)))
         return st;
-    if ((st = dfl_cfg_enum_opt(cfg, "study", "tri_trim", trims, 2, 1, &trim, err))) return st;
-    if ((st = dfl_cfg_double_opt(cfg, "study", "a", 0.2, 1e-12, 1e12, &a, err))) return st;
-    if ((st = dfl_cfg_int_opt(cfg, "study", "k", 2, 2, 64, &kk, err))) return st;
-    k->o = dfl_rfunc_tri_defaults();
-    k->o.trim = (dfl_rfunc_tri_trim)trim;
-    k->o.a = a;
-    k->o.k = (int)kk;
-    if ((st = dfl_bs04_join_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
+    if ((st = dfl_rfunc_tri_opts_from_cfg(cfg, "study", false, &k->o, err))) return st;
+    if ((st = dfl_rfunc_join_p_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "radius", 1e-3, 1e-12, 1e3, &k->radius, err)))
         return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "samples", 3600, 8, 10000000, &k->samples, err)))
@@ -107,7 +99,7 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
  * its gradient. */
 static double ray_dist(const double *X, const double *d, double *g)
 {
-    const double s = X[0] * d[0] + X[1] * d[1];
+    const double s = dfl_vecn_dot(2, X, d);
     double v[2] = {X[0], X[1]};
     if (s > 0) {
         v[0] -= s * d[0];
@@ -157,12 +149,12 @@ static dfl_status edge_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     double gmin = INFINITY, gmax = -INFINITY, tmin = INFINITY, tmax = -INFINITY;
     double amin = 0, amax = 0, dev = 0, viol = 0;
     for (size_t i = 0; i < N; i++) {
-        const double ph = 2.0 * PI * ((double)i + 0.5) / (double)N;
+        const double ph = 2.0 * DFL_PI * ((double)i + 0.5) / (double)N;
         const double X[2] = {k.radius * cos(ph), k.radius * sin(ph)};
         const double x[3] = {X[0], X[1], k.z0};
         double g[3], lo, hi;
         (void)dfl_field_eval1(&f, x, g);
-        const double gn = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+        const double gn = dfl_vec3_norm(g);
         const double th = theory(X, k.theta, k.p, &lo, &hi);
         if (gn < gmin) gmin = gn, amin = ph;
         if (gn > gmax) gmax = gn, amax = ph;
@@ -174,35 +166,35 @@ static dfl_status edge_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     /* the two bisectors */
     double bis[2];
     for (int b = 0; b < 2; b++) {
-        const double ph = 0.5 * k.theta + b * PI;
+        const double ph = 0.5 * k.theta + b * DFL_PI;
         const double x[3] = {k.radius * cos(ph), k.radius * sin(ph), k.z0};
         double g[3];
         (void)dfl_field_eval1(&f, x, g);
-        bis[b] = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+        bis[b] = dfl_vec3_norm(g);
     }
     /* inside the smaller angle: theta itself when <= 180, else the other side */
-    const double half = k.theta <= PI ? 0.5 * k.theta : 0.5 * (2 * PI - k.theta);
+    const double half = k.theta <= DFL_PI ? 0.5 * k.theta : 0.5 * (2 * DFL_PI - k.theta);
     const double tb_in = pow(2.0, -1.0 / k.p) * sin(half), tb_out = pow(2.0, -1.0 / k.p);
 
     st = dfl_table_row(table, err);
-    if (!st) st = dfl_table_set_double(table, "dihedral", k.theta * 180.0 / PI, err);
+    if (!st) st = dfl_table_set_double(table, "dihedral", k.theta * 180.0 / DFL_PI, err);
     if (!st)
         st = dfl_table_set_string(table, "tri_trim",
-                                  k.o.trim == DFL_RFUNC_TRI_PRISM ? "prism" : "conditional", err);
+                                  dfl_rfunc_tri_trim_name(k.o.trim), err);
     if (!st) st = dfl_table_set_string(table, "join", dfl_rfunc_join_name(k.join), err);
     if (!st) st = dfl_table_set_int(table, "p", k.p, err);
     if (!st) st = dfl_table_set_double(table, "radius", k.radius, err);
     if (!st) st = dfl_table_set_double(table, "grad_min", gmin, err);
     if (!st) st = dfl_table_set_double(table, "grad_max", gmax, err);
-    if (!st) st = dfl_table_set_double(table, "argmin_deg", amin * 180.0 / PI, err);
-    if (!st) st = dfl_table_set_double(table, "argmax_deg", amax * 180.0 / PI, err);
+    if (!st) st = dfl_table_set_double(table, "argmin_deg", amin * 180.0 / DFL_PI, err);
+    if (!st) st = dfl_table_set_double(table, "argmax_deg", amax * 180.0 / DFL_PI, err);
     if (!st) st = dfl_table_set_double(table, "theory_min", tmin, err);
     if (!st) st = dfl_table_set_double(table, "theory_max", tmax, err);
     if (!st) st = dfl_table_set_double(table, "max_dev_theory", dev, err);
     if (!st) st = dfl_table_set_double(table, "eq13_violation", viol, err);
     /* with theta > 180 the inner bisector is phi = theta/2 + pi */
-    if (!st) st = dfl_table_set_double(table, "bisector_in", k.theta <= PI ? bis[0] : bis[1], err);
-    if (!st) st = dfl_table_set_double(table, "bisector_out", k.theta <= PI ? bis[1] : bis[0], err);
+    if (!st) st = dfl_table_set_double(table, "bisector_in", k.theta <= DFL_PI ? bis[0] : bis[1], err);
+    if (!st) st = dfl_table_set_double(table, "bisector_out", k.theta <= DFL_PI ? bis[1] : bis[0], err);
     if (!st) st = dfl_table_set_double(table, "theory_bisector_in", tb_in, err);
     if (!st) st = dfl_table_set_double(table, "theory_bisector_out", tb_out, err);
     if (st) goto done;

@@ -4,19 +4,23 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/vec.h"
 #include "rfunc/rfield.h"
 #include "geom/segdist.h"
 #include "rfunc/exact_polyline.h"
 
-static const double PI = 3.14159265358979323846;
+/* "exact", then the trims' names in their order (parts = 1 + trim). */
+#define PART_NAME_(code, name, smooth, strip) [1 + code] = name,
+const char *const dfl_vjoin_part_names[DFL_VJOIN_NPARTS] = {
+    [0] = "exact", DFL_RFUNC_TRIM_LIST(PART_NAME_)};
+#undef PART_NAME_
 
-const char *const dfl_vjoin_part_names[DFL_VJOIN_NPARTS] = {"exact", "disk", "disk_smooth",
-                                                            "strip", "strip_smooth"};
-
-/* The trims' order in rfunc/segment.h; the names above must follow it. */
-static const dfl_rfunc_trim trim_of[DFL_VJOIN_NPARTS] = {
-    DFL_RFUNC_TRIM_DISK, DFL_RFUNC_TRIM_DISK, DFL_RFUNC_TRIM_DISK_SMOOTH, DFL_RFUNC_TRIM_STRIP,
-    DFL_RFUNC_TRIM_STRIP_SMOOTH};
+/* The trim of a trimmed part kind (parts >= 1). */
+static dfl_rfunc_trim trim_of(int parts)
+{
+    assert(parts >= 1 && parts < DFL_VJOIN_NPARTS);
+    return (dfl_rfunc_trim)(parts - 1);
+}
 
 dfl_status dfl_vjoin_init(double alpha_deg, double length, int parts, dfl_vjoin *out,
                           dfl_err *err)
@@ -35,7 +39,7 @@ dfl_status dfl_vjoin_init(double alpha_deg, double length, int parts, dfl_vjoin 
     memset(&vj, 0, sizeof vj);
     vj.parts = parts;
     vj.alpha_deg = alpha_deg;
-    vj.alpha = alpha_deg == 180.0 ? PI : alpha_deg * (PI / 180.0);
+    vj.alpha = alpha_deg == 180.0 ? DFL_PI : alpha_deg * (DFL_PI / 180.0);
     vj.length = length;
     /* exact multiples of 90 degrees give exact coordinates, so that the
      * hatched test of collinear segments is not spoiled by cos(pi) */
@@ -54,9 +58,9 @@ dfl_status dfl_vjoin_init(double alpha_deg, double length, int parts, dfl_vjoin 
     vj.v[4] = length * c;
     vj.v[5] = length * s;
     if (parts > 0) {
-        dfl_status st = dfl_rfunc_seg_init(2, vj.v, vj.v + 2, trim_of[parts], &vj.seg[0], err);
+        dfl_status st = dfl_rfunc_seg_init(2, vj.v, vj.v + 2, trim_of(parts), &vj.seg[0], err);
         if (st == DFL_OK)
-            st = dfl_rfunc_seg_init(2, vj.v + 2, vj.v + 4, trim_of[parts], &vj.seg[1], err);
+            st = dfl_rfunc_seg_init(2, vj.v + 2, vj.v + 4, trim_of(parts), &vj.seg[1], err);
         if (st != DFL_OK) return st;
     }
     *out = vj;
@@ -88,7 +92,7 @@ dfl_status dfl_vjoin_field(const dfl_vjoin *vj, dfl_rfunc_join join, int p, dfl_
                            dfl_err *err)
 {
     if (vj->parts == 0) return dfl_rfunc_exact_polyline_field(2, vj->v, 3, join, p, out, err);
-    return dfl_rfield_polyline(2, vj->v, 3, false, join, p, trim_of[vj->parts], out, err);
+    return dfl_rfield_polyline(2, vj->v, 3, false, join, p, trim_of(vj->parts), out, err);
 }
 
 void dfl_vjoin_parts(const dfl_vjoin *vj, const double *x, double *h, double *g)
@@ -114,25 +118,25 @@ double dfl_vjoin_dist(const dfl_vjoin *vj, const double *x, double *g)
 bool dfl_vjoin_hatched(const dfl_vjoin *vj, const double *x)
 {
     /* O is the origin: (x - O) . e_i */
-    return x[0] * vj->e1[0] + x[1] * vj->e1[1] <= 0.0 && x[0] * vj->e2[0] + x[1] * vj->e2[1] <= 0.0;
+    return dfl_vecn_dot(2, x, vj->e1) <= 0.0 && dfl_vecn_dot(2, x, vj->e2) <= 0.0;
 }
 
 void dfl_vjoin_hatched_range(const dfl_vjoin *vj, double *t0, double *t1, int *nrays)
 {
     /* directions t with cos t <= 0 and cos(t - alpha) <= 0 */
-    if (vj->alpha <= PI) {
-        *t0 = vj->alpha + 0.5 * PI;
-        *t1 = 1.5 * PI;
+    if (vj->alpha <= DFL_PI) {
+        *t0 = vj->alpha + 0.5 * DFL_PI;
+        *t1 = 1.5 * DFL_PI;
     } else {
-        *t0 = 0.5 * PI;
-        *t1 = vj->alpha - 0.5 * PI;
+        *t0 = 0.5 * DFL_PI;
+        *t1 = vj->alpha - 0.5 * DFL_PI;
     }
     if (*t1 < *t0) *t1 = *t0; /* rounding at alpha = pi */
     *nrays = *t1 - *t0 <= 1e-15 ? 2 : 1;
-    assert(*t0 >= 0.0 && *t0 < 2.0 * PI);
+    assert(*t0 >= 0.0 && *t0 < 2.0 * DFL_PI);
 }
 
 double dfl_vjoin_bisector(const dfl_vjoin *vj)
 {
-    return vj->alpha <= PI ? 0.5 * vj->alpha : 0.5 * vj->alpha + PI;
+    return vj->alpha <= DFL_PI ? 0.5 * vj->alpha : 0.5 * vj->alpha + DFL_PI;
 }

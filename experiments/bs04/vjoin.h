@@ -6,8 +6,7 @@
  *
  * Parts are either exact segment distances (geom/segdist.h; bs04's analysis
  * assumes them) or one of the library's trimmed segment fields
- * (rfunc/segment.h), named as in configs: "exact", "disk", "disk_smooth",
- * "strip", "strip_smooth".
+ * (rfunc/segment.h), named as in configs: "exact" or a trim's name.
  */
 #ifndef DFL_EXPERIMENTS_VJOIN_H
 #define DFL_EXPERIMENTS_VJOIN_H
@@ -21,8 +20,8 @@
 #include "rfunc/segment.h"
 
 /* Config names of the part kinds, index = dfl_vjoin.parts (0 = exact,
- * 1 + trim otherwise). */
-#define DFL_VJOIN_NPARTS 5
+ * 1 + trim otherwise: the names of rfunc/segment.h's trim list). */
+#define DFL_VJOIN_NPARTS (1 + DFL_RFUNC_TRIM_COUNT)
 extern const char *const dfl_vjoin_part_names[DFL_VJOIN_NPARTS];
 
 typedef struct dfl_vjoin {

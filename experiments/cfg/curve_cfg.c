@@ -83,6 +83,19 @@ dfl_status dfl_curve_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_bspline *
     return DFL_OK;
 }
 
+dfl_status dfl_curve_section_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_bspline *out,
+                                      dfl_err *err)
+{
+    const char *kind;
+    char w[600];
+    dfl_status st = dfl_cfg_string(cfg, sec, "kind", &kind, err);
+    if (st != DFL_OK) return st;
+    if (strcmp(kind, "bspline_curve") != 0)
+        return dfl_err_set(err, DFL_E_INPUT, "%s: expected bspline_curve, got '%s'",
+                           dfl_cfg_where(cfg, sec, "kind", w, sizeof w), kind);
+    return dfl_curve_from_cfg(cfg, sec, out, err);
+}
+
 dfl_status dfl_foot_opts_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_foot_opts *out,
                                   dfl_err *err)
 {

@@ -63,6 +63,13 @@ dfl_status dfl_curve_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_bspline *
 dfl_status dfl_surface_from_cfg(const dfl_cfg *cfg, const char *sec, const char *kind_name,
                                 dfl_surface_set *out, dfl_err *err);
 
+/* The curve of section sec, which must say kind = bspline_curve
+ * (DFL_E_INPUT "expected bspline_curve, got '<kind>'" at its kind key
+ * otherwise), through dfl_curve_from_cfg.  The section must exist: the
+ * caller says where it was named. */
+dfl_status dfl_curve_section_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_bspline *out,
+                                      dfl_err *err);
+
 /* backend, samples, candidates of section sec (defaults when absent). */
 dfl_status dfl_foot_opts_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_foot_opts *out,
                                   dfl_err *err);

@@ -1,23 +1,52 @@
 #include "cfg/field_cfg.h"
 
-#include "field/exact.h"
-#include "geom/shape.h"
 #include "cfg/rfunc_cfg.h"
 #include "cfg/shape_cfg.h"
+#include "field/exact.h"
+#include "geom/shape.h"
+
+/* kind = exact: the [shape] section's exact distance (the [field] section
+ * has no other keys). */
+static dfl_status exact_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *out,
+                                 dfl_err *err)
+{
+    (void)sec;
+    dfl_shape shape;
+    dfl_status st = dfl_shape_from_cfg(cfg, "shape", &shape, err);
+    if (st != DFL_OK) return st;
+    st = dfl_field_exact_new(&shape, out, err);
+    if (st != DFL_OK) dfl_shape_free(&shape);
+    return st;
+}
+
+/* One row per kind of field. */
+static const dfl_field_kind kinds[] = {
+    {"exact", exact_from_cfg},
+    {"rfunc", dfl_rfunc_field_from_cfg},
+};
+#define NKINDS (sizeof kinds / sizeof kinds[0])
+
+const dfl_field_kind *dfl_field_kinds(size_t *count)
+{
+    *count = NKINDS;
+    return kinds;
+}
+
+dfl_status dfl_field_kind_from_cfg(const dfl_cfg *cfg, const char *sec,
+                                   const dfl_field_kind **out, dfl_err *err)
+{
+    const char *names[NKINDS];
+    for (size_t i = 0; i < NKINDS; i++) names[i] = kinds[i].name;
+    int k;
+    dfl_status st = dfl_cfg_enum(cfg, sec, "kind", names, (int)NKINDS, &k, err);
+    if (st == DFL_OK) *out = &kinds[k];
+    return st;
+}
 
 dfl_status dfl_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *out, dfl_err *err)
 {
-    static const char *const kinds[] = {"exact", "rfunc"};
-    int kind;
-    dfl_status st = dfl_cfg_enum(cfg, sec, "kind", kinds, 2, &kind, err);
+    const dfl_field_kind *kind;
+    dfl_status st = dfl_field_kind_from_cfg(cfg, sec, &kind, err);
     if (st != DFL_OK) return st;
-    if (kind == 0) {
-        dfl_shape shape;
-        st = dfl_shape_from_cfg(cfg, "shape", &shape, err);
-        if (st != DFL_OK) return st;
-        st = dfl_field_exact_new(&shape, out, err);
-        if (st != DFL_OK) dfl_shape_free(&shape);
-        return st;
-    }
-    return dfl_rfunc_field_from_cfg(cfg, sec, out, err);
+    return kind->build(cfg, sec, out, err);
 }

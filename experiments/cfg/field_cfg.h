@@ -1,17 +1,41 @@
-/* [field] section -> dfl_field.
+/* [field] section -> dfl_field, through a table of field kinds.
  *
  *   kind = exact   the exact signed distance of the [shape] section
- *   kind = rfunc   a bs04 R-function field (see experiments/rfunc_cfg.h)
+ *   kind = rfunc   a bs04 R-function field (experiments/cfg/rfunc_cfg.h)
  *
- * Reads only [field] and the sections it names; marks what it reads.
+ * Each kind is one row {name, factory} of the table in field_cfg.c; a
+ * module that brings a new kind of field adds its row there and its
+ * factory beside its other config glue.  A factory reads the rest of
+ * [sec] (and the sections it names), marks what it reads, and leaves *out
+ * untouched on failure.
  */
 #ifndef DFL_EXPERIMENTS_FIELD_CFG_H
 #define DFL_EXPERIMENTS_FIELD_CFG_H
+
+#include <stddef.h>
 
 #include "core/status.h"
 #include "field/field.h"
 #include "io/config.h"
 
+typedef dfl_status (*dfl_field_factory)(const dfl_cfg *cfg, const char *sec, dfl_field *out,
+                                        dfl_err *err);
+
+typedef struct dfl_field_kind {
+    const char *name;          /* the value of `kind` */
+    dfl_field_factory build;
+} dfl_field_kind;
+
+/* The kinds, in table order (*count receives their number). */
+const dfl_field_kind *dfl_field_kinds(size_t *count);
+
+/* The row of [sec] kind into *out.  DFL_E_INPUT naming file:line, key and
+ * the accepted names when kind is missing or not in the table. */
+dfl_status dfl_field_kind_from_cfg(const dfl_cfg *cfg, const char *sec,
+                                   const dfl_field_kind **out, dfl_err *err);
+
+/* The field [sec] describes: its kind's factory.  *out is untouched on
+ * failure; release it with dfl_field_destroy. */
 dfl_status dfl_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *out, dfl_err *err);
 
 #endif

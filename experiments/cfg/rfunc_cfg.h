@@ -1,6 +1,17 @@
-/* `[field] kind = rfunc` -> a bs04 R-function field (rfunc/rfield.h).
+/* Config -> bs04 R-function objects (rfunc/): the `[field] kind = rfunc`
+ * factory, the parsed field description it builds from, and the readers
+ * of the join, trim and triangle-trim keys that studies share.
  *
- * Keys of the section (the caller has read `kind`):
+ *   dfl_rfunc_spec_from_cfg      [sec] -> dfl_rfunc_field_spec (parsed, owned)
+ *   dfl_rfunc_field_from_spec    spec -> dfl_field (rfunc/rfield.h)
+ *   dfl_rfunc_field_from_cfg     both: the field-kind factory (field_cfg.h)
+ *   dfl_rfunc_spec_free
+ *   dfl_rfunc_join_from_cfg      key join
+ *   dfl_rfunc_join_p_from_cfg    keys join and p, checked together
+ *   dfl_rfunc_trim_from_cfg      key trim
+ *   dfl_rfunc_tri_opts_from_cfg  keys tri_trim, a, k [, smooth]
+ *
+ * Keys of a `kind = rfunc` section (the caller has read `kind`):
  *   vertices = x0 y0; x1 y1; ...   a 2D polyline, or x y z; ... (3D space
  *              polyline; the dimension is the number of values of the
  *              first vertex), at least 2 vertices (3 when closed), no two
@@ -8,26 +19,95 @@
  *   closed   = false | true        with vertices only: adds the segment
  *              from the last vertex back to the first
  *   curve    = <section>           instead of vertices: a [section] with
- *              kind = bspline_curve (experiments/curve_cfg.h), polygonized
+ *              kind = bspline_curve (experiments/cfg/curve_cfg.h), polygonized
  *              with Hausdorff bound
  *   eps      = <max deviation>     > 0, required with curve; a closed curve
  *              (first point == last) gives a closed polyline
  *   join     = requiv | rconj | requiv_corrected     default requiv
  *   p        = integer 1..64       default 2; rconj needs p >= 2
  *   trim     = disk | disk_smooth | strip | strip_smooth   default disk
- * The field is unsigned (bs04's approximate distance to the set), 0 on the
- * polyline.  Errors: DFL_E_INPUT naming file:line, [section] and key.
+ * The accepted join and trim names are the lists of rfunc/join.h and
+ * rfunc/segment.h.  The field is unsigned (bs04's approximate distance to
+ * the set), 0 on the polyline.  Errors: DFL_E_INPUT naming file:line,
+ * [section] and key.
  */
 #ifndef DFL_EXPERIMENTS_RFUNC_CFG_H
 #define DFL_EXPERIMENTS_RFUNC_CFG_H
 
+#include <stdbool.h>
+#include <stddef.h>
+
 #include "core/status.h"
 #include "field/field.h"
+#include "geom/bspline.h"
+#include "geom/polygonize.h"
 #include "io/config.h"
+#include "rfunc/join.h"
+#include "rfunc/segment.h"
+#include "rfunc/tri3d.h"
 
-/* Reads [sec] (kind already checked to be "rfunc") into *out (release with
- * dfl_field_destroy); *out is untouched on failure. */
+/* What a `kind = rfunc` section says, as parsed (before the field is built). */
+typedef struct dfl_rfunc_field_spec {
+    dfl_rfunc_join join;
+    int p;               /* 1..DFL_RFUNC_P_MAX; not yet checked against join */
+    dfl_rfunc_trim trim;
+    int dim;             /* 2 or 3 */
+    bool closed;         /* the polyline closes (key closed, or a closed curve) */
+    double *v;           /* n*dim vertices of the joined polyline (owned); a
+                            closed one does not repeat its first vertex */
+    size_t n;
+    const char *curve;   /* the curve section, or NULL for vertices (points
+                            into the config: valid while it lives) */
+    double eps;          /* with curve: the polygonization bound; else 0 */
+    dfl_bspline bspline; /* with curve: the curve (owned; zeroed otherwise) */
+    dfl_polyline pl;     /* with curve: its polygonization as
+                            dfl_polygonize_curve returned it (parameters t,
+                            bound; a closed curve repeats its first point) */
+} dfl_rfunc_field_spec;
+
+/* Reads [sec] (the keys above) into *out, polygonizing the curve when one
+ * is named.  Every value is checked on its own (p in range, known names,
+ * point lists); the pair (join, p) is checked when the field is built, so
+ * that a study can report rconj with p = 1 instead of failing.  On failure
+ * *out is zeroed and owns nothing. */
+dfl_status dfl_rfunc_spec_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_rfunc_field_spec *out,
+                                   dfl_err *err);
+
+/* The field of spec (read from [sec] of cfg, which names the key in
+ * errors): DFL_E_INPUT for a (join, p) pair rfunc/join.h rejects (at key p)
+ * or degenerate geometry (at vertices or curve).  *out is untouched on
+ * failure; release it with dfl_field_destroy. */
+dfl_status dfl_rfunc_field_from_spec(const dfl_cfg *cfg, const char *sec,
+                                     const dfl_rfunc_field_spec *spec, dfl_field *out,
+                                     dfl_err *err);
+
+/* Frees what spec owns and zeroes it; safe on a zeroed spec. */
+void dfl_rfunc_spec_free(dfl_rfunc_field_spec *spec);
+
+/* The `kind = rfunc` factory: dfl_rfunc_spec_from_cfg, then
+ * dfl_rfunc_field_from_spec.  *out is untouched on failure. */
 dfl_status dfl_rfunc_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *out,
                                     dfl_err *err);
+
+/* [sec] join (one of dfl_rfunc_join_names; default requiv). */
+dfl_status dfl_rfunc_join_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_rfunc_join *join,
+                                   dfl_err *err);
+
+/* [sec] join (default requiv) and p (1..DFL_RFUNC_P_MAX, default 2),
+ * checked together by dfl_rfunc_join_check (error at key p).  Outputs are
+ * written only on success. */
+dfl_status dfl_rfunc_join_p_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_rfunc_join *join,
+                                     int *p, dfl_err *err);
+
+/* [sec] trim (one of dfl_rfunc_trim_names; default disk). */
+dfl_status dfl_rfunc_trim_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_rfunc_trim *trim,
+                                   dfl_err *err);
+
+/* [sec] tri_trim (prism | conditional, default conditional), a (default
+ * 0.2, in [1e-12, 1e12]), k (default 2, 2..64) and, when smooth_key,
+ * smooth (default false) into *out, starting from dfl_rfunc_tri_defaults.
+ * Ranges only: dfl_rfunc_tri_init checks the rest (k even). */
+dfl_status dfl_rfunc_tri_opts_from_cfg(const dfl_cfg *cfg, const char *sec, bool smooth_key,
+                                       dfl_rfunc_tri_opts *out, dfl_err *err);
 
 #endif

@@ -35,7 +35,7 @@
 #include <assert.h>
 #include <math.h>
 
-static const double PI = 3.14159265358979323846;
+#include "core/vec.h"
 
 dfl_status dfl_gradbound_check(dfl_rfunc_join join, int p, dfl_err *err)
 {
@@ -73,14 +73,14 @@ void dfl_gradbound_band(double F1, double F2, double g1, double g2, double *lo, 
 
 static double fold_alpha(double alpha)
 {
-    assert(alpha > 0.0 && alpha < 2.0 * PI);
-    return alpha <= PI ? alpha : 2.0 * PI - alpha;
+    assert(alpha > 0.0 && alpha < 2.0 * DFL_PI);
+    return alpha <= DFL_PI ? alpha : 2.0 * DFL_PI - alpha;
 }
 
 double dfl_gradbound_bisector(dfl_rfunc_join join, int p, double alpha)
 {
     double F1, F2;
-    dfl_gradbound_partials(join, p, 0.25 * PI, &F1, &F2);
+    dfl_gradbound_partials(join, p, 0.25 * DFL_PI, &F1, &F2);
     return (F1 + F2) * sin(0.5 * fold_alpha(alpha));
 }
 
@@ -184,12 +184,13 @@ double dfl_gradbound_sum_min(dfl_rfunc_join join, int p, double *phi_min, double
     double smax = 0.0, dmax = 0.0;
     for (int k = 0; k <= 2000; k++) {
         double F1, F2;
-        dfl_gradbound_partials(join, p, k == 2000 ? 0.5 * PI : k * (0.5 * PI / 2000), &F1, &F2);
+        dfl_gradbound_partials(join, p, k == 2000 ? 0.5 * DFL_PI : k * (0.5 * DFL_PI / 2000), &F1,
+                               &F2);
         smax = fmax(smax, F1 + F2);
         dmax = fmax(dmax, fabs(F1 - F2));
     }
     double phi;
-    const double m = scan_min(sum_fn, &j, 0.0, 0.5 * PI, 2001, &phi);
+    const double m = scan_min(sum_fn, &j, 0.0, 0.5 * DFL_PI, 2001, &phi);
     if (phi_min) *phi_min = phi;
     if (sum_max) *sum_max = smax;
     if (diff_max) *diff_max = dmax;

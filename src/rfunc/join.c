@@ -6,19 +6,12 @@
 
 #include "rfunc/trim.h"
 
-const char *dfl_rfunc_join_name(dfl_rfunc_join join)
-{
-    switch (join) {
-    case DFL_RFUNC_REQUIV: return "requiv";
-    case DFL_RFUNC_RCONJ: return "rconj";
-    case DFL_RFUNC_REQUIV_CORRECTED: return "requiv_corrected";
-    }
-    return "?";
-}
+DFL_NAMES_DEFINE(dfl_rfunc_join, DFL_RFUNC_JOIN_LIST, DFL_RFUNC_JOIN_COUNT, dfl_rfunc_join_names,
+                 dfl_rfunc_join_name, dfl_rfunc_join_parse, "join")
 
 dfl_status dfl_rfunc_join_check(dfl_rfunc_join join, int p, dfl_err *err)
 {
-    if ((int)join < DFL_RFUNC_REQUIV || (int)join > DFL_RFUNC_REQUIV_CORRECTED)
+    if ((int)join < 0 || (int)join >= DFL_RFUNC_JOIN_COUNT)
         return dfl_err_set(err, DFL_E_INPUT, "unknown join %d", (int)join);
     if (p < 1 || p > DFL_RFUNC_P_MAX)
         return dfl_err_set(err, DFL_E_INPUT, "join order p = %d outside [1, %d]", p,

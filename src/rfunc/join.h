@@ -50,19 +50,36 @@
 #include <stddef.h>
 
 #include "core/jet.h"
+#include "core/names.h"
 #include "core/status.h"
 
-typedef enum dfl_rfunc_join {
-    DFL_RFUNC_REQUIV = 0,         /* eq. 6 */
-    DFL_RFUNC_RCONJ,              /* eq. 7, left fold */
-    DFL_RFUNC_REQUIV_CORRECTED    /* eq. 20 with the guard and floor above */
-} dfl_rfunc_join;
+/* The joins: one list from which the codes (0, 1, ... in this order) and
+ * their config names come (core/names.h).  X(code, name, where in bs04). */
+#define DFL_RFUNC_JOIN_LIST(X)                                      \
+    X(DFL_RFUNC_REQUIV, "requiv", "eq. 6")                          \
+    X(DFL_RFUNC_RCONJ, "rconj", "eq. 7, left fold")                 \
+    X(DFL_RFUNC_REQUIV_CORRECTED, "requiv_corrected", "eq. 20, guard and floor above")
+
+typedef enum dfl_rfunc_join { DFL_RFUNC_JOIN_LIST(DFL_NAMES_CODE) } dfl_rfunc_join;
+
+/* Number of joins. */
+enum { DFL_RFUNC_JOIN_COUNT = 0 DFL_RFUNC_JOIN_LIST(DFL_NAMES_ONE) };
+
+/* Config names indexed by code (for dfl_cfg_enum-style readers: names,
+ * DFL_RFUNC_JOIN_COUNT). */
+extern const char *const dfl_rfunc_join_names[DFL_RFUNC_JOIN_COUNT];
 
 /* Largest supported order p (integer powers by repeated squaring). */
 #define DFL_RFUNC_P_MAX 64
 
-/* Config name: "requiv", "rconj", "requiv_corrected". */
+/* Config name of a join ("requiv", "rconj", "requiv_corrected"); "?" for
+ * a value outside the list. */
 const char *dfl_rfunc_join_name(dfl_rfunc_join join);
+
+/* The join whose config name is name (exact, case-sensitive match) into
+ * *out.  DFL_E_INPUT naming the value and the accepted names otherwise;
+ * *out is untouched then. */
+dfl_status dfl_rfunc_join_parse(const char *name, dfl_rfunc_join *out, dfl_err *err);
 
 /* Checks p against the join: DFL_E_INPUT unless 1 <= p <= DFL_RFUNC_P_MAX,
  * and p >= 2 for R-conjunction. */

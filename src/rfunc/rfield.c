@@ -74,15 +74,23 @@ size_t dfl_rfield_count(const dfl_rfield *r) { return r->n; }
 
 void dfl_rfield_set_fast(dfl_rfield *r, bool on) { r->fast = on; }
 
+/* arr (n elements of size bytes, room for *cap) with room for one more:
+ * doubled capacity (16 at first) when full.  NULL when out of memory (arr
+ * and *cap unchanged). */
+static void *grow(void *arr, size_t n, size_t *cap, size_t size)
+{
+    if (n < *cap) return arr;
+    const size_t c = *cap ? 2 * *cap : 16;
+    void *p = realloc(arr, c * size);
+    if (p) *cap = c;
+    return p;
+}
+
 static dfl_status push(dfl_rfield *r, const part *pt, dfl_err *err)
 {
-    if (r->n == r->cap) {
-        size_t cap = r->cap ? 2 * r->cap : 16;
-        part *np = realloc(r->parts, cap * sizeof *np);
-        if (!np) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-        r->parts = np;
-        r->cap = cap;
-    }
+    part *np = grow(r->parts, r->n, &r->cap, sizeof *np);
+    if (!np) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    r->parts = np;
     r->parts[r->n++] = *pt;
     return DFL_OK;
 }
@@ -147,13 +155,9 @@ dfl_status dfl_rfield_add_vertex(dfl_rfield *r, const double *v, size_t i, size_
     if (i == j) return dfl_err_set(err, DFL_E_INPUT, "vertex: adjacent parts must differ");
     vx.lo = i < j ? i : j;
     vx.hi = i < j ? j : i;
-    if (r->nv == r->vcap) {
-        size_t cap = r->vcap ? 2 * r->vcap : 16;
-        vertex *nv = realloc(r->verts, cap * sizeof *nv);
-        if (!nv) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-        r->verts = nv;
-        r->vcap = cap;
-    }
+    vertex *nv = grow(r->verts, r->nv, &r->vcap, sizeof *nv);
+    if (!nv) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    r->verts = nv;
     r->verts[r->nv++] = vx;
     return DFL_OK;
 }

@@ -27,17 +27,42 @@
 #define DFL_RFUNC_SEGMENT_H
 
 #include "core/jet.h"
+#include "core/names.h"
 #include "core/status.h"
 
-typedef enum dfl_rfunc_trim {
-    DFL_RFUNC_TRIM_DISK = 0,     /* disk (sphere) trim, eq. 4 */
-    DFL_RFUNC_TRIM_DISK_SMOOTH,  /* disk (sphere) trim, eq. 5 */
-    DFL_RFUNC_TRIM_STRIP,        /* strip (slab) trim, eq. 4 */
-    DFL_RFUNC_TRIM_STRIP_SMOOTH  /* strip (slab) trim, eq. 5 */
-} dfl_rfunc_trim;
+/* The trims: one list from which the codes (0, 1, ... in this order),
+ * their config names and their two properties come (core/names.h).
+ * X(code, name, smooth: eq. 5 rather than eq. 4, strip: rather than disk). */
+#define DFL_RFUNC_TRIM_LIST(X)                                    \
+    X(DFL_RFUNC_TRIM_DISK, "disk", 0, 0)                          \
+    X(DFL_RFUNC_TRIM_DISK_SMOOTH, "disk_smooth", 1, 0)            \
+    X(DFL_RFUNC_TRIM_STRIP, "strip", 0, 1)                        \
+    X(DFL_RFUNC_TRIM_STRIP_SMOOTH, "strip_smooth", 1, 1)
 
-/* Config name of a trim ("disk", "disk_smooth", "strip", "strip_smooth"). */
+typedef enum dfl_rfunc_trim { DFL_RFUNC_TRIM_LIST(DFL_NAMES_CODE) } dfl_rfunc_trim;
+
+/* Number of trims. */
+enum { DFL_RFUNC_TRIM_COUNT = 0 DFL_RFUNC_TRIM_LIST(DFL_NAMES_ONE) };
+
+/* Config names indexed by code (for dfl_cfg_enum-style readers: names,
+ * DFL_RFUNC_TRIM_COUNT). */
+extern const char *const dfl_rfunc_trim_names[DFL_RFUNC_TRIM_COUNT];
+
+/* Config name of a trim ("disk", "disk_smooth", "strip", "strip_smooth");
+ * "?" for a value outside the list. */
 const char *dfl_rfunc_trim_name(dfl_rfunc_trim trim);
+
+/* The trim whose config name is name (exact match) into *out; DFL_E_INPUT
+ * naming the value and the accepted names otherwise (*out untouched). */
+dfl_status dfl_rfunc_trim_parse(const char *name, dfl_rfunc_trim *out, dfl_err *err);
+
+/* 1 for the eq. 5 trims (*_smooth: normalized to order 6 at interior
+ * points), 0 for eq. 4 and for values outside the list. */
+int dfl_rfunc_trim_smooth(dfl_rfunc_trim trim);
+
+/* 1 for the strip (slab) trims, 0 for the disk (sphere) ones and for
+ * values outside the list. */
+int dfl_rfunc_trim_strip(dfl_rfunc_trim trim);
 
 typedef struct dfl_rfunc_seg {
     int dim;              /* 2 or 3 */

@@ -4,21 +4,12 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/vec.h"
 #include "rfunc/trim.h"
 
-static double dot3(const double *u, const double *v)
-{
-    return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-}
-
-static void cross3(const double *u, const double *v, double *w)
-{
-    double r[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                   u[0] * v[1] - u[1] * v[0]};
-    w[0] = r[0];
-    w[1] = r[1];
-    w[2] = r[2];
-}
+DFL_NAMES_DEFINE(dfl_rfunc_tri_trim, DFL_RFUNC_TRI_TRIM_LIST, DFL_RFUNC_TRI_TRIM_COUNT,
+                 dfl_rfunc_tri_trim_names, dfl_rfunc_tri_trim_name, dfl_rfunc_tri_trim_parse,
+                 "triangle trim")
 
 static double amax3(const double *u)
 {
@@ -56,12 +47,12 @@ dfl_status dfl_rfunc_tri_init(const double *A, const double *B, const double *C,
     double e[3][3];
     for (int i = 0; i < 3; i++) {
         for (int j = 0; j < 3; j++) e[i][j] = t.v[(i + 1) % 3][j] - t.v[i][j];
-        lmax = fmax(lmax, sqrt(dot3(e[i], e[i])));
+        lmax = fmax(lmax, sqrt(dfl_vec3_dot(e[i], e[i])));
         size = fmax(size, amax3(t.v[i]));
     }
     double nn[3];
-    cross3(e[0], e[1], nn);
-    const double area2 = sqrt(dot3(nn, nn));
+    dfl_vec3_cross(e[0], e[1], nn);
+    const double area2 = sqrt(dfl_vec3_dot(nn, nn));
     if (!(area2 > 1e-12 * lmax * lmax))
         return dfl_err_set(err, DFL_E_INPUT,
                            "degenerate triangle: vertices are collinear or coincide");
@@ -69,8 +60,8 @@ dfl_status dfl_rfunc_tri_init(const double *A, const double *B, const double *C,
     for (int i = 0; i < 3; i++) {
         /* n x e_i points into the triangle for the orientation n defines. */
         double m[3];
-        cross3(t.n, e[i], m);
-        const double mn = sqrt(dot3(m, m));
+        dfl_vec3_cross(t.n, e[i], m);
+        const double mn = sqrt(dfl_vec3_dot(m, m));
         for (int j = 0; j < 3; j++) t.m[i][j] = m[j] / mn;
     }
     t.scale = fmax(size, lmax);
@@ -96,7 +87,7 @@ static double trim_core(const dfl_rfunc_tri *t, const double *x, double f, doubl
     double p[3];
     for (int i = 0; i < 3; i++) {
         double w[3] = {x[0] - t->v[i][0], x[1] - t->v[i][1], x[2] - t->v[i][2]};
-        p[i] = dot3(w, t->m[i]);
+        p[i] = dfl_vec3_dot(w, t->m[i]);
     }
     double dcdf;
     const double c = cond_term(t, f, &dcdf);
@@ -115,13 +106,13 @@ static double trim_core(const dfl_rfunc_tri *t, const double *x, double f, doubl
 double dfl_rfunc_tri_trim_eval(const dfl_rfunc_tri *t, const double *x, double *grad)
 {
     double w[3] = {x[0] - t->v[0][0], x[1] - t->v[0][1], x[2] - t->v[0][2]};
-    return trim_core(t, x, dot3(w, t->n), grad);
+    return trim_core(t, x, dfl_vec3_dot(w, t->n), grad);
 }
 
 double dfl_rfunc_tri_eval(const dfl_rfunc_tri *t, const double *x, double *grad)
 {
     double w[3] = {x[0] - t->v[0][0], x[1] - t->v[0][1], x[2] - t->v[0][2]};
-    const double f = dot3(w, t->n);
+    const double f = dfl_vec3_dot(w, t->n);
     double gt[3], hgF[3] = {f * t->n[0], f * t->n[1], f * t->n[2]};
     const double tv = trim_core(t, x, f, grad ? gt : NULL);
     return dfl_rfunc_compose(3, t->o.smooth, fabs(f), hgF, tv, gt, grad);
@@ -132,16 +123,17 @@ dfl_status dfl_rfunc_tri_jet(const dfl_rfunc_tri *t, const double *x, const doub
 {
     assert(K >= 0 && K <= DFL_JET_MAX);
     const double xs = fmax(t->scale, amax3(x));
-    const double dn = sqrt(dot3(dir, dir));
+    const double dn = sqrt(dfl_vec3_dot(dir, dir));
     dfl_jet f, F, p[3], c, t1, tv;
     dfl_status st;
     double w[3] = {x[0] - t->v[0][0], x[1] - t->v[0][1], x[2] - t->v[0][2]};
-    dfl_jet_linear(dfl_rfunc_snap(dot3(w, t->n), xs), dfl_rfunc_snap(dot3(dir, t->n), dn), K, &f);
+    dfl_jet_linear(dfl_rfunc_snap(dfl_vec3_dot(w, t->n), xs),
+                   dfl_rfunc_snap(dfl_vec3_dot(dir, t->n), dn), K, &f);
     dfl_jet_mul(&f, &f, &F);
     for (int i = 0; i < 3; i++) {
         double wi[3] = {x[0] - t->v[i][0], x[1] - t->v[i][1], x[2] - t->v[i][2]};
-        dfl_jet_linear(dfl_rfunc_snap(dot3(wi, t->m[i]), xs),
-                       dfl_rfunc_snap(dot3(dir, t->m[i]), dn), K, &p[i]);
+        dfl_jet_linear(dfl_rfunc_snap(dfl_vec3_dot(wi, t->m[i]), xs),
+                       dfl_rfunc_snap(dfl_vec3_dot(dir, t->m[i]), dn), K, &p[i]);
     }
     const dfl_jet *cp = NULL;
     if (t->o.trim == DFL_RFUNC_TRI_CONDITIONAL) {

@@ -23,12 +23,30 @@
 #define DFL_RFUNC_TRI3D_H
 
 #include "core/jet.h"
+#include "core/names.h"
 #include "core/status.h"
 
-typedef enum dfl_rfunc_tri_trim {
-    DFL_RFUNC_TRI_PRISM = 0,
-    DFL_RFUNC_TRI_CONDITIONAL
-} dfl_rfunc_tri_trim;
+/* The triangle trims: one list from which the codes (0, 1 in this order)
+ * and their config names come (core/names.h).  X(code, name, what it is). */
+#define DFL_RFUNC_TRI_TRIM_LIST(X)                                            \
+    X(DFL_RFUNC_TRI_PRISM, "prism", "R0-conjunction of the edge planes")      \
+    X(DFL_RFUNC_TRI_CONDITIONAL, "conditional", "eq. 15-16")
+
+typedef enum dfl_rfunc_tri_trim { DFL_RFUNC_TRI_TRIM_LIST(DFL_NAMES_CODE) } dfl_rfunc_tri_trim;
+
+/* Number of triangle trims. */
+enum { DFL_RFUNC_TRI_TRIM_COUNT = 0 DFL_RFUNC_TRI_TRIM_LIST(DFL_NAMES_ONE) };
+
+/* Config names indexed by code (for dfl_cfg_enum-style readers). */
+extern const char *const dfl_rfunc_tri_trim_names[DFL_RFUNC_TRI_TRIM_COUNT];
+
+/* Config name of a triangle trim ("prism", "conditional"); "?" for a value
+ * outside the list. */
+const char *dfl_rfunc_tri_trim_name(dfl_rfunc_tri_trim trim);
+
+/* The triangle trim whose config name is name into *out; DFL_E_INPUT
+ * naming the value and the accepted names otherwise (*out untouched). */
+dfl_status dfl_rfunc_tri_trim_parse(const char *name, dfl_rfunc_tri_trim *out, dfl_err *err);
 
 typedef struct dfl_rfunc_tri_opts {
     dfl_rfunc_tri_trim trim;

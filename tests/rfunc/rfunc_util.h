@@ -6,9 +6,8 @@
 #include <stdint.h>
 
 #include "core/jet.h"
+#include "core/vec.h"
 #include "field/field.h"
-
-#define TU_PI 3.14159265358979323846
 
 /* Deterministic uniform numbers in [lo, hi) (splitmix64). */
 static inline double tu_uniform(uint64_t *state, double lo, double hi)
@@ -34,12 +33,7 @@ static inline void tu_fd_grad(const dfl_field *f, const double *x, double hstep,
     }
 }
 
-static inline double tu_norm(int dim, const double *v)
-{
-    double s = 0.0;
-    for (int j = 0; j < dim; j++) s += v[j] * v[j];
-    return sqrt(s);
-}
+static inline double tu_norm(int dim, const double *v) { return sqrt(dfl_vecn_dot(dim, v, v)); }
 
 /* Taylor coefficient of s^k (d_k / k!). */
 static inline double tu_coeff(const dfl_jet *j, int k) { return dfl_jet_coeff(j, k); }

@@ -1,4 +1,4 @@
-/* eq. 13-14 bounds (experiments/gradbound.h).  Expected values: finite
+/* eq. 13-14 bounds (rfunc/gradbound.h).  Expected values: finite
  * differences of the join formulas written out here with pow(), the
  * library's own two-argument joins, and brute-force scans of |grad u|
  * around a vertex of exact segment distances (central differences of a
@@ -7,9 +7,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/vec.h"
 #include "rfunc/gradbound.h"
-
-#define PI 3.14159265358979323846
 
 static double F_requiv(double a, double b, int p) { return pow(pow(a, -p) + pow(b, -p), -1.0 / p); }
 static double F_rconj(double a, double b, int p) { return a + b - pow(pow(a, p) + pow(b, p), 1.0 / p); }
@@ -26,7 +25,7 @@ Test(gradbound, polar_partials_are_the_partial_derivatives)
         for (int ip = 0; ip < 4; ip++)
             for (int k = 1; k < 30; k++) {
                 const int p = ps[ip];
-                double phi = k * (PI / 2) / 30, F1, F2;
+                double phi = k * (DFL_PI / 2) / 30, F1, F2;
                 dfl_gradbound_partials(joins[j], p, phi, &F1, &F2);
                 /* at any radius: the partials are homogeneous of degree 0 */
                 const double rho = 0.37, h1 = rho * cos(phi), h2 = rho * sin(phi), e = 1e-6;
@@ -60,15 +59,15 @@ Test(gradbound, band_and_claims_of_fig5)
          * equal components: 2^(-1/p); R-conjunction: 2 - 2^(1/p) */
         double m = dfl_gradbound_sum_min(DFL_RFUNC_REQUIV, p, &phi, &smax, &dmax);
         cr_expect_float_eq(m, pow(2.0, -1.0 / p), 1e-14);
-        cr_expect_float_eq(phi, PI / 4, 1e-6);
+        cr_expect_float_eq(phi, DFL_PI / 4, 1e-6);
         cr_expect_float_eq(smax, 1.0, 1e-14);
         cr_expect_float_eq(dmax, 1.0, 1e-14);
         m = dfl_gradbound_sum_min(DFL_RFUNC_RCONJ, p, &phi, &smax, &dmax);
         cr_expect_float_eq(m, 2.0 - pow(2.0, 1.0 / p), 1e-14);
-        cr_expect_float_eq(phi, PI / 4, 1e-6);
+        cr_expect_float_eq(phi, DFL_PI / 4, 1e-6);
         cr_expect_float_eq(smax, 1.0, 1e-14);
         double F1, F2;
-        dfl_gradbound_partials(DFL_RFUNC_REQUIV, p, PI / 4, &F1, &F2);
+        dfl_gradbound_partials(DFL_RFUNC_REQUIV, p, DFL_PI / 4, &F1, &F2);
         cr_expect_float_eq(F1 - F2, 0.0, 1e-15);
         cr_expect_float_eq(F1, pow(2.0, -(p + 1.0) / p), 1e-15);
     }
@@ -117,9 +116,9 @@ Test(gradbound, bisector_and_mixed_values_match_finite_differences)
     for (int j = 0; j < 2; j++)
         for (int p = 2; p <= 12; p += 5)
             for (int ad = 20; ad < 360; ad += 20) {
-                const double a = ad * PI / 180;
+                const double a = ad * DFL_PI / 180;
                 /* convex bisector */
-                const double tb = ad <= 180 ? a / 2 : a / 2 + PI;
+                const double tb = ad <= 180 ? a / 2 : a / 2 + DFL_PI;
                 const double x[2] = {r * cos(tb), r * sin(tb)};
                 cr_expect_float_eq(dfl_gradbound_bisector(joins[j], p, a),
                                    fd_grad(joins[j], p, a, x, 1e-8), 1e-6, "alpha %d p %d", ad, p);
@@ -128,7 +127,7 @@ Test(gradbound, bisector_and_mixed_values_match_finite_differences)
      * (cos > 0), segment 2's closest point O (cos(-180) < 0), s = 1/2 */
     for (int j = 0; j < 2; j++)
         for (int p = 2; p <= 12; p += 5) {
-            const double a = 150 * PI / 180, t = -30 * PI / 180;
+            const double a = 150 * DFL_PI / 180, t = -30 * DFL_PI / 180;
             const double x[2] = {r * cos(t), r * sin(t)};
             cr_expect_float_eq(dfl_gradbound_mixed(joins[j], p, 0.5),
                                fd_grad(joins[j], p, a, x, 1e-8), 1e-6, "p %d", p);
@@ -143,17 +142,17 @@ Test(gradbound, vertex_min_is_the_brute_force_circle_minimum)
     for (int j = 0; j < 2; j++)
         for (int p = 2; p <= 12; p += 5)
             for (int ia = 0; ia < 7; ia++) {
-                const double a = alphas[ia] * PI / 180;
+                const double a = alphas[ia] * DFL_PI / 180;
                 /* coarse scan, then a fine scan around the best sample */
                 double best = INFINITY, tbest = 0;
                 for (int k = 0; k < 3600; k++) {
-                    double t = 2 * PI * (k + 0.5) / 3600;
+                    double t = 2 * DFL_PI * (k + 0.5) / 3600;
                     double x[2] = {r * cos(t), r * sin(t)};
                     double g = fd_grad(joins[j], p, a, x, 1e-8);
                     if (g < best) best = g, tbest = t;
                 }
                 for (int k = -1000; k <= 1000; k++) {
-                    double t = tbest + k * (2 * PI / 3600) / 1000;
+                    double t = tbest + k * (2 * DFL_PI / 3600) / 1000;
                     double x[2] = {r * cos(t), r * sin(t)};
                     best = fmin(best, fd_grad(joins[j], p, a, x, 1e-8));
                 }

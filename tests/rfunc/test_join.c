@@ -21,7 +21,7 @@ Test(rfunc_join, eq14_partials_and_bounds)
         const int p = bound_orders[ip];
         double minsum = INFINITY, argmin = -1;
         for (int i = 0; i <= 400; i++) {
-            const double phi = (TU_PI / 2) * i / 400.0;
+            const double phi = (DFL_PI / 2) * i / 400.0;
             double F1, F2;
             dfl_rfunc_requiv_partials_polar(phi, p, &F1, &F2);
             const double h1 = cos(phi), h2 = sin(phi), e = 1e-6;
@@ -51,14 +51,14 @@ Test(rfunc_join, eq14_partials_and_bounds)
                 cr_assert(F1 + F2 >= G1 + G2 - 1e-15, "upper bound grows with p");
             }
         }
-        cr_assert_float_eq(argmin, TU_PI / 4, 1e-12);
+        cr_assert_float_eq(argmin, DFL_PI / 4, 1e-12);
         cr_assert_float_eq(minsum, pow(2.0, -1.0 / p), 1e-14);
         double F1, F2;
-        dfl_rfunc_requiv_partials_polar(TU_PI / 4, p, &F1, &F2);
+        dfl_rfunc_requiv_partials_polar(DFL_PI / 4, p, &F1, &F2);
         cr_assert(fabs(F1 - F2) < 1e-15);
         dfl_rfunc_requiv_partials_polar(0, p, &F1, &F2);
         cr_assert_float_eq(F2 - F1, 1.0, 1e-15);
-        dfl_rfunc_requiv_partials_polar(TU_PI / 2, p, &F1, &F2);
+        dfl_rfunc_requiv_partials_polar(DFL_PI / 2, p, &F1, &F2);
         cr_assert_float_eq(F1 - F2, 1.0, 1e-15);
     }
 }
@@ -136,7 +136,7 @@ Test(rfunc_join, gradient_bounds_near_joining_point)
         }
         for (int it = 0; it < 2; it++)
             for (int adeg = 10; adeg <= 350; adeg += 10) {
-                const double al = adeg * TU_PI / 180;
+                const double al = adeg * DFL_PI / 180;
                 const double v[6] = {1.0, 0.0, 0.0, 0.0, cos(al), sin(al)};
                 const double u1[2] = {1.0, 0.0}, u2[2] = {cos(al), sin(al)};
                 dfl_rfunc_seg s1, s2;
@@ -146,8 +146,8 @@ Test(rfunc_join, gradient_bounds_near_joining_point)
                 cr_assert_eq(dfl_rfield_polyline(2, v, 3, false, DFL_RFUNC_REQUIV, p, tr[it], &f,
                                                  NULL),
                              DFL_OK);
-                const double beta = adeg <= 180 ? al : 2 * TU_PI - al;
-                const double bis = adeg <= 180 ? al / 2 : al / 2 + TU_PI;
+                const double beta = adeg <= 180 ? al : 2 * DFL_PI - al;
+                const double bis = adeg <= 180 ? al / 2 : al / 2 + DFL_PI;
                 double xb[2] = {eps * cos(bis), eps * sin(bis)}, gb[2];
                 dfl_field_eval1(&f, xb, gb);
                 const double gbis = hypot(gb[0], gb[1]);
@@ -158,7 +158,7 @@ Test(rfunc_join, gradient_bounds_near_joining_point)
                 double gmin = INFINITY, thmin = 0;
                 const int N = 1440;
                 for (int i = 0; i < N; i++) {
-                    const double th = 2 * TU_PI * i / N;
+                    const double th = 2 * DFL_PI * i / N;
                     const double x[2] = {eps * cos(th), eps * sin(th)};
                     double g[2], g1[2], g2[2];
                     dfl_field_eval1(&f, x, g);
@@ -185,14 +185,14 @@ Test(rfunc_join, gradient_bounds_near_joining_point)
                         thmin = th;
                     }
                 }
-                const double dth = fabs(remainder(thmin - bis, 2 * TU_PI));
-                if (beta <= 150 * TU_PI / 180 + 1e-9) {
+                const double dth = fabs(remainder(thmin - bis, 2 * DFL_PI));
+                if (beta <= 150 * DFL_PI / 180 + 1e-9) {
                     cr_assert(gbis <= gmin * (1 + 1e-12) + (adeg == 180 ? 3 * eps : 0.0),
                               "alpha %d p %d: bisector %.15g vs circle min %.15g", adeg, p, gbis,
                               gmin);
-                    cr_assert(dth <= 2 * TU_PI / N + 1e-12, "alpha %d p %d: argmin off bisector",
+                    cr_assert(dth <= 2 * DFL_PI / N + 1e-12, "alpha %d p %d: argmin off bisector",
                               adeg, p);
-                } else if (beta >= 170 * TU_PI / 180 - 1e-9) {
+                } else if (beta >= 170 * DFL_PI / 180 - 1e-9) {
                     cr_assert(gmin < gbis - 1e-4, "alpha %d p %d: min %.12g, bisector %.12g", adeg,
                               p, gmin, gbis);
                     cr_assert(fabs(gmin - mp) <= 1e-5 + 5 * eps, "alpha %d p %d: %g vs m_p %g",
@@ -306,7 +306,7 @@ Test(rfunc_join, corrected_join_hatched_sector)
     const int alphas[3] = {200, 240, 300};
     for (int ia = 0; ia < 3; ia++)
         for (int p = 1; p <= 12; p++) {
-            const double al = alphas[ia] * TU_PI / 180;
+            const double al = alphas[ia] * DFL_PI / 180;
             const double v[6] = {1.0, 0.0, 0.0, 0.0, cos(al), sin(al)};
             dfl_field fc, fr;
             cr_assert_eq(dfl_rfield_polyline(2, v, 3, false, DFL_RFUNC_REQUIV_CORRECTED, p,
@@ -315,7 +315,7 @@ Test(rfunc_join, corrected_join_hatched_sector)
             cr_assert_eq(dfl_rfield_polyline(2, v, 3, false, DFL_RFUNC_REQUIV, p,
                                              DFL_RFUNC_TRIM_DISK, &fr, NULL),
                          DFL_OK);
-            const double lo = TU_PI / 2, hi = al - TU_PI / 2;
+            const double lo = DFL_PI / 2, hi = al - DFL_PI / 2;
             for (int i = 1; i < 20; i++) {
                 const double th = lo + (hi - lo) * i / 20.0;
                 const double radii[5] = {1e-3, 0.1, 1.0, 10.0, 1e3};
@@ -376,7 +376,7 @@ Test(rfunc_join, corrected_join_floor)
     uint64_t rng = 17;
     int n_eq20 = 0, n_floor = 0;
     for (int i = 0; i < 2000; i++) {
-        const double r = pow(10.0, tu_uniform(&rng, -3, 4)), th = tu_uniform(&rng, 0, 2 * TU_PI);
+        const double r = pow(10.0, tu_uniform(&rng, -3, 4)), th = tu_uniform(&rng, 0, 2 * DFL_PI);
         const double x[2] = {1.3 + r * cos(th), 0.6 + r * sin(th)};
         double S = 0, hmin = INFINITY, h[3];
         for (int k = 0; k < 3; k++) {

@@ -83,7 +83,7 @@ static size_t points(const double *v, size_t n, int closed, int dyad, uint64_t s
     }
     if (!closed) PUT(v[2 * n - 2], v[2 * n - 1]);
     for (int i = 0; i < 16; i++) {
-        const double th = tu_uniform(&rng, 0, 2 * TU_PI);
+        const double th = tu_uniform(&rng, 0, 2 * DFL_PI);
         PUT(1e8 * cos(th), 1e8 * sin(th));
     }
     PUT(1e8, 1e8);

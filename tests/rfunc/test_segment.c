@@ -40,7 +40,7 @@ Test(rfunc_segment, line_and_disk_functions_match_eq2_eq3)
     }
     /* First-order normalization of t on the trim circle: |grad t| = 1. */
     for (int i = 0; i < 16; i++) {
-        const double th = 2 * TU_PI * i / 16;
+        const double th = 2 * DFL_PI * i / 16;
         const double x[2] = {xc + 0.5 * d * cos(th), yc + 0.5 * d * sin(th)};
         double g[2];
         cr_assert(fabs(dfl_rfunc_seg_trim(&s, x, g)) < 1e-14);
@@ -183,7 +183,7 @@ Test(rfunc_segment, requiv_of_one_segment_is_the_segment)
                 /* Ray length h / (4 |grad h|): well inside the series'
                  * radius of convergence, so that the coefficients of
                  * h^-p decay and rounding stays relative to the largest. */
-                const double th = tu_uniform(&rng, 0, 2 * TU_PI);
+                const double th = tu_uniform(&rng, 0, 2 * DFL_PI);
                 const double len = 0.25 * h / fmax(1.0, hypot(gh[0], gh[1]));
                 const double dir[2] = {len * cos(th), len * sin(th)};
                 dfl_jet ju, jh;

@@ -1,15 +1,14 @@
-/* Two segments at a vertex (experiments/vjoin.h).  Expected values: the
+/* Two segments at a vertex (experiments/bs04/vjoin.h).  Expected values: the
  * geometry written out here (angles, normals), brute-force distances, and
  * the join formulas evaluated from the parts. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <string.h>
 
+#include "core/vec.h"
 #include "io/config.h"
 #include "geom/segdist.h"
 #include "bs04/vjoin.h"
-
-#define PI 3.14159265358979323846
 
 Test(vjoin, geometry_bisector_and_hatched_range)
 {
@@ -18,7 +17,7 @@ Test(vjoin, geometry_bisector_and_hatched_range)
         dfl_vjoin vj;
         dfl_err err;
         cr_assert_eq(dfl_vjoin_init(alphas[ia], 2.0, 0, &vj, &err), DFL_OK, "%s", err.msg);
-        const double a = alphas[ia] * PI / 180, ap = fmin(a, 2 * PI - a);
+        const double a = alphas[ia] * DFL_PI / 180, ap = fmin(a, 2 * DFL_PI - a);
         /* alpha in radians is rounded differently here (a few ulps of 6):
          * 2 |d cos| <= 2 * 2 ulp(6.1) ~ 3.6e-15 */
         cr_expect_float_eq(vj.v[4], 2 * cos(a), 5e-15, "alpha %g", alphas[ia]);
@@ -33,7 +32,7 @@ Test(vjoin, geometry_bisector_and_hatched_range)
         double t0, t1;
         int nr;
         dfl_vjoin_hatched_range(&vj, &t0, &t1, &nr);
-        cr_expect_float_eq(t1 - t0, PI - ap, 1e-14, "alpha %g", alphas[ia]);
+        cr_expect_float_eq(t1 - t0, DFL_PI - ap, 1e-14, "alpha %g", alphas[ia]);
         cr_expect_eq(nr, alphas[ia] == 180 ? 2 : 1);
         for (int k = 1; k < 10; k++) {
             double t = t0 + (t1 - t0) * k / 10, y[2] = {cos(t), sin(t)};
@@ -73,7 +72,7 @@ Test(vjoin, field_is_the_join_of_the_parts)
             cr_assert_eq(dfl_vjoin_field(&vj, DFL_RFUNC_RCONJ, ps[ip], &fc, &err), DFL_OK, "%s",
                          err.msg);
             for (int k = 0; k < 50; k++) {
-                const double t = 0.3 + 2 * PI * k / 50, r = 0.05 + 0.01 * k;
+                const double t = 0.3 + 2 * DFL_PI * k / 50, r = 0.05 + 0.01 * k;
                 const double x[2] = {r * cos(t), r * sin(t)};
                 double h[2], gh[4], g[2], F1, F2;
                 dfl_vjoin_parts(&vj, x, h, gh);
@@ -122,4 +121,18 @@ Test(vjoin, bad_input_names_the_key)
     cr_expect_eq(dfl_vjoin_from_cfg(cfg, "s", &vj, &err), DFL_E_INPUT);
     cr_expect(strstr(err.msg, "v.ini:3") && strstr(err.msg, "strip_smooth"), "%s", err.msg);
     dfl_cfg_free(cfg);
+}
+
+/* The part kinds are "exact" and then the trims, by their library names. */
+Test(vjoin, part_names_follow_the_trim_list)
+{
+    cr_assert_eq(DFL_VJOIN_NPARTS, 1 + DFL_RFUNC_TRIM_COUNT);
+    cr_expect_str_eq(dfl_vjoin_part_names[0], "exact");
+    for (int t = 0; t < DFL_RFUNC_TRIM_COUNT; t++) {
+        cr_expect_str_eq(dfl_vjoin_part_names[1 + t], dfl_rfunc_trim_name((dfl_rfunc_trim)t));
+        dfl_vjoin vj;
+        cr_assert_eq(dfl_vjoin_init(90, 1.0, 1 + t, &vj, NULL), DFL_OK);
+        cr_expect_eq(vj.seg[0].trim, (dfl_rfunc_trim)t);
+        cr_expect_eq(vj.seg[1].trim, (dfl_rfunc_trim)t);
+    }
 }

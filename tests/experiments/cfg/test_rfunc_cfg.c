@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cfg_util.h"
 #include "cfg/curve_cfg.h"
 #include "cfg/field_cfg.h"
 #include "geom/polygonize.h"
@@ -128,4 +129,150 @@ Test(rfunc_cfg, curve_polygonized)
     dfl_bspline_free(&c);
     dfl_cfg_free(cfg);
     dfl_field_destroy(&f);
+}
+
+/* The parsed spec says what the section says; defaults are those of the
+ * header; the field built from it is the library's polyline field. */
+Test(rfunc_cfg, spec_holds_what_was_parsed)
+{
+    dfl_cfg *cfg = tu_cfg("s.ini",
+                          "[field]\nkind = rfunc\nvertices = 0 0; 1 0.5; 2 0.2\nclosed = true\n"
+                         "join = requiv_corrected\np = 5\ntrim = strip_smooth\n");
+    dfl_rfunc_field_spec s;
+    dfl_err err;
+    cr_assert_eq(dfl_rfunc_spec_from_cfg(cfg, "field", &s, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(s.join, DFL_RFUNC_REQUIV_CORRECTED);
+    cr_expect_eq(s.p, 5);
+    cr_expect_eq(s.trim, DFL_RFUNC_TRIM_STRIP_SMOOTH);
+    cr_expect_eq(s.dim, 2);
+    cr_expect(s.closed);
+    cr_assert_eq(s.n, 3);
+    const double v[6] = {0, 0, 1, 0.5, 2, 0.2};
+    cr_expect_arr_eq(s.v, v, sizeof v);
+    cr_expect_null(s.curve);
+    cr_expect_eq(s.eps, 0.0);
+    dfl_field f, g;
+    cr_assert_eq(dfl_rfunc_field_from_spec(cfg, "field", &s, &f, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(dfl_rfield_polyline(2, v, 3, true, DFL_RFUNC_REQUIV_CORRECTED, 5,
+                                     DFL_RFUNC_TRIM_STRIP_SMOOTH, &g, NULL),
+                 DFL_OK);
+    const double x[2] = {0.7, -0.3};
+    cr_expect_eq(dfl_field_eval1(&f, x, NULL), dfl_field_eval1(&g, x, NULL));
+    dfl_field_destroy(&f);
+    dfl_field_destroy(&g);
+    dfl_rfunc_spec_free(&s);
+    cr_expect_null(s.v);
+    dfl_rfunc_spec_free(&s); /* safe twice */
+    dfl_cfg_free(cfg);
+
+    cfg = tu_cfg("s.ini", "[field]\nkind = rfunc\nvertices = 0 0 0; 1 0 1\n");
+    cr_assert_eq(dfl_rfunc_spec_from_cfg(cfg, "field", &s, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(s.join, DFL_RFUNC_REQUIV);
+    cr_expect_eq(s.p, 2);
+    cr_expect_eq(s.trim, DFL_RFUNC_TRIM_DISK);
+    cr_expect_eq(s.dim, 3);
+    cr_expect_not(s.closed);
+    dfl_rfunc_spec_free(&s);
+    dfl_cfg_free(cfg);
+}
+
+/* With a curve the spec keeps the curve and its polygonization; a closed
+ * curve drops the repeated point and closes the polyline. */
+Test(rfunc_cfg, spec_of_a_curve)
+{
+    dfl_cfg *cfg = tu_cfg("s.ini",
+                          "[field]\nkind = rfunc\ncurve = c\neps = 0.01\njoin = rconj\np = 3\n"
+                         "[c]\nkind = bspline_curve\norder = 3\nclosed = true\n"
+                         "control = 0 0; 1 0; 1 1; 0 1\n");
+    dfl_rfunc_field_spec s;
+    dfl_err err;
+    cr_assert_eq(dfl_rfunc_spec_from_cfg(cfg, "field", &s, &err), DFL_OK, "%s", err.msg);
+    cr_expect_str_eq(s.curve, "c");
+    cr_expect_eq(s.eps, 0.01);
+    cr_expect_eq(s.bspline.dim, 2);
+    cr_assert(s.pl.n >= 4);
+    cr_expect(s.pl.bound <= 0.01);
+    cr_expect(s.closed);
+    cr_expect_eq(s.n, s.pl.n - 1);
+    cr_expect_arr_eq(s.v, s.pl.pts, 2 * s.n * sizeof *s.v);
+    dfl_field f;
+    cr_assert_eq(dfl_rfunc_field_from_spec(cfg, "field", &s, &f, &err), DFL_OK, "%s", err.msg);
+    for (size_t i = 0; i < s.n; i++) cr_expect_eq(dfl_field_eval1(&f, s.v + 2 * i, NULL), 0.0);
+    dfl_field_destroy(&f);
+    dfl_rfunc_spec_free(&s);
+    dfl_cfg_free(cfg);
+}
+
+/* rconj with p = 1 parses (a study may report it) and fails to build, at
+ * key p; the spec is zeroed when parsing fails. */
+Test(rfunc_cfg, pair_checked_when_built)
+{
+    dfl_cfg *cfg =
+        tu_cfg("s.ini", "[field]\nkind = rfunc\nvertices = 0 0; 1 1\njoin = rconj\np = 1\n");
+    dfl_rfunc_field_spec s;
+    dfl_err err;
+    cr_assert_eq(dfl_rfunc_spec_from_cfg(cfg, "field", &s, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(s.join, DFL_RFUNC_RCONJ);
+    cr_expect_eq(s.p, 1);
+    dfl_field f;
+    cr_expect_eq(dfl_rfunc_field_from_spec(cfg, "field", &s, &f, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "s.ini:5") && strstr(err.msg, "p"), "%s", err.msg);
+    dfl_rfunc_spec_free(&s);
+    dfl_cfg_free(cfg);
+    cfg = tu_cfg("s.ini", "[field]\nkind = rfunc\nvertices = 0 0; 1 1\ntrim = box\n");
+    memset(&s, 0xff, sizeof s);
+    cr_expect_eq(dfl_rfunc_spec_from_cfg(cfg, "field", &s, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "disk|disk_smooth|strip|strip_smooth"), "%s", err.msg);
+    cr_expect_null(s.v);
+    cr_expect_eq(s.n, 0);
+    dfl_cfg_free(cfg);
+    cfg = tu_cfg("s.ini", "[field]\nkind = rfunc\nvertices = 0 0; 1 1\ncurve = c\n");
+    cr_expect_eq(dfl_rfunc_spec_from_cfg(cfg, "field", &s, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "s.ini:4") && strstr(err.msg, "both"), "%s", err.msg);
+    dfl_cfg_free(cfg);
+}
+
+/* The shared readers of [study]-style keys. */
+Test(rfunc_cfg, join_trim_tri_readers)
+{
+    dfl_cfg *cfg = tu_cfg("s.ini", "[a]\njoin = rconj\np = 7\ntrim = disk_smooth\n"
+                         "[b]\n"
+                         "[c]\njoin = rconj\np = 1\n"
+                         "[d]\njoin = union\n"
+                         "[e]\ntri_trim = prism\na = 0.5\nk = 4\nsmooth = true\n");
+    dfl_rfunc_join j = DFL_RFUNC_REQUIV_CORRECTED;
+    dfl_rfunc_trim t = DFL_RFUNC_TRIM_STRIP;
+    int p = -1;
+    dfl_err err;
+    cr_expect_eq(dfl_rfunc_join_p_from_cfg(cfg, "a", &j, &p, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(j, DFL_RFUNC_RCONJ);
+    cr_expect_eq(p, 7);
+    cr_expect_eq(dfl_rfunc_trim_from_cfg(cfg, "a", &t, &err), DFL_OK);
+    cr_expect_eq(t, DFL_RFUNC_TRIM_DISK_SMOOTH);
+    cr_expect_eq(dfl_rfunc_join_p_from_cfg(cfg, "b", &j, &p, &err), DFL_OK);
+    cr_expect_eq(j, DFL_RFUNC_REQUIV);
+    cr_expect_eq(p, 2);
+    cr_expect_eq(dfl_rfunc_trim_from_cfg(cfg, "b", &t, &err), DFL_OK);
+    cr_expect_eq(t, DFL_RFUNC_TRIM_DISK);
+    cr_expect_eq(dfl_rfunc_join_p_from_cfg(cfg, "c", &j, &p, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "s.ini:8") && strstr(err.msg, "p >= 2"), "%s", err.msg);
+    cr_expect_eq(j, DFL_RFUNC_REQUIV, "untouched on failure");
+    cr_expect_eq(dfl_rfunc_join_from_cfg(cfg, "c", &j, &err), DFL_OK);
+    cr_expect_eq(j, DFL_RFUNC_RCONJ);
+    cr_expect_eq(dfl_rfunc_join_from_cfg(cfg, "d", &j, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "s.ini:10") && strstr(err.msg, "requiv|rconj|requiv_corrected"),
+              "%s", err.msg);
+    dfl_rfunc_tri_opts o;
+    cr_expect_eq(dfl_rfunc_tri_opts_from_cfg(cfg, "e", true, &o, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(o.trim, DFL_RFUNC_TRI_PRISM);
+    cr_expect_eq(o.a, 0.5);
+    cr_expect_eq(o.k, 4);
+    cr_expect_eq(o.smooth, 1);
+    cr_expect_eq(dfl_rfunc_tri_opts_from_cfg(cfg, "b", false, &o, &err), DFL_OK);
+    const dfl_rfunc_tri_opts d = dfl_rfunc_tri_defaults();
+    cr_expect_eq(o.trim, d.trim);
+    cr_expect_eq(o.a, d.a);
+    cr_expect_eq(o.k, d.k);
+    cr_expect_eq(o.smooth, d.smooth);
+    dfl_cfg_free(cfg);
 }
