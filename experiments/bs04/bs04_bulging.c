@@ -287,8 +287,5 @@ static dfl_status bulging_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_
     return st;
 }
 
-const dfl_study dfl_study_bs04_bulging = {
-    .name = "bs04_bulging",
-    .summary = "bs04 Fig. 6 / Fig. 2: bulging of R-function level sets vs order p and offset",
-    .run = bulging_run,
-};
+DFL_STUDY_DEFINE(bs04_bulging, bulging_run,
+                 "bs04 Fig. 6 / Fig. 2: bulging of R-function level sets vs order p and offset");

@@ -248,8 +248,5 @@ done:
     return st;
 }
 
-const dfl_study dfl_study_bs04_corrected = {
-    .name = "bs04_corrected",
-    .summary = "bs04 Fig. 14, eq. 20: corrected join, |grad u| = 1 in the hatched sector",
-    .run = cj_run,
-};
+DFL_STUDY_DEFINE(bs04_corrected, cj_run,
+                 "bs04 Fig. 14, eq. 20: corrected join, |grad u| = 1 in the hatched sector");

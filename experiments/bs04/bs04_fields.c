@@ -304,8 +304,5 @@ done:
     return st;
 }
 
-const dfl_study dfl_study_bs04_fields = {
-    .name = "bs04_fields",
-    .summary = "bs04 Fig. 1, 3b: two segment fields, their join, the trims; |grad u| statistics",
-    .run = fields_run,
-};
+DFL_STUDY_DEFINE(bs04_fields, fields_run,
+                 "bs04 Fig. 1, 3b: two segment fields, their join, the trims; |grad u| statistics");

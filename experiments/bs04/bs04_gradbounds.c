@@ -417,8 +417,5 @@ done:
     return st;
 }
 
-const dfl_study dfl_study_bs04_gradbounds = {
-    .name = "bs04_gradbounds",
-    .summary = "bs04 Fig. 4-5, eq. 13-14: |grad u| on circles around a joining point vs the bounds",
-    .run = gb_run,
-};
+DFL_STUDY_DEFINE(bs04_gradbounds, gb_run,
+                 "bs04 Fig. 4-5, eq. 13-14: |grad u| on circles around a joining point vs the bounds");

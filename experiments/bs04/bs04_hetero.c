@@ -298,8 +298,5 @@ done:
     return st;
 }
 
-const dfl_study dfl_study_bs04_hetero = {
-    .name = "bs04_hetero",
-    .summary = "bs04 Fig. 13a: one field for a region, a segment and a point",
-    .run = hetero_run,
-};
+DFL_STUDY_DEFINE(bs04_hetero, hetero_run,
+                 "bs04 Fig. 13a: one field for a region, a segment and a point");

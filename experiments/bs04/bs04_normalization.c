@@ -541,8 +541,5 @@ done:
     return st;
 }
 
-const dfl_study dfl_study_bs04_normalization = {
-    .name = "bs04_normalization",
-    .summary = "bs04: normalization order of joined segment fields by jets, join x p x trim",
-    .run = norm_run,
-};
+DFL_STUDY_DEFINE(bs04_normalization, norm_run,
+                 "bs04: normalization order of joined segment fields by jets, join x p x trim");

@@ -200,8 +200,5 @@ static dfl_status bs04_poly_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, df
     return st;
 }
 
-const dfl_study dfl_study_bs04_polygonization = {
-    .name = "bs04_polygonization",
-    .summary = "bs04: certified polygonization of the S and W B-splines, segments vs eps",
-    .run = bs04_poly_run,
-};
+DFL_STUDY_DEFINE(bs04_polygonization, bs04_poly_run,
+                 "bs04: certified polygonization of the S and W B-splines, segments vs eps");

@@ -342,8 +342,5 @@ done:
     return st;
 }
 
-const dfl_study dfl_study_bs04_recursive = {
-    .name = "bs04_recursive",
-    .summary = "bs04 app. A: recursive normalization of an ellipse's implicit function, m = 1..6",
-    .run = rec_run,
-};
+DFL_STUDY_DEFINE(bs04_recursive, rec_run,
+                 "bs04 app. A: recursive normalization of an ellipse's implicit function, m = 1..6");

@@ -261,8 +261,5 @@ static dfl_status scurve_run_point(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
     return st;
 }
 
-const dfl_study dfl_study_bs04_scurve = {
-    .name = "bs04_scurve",
-    .summary = "bs04 Fig. 7: polygonized 'S' curve, R-equivalence vs R-conjunction, eps sweep",
-    .run = scurve_run_point,
-};
+DFL_STUDY_DEFINE(bs04_scurve, scurve_run_point,
+                 "bs04 Fig. 7: polygonized 'S' curve, R-equivalence vs R-conjunction, eps sweep");

@@ -261,8 +261,5 @@ static dfl_status space_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_ta
     return st;
 }
 
-const dfl_study dfl_study_bs04_spacecurves = {
-    .name = "bs04_spacecurves",
-    .summary = "bs04 Fig. 8: fields of polygonized space curves, volume and section planes",
-    .run = space_run,
-};
+DFL_STUDY_DEFINE(bs04_spacecurves, space_run,
+                 "bs04 Fig. 8: fields of polygonized space curves, volume and section planes");

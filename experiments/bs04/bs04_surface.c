@@ -215,8 +215,5 @@ done:
     return st;
 }
 
-const dfl_study dfl_study_bs04_surface = {
-    .name = "bs04_surface",
-    .summary = "bs04 Fig. 12: field of a triangulated B-spline surface on a section plane",
-    .run = surf_run,
-};
+DFL_STUDY_DEFINE(bs04_surface, surf_run,
+                 "bs04 Fig. 12: field of a triangulated B-spline surface on a section plane");

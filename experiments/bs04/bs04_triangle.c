@@ -307,8 +307,5 @@ done:
     return st;
 }
 
-const dfl_study dfl_study_bs04_triangle = {
-    .name = "bs04_triangle",
-    .summary = "bs04 Figs. 9-10: one triangle's field, |grad h| on a small sphere at a vertex",
-    .run = tri_run,
-};
+DFL_STUDY_DEFINE(bs04_triangle, tri_run,
+                 "bs04 Figs. 9-10: one triangle's field, |grad h| on a small sphere at a vertex");

@@ -211,8 +211,5 @@ done:
     return st;
 }
 
-const dfl_study dfl_study_bs04_triedge = {
-    .name = "bs04_triedge",
-    .summary = "bs04 Fig. 11: two triangles on an edge, |grad u| around the edge vs eq. 13",
-    .run = edge_run,
-};
+DFL_STUDY_DEFINE(bs04_triedge, edge_run,
+                 "bs04 Fig. 11: two triangles on an edge, |grad u| around the edge vs eq. 13");

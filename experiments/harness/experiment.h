@@ -33,6 +33,13 @@ typedef struct dfl_study {
                       dfl_err *err);
 } dfl_study;
 
+/* Defines `const dfl_study dfl_study_<id>` named "<id>" (the config's
+ * [study] name), so the symbol and the name cannot drift apart:
+ *   DFL_STUDY_DEFINE(bs04_fields, fields_run, "bs04 Fig. 1, 3b: ...");
+ * Declare it in the paper's header and list it there (bs04/bs04.h). */
+#define DFL_STUDY_DEFINE(id, run_fn, summary_text) \
+    const dfl_study dfl_study_##id = {.name = #id, .summary = summary_text, .run = run_fn}
+
 /* "<stage_dir>/<stem><tag>.<ext>" into buf; returns buf. */
 const char *dfl_study_path(const dfl_study_ctx *ctx, const char *stem, const char *ext, char *buf,
                            size_t size);

@@ -76,10 +76,7 @@ done:
     return st;
 }
 
-const dfl_study dfl_study_smoke = {
-    .name = "smoke",
-    .summary = "exact SDF of [shape] on a grid + metrics of an affinely perturbed copy",
-    .run = smoke_run,
-};
+DFL_STUDY_DEFINE(smoke, smoke_run,
+                 "exact SDF of [shape] on a grid + metrics of an affinely perturbed copy");
 
 const dfl_study *const dfl_smoke_studies[] = {&dfl_study_smoke, NULL};
