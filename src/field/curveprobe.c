@@ -5,6 +5,8 @@
  * batches live on the stack of the thread that owns the ray. */
 #include "field/curveprobe.h"
 
+#include "core/vec.h"
+
 #include <assert.h>
 #include <math.h>
 #include <omp.h>
@@ -15,7 +17,6 @@
 #define SUB 16          /* subdivision factor of every refinement round */
 #define VALID_CHUNK 256 /* rays per batch in dfl_curveprobe_valid */
 #define MAX_SAMPLES 1024
-#define PI 3.14159265358979323846
 
 void dfl_curveprobe_free(dfl_rayset *rs)
 {
@@ -162,7 +163,7 @@ dfl_status dfl_curveprobe_rays(const dfl_bspline *c, size_t nside, size_t ncap,
         const double N[2] = {-T[1], T[0]};
         const double To[2] = {e ? T[0] : -T[0], e ? T[1] : -T[1]};
         for (size_t j = 1; j <= ncaps; j++) {
-            const double th = PI * (double)j / (double)(ncaps + 1);
+            const double th = DFL_PI * (double)j / (double)(ncaps + 1);
             const double v[2] = {cos(th) * N[0] + sin(th) * To[0], cos(th) * N[1] + sin(th) * To[1]};
             put_ray(out, k++, P, v, t, kap, 0, DFL_RAY_CAP);
         }

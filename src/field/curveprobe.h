@@ -34,8 +34,8 @@
  * Costs: fields are evaluated in batches (one eval call per ray stage, no
  * per-point dispatch), rays in parallel (OpenMP); no allocation per ray.
  */
-#ifndef DFL_EXPERIMENTS_CURVEPROBE_H
-#define DFL_EXPERIMENTS_CURVEPROBE_H
+#ifndef DFL_FIELD_CURVEPROBE_H
+#define DFL_FIELD_CURVEPROBE_H
 
 #include <stddef.h>
 

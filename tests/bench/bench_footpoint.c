@@ -11,18 +11,13 @@
 #include <stdlib.h>
 
 #include "bench.h"
+#include "core/rng.h"
+#include "core/vec.h"
 #include "geom/footpoint.h"
 #include "geom/implicit.h"
 #include "geom/surface.h"
 
 #define NPTS 400
-static const double PI = 3.14159265358979323846;
-
-static double lcg(unsigned *s)
-{
-    *s = *s * 1103515245u + 12345u;
-    return (double)(*s >> 8) / (double)(1u << 24);
-}
 
 /* One footpoint of x: its distance into *d; DFL_OK or the solver's failure. */
 typedef dfl_status (*foot_fn)(const void *ctx, const double *x, double *d);
@@ -97,7 +92,7 @@ void bench_footpoint(void)
             double x = i / 5.0, y = j / 5.0;
             double *p = cp + 3 * (i + 6 * j);
             p[0] = x, p[1] = y;
-            p[2] = 0.25 + 0.3 * sin(PI * x) * sin(PI * y) + 0.6 * (x - 0.5) * (y - 0.5);
+            p[2] = 0.25 + 0.3 * sin(DFL_PI * x) * sin(DFL_PI * y) + 0.6 * (x - 0.5) * (y - 0.5);
         }
     dfl_surface patch;
     dfl_surface_set set;
@@ -107,9 +102,9 @@ void bench_footpoint(void)
         return;
     }
     for (int i = 0; i < NPTS; i++) {
-        pts[3 * i] = -0.2 + 1.4 * lcg(&seed);
-        pts[3 * i + 1] = -0.2 + 1.4 * lcg(&seed);
-        pts[3 * i + 2] = -0.4 + 1.4 * lcg(&seed);
+        pts[3 * i] = -0.2 + 1.4 * dfl_rng_lcg(&seed);
+        pts[3 * i + 1] = -0.2 + 1.4 * dfl_rng_lcg(&seed);
+        pts[3 * i + 2] = -0.4 + 1.4 * dfl_rng_lcg(&seed);
     }
     dfl_surface_locator *L[2] = {NULL, NULL};
     for (int b = 0; b < 2; b++) {
@@ -136,7 +131,7 @@ void bench_footpoint(void)
         return;
     }
     for (int i = 0; i < NPTS; i++)
-        for (int k = 0; k < 3; k++) pts[3 * i + k] = -1.0 + 2.0 * lcg(&seed);
+        for (int k = 0; k < 3; k++) pts[3 * i + k] = -1.0 + 2.0 * dfl_rng_lcg(&seed);
     const imp_ctx ic[2] = {{tor, DFL_FOOT_NEWTON}, {tor, DFL_FOOT_CERES}};
     foot_job ij[2] = {{implicit_foot, &ic[0], pts, 0}, {implicit_foot, &ic[1], pts, 0}};
     compare_backends("implicit_torus", ij);

@@ -25,6 +25,7 @@
 
 #include "bench.h"
 #include "bench/rfunc_naive.h"
+#include "core/vec.h"
 #include "field/sample.h"
 #include "rfunc/batch.h"
 #include "rfunc/rfield.h"
@@ -81,9 +82,8 @@ static void kernel_ops(int p, int *mul, int *add, int *div)
 /* The numpy script's polyline (same formula). */
 static void polyline(double *v)
 {
-    const double pi = 3.14159265358979323846;
     for (int i = 0; i < NSEG; i++) {
-        const double th = 2.0 * pi * i / NSEG, r = 0.3 + 0.05 * sin(5.0 * th);
+        const double th = 2.0 * DFL_PI * i / NSEG, r = 0.3 + 0.05 * sin(5.0 * th);
         v[2 * i] = 0.5 + r * cos(th);
         v[2 * i + 1] = 0.5 + r * sin(th);
     }

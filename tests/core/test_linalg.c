@@ -8,6 +8,7 @@
 
 #include "core/linalg.h"
 #include "core/rng.h"
+#include "core/vec.h"
 
 Test(linalg, lu_solves_an_exact_system)
 {
@@ -73,7 +74,7 @@ Test(linalg, sym2_eigen_is_a_decomposition)
         double lo, hi, th;
         dfl_sym2_eigen(a, b, c, &lo, &hi, &th);
         cr_assert(lo <= hi);
-        cr_assert(fabs(th) <= 0.5 * 3.14159265358979323846 + 1e-15);
+        cr_assert(fabs(th) <= 0.5 * DFL_PI + 1e-15);
         const double v[2][2] = {{cos(th), sin(th)}, {-sin(th), cos(th)}}, lam[2] = {hi, lo};
         for (int k = 0; k < 2; k++) {
             /* M v = lambda v */
@@ -88,5 +89,5 @@ Test(linalg, sym2_eigen_is_a_decomposition)
     dfl_sym2_eigen(2, 1, 2, &lo, &hi, &th);
     cr_assert_float_eq(lo, 1.0, 1e-15);
     cr_assert_float_eq(hi, 3.0, 1e-15);
-    cr_assert_float_eq(th, 0.25 * 3.14159265358979323846, 1e-15);
+    cr_assert_float_eq(th, 0.25 * DFL_PI, 1e-15);
 }

@@ -7,12 +7,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/vec.h"
 #include "field/curveprobe.h"
 #include "field/exact.h"
 #include "geom/curvature.h"
 #include "geom/footpoint.h"
 
-#define PI 3.14159265358979323846
 
 /* ---- test fields: u(x, y) of closed form, no jets ---- */
 typedef struct tfield {
@@ -88,7 +88,7 @@ Test(curveprobe, rays_of_a_segment)
     for (int e = 0; e < 2; e++)
         for (int j = 1; j <= 3; j++) {
             const size_t k = 10 + (size_t)(3 * e + j - 1);
-            const double th = PI * j / 4.0;
+            const double th = DFL_PI * j / 4.0;
             cr_expect_eq(rs.kind[k], DFL_RAY_CAP);
             cr_expect_float_eq(rs.o[2 * k], e ? 2.0 : 0.0, 1e-15);
             cr_expect_float_eq(rs.v[2 * k], e ? sin(th) : -sin(th), 1e-15);

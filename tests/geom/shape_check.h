@@ -15,8 +15,6 @@
 
 #include "geom/shape.h"
 
-#define SC_PI 3.14159265358979323846
-
 /* Uniform in [lo, hi): the test process' sequence. */
 double sc_urand(double lo, double hi);
 void sc_normalize3(double *a);

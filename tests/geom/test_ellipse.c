@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "core/rng.h"
+#include "core/vec.h"
 #include "geom/ellipse.h"
 #include "geom/shape_check.h"
 
@@ -16,7 +17,7 @@
 static double brute(double a, double b, const double *x)
 {
     const int N = 4000;
-    const double tp = 2 * 3.14159265358979323846;
+    const double tp = 2 * DFL_PI;
     double best = INFINITY;
     double prev2 = 0, prev1 = 0;
     for (int i = 0; i <= N + 1; i++) {
@@ -136,7 +137,7 @@ Test(ellipse_shape, matches_brute_force_and_the_distance)
     dfl_err err;
     cr_assert_eq(dfl_shape_ellipse(EC, EA, EB, &s, &err), DFL_OK, "%s", err.msg);
     cr_assert_eq(s.dim, 2);
-    sc_patch P = {1, {0, 0}, {2 * SC_PI, 0}, ellipse_pt, NULL};
+    sc_patch P = {1, {0, 0}, {2 * DFL_PI, 0}, ellipse_pt, NULL};
     sc_check_shape(&s, &P, 1, ellipse_in, 1, -1.5, 1.5, 40, 1, 1, 0);
     /* the shape is the distance function moved to the centre, bit for bit,
      * in batches too */

@@ -28,7 +28,7 @@ Test(shape_analytic, circle_matches_brute_force)
 {
     dfl_shape s;
     cr_assert_eq(dfl_shape_circle(C2, R2, &s, NULL), DFL_OK);
-    sc_patch P = {1, {0, 0}, {2 * SC_PI, 0}, circle_pt, NULL};
+    sc_patch P = {1, {0, 0}, {2 * DFL_PI, 0}, circle_pt, NULL};
     sc_check_shape(&s, &P, 1, circle_in, 1, -1.5, 1.5, 20, 1, 1, 1);
     dfl_shape_free(&s);
     cr_assert_null(s.impl);
@@ -52,7 +52,7 @@ Test(shape_analytic, sphere_matches_brute_force)
 {
     dfl_shape s;
     cr_assert_eq(dfl_shape_sphere(C3, R3, &s, NULL), DFL_OK);
-    sc_patch P = {2, {0, 0}, {SC_PI, 2 * SC_PI}, sphere_pt, NULL};
+    sc_patch P = {2, {0, 0}, {DFL_PI, 2 * DFL_PI}, sphere_pt, NULL};
     sc_check_shape(&s, &P, 1, sphere_in, 1, -1.2, 1.2, 20, 1, 1, 1);
     dfl_shape_free(&s);
 }
@@ -145,7 +145,7 @@ Test(shape_analytic, torus_matches_brute_force, .init = torus_setup)
     dfl_shape s;
     double ax[3] = {1, 2, 2};
     cr_assert_eq(dfl_shape_torus(TC, ax, TR, Tr, &s, NULL), DFL_OK);
-    sc_patch P = {2, {0, 0}, {2 * SC_PI, 2 * SC_PI}, torus_pt, NULL};
+    sc_patch P = {2, {0, 0}, {2 * DFL_PI, 2 * DFL_PI}, torus_pt, NULL};
     sc_check_shape(&s, &P, 1, torus_in, 1, -1.2, 1.2, 20, 1, 1, 1);
     dfl_shape_free(&s);
 }
@@ -178,7 +178,7 @@ Test(shape_analytic, cylinder_matches_brute_force, .init = cyl_setup)
     dfl_shape s;
     double ax[3] = {0, -1, 2};
     cr_assert_eq(dfl_shape_cylinder(YP, ax, Yr, &s, NULL), DFL_OK);
-    sc_patch P = {2, {0, -1}, {2 * SC_PI, 1}, cyl_pt, NULL};
+    sc_patch P = {2, {0, -1}, {2 * DFL_PI, 1}, cyl_pt, NULL};
     for (int t = 0; t < 15; t++) {
         double x[3] = {sc_urand(-1, 1), sc_urand(-1, 1), sc_urand(-1, 1)};
         double u[3] = {x[0] - YP[0], x[1] - YP[1], x[2] - YP[2]};
@@ -270,9 +270,9 @@ Test(shape_analytic, cone_matches_brute_force, .init = cone_setup)
         Krb = variant == 0 ? 0.2 : (variant == 1 ? 0.0 : 0.45);
         dfl_shape s;
         cr_assert_eq(dfl_shape_cone(KA, KB, Kra, Krb, &s, NULL), DFL_OK);
-        sc_patch P[3] = {{2, {0, 0}, {Kra, 2 * SC_PI}, disc_a, NULL},
-                      {2, {0, 0}, {Krb, 2 * SC_PI}, disc_b, NULL},
-                      {2, {0, 0}, {1, 2 * SC_PI}, lateral, NULL}};
+        sc_patch P[3] = {{2, {0, 0}, {Kra, 2 * DFL_PI}, disc_a, NULL},
+                      {2, {0, 0}, {Krb, 2 * DFL_PI}, disc_b, NULL},
+                      {2, {0, 0}, {1, 2 * DFL_PI}, lateral, NULL}};
         int np = Krb > 0 ? 3 : 2;
         sc_patch Q[3] = {P[0], P[2], P[1]};
         sc_check_shape(&s, np == 3 ? P : Q, np, cone_in, 1, -1, 1, 20, 1, 1, 1);

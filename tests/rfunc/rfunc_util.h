@@ -6,17 +6,15 @@
 #include <stdint.h>
 
 #include "core/jet.h"
+#include "core/rng.h"
 #include "core/vec.h"
 #include "field/field.h"
 
-/* Deterministic uniform numbers in [lo, hi) (splitmix64). */
+/* Deterministic uniform numbers in [lo, hi): core/rng.h's SplitMix64
+ * sequence under the name the rfunc and rfunc-config tests use. */
 static inline double tu_uniform(uint64_t *state, double lo, double hi)
 {
-    uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return lo + (hi - lo) * ((double)(z >> 11) * 0x1.0p-53);
+    return dfl_rng_splitmix(state, lo, hi);
 }
 
 /* Central finite-difference gradient with step hstep. */

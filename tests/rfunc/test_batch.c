@@ -16,19 +16,11 @@
 #include <stdlib.h>
 
 #include "bench/rfunc_naive.h"
+#include "core/rng.h"
 #include "field/sample.h"
 #include "rfunc/join.h"
 #include "rfunc/segment.h"
 #include "rfunc/batch.h"
-
-static double uni(uint64_t *s, double lo, double hi)
-{
-    uint64_t z = (*s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return lo + (hi - lo) * ((double)(z >> 11) * 0x1.0p-53);
-}
 
 /* A wobbly spiral polyline of n vertices inside [0, 1]^2. */
 static double *spiral(size_t n)
@@ -94,8 +86,8 @@ static void compare_random(size_t nv, int closed, int p, uint64_t seed)
     double pts[2 * M], uf[M], gf[2 * M], un[M], gn[2 * M], ul[M], gl[2 * M];
     uint64_t rng = seed;
     for (int i = 0; i < M; i++) {
-        pts[2 * i] = uni(&rng, -0.3, 1.3);
-        pts[2 * i + 1] = uni(&rng, -0.3, 1.3);
+        pts[2 * i] = dfl_rng_splitmix(&rng, -0.3, 1.3);
+        pts[2 * i + 1] = dfl_rng_splitmix(&rng, -0.3, 1.3);
     }
     /* the fast path itself must be what is compared, not its fallback */
     cr_assert_eq(dfl_rfunc_batch_fallbacks(b, M, pts), 0);

@@ -11,21 +11,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/rng.h"
 #include "core/vec.h"
 #include "io/config.h"
 #include "rfunc/tri3d.h"
 #include "util/e2e_util.h"
 
 #define CFG "configs/paper/bs04/bs04_triangle.ini"
-
-static double uni(uint64_t *s)
-{
-    uint64_t z = (*s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return (double)(z >> 11) * 0x1.0p-53;
-}
 
 /* R0-conjunction of the two edge planes at vertex A (inward unit normals
  * m1, m2 in the plane), as a function of the in-plane point. */
@@ -117,7 +109,8 @@ Test(e2e_bs04_triangle, vertex_gradient_vs_theory, .timeout = 60)
         uint64_t rng = 7;
         double bmax = 0, bmin = INFINITY;
         for (int i = 0; i < 20000; i++) {
-            const double z = 2 * uni(&rng) - 1, ph = 2 * DFL_PI * uni(&rng), s = sqrt(1 - z * z);
+            const double z = 2 * dfl_rng_splitmix(&rng, 0.0, 1.0) - 1;
+            const double ph = 2 * DFL_PI * dfl_rng_splitmix(&rng, 0.0, 1.0), s = sqrt(1 - z * z);
             const double x[3] = {A[0] + rad * s * cos(ph), A[1] + rad * s * sin(ph), A[2] + rad * z};
             const double w[3] = {x[0] - A[0], x[1] - A[1], x[2] - A[2]};
             if (fabs(dfl_vec3_dot(w, nrm)) < 1e-3 * rad)

@@ -8,8 +8,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "util/e2e_util.h"
+#include "core/rng.h"
 #include "io/exr.h"
+#include "util/e2e_util.h"
 
 static double circle_d(double x, double y) { return hypot(x - 0.5, y - 0.5) - 0.3; }
 
@@ -136,10 +137,8 @@ Test(e2e_smoke, probe_random_points)
     unsigned s = 12345;
     double px[200], py[200];
     for (int i = 0; i < 200; i++) {
-        s = s * 1103515245u + 12345u;
-        px[i] = -0.5 + 2.0 * (double)(s >> 8) / (double)(1u << 24);
-        s = s * 1103515245u + 12345u;
-        py[i] = -0.5 + 2.0 * (double)(s >> 8) / (double)(1u << 24);
+        px[i] = -0.5 + 2.0 * dfl_rng_lcg(&s);
+        py[i] = -0.5 + 2.0 * dfl_rng_lcg(&s);
         fprintf(fp, "%.17g,%.17g\n", px[i], py[i]);
     }
     fclose(fp);
