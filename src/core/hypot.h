@@ -8,8 +8,9 @@
  * lose precision to underflow; outside that range it is libm's hypot().  It
  * is cheaper than hypot() and, unlike it, rounds the same way as the plain
  * formula, which callers that compare lengths from different modules rely
- * on.  rfunc/trim.h's dfl_rfunc_hyp is the same function (same operations in
- * the same order), so lengths measured through either agree bit for bit.
+ * on: the rfunc primitives (trim, segment carrier, point, vertex guards) and
+ * rfunc/exact_polyline measure every length through it, so they agree bit
+ * for bit.
  *
  * dfl_hypot_vec(3, w) is dfl_hypot2(dfl_hypot2(w0, w1), w2) -- not the
  * square root of the three-term sum: the inner length is rounded first.

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/hypot.h"
 #include "rfunc/trim.h"
 
 dfl_status dfl_rfunc_point_init(int dim, const double *c, dfl_rfunc_point *out, dfl_err *err)
@@ -25,7 +26,7 @@ double dfl_rfunc_point_eval(const dfl_rfunc_point *p, const double *x, double *g
 {
     double w[3] = {0, 0, 0};
     for (int j = 0; j < p->dim; j++) w[j] = x[j] - p->c[j];
-    const double h = p->dim == 2 ? dfl_rfunc_hyp(w[0], w[1]) : dfl_rfunc_hyp(dfl_rfunc_hyp(w[0], w[1]), w[2]);
+    const double h = dfl_hypot_vec(p->dim, w);
     if (grad)
         for (int j = 0; j < p->dim; j++) grad[j] = h > 0.0 ? w[j] / h : 0.0;
     return h;

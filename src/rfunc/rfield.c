@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/hypot.h"
 #include "rfunc/batch.h"
 #include "rfunc/region.h"
 #include "rfunc/trim.h"
@@ -192,7 +193,7 @@ static double vertex_q(int dim, const vertex *v, const double *x, double *g)
 {
     double w[3] = {0, 0, 0};
     for (int j = 0; j < dim; j++) w[j] = x[j] - v->x[j];
-    const double q = dim == 2 ? dfl_rfunc_hyp(w[0], w[1]) : dfl_rfunc_hyp(dfl_rfunc_hyp(w[0], w[1]), w[2]);
+    const double q = dfl_hypot_vec(dim, w);
     if (g)
         for (int j = 0; j < dim; j++) g[j] = q > 0.0 ? w[j] / q : 0.0;
     return q;

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/hypot.h"
 #include "core/vec.h"
 #include "rfunc/trim.h"
 
@@ -89,7 +90,7 @@ static double carrier(const dfl_rfunc_seg *s, const double *wa, double *hgF)
     }
     const double s1 = dfl_vecn_dot(3, wa, s->n1), s2 = dfl_vecn_dot(3, wa, s->n2);
     for (int j = 0; j < 3; j++) hgF[j] = s1 * s->n1[j] + s2 * s->n2[j];
-    return dfl_rfunc_hyp(s1, s2);
+    return dfl_hypot2(s1, s2);
 }
 
 double dfl_rfunc_seg_line(const dfl_rfunc_seg *s, const double *x, double *grad)

@@ -4,6 +4,8 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "core/hypot.h"
+
 /* Jet helpers ----------------------------------------------------------- */
 
 int dfl_rfunc_jet_sign(const dfl_jet *a)
@@ -42,7 +44,7 @@ double dfl_rfunc_compose(int dim, int smooth, double fa, const double *hgF, doub
     double h;
     if (!smooth) {
         const double m = t < 0.0 ? -t : 0.0;
-        h = dfl_rfunc_hyp(fa, m);
+        h = dfl_hypot2(fa, m);
         if (gh) {
             /* h grad h = f grad f + m grad m, grad m = -grad t where t < 0. */
             for (int j = 0; j < dim; j++) {
@@ -54,9 +56,9 @@ double dfl_rfunc_compose(int dim, int smooth, double fa, const double *hgF, doub
     }
     /* g = sqrt(t^2 + F^2) - t, written without cancellation for t > 0. */
     const double F = fa * fa;
-    const double r = dfl_rfunc_hyp(t, F);
+    const double r = dfl_hypot2(t, F);
     const double g = t > 0.0 ? F * F / (r + t) : r - t;
-    h = dfl_rfunc_hyp(fa, 0.5 * g);
+    h = dfl_hypot2(fa, 0.5 * g);
     if (gh) {
         /* grad g = (t grad t + F grad F) / r - grad t = (-g grad t + F grad F) / r
          * (no cancellation); h grad h = grad F / 2 + g grad g / 4. */

@@ -32,8 +32,6 @@
 #ifndef DFL_RFUNC_TRIM_H
 #define DFL_RFUNC_TRIM_H
 
-#include <math.h>
-
 #include "core/jet.h"
 #include "core/status.h"
 
@@ -79,14 +77,5 @@ void dfl_rfunc_jet_zero(dfl_jet *out);
 void dfl_rfunc_jet_pos(const dfl_jet *a, dfl_jet *out);
 /* v, or exactly 0 when |v| <= DFL_RFUNC_SNAP_TOL * scale. */
 double dfl_rfunc_snap(double v, double scale);
-
-/* sqrt(a^2 + b^2) without hypot()'s cost in the common range and without
- * its overflow/underflow outside it. */
-static inline double dfl_rfunc_hyp(double a, double b)
-{
-    const double s = a * a + b * b;
-    if (s > 1e-290 && s < 1e290) return sqrt(s);
-    return hypot(a, b);
-}
 
 #endif
