@@ -15,8 +15,8 @@ dfl_status dfl_field_jet(const dfl_field *f, const double *x, const double *dir,
     if (!f->ops->jet)
         return dfl_err_set(err, DFL_E_INPUT, "field '%s' has no exact derivatives (jets)",
                            f->ops->name);
-    if (K < 0 || K > DFL_JET_MAX)
-        return dfl_err_set(err, DFL_E_INPUT, "jet order %d outside [0, %d]", K, DFL_JET_MAX);
+    const dfl_status st = dfl_jet_check_order(K, err);
+    if (st != DFL_OK) return st;
     return f->ops->jet(f->ctx, x, dir, K, out, err);
 }
 

@@ -164,8 +164,8 @@ static int jet_cmp(const dfl_jet *a, const dfl_jet *b, int K)
 dfl_status dfl_curve_dist_jet(const dfl_curve_locator *L, const dfl_curve_sdf *S, const double *x,
                               const double *dir, int K, dfl_jet *out, dfl_err *err)
 {
-    if (K < 0 || K > DFL_JET_MAX)
-        return dfl_err_set(err, DFL_E_INPUT, "jet order %d: expected 0..%d", K, DFL_JET_MAX);
+    dfl_status st = dfl_jet_check_order(K, err);
+    if (st != DFL_OK) return st;
     dfl_curve_foot fs[DFL_FOOT_MAX_CAND];
     dfl_err e2;
     int n = dfl_curve_footpoints(L, x, fs, DFL_FOOT_MAX_CAND, &e2);
@@ -183,7 +183,7 @@ dfl_status dfl_curve_dist_jet(const dfl_curve_locator *L, const dfl_curve_sdf *S
     for (int q = 0; q < nt; q++) {
         if (q > 0 && !(fs[q].flags & DFL_FOOT_MEDIAL)) break;
         dfl_jet j;
-        dfl_status st = branch_jet(L->c, x, dir, K, &fs[q], mode, orient, sign, &j, err);
+        st = branch_jet(L->c, x, dir, K, &fs[q], mode, orient, sign, &j, err);
         if (st != DFL_OK) return st;
         /* d for s > 0 is the nearest branch: min of |.|, i.e. the smallest
          * jet outside and the largest (least negative) inside */

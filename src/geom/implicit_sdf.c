@@ -24,11 +24,11 @@ static void foot_jacobian(const double G[3], const double H[9], double t, double
 dfl_status dfl_implicit_jet(const dfl_implicit *s, const dfl_footpoint *foot, const double x[3],
                             const double dir[3], int K, dfl_jet *out, dfl_err *err)
 {
-    if (K < 0 || K > DFL_JET_MAX)
-        return dfl_err_set(err, DFL_E_INPUT, "jet order %d outside [0, %d]", K, DFL_JET_MAX);
+    dfl_status st = dfl_jet_check_order(K, err);
+    if (st != DFL_OK) return st;
     dfl_footpoint fp;
     if (!foot) {
-        dfl_status st = dfl_implicit_footpoint(s, x, &fp, err);
+        st = dfl_implicit_footpoint(s, x, &fp, err);
         if (st != DFL_OK) return st;
         foot = &fp;
     }

@@ -45,8 +45,8 @@ dfl_status dfl_shape_jet(const dfl_shape *s, const double *x, const double *dir,
     if (!s->ops->jet)
         return dfl_err_set(err, DFL_E_INPUT, "shape '%s' has no exact derivatives (jets)",
                            s->ops->kind);
-    if (K < 0 || K > DFL_JET_MAX)
-        return dfl_err_set(err, DFL_E_INPUT, "jet order %d outside [0, %d]", K, DFL_JET_MAX);
+    const dfl_status st = dfl_jet_check_order(K, err);
+    if (st != DFL_OK) return st;
     return s->ops->jet(s->impl, x, dir, K, out, err);
 }
 
