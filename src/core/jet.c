@@ -108,6 +108,18 @@ dfl_status dfl_jet_check_order(int K, dfl_err *err)
     return DFL_OK;
 }
 
+dfl_status dfl_jet_dir_call(dfl_dir_jet_fn jet, const void *ctx, const char *what,
+                            const char *name, const double *x, const double *dir, int K,
+                            dfl_jet *out, dfl_err *err)
+{
+    if (!jet)
+        return dfl_err_set(err, DFL_E_INPUT, "%s '%s' has no exact derivatives (jets)", what,
+                           name);
+    const dfl_status st = dfl_jet_check_order(K, err);
+    if (st != DFL_OK) return st;
+    return jet(ctx, x, dir, K, out, err);
+}
+
 void dfl_jet_zero(dfl_jet *out)
 {
     set_zero(NMAX, out);

@@ -54,6 +54,22 @@ typedef struct dfl_jet {
  * below clamp it. */
 dfl_status dfl_jet_check_order(int K, dfl_err *err);
 
+/* A directional jet: the jet of s -> g(x + s dir) at s = 0+ to absolute
+ * order K (0 <= K <= DFL_JET_MAX) of the function g that ctx describes; dir
+ * need not be unit length; thread-safe for a shared ctx.  The signature of
+ * the jet member of dfl_field_ops (field/field.h) and dfl_shape_ops
+ * (geom/shape.h). */
+typedef dfl_status (*dfl_dir_jet_fn)(const void *ctx, const double *x, const double *dir, int K,
+                                     dfl_jet *out, dfl_err *err);
+
+/* jet(ctx, x, dir, K, out, err) behind the checks of the public jet entry
+ * points (dfl_field_jet, dfl_shape_jet): DFL_E_INPUT with "<what> '<name>'
+ * has no exact derivatives (jets)" when jet is NULL, then dfl_jet_check_order;
+ * *out is untouched when either fails.  Otherwise jet's own status. */
+dfl_status dfl_jet_dir_call(dfl_dir_jet_fn jet, const void *ctx, const char *what,
+                            const char *name, const double *x, const double *dir, int K,
+                            dfl_jet *out, dfl_err *err);
+
 /* The exact zero (absorbing, precision DFL_JET_MAX + 1). */
 void dfl_jet_zero(dfl_jet *out);
 

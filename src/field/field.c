@@ -12,12 +12,7 @@ double dfl_field_eval1(const dfl_field *f, const double *x, double *g)
 dfl_status dfl_field_jet(const dfl_field *f, const double *x, const double *dir, int K,
                          dfl_jet *out, dfl_err *err)
 {
-    if (!f->ops->jet)
-        return dfl_err_set(err, DFL_E_INPUT, "field '%s' has no exact derivatives (jets)",
-                           f->ops->name);
-    const dfl_status st = dfl_jet_check_order(K, err);
-    if (st != DFL_OK) return st;
-    return f->ops->jet(f->ctx, x, dir, K, out, err);
+    return dfl_jet_dir_call(f->ops->jet, f->ctx, "field", f->ops->name, x, dir, K, out, err);
 }
 
 void dfl_field_destroy(dfl_field *f)

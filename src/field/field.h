@@ -22,10 +22,9 @@ typedef struct dfl_field_ops {
     /* Values at m points pts[i*dim + j]; writes val[i] and, when grad is not
      * NULL, grad[i*dim + j].  Must be thread-safe for a shared ctx. */
     void (*eval)(const void *ctx, size_t m, const double *pts, double *val, double *grad);
-    /* Jet of s -> u(x + s*dir) at s = 0+ to absolute order K (<= DFL_JET_MAX).
-     * dir need not be unit length.  NULL when the field has no jets. */
-    dfl_status (*jet)(const void *ctx, const double *x, const double *dir, int K, dfl_jet *out,
-                      dfl_err *err);
+    /* Jet of s -> u(x + s dir) (core/jet.h's dfl_dir_jet_fn); NULL when the
+     * field has no jets. */
+    dfl_dir_jet_fn jet;
     /* Frees ctx.  May be NULL. */
     void (*destroy)(void *ctx);
 } dfl_field_ops;
@@ -40,7 +39,8 @@ typedef struct dfl_field {
  * and slow paths, not for hot loops. */
 double dfl_field_eval1(const dfl_field *f, const double *x, double *g);
 
-/* Jet along dir; DFL_E_INPUT if the field has no jets. */
+/* Jet along dir; DFL_E_INPUT if the field has no jets or K is outside
+ * [0, DFL_JET_MAX] (dfl_jet_dir_call). */
 dfl_status dfl_field_jet(const dfl_field *f, const double *x, const double *dir, int K,
                          dfl_jet *out, dfl_err *err);
 

@@ -42,12 +42,7 @@ void dfl_shape_eval(const dfl_shape *s, size_t m, const double *pts, double *val
 dfl_status dfl_shape_jet(const dfl_shape *s, const double *x, const double *dir, int K,
                          dfl_jet *out, dfl_err *err)
 {
-    if (!s->ops->jet)
-        return dfl_err_set(err, DFL_E_INPUT, "shape '%s' has no exact derivatives (jets)",
-                           s->ops->kind);
-    const dfl_status st = dfl_jet_check_order(K, err);
-    if (st != DFL_OK) return st;
-    return s->ops->jet(s->impl, x, dir, K, out, err);
+    return dfl_jet_dir_call(s->ops->jet, s->impl, "shape", s->ops->kind, x, dir, K, out, err);
 }
 
 dfl_status dfl_shape_footpoint(const dfl_shape *s, const double *x, double *p, dfl_err *err)

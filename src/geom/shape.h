@@ -84,11 +84,9 @@ typedef struct dfl_shape_ops {
     /* Signed distance (negative inside) at m points pts[i*dim+j]; grad
      * (m*dim) may be NULL.  Thread-safe, no allocation. */
     void (*eval)(const void *impl, size_t m, const double *pts, double *val, double *grad);
-    /* Exact jet of s -> d(x + s dir) at s = 0+ to absolute order K
-     * (0 <= K <= DFL_JET_MAX), or NULL if unsupported.  dir need not be unit
-     * length.  Thread-safe. */
-    dfl_status (*jet)(const void *impl, const double *x, const double *dir, int K, dfl_jet *out,
-                      dfl_err *err);
+    /* Exact jet of s -> d(x + s dir) (core/jet.h's dfl_dir_jet_fn), or NULL
+     * if unsupported. */
+    dfl_dir_jet_fn jet;
     void (*free)(void *impl);
 } dfl_shape_ops;
 
@@ -177,11 +175,6 @@ typedef struct dfl_shape_derivs {
 } dfl_shape_derivs;
 dfl_status dfl_shape_derivs_at(const dfl_shape *s, const double *x, dfl_shape_derivs *out,
                                dfl_err *err);
-
-/* A directional jet: d(x + s dir) at s = 0+ to order K, for ctx (the
- * signature of dfl_shape_ops.jet with a context). */
-typedef dfl_status (*dfl_dir_jet_fn)(const void *ctx, const double *x, const double *dir, int K,
-                                     dfl_jet *out, dfl_err *err);
 
 /* Hessian H (n x n, row-major) and, for n == 3, the mixed third derivative
  * *dxyz of a function at x from its jets along coordinate directions and

@@ -824,3 +824,46 @@ Test(jet, check_order_rejects_outside_range)
     cr_assert(strstr(err.msg, "jet order 25 outside [0, 24]"), "%s", err.msg);
     cr_assert_eq(dfl_jet_check_order(INT_MIN, NULL), DFL_E_INPUT);
 }
+
+/* A directional jet that records its call: the linear jet 2 + K s. */
+static dfl_status probe_jet(const void *ctx, const double *x, const double *dir, int K,
+                            dfl_jet *out, dfl_err *err)
+{
+    (void)x;
+    (void)dir;
+    (void)err;
+    *(int *)ctx += 1;
+    dfl_jet_linear(2.0, (double)K, K, out);
+    return DFL_OK;
+}
+
+/* The checks in front of every public jet entry point, in their order:
+ * missing jets first, then the order; the callee runs only when both pass
+ * and *out is untouched otherwise. */
+Test(jet, dir_call_checks_then_dispatches)
+{
+    dfl_err err;
+    int calls = 0;
+    const double x[2] = {0, 0}, dir[2] = {1, 0};
+    dfl_jet out, keep;
+    dfl_jet_const(7.0, 3, &out);
+    keep = out;
+    cr_assert_eq(dfl_jet_dir_call(NULL, &calls, "field", "plain", x, dir, 3, &out, &err),
+                 DFL_E_INPUT);
+    cr_assert_str_eq(err.msg, "field 'plain' has no exact derivatives (jets)");
+    cr_assert_eq(dfl_jet_dir_call(NULL, &calls, "shape", "disk", x, dir, -1, &out, &err),
+                 DFL_E_INPUT);
+    cr_assert_str_eq(err.msg, "shape 'disk' has no exact derivatives (jets)");
+    cr_assert_eq(dfl_jet_dir_call(probe_jet, &calls, "field", "f", x, dir, DFL_JET_MAX + 1, &out,
+                                  &err),
+                 DFL_E_INPUT);
+    cr_assert(strstr(err.msg, "jet order 25 outside [0, 24]"), "%s", err.msg);
+    cr_assert_eq(calls, 0);
+    cr_assert(out.v == keep.v && out.n == keep.n && out.zero == keep.zero);
+    cr_assert_eq(memcmp(out.c, keep.c, sizeof out.c), 0);
+    cr_assert_eq(dfl_jet_dir_call(probe_jet, &calls, "field", "f", x, dir, 5, &out, &err), DFL_OK);
+    cr_assert_eq(calls, 1);
+    cr_assert_eq(dfl_jet_coeff(&out, 0), 2.0);
+    cr_assert_eq(dfl_jet_coeff(&out, 1), 5.0);
+    cr_assert_eq(dfl_jet_order(&out), 5);
+}
