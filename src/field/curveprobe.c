@@ -79,6 +79,20 @@ static void put_ray(dfl_rayset *rs, size_t k, const double *P, const double *v, 
     rs->kind[k] = kind;
 }
 
+/* The rays +N (side +1) and -N (side -1) of the given kind at parameter t,
+ * as rays *k and *k + 1 (advancing *k); DFL_E_INPUT at a zero tangent. */
+static dfl_status put_normal_pair(dfl_rayset *rs, size_t *k, const dfl_bspline *c, double t,
+                                  int kind, dfl_err *err)
+{
+    double P[2], T[2], kap;
+    if (!frame_at(c, t, P, T, &kap))
+        return dfl_err_set(err, DFL_E_INPUT, "rays: zero tangent at t = %g", t);
+    const double N[2] = {-T[1], T[0]}, mN[2] = {T[1], -T[0]};
+    put_ray(rs, (*k)++, P, N, t, kap, 1, kind);
+    put_ray(rs, (*k)++, P, mN, t, kap, -1, kind);
+    return DFL_OK;
+}
+
 dfl_status dfl_curveprobe_rays(const dfl_bspline *c, size_t nside, size_t ncap,
                                const double *joint_t, size_t njoint, dfl_rayset *out,
                                dfl_err *err)
@@ -144,14 +158,7 @@ dfl_status dfl_curveprobe_rays(const dfl_bspline *c, size_t nside, size_t ncap,
             t -= (ss[lo] + arc_gauss(c, tt[lo], t) - target) / sp;
             t = t < tt[lo] ? tt[lo] : t > tt[lo + 1] ? tt[lo + 1] : t;
         }
-        double P[2], T[2], kap;
-        if (!frame_at(c, t, P, T, &kap)) {
-            st = dfl_err_set(err, DFL_E_INPUT, "rays: zero tangent at t = %g", t);
-            goto done;
-        }
-        const double N[2] = {-T[1], T[0]}, mN[2] = {T[1], -T[0]};
-        put_ray(out, k++, P, N, t, kap, 1, DFL_RAY_SIDE);
-        put_ray(out, k++, P, mN, t, kap, -1, DFL_RAY_SIDE);
+        if ((st = put_normal_pair(out, &k, c, t, DFL_RAY_SIDE, err)) != DFL_OK) goto done;
     }
     for (int e = 0; e < 2 && ncaps > 0; e++) {
         const double t = e ? c->t1 : c->t0;
@@ -170,14 +177,7 @@ dfl_status dfl_curveprobe_rays(const dfl_bspline *c, size_t nside, size_t ncap,
     }
     for (size_t j = 0; j < njoint; j++) {
         const double t = dfl_bspline_wrap(c, joint_t[j]);
-        double P[2], T[2], kap;
-        if (!frame_at(c, t, P, T, &kap)) {
-            st = dfl_err_set(err, DFL_E_INPUT, "rays: zero tangent at t = %g", t);
-            goto done;
-        }
-        const double N[2] = {-T[1], T[0]}, mN[2] = {T[1], -T[0]};
-        put_ray(out, k++, P, N, t, kap, 1, DFL_RAY_JOINT);
-        put_ray(out, k++, P, mN, t, kap, -1, DFL_RAY_JOINT);
+        if ((st = put_normal_pair(out, &k, c, t, DFL_RAY_JOINT, err)) != DFL_OK) goto done;
     }
     assert(k == n);
     out->n = n;
