@@ -60,6 +60,23 @@ void quiet_glog()
     FLAGS_stderrthreshold = google::GLOG_FATAL;
 }
 
+// The status of the exception being handled; call it only from a catch
+// block (it rethrows to tell the kinds apart).  step names what was being
+// done, for the message.  This is where every exception stops: none may
+// cross the extern "C" boundary.
+dfl_status caught(const char *step, dfl_err *err)
+{
+    try {
+        throw;
+    } catch (const std::bad_alloc &) {
+        return dfl_err_set(err, DFL_E_NOMEM, "lsq: out of memory %s", step);
+    } catch (const std::exception &e) {
+        return dfl_err_set(err, DFL_E_INTERNAL, "lsq: %s: %.300s", step, e.what());
+    } catch (...) {
+        return dfl_err_set(err, DFL_E_INTERNAL, "lsq: unknown exception %s", step);
+    }
+}
+
 }  // namespace
 
 extern "C" {
@@ -80,12 +97,8 @@ dfl_status dfl_lsq_ctx_new(dfl_lsq_ctx **out, dfl_err *err)
         c->context = ceres::Context::Create();
         *out = c;
         return DFL_OK;
-    } catch (const std::bad_alloc &) {
-        return dfl_err_set(err, DFL_E_NOMEM, "lsq: out of memory creating the Ceres context");
-    } catch (const std::exception &e) {
-        return dfl_err_set(err, DFL_E_INTERNAL, "lsq: Ceres context: %s", e.what());
     } catch (...) {
-        return dfl_err_set(err, DFL_E_INTERNAL, "lsq: unknown exception creating the context");
+        return caught("creating the Ceres context", err);
     }
 }
 
@@ -187,12 +200,8 @@ dfl_status dfl_lsq_solve(dfl_lsq_ctx *ctx, int n, int m, dfl_lsq_residual_fn fn,
             res->converged = converged;
         }
         return DFL_OK;
-    } catch (const std::bad_alloc &) {
-        return dfl_err_set(err, DFL_E_NOMEM, "lsq: out of memory");
-    } catch (const std::exception &e) {
-        return dfl_err_set(err, DFL_E_INTERNAL, "lsq: %.300s", e.what());
     } catch (...) {
-        return dfl_err_set(err, DFL_E_INTERNAL, "lsq: unknown exception");
+        return caught("while solving", err);
     }
 }
 
