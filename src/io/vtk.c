@@ -96,10 +96,12 @@ static dfl_status blobs_prepare(vtk_blob *blobs, int n, int compress, dfl_err *e
     return DFL_OK;
 }
 
+/* Frees the compressed copies and the array itself (blobs may be NULL). */
 static void blobs_free(vtk_blob *blobs, int n)
 {
     if (!blobs) return;
     for (int i = 0; i < n; i++) free(blobs[i].z);
+    free(blobs);
 }
 
 static void blobs_write(FILE *fp, const vtk_blob *blobs, int n)
@@ -193,12 +195,23 @@ static dfl_status check_arrays(const dfl_vtk_array *arrays, int narrays, size_t 
     return DFL_OK;
 }
 
+/* Starts a file once its blobs are listed: compresses (if asked) and
+ * places them, then opens path for writing.  On failure the blobs are freed
+ * and nothing is left on disk. */
+static dfl_status start(const char *path, vtk_blob *blobs, int nblobs, int compress,
+                        dfl_atomic_file *af, dfl_err *err)
+{
+    dfl_status st = blobs_prepare(blobs, nblobs, compress, err);
+    if (!st) st = dfl_atomic_open(path, af, err);
+    if (st) blobs_free(blobs, nblobs);
+    return st;
+}
+
 /* Finishes a file whose XML and data have been written to af. */
 static dfl_status finish(dfl_atomic_file *af, vtk_blob *blobs, int nblobs, dfl_err *err)
 {
     blobs_write(af->fp, blobs, nblobs);
     blobs_free(blobs, nblobs);
-    free(blobs);
     return dfl_atomic_commit(af, err);
 }
 
@@ -234,14 +247,9 @@ dfl_status dfl_vti_write(const char *path, const int dims[3], const double origi
         blobs[i].data = arrays[i].data;
         blobs[i].nbytes = npoints * (size_t)arrays[i].ncomp * sizeof(double);
     }
-    st = blobs_prepare(blobs, narrays, compress, err);
     dfl_atomic_file af;
-    if (!st) st = dfl_atomic_open(path, &af, err);
-    if (st) {
-        blobs_free(blobs, narrays);
-        free(blobs);
-        return st;
-    }
+    st = start(path, blobs, narrays, compress, &af, err);
+    if (st) return st;
 
     FILE *fp = af.fp;
     char ext[128];
@@ -358,16 +366,14 @@ dfl_status dfl_vtp_write(const char *path, const dfl_vtp_data *d, int compress, 
         blobs[k].data = tri_off;
         blobs[k++].nbytes = d->ntris * sizeof(int64_t);
     }
-    if (!st) {
-        assert(k == nblobs);
-        st = blobs_prepare(blobs, nblobs, compress, err);
-    }
     dfl_atomic_file af;
-    if (!st) st = dfl_atomic_open(path, &af, err);
     if (st) {
         blobs_free(blobs, nblobs);
-        free(blobs);
     } else {
+        assert(k == nblobs);
+        st = start(path, blobs, nblobs, compress, &af, err);
+    }
+    if (!st) {
         FILE *fp = af.fp;
         xml_file_open(fp, "PolyData", compress);
         fputs(" <PolyData>\n", fp);
