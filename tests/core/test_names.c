@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "core/names.h"
+#include "util/names_check.h"
 
 static const char *const fruit[] = {"apple", "pear", "plum"};
 
@@ -37,16 +38,11 @@ Test(core_names, x_macro_columns)
 {
     cr_assert_eq(TEST_COUNT, 3);
     cr_expect_eq((int)TEST_A, 0);
+    cr_expect_eq((int)TEST_B, 1);
     cr_expect_eq((int)TEST_C, 2);
-    cr_expect_str_eq(letter_names[1], "bee");
-    cr_expect_str_eq(letter_name(TEST_C), "c");
-    cr_expect_str_eq(letter_name((test_code)3), "?");
-    test_code c = TEST_A;
-    cr_expect_eq(letter_parse("bee", &c, NULL), DFL_OK);
-    cr_expect_eq(c, TEST_B);
     dfl_err err;
-    cr_expect_eq(letter_parse("d", &c, &err), DFL_E_INPUT);
-    cr_expect_eq(c, TEST_B);
+    NAMES_CHECK(test_code, TEST_COUNT, letter_names, letter_name, letter_parse, "a|bee|c", "d",
+                TEST_B, err);
     cr_expect_str_eq(err.msg, "unknown letter 'd' (expected one of a|bee|c)");
 }
 
