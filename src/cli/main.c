@@ -1,5 +1,6 @@
 /* dflab command line.  Exit status: 0 success, 2 bad input (config, points
  * file, geometry, usage), 1 any other failure (I/O, numerical). */
+#include <limits.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -162,9 +163,12 @@ static int take_probe(void *opts, const char *opt, const char *v)
     if (strcmp(opt, "--points") == 0) {
         o->points = v;
     } else { /* --jet */
+        /* The range is core/jet.h's; the message is the CLI's, since it
+         * also answers text that is not an integer. */
         char *end;
         const long k = strtol(v, &end, 10);
-        if (*end || end == v || k < 0 || k > DFL_JET_MAX)
+        if (*end || end == v || k < INT_MIN || k > INT_MAX ||
+            dfl_jet_check_order((int)k, NULL) != DFL_OK)
             return usage_error(usage_probe, "--jet %s: expected an integer in [0, %d]", v,
                                DFL_JET_MAX);
         o->jet = (int)k;
