@@ -9,6 +9,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "cfg/curve_cfg.h"
+#include "io/config.h"
 #include "util/tmpdir.h"
 
 void e2e_tmpdir(char *buf, size_t size) { tmpdir_new(buf, size); }
@@ -265,4 +267,13 @@ void e2e_run_expect_fail(const char *cfg, const char *extra, const char *want)
     e2e_tmpdir(dir, sizeof dir);
     const int rc = e2e_run_cfg(dir, cfg, extra, out, sizeof out);
     expect_rejected(dir, rc, extra, out, want, NULL);
+}
+
+void e2e_load_curve(const char *path, const char *sec, dfl_bspline *c)
+{
+    dfl_cfg *cfg;
+    dfl_err err;
+    cr_assert_eq(dfl_cfg_load(path, &cfg, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(dfl_curve_from_cfg(cfg, sec, c, &err), DFL_OK, "%s: %s", path, err.msg);
+    dfl_cfg_free(cfg);
 }

@@ -8,6 +8,8 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "geom/bspline.h"
+
 /* tmpdir_new (util/tmpdir.h): a fresh empty directory under /tmp, path into
  * buf; fatal assertion when it cannot be made. */
 void e2e_tmpdir(char *buf, size_t size);
@@ -95,4 +97,9 @@ void e2e_expect_bad_config(const char *ini_text, const char *want1, const char *
  * rejected; expects (Criterion, non-fatal) exit status 2, `want` in stderr
  * and no results directory left behind. */
 void e2e_run_expect_fail(const char *cfg, const char *extra, const char *want);
+
+/* The curve of [sec] in the config file path, built as the studies build it
+ * (dfl_curve_from_cfg, cfg/curve_cfg.h); fatal assertions on failure.  The
+ * caller frees it with dfl_bspline_free. */
+void e2e_load_curve(const char *path, const char *sec, dfl_bspline *c);
 #endif

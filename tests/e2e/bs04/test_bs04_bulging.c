@@ -20,10 +20,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cfg/curve_cfg.h"
 #include "util/e2e_util.h"
 #include "geom/polygonize.h"
-#include "io/config.h"
 
 #define CFG "configs/paper/bs04/bs04_bulging.ini"
 
@@ -48,11 +46,8 @@ Test(e2e_bs04_bulging, collinear_closed_forms_and_bounds, .timeout = 120)
     /* per point 3 u images (vti + exr), 3 exact images once, csv, config, manifest */
     cr_expect_eq(e2e_count_entries(out), 2 * 6 + 6 + 3);
 
-    dfl_cfg *wc;
     dfl_bspline W;
-    dfl_err err;
-    cr_assert_eq(dfl_cfg_load("configs/shapes/W.ini", &wc, &err), DFL_OK, "%s", err.msg);
-    cr_assert_eq(dfl_curve_from_cfg(wc, "shape", &W, &err), DFL_OK, "%s", err.msg);
+    e2e_load_curve("configs/shapes/W.ini", "shape", &W);
     dfl_polyline wp;
     cr_assert_eq(dfl_polygonize_curve(&W, 1e-3, 0, &wp, NULL), DFL_OK);
 
@@ -134,7 +129,6 @@ Test(e2e_bs04_bulging, collinear_closed_forms_and_bounds, .timeout = 120)
     e2e_vti_free(&u);
     dfl_polyline_free(&wp);
     dfl_bspline_free(&W);
-    dfl_cfg_free(wc);
 }
 
 Test(e2e_bs04_bulging, bad_input_exits_2_without_files)

@@ -9,22 +9,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cfg/curve_cfg.h"
 #include "util/e2e_util.h"
 #include "geom/polygonize.h"
 #include "io/config.h"
 #include "cfg/shape_cfg.h"
 
 #define CFG "configs/paper/bs04/bs04_polygonization.ini"
-
-static void load_curve(const char *path, const char *sec, dfl_bspline *c)
-{
-    dfl_cfg *cfg;
-    dfl_err err;
-    cr_assert_eq(dfl_cfg_load(path, &cfg, &err), DFL_OK, "%s", err.msg);
-    cr_assert_eq(dfl_curve_from_cfg(cfg, sec, c, &err), DFL_OK, "%s", err.msg);
-    dfl_cfg_free(cfg);
-}
 
 Test(e2e_bs04_poly, study_rows_files_and_growth, .timeout = 300)
 {
@@ -35,8 +25,8 @@ Test(e2e_bs04_poly, study_rows_files_and_growth, .timeout = 300)
     cr_expect_eq(e2e_count_entries(out), 13);
 
     dfl_bspline S, W;
-    load_curve("configs/shapes/S.ini", "shape", &S);
-    load_curve("configs/shapes/W.ini", "shape", &W);
+    e2e_load_curve("configs/shapes/S.ini", "shape", &S);
+    e2e_load_curve("configs/shapes/W.ini", "shape", &W);
     double prev[2] = {0, 0};
     for (long r = 0; r < 10; r++) {
         char *curve = e2e_csv_cell(path, r, "curve");

@@ -7,23 +7,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "cfg/curve_cfg.h"
 #include "geom/polygonize.h"
-#include "io/config.h"
 #include "rfunc/rfield.h"
 #include "util/e2e_util.h"
 
 #define CFG "configs/paper/bs04/bs04_spacecurves.ini"
 #define NSAMP 100000
-
-static void load(const char *file, dfl_bspline *c)
-{
-    dfl_cfg *cfg;
-    dfl_err err;
-    cr_assert_eq(dfl_cfg_load(file, &cfg, &err), DFL_OK, "%s", err.msg);
-    cr_assert_eq(dfl_curve_from_cfg(cfg, "shape", c, &err), DFL_OK, "%s", err.msg);
-    dfl_cfg_free(cfg);
-}
 
 Test(e2e_bs04_spacecurves, counts_and_slice_metrics, .timeout = 60)
 {
@@ -37,7 +26,7 @@ Test(e2e_bs04_spacecurves, counts_and_slice_metrics, .timeout = 60)
         cr_assert_str_eq(name, r == 0 ? "space1" : "space2");
         free(name);
         dfl_bspline c;
-        load(files[r], &c);
+        e2e_load_curve(files[r], "shape", &c);
         const double eps = e2e_csv_get(csv, (size_t)r, "eps");
         dfl_polyline pl;
         cr_assert_eq(dfl_polygonize_curve(&c, eps, 0, &pl, NULL), DFL_OK);
