@@ -58,7 +58,7 @@ APT_PKGS := libinih-dev libceres-dev libopenexr-dev libimath-dev libcriterion-de
             python3-matplotlib python3-numpy python3-vtk9 openexr pkg-config \
             emscripten chromium
 
-.PHONY: all deps test sanitize bench reproduce clean check-layout web web-test
+.PHONY: all deps test sanitize bench reproduce clean check-layout web web-test web-bench
 all: $(DFLAB) $(LIB)
 
 $(BUILD)/%.o: %.c
@@ -126,6 +126,7 @@ include src/web/web.mk
 bench: deps
 	$(MAKE) --no-print-directory OPT=-O3 BUILD=build-bench build-bench/dflab-bench
 	DFL_PYTHON=$(PYTHON) build-bench/dflab-bench
+	$(MAKE) --no-print-directory web-bench
 
 # One folder per paper under configs/paper/; results/<config name>/ each.
 PAPER_CONFIGS := $(sort $(wildcard configs/paper/*/*.ini))

@@ -69,3 +69,8 @@ web-test: web $(DFLAB) tests/web/node_modules/.installed
 	  $(NODE) tests/web/page.test.mjs
 
 -include $(shell find $(WEB_DIR)/obj -name '*.d' 2>/dev/null)
+
+# The two-segment panel's frame rate at 256^2 in headless chromium (run by
+# `make bench`; printed and written to build/web-test/web_bench.txt).
+web-bench: web tests/web/node_modules/.installed
+	DFL_WEB=$(abspath $(WEB_DIR)) DFL_OUT=$(abspath $(BUILD))/web-test $(NODE) tests/web/page.test.mjs --bench

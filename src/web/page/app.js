@@ -348,7 +348,7 @@ function drawBulge() {
     if ((g.u[k] - c) * (g.u[k + 1] - c) <= 0) worst = Math.max(worst, g.d[k] / c - 1);
   document.getElementById('bulge-m').textContent = nv
     ? 'Polyline of ' + (nv - 1) + ' segments within ε = ' + eps + '. Bulge of the level set u = ' + c +
-      ': its points lie up to ' + fmt(worst) + ' × c beyond the exact offset d = c (grid estimate; ' +
+      ': its points lie up to ' + fmt(worst) + ' × c beyond the exact offset d = c (grid estimate, free ends included; ' +
       '2^(1/p) − 1 = ' + fmt(Math.pow(2, 1 / state.bp) - 1) + ' at a sharp joint).'
     : '';
   const pts = [];
