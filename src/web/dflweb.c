@@ -15,6 +15,7 @@
 #include "geom/bspline.h"
 #include "geom/polygonize.h"
 #include "geom/segdist.h"
+#include "rfunc/exact_polyline.h"
 #include "rfunc/gradbound.h"
 #include "rfunc/join.h"
 #include "rfunc/rfield.h"
@@ -74,18 +75,23 @@ static int check_codes(dflw_scene *s, int join, int trim)
     return DFL_OK;
 }
 
-int dflw_scene_polyline(dflw_scene *s, const double *v, int n, int join, int p, int trim)
+/* trim < 0: the exact distances of dflw_scene_exact. */
+static int scene_build(dflw_scene *s, const double *v, int n, int join, int p, int trim)
 {
     dfl_err_clear(&s->err);
     scene_clear(s);
-    dfl_status st = check_codes(s, join, trim);
+    dfl_status st = check_codes(s, join, trim < 0 ? 0 : trim);
     if (st) return st;
     if (n < 2) return dfl_err_set(&s->err, DFL_E_INPUT, "polyline: %d vertices, need >= 2", n);
     s->v = malloc(2 * (size_t)n * sizeof *s->v);
     if (!s->v) return dfl_err_set(&s->err, DFL_E_NOMEM, "out of memory");
     memcpy(s->v, v, 2 * (size_t)n * sizeof *v);
-    st = dfl_rfield_polyline(2, v, (size_t)n, false, (dfl_rfunc_join)join, p,
-                             (dfl_rfunc_trim)trim, &s->f, &s->err);
+    if (trim < 0)
+        st = dfl_rfunc_exact_polyline_field(2, v, (size_t)n, (dfl_rfunc_join)join, p, &s->f,
+                                            &s->err);
+    else
+        st = dfl_rfield_polyline(2, v, (size_t)n, false, (dfl_rfunc_join)join, p,
+                                 (dfl_rfunc_trim)trim, &s->f, &s->err);
     if (st) {
         free(s->v);
         s->v = NULL;
@@ -93,6 +99,22 @@ int dflw_scene_polyline(dflw_scene *s, const double *v, int n, int join, int p, 
     }
     s->n = n;
     return DFL_OK;
+}
+
+int dflw_scene_polyline(dflw_scene *s, const double *v, int n, int join, int p, int trim)
+{
+    if (trim < 0) {
+        dfl_err_clear(&s->err);
+        scene_clear(s);
+        return dfl_err_set(&s->err, DFL_E_INPUT, "trim code %d: expected 0..%d", trim,
+                           DFL_RFUNC_TRIM_COUNT - 1);
+    }
+    return scene_build(s, v, n, join, p, trim);
+}
+
+int dflw_scene_exact(dflw_scene *s, const double *v, int n, int join, int p)
+{
+    return scene_build(s, v, n, join, p, -1);
 }
 
 int dflw_scene_curve(dflw_scene *s, const double *cp, int ncp, int order, double eps, int join,

@@ -8,6 +8,7 @@
  *   dflw_scene_error                   the last failure's one-line message
  *   dflw_two_segments                  the two-segment panel's vertices
  *   dflw_scene_polyline                (re)builds the field of a polyline
+ *   dflw_scene_exact                   (re)builds it from exact segment distances
  *   dflw_scene_curve                   (re)builds it from a B-spline curve
  *   dflw_scene_vertices                the polyline the field is built on
  *   dflw_eval                          u and grad u at points (as probe)
@@ -49,6 +50,11 @@ void dflw_two_segments(double alpha_deg, double *v);
  * (dfl_rfield_polyline, fast path on).  DFL_E_INPUT for bad codes,
  * degenerate geometry or a (join, p) pair the library rejects. */
 int dflw_scene_polyline(dflw_scene *s, const double *v, int n, int join, int p, int trim);
+
+/* The same polyline with the segments' exact distances as the parts
+ * (rfunc/exact_polyline: no trim, no jets), the setting in which eq. 13-14
+ * are exact.  No `dflab probe` config builds this field. */
+int dflw_scene_exact(dflw_scene *s, const double *v, int n, int join, int p);
 
 /* Builds the field of the open clamped B-spline of order `order` through
  * control points cp[0..2ncp-1] (uniform knots), polygonized with the

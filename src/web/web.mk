@@ -27,7 +27,7 @@ WEB_LIB  := $(WEB_DIR)/obj/libdfl-web.a
 WEB_PAGE := $(wildcard src/web/page/*)
 WEB_CFLAGS := -std=c11 -O2 -Wall -Wextra -Wno-unknown-pragmas -Isrc -D_POSIX_C_SOURCE=200809L -MMD -MP
 WEB_FUNCS := malloc free dflw_scene_new dflw_scene_free dflw_scene_error dflw_two_segments \
-  dflw_scene_polyline dflw_scene_curve dflw_scene_nvertices dflw_scene_vertices dflw_eval \
+  dflw_scene_polyline dflw_scene_exact dflw_scene_curve dflw_scene_nvertices dflw_scene_vertices dflw_eval \
   dflw_grid dflw_jet dflw_order dflw_bounds dflw_ring dflw_bulge
 WEB_COMMA := ,
 WEB_EXPORTS := $(subst $(eval) ,$(WEB_COMMA),$(strip $(WEB_FUNCS:%=_%)))

@@ -4,8 +4,8 @@
 // Checks: the page loads without console errors and fetches only its own
 // files; each control changes the picture; u and grad u at 20 points equal
 // `dflab probe` on the config the page shows, to 1e-12; the normalization
-// orders shown match the bs04 normalization table's rule (p, p - 1,
-// <= 6 for the smooth trim); the URL state round-trips; a screenshot of each
+// orders shown match the bs04 normalization table (dflab run
+// bs04_normalization.ini: p, p - 1, <= 6 for the smooth trim); the URL state round-trips; a screenshot of each
 // panel is written (DFL_OUT/web-*.png).  With --bench it prints the
 // two-segment panel's frame rate instead (`make bench`).
 //
@@ -141,19 +141,30 @@ try {
     }
     check(mine.length === 20, 'probe hook answers 20 points');
 
-    // 4. Normalization orders shown = bs04's table rule (and dflab probe's jets).
+    // 4. Normalization orders shown = the bs04 normalization table that
+    // `dflab run configs/paper/bs04/bs04_normalization.ini` writes.
+    const tdir = path.join(OUT, 'bs04_normalization');
+    const cfgPath = path.join(path.dirname(path.dirname(path.dirname(new URL(import.meta.url).pathname))),
+                              'configs', 'paper', 'bs04', 'bs04_normalization.ini');
+    const run = spawnSync(DFLAB, ['run', cfgPath, '--out', tdir, '--quiet', '--threads', '1'], { encoding: 'utf8' });
+    check(run.status === 0, `dflab run bs04_normalization.ini${run.status ? ': ' + run.stderr.trim() : ''}`);
+    const lines = fs.readFileSync(path.join(tdir, 'bs04_normalization.csv'), 'utf8').trim().split('\n');
+    const head = lines[0].split(','), col = n => head.indexOf(n);
+    const table = lines.slice(1).map(l => l.split(',')).map(c => ({
+      join: c[col('join')], p: Number(c[col('p')]), trim: c[col('trim')],
+      status: c[col('status')], theory: c[col('order_theory')], measured: c[col('measured_order')] }));
+    check(table.length === 108, `the table has 3 joins x 12 p x 3 trims (${table.length} rows)`);
     let bad = [];
-    for (const join of ['requiv', 'rconj', 'requiv_corrected'])
-      for (const trim of ['disk', 'disk_smooth', 'strip'])
-        for (let p = 1; p <= 12; p++) {
-          await page.evaluate(h => { location.hash = h; }, `#np=${p}&njoin=${join}&ntrim=${trim}`);
-          await page.waitForFunction(([p, j, t]) => { const s = window.dflab.state(); return s.np === p && s.njoin === j && s.ntrim === t; }, [p, join, trim]);
-          const o = await page.evaluate(() => ({ ...document.getElementById('norm-order').dataset }));
-          const theory = join === 'rconj' && p === 1 ? 'n/a'
-            : String(trim === 'disk_smooth' ? Math.min(join === 'rconj' ? p - 1 : p, 6) : join === 'rconj' ? p - 1 : p);
-          if (o.order !== theory || o.theory !== theory) bad.push(`${join} p=${p} ${trim}: shown ${o.order} (page says ${o.theory}), table ${theory}`);
-        }
-    check(bad.length === 0, `orders shown for 3 joins x 12 p x 3 trims match the table${bad.length ? ': ' + bad.slice(0, 4).join('; ') : ''}`);
+    for (const row of table) {
+      const { join, p, trim } = row;
+      await page.evaluate(h => { location.hash = h; }, `#np=${p}&njoin=${join}&ntrim=${trim}`);
+      await page.waitForFunction(([p, j, t]) => { const s = window.dflab.state(); return s.np === p && s.njoin === j && s.ntrim === t; }, [p, join, trim]);
+      const o = await page.evaluate(() => ({ ...document.getElementById('norm-order').dataset }));
+      const want = row.status === 'ok' ? [row.measured, row.theory] : ['n/a', 'n/a'];
+      if (o.order !== want[0] || o.theory !== want[1])
+        bad.push(`${join} p=${p} ${trim}: page ${o.order} (says ${o.theory}), table ${want[0]} (theory ${want[1]})`);
+    }
+    check(bad.length === 0, `orders shown (measured and bs04's) for every row match the table${bad.length ? ': ' + bad.slice(0, 4).join('; ') : ''}`);
     {
       await page.evaluate(() => { location.hash = '#np=5&njoin=rconj&ntrim=disk&nseg=2&nt=0.35'; });
       await page.waitForFunction(() => window.dflab.state().nseg === 2 && window.dflab.state().np === 5);
@@ -201,6 +212,16 @@ try {
     const text = await page.textContent('#two-ini');
     check(shown && text.includes('[field]') && text.includes('p = 7') && text.includes('trim = strip'),
           'the config button shows the INI for dflab probe');
+
+    // 6b. Exact segment distances: the joint bulge is bs04's 2^(1/p) - 1 (eq. 6
+    // in the hatched sector, where h1 = h2 = |x - v|); no probe config exists.
+    await open('#trim=exact&p=4');
+    const exPic = await pixels('two-u');
+    const bulge = Number(await page.getAttribute('#two-bulge', 'data-bulge'));
+    const exIni = await page.evaluate(() => window.dflab.ini('two'));
+    await open('#p=4');
+    check(exPic !== await pixels('two-u') && Math.abs(bulge - (Math.pow(2, 1 / 4) - 1)) < 1e-9 && exIni.includes('cannot'),
+          `trim=exact: joint bulge ${bulge} = 2^(1/4) - 1, and the config says probe cannot build it`);
 
     // 7. Screenshots of each panel.
     await page.click('#norm-u', { position: { x: 100, y: 150 } });

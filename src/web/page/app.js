@@ -42,7 +42,7 @@ function parseHash(h) {
   s.nside = s.nside < 0 ? -1 : 1;
   if (!JOINS.includes(s.join)) s.join = DEFAULTS.join;
   if (!JOINS.includes(s.njoin)) s.njoin = DEFAULTS.njoin;
-  if (!TRIMS.includes(s.trim)) s.trim = DEFAULTS.trim;
+  if (!TRIMS.includes(s.trim) && s.trim !== 'exact') s.trim = DEFAULTS.trim;
   if (!['disk', 'disk_smooth', 'strip'].includes(s.ntrim)) s.ntrim = DEFAULTS.ntrim;
   if (!['u', 'err'].includes(s.view)) s.view = DEFAULTS.view;
   if (!(s.shape in SHAPES)) s.shape = DEFAULTS.shape;
@@ -96,6 +96,7 @@ function twoVertices(alpha) {
 
 function buildPolyline(sc, v, join, p, trim) {
   setDoubles(buf, v);
+  if (trim === 'exact') return M._dflw_scene_exact(sc, buf, v.length / 2, JOINS.indexOf(join), p);
   return M._dflw_scene_polyline(sc, buf, v.length / 2, JOINS.indexOf(join), p, TRIMS.indexOf(trim));
 }
 
@@ -198,13 +199,17 @@ function drawTwo() {
   const p = state.p;
   const theory = state.join === 'requiv' ? Math.pow(2, 1 / p) - 1
     : state.join === 'rconj' ? 1 / (2 - Math.pow(2, 1 / p)) - 1 : 0;
-  document.getElementById('two-bulge').textContent =
+  const bel = document.getElementById('two-bulge');
+  bel.dataset.bulge = String(bulge);
+  bel.textContent =
     'Joint bulge of the level set u = ' + c + ' on the outer bisector: measured ' + fmt(bulge) +
     ', exact-distance theory ' + fmt(theory) +
     (state.join === 'requiv' ? ' (2^(1/p) − 1)' : state.join === 'rconj' ? ' (1/(2 − 2^(1/p)) − 1)' : ' (eq. 20 removes it)') +
     '; the trim moves the measured value away from the theory.';
-  document.getElementById('two-ini').textContent =
-    fieldIni('two segments at alpha = ' + state.alpha + ' degrees', v, state.join, state.p, state.trim);
+  document.getElementById('two-ini').textContent = state.trim === 'exact'
+    ? '# The exact segment distances joined (rfunc/exact_polyline) have no [field] kind:\n' +
+      '# dflab probe cannot evaluate this setting; choose a trim for a config.\n'
+    : fieldIni('two segments at alpha = ' + state.alpha + ' degrees', v, state.join, state.p, state.trim);
 }
 
 function drawBounds(ok) {
