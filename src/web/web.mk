@@ -35,6 +35,7 @@ WEB_LDFLAGS := -O2 -sMODULARIZE=1 -sEXPORT_NAME=createDflab -sENVIRONMENT=web \
   -sALLOW_MEMORY_GROWTH=1 -sEXPORTED_FUNCTIONS=$(WEB_EXPORTS) \
   -sEXPORTED_RUNTIME_METHODS=UTF8ToString
 
+web: | deps
 web: $(WEB_DIR)/dflab.js $(WEB_DIR)/dflab.wasm $(WEB_PAGE:src/web/page/%=$(WEB_DIR)/%)
 
 $(WEB_DIR)/obj/%.o: %.c

@@ -205,7 +205,7 @@ function drawTwo() {
     'Joint bulge of the level set u = ' + c + ' on the outer bisector: measured ' + fmt(bulge) +
     ', exact-distance theory ' + fmt(theory) +
     (state.join === 'requiv' ? ' (2^(1/p) − 1)' : state.join === 'rconj' ? ' (1/(2 − 2^(1/p)) − 1)' : ' (eq. 20 removes it)') +
-    '; the trim moves the measured value away from the theory.';
+    (state.trim === 'exact' ? '.' : '; the trim moves the measured value away from the theory.');
   document.getElementById('two-ini').textContent = state.trim === 'exact'
     ? '# The exact segment distances joined (rfunc/exact_polyline) have no [field] kind:\n' +
       '# dflab probe cannot evaluate this setting; choose a trim for a config.\n'
