@@ -10,9 +10,13 @@
 
 #include "core/jet.h"
 #include "core/status.h"
+#include "field/curveprobe.h"
+#include "field/exact.h"
 #include "field/field.h"
 #include "field/normorder.h"
 #include "geom/bspline.h"
+#include "geom/footpoint.h"
+#include "geom/param_shape.h"
 #include "geom/polygonize.h"
 #include "geom/segdist.h"
 #include "rfunc/exact_polyline.h"
@@ -25,6 +29,8 @@ struct dflw_scene {
     dfl_field f;   /* f.ops == NULL: no field */
     double *v;     /* 2n vertices of the polyline */
     int n;
+    dfl_bspline curve; /* dflw_scene_curve's curve (zeroed otherwise) */
+    dfl_polyline pl;   /* and its polygonization (parameters of the vertices) */
     dfl_err err;
 };
 
@@ -36,6 +42,10 @@ dflw_scene *dflw_scene_new(void)
 static void scene_clear(dflw_scene *s)
 {
     dfl_field_destroy(&s->f);
+    dfl_bspline_free(&s->curve);
+    dfl_polyline_free(&s->pl);
+    memset(&s->curve, 0, sizeof s->curve);
+    memset(&s->pl, 0, sizeof s->pl);
     free(s->v);
     s->v = NULL;
     s->n = 0;
@@ -128,7 +138,59 @@ int dflw_scene_curve(dflw_scene *s, const double *cp, int ncp, int order, double
                                      &s->err);
     if (!st) st = dfl_polygonize_curve(&c, eps, 100000, &pl, &s->err);
     if (!st) st = dflw_scene_polyline(s, pl.pts, (int)pl.n, join, p, trim);
+    if (!st) {
+        s->curve = c;  /* kept for the ray measure */
+        s->pl = pl;
+        return DFL_OK;
+    }
     dfl_polyline_free(&pl);
+    dfl_bspline_free(&c);
+    return st;
+}
+
+/* The steps of experiments/bs04/bs04_offsets.c's level measure, with the
+ * exact distance of the B-spline itself (footpoints), as the study has it. */
+int dflw_curve_bulge(dflw_scene *s, double delta, int nside, int ncap, double *out)
+{
+    dfl_err_clear(&s->err);
+    for (int i = 0; i < 4; i++) out[i] = NAN;
+    if (!s->f.ops || !s->curve.cp || s->pl.n < 2)
+        return dfl_err_set(&s->err, DFL_E_INPUT, "curve bulge: the scene has no curve");
+    dfl_bspline c = {0};
+    dfl_shape shape;
+    dfl_field exact = {0};
+    dfl_rayset rs = {0};
+    dfl_foot_opts fo;
+    dfl_foot_opts_default(&fo);
+    double *sv = NULL;
+    int *valid = NULL, *branch = NULL;
+    const dfl_cross_opts co = {8 * delta, 128, 6};
+    dfl_status st = dfl_bspline_copy(&s->curve, &c, &s->err);
+    if (!st) st = dfl_shape_param_curve(&c, &fo, 0, &shape, &s->err);
+    if (!st) {
+        st = dfl_field_exact_new(&shape, &exact, &s->err);
+        if (st) dfl_shape_free(&shape);
+    }
+    if (!st)
+        st = dfl_curveprobe_rays(&s->curve, (size_t)nside, (size_t)ncap, s->pl.t + 1,
+                                 s->pl.n - 2, &rs, &s->err);
+    if (!st) {
+        sv = malloc(rs.n * sizeof *sv);
+        valid = malloc(rs.n * sizeof *valid);
+        branch = malloc(rs.n * sizeof *branch);
+        if (!sv || !valid || !branch) st = dfl_err_set(&s->err, DFL_E_NOMEM, "out of memory");
+    }
+    if (!st) st = dfl_curveprobe_valid(&exact, &rs, delta, 1e-6, 1, valid, &s->err);
+    if (!st) st = dfl_curveprobe_cross(&s->f, &rs, delta, &co, 1, sv, &s->err);
+    if (!st) st = dfl_curveprobe_on_branch(&exact, &rs, sv, 1e-6, 1, branch, &s->err);
+    if (!st) {
+        dfl_ray_stats r;
+        dfl_curveprobe_stats(&rs, sv, valid, branch, delta, &r);
+        out[0] = r.max, out[1] = r.joint_max, out[2] = r.side_max, out[3] = r.cap_max;
+    }
+    free(sv), free(valid), free(branch);
+    dfl_curveprobe_free(&rs);
+    dfl_field_destroy(&exact);
     dfl_bspline_free(&c);
     return st;
 }

@@ -18,6 +18,7 @@
  *   dflw_bounds                        eq. 13-14 band against phi
  *   dflw_ring                          |grad u| on a circle (angle order)
  *   dflw_bulge                         joint bulge along a direction
+ *   dflw_curve_bulge                   the bs04_bulging study's ray measure
  *
  * Nothing here computes a formula of its own: every number comes from the
  * library.  Functions returning int return 0 on success and the
@@ -106,5 +107,15 @@ void dflw_ring(const dflw_scene *s, const double *c, double r, int n, double *g,
  * set; 2^(1/p) - 1 in the hatched sector of R-equivalence).  NAN when u
  * does not reach c on [0, tmax]. */
 double dflw_bulge(const dflw_scene *s, const double *v, const double *dir, double c, double tmax);
+
+/* The bulge measure of the bs04_bulging study (field/curveprobe) for the
+ * scene built by dflw_scene_curve: rays along the normals of the exact
+ * B-spline (nside origins, ncap rays per end, +-N at every interior vertex
+ * of the polyline), the first crossing of u = delta on each (search in
+ * [0, 8 delta], 128 samples, 6 refinements, offset tolerance 1e-6 as in
+ * bs04_bulging.ini), r = (s - delta) / delta.  out[0..3] = max r over all
+ * valid rays, over the joint rays, over the side rays, over the cap rays.
+ * DFL_E_INPUT when the scene has no curve. */
+int dflw_curve_bulge(dflw_scene *s, double delta, int nside, int ncap, double *out);
 
 #endif

@@ -9,9 +9,11 @@
 # the same C sources natively, and the browser test only checks that the
 # wasm build agrees with the native `dflab probe`.
 #
-# solve/ (Ceres, C++) is not needed: the library archive is linked as an
-# archive, so only the objects the page's API reaches are pulled in; the
-# few geom objects that name the least-squares solver are never reached.
+# solve/ (Ceres, C++) is not compiled: src/web/lsq_stub.c stands in for
+# solve/lsq.h (every call fails with a message), which geom's footpoint
+# code names for its Ceres backend only; the page uses the Newton backend.
+# The library is linked as an archive, so only the objects the API reaches
+# come in.
 
 EMCC     ?= emcc
 EMAR     ?= emar
@@ -22,13 +24,13 @@ WEB_ENV  := NODE_PATH=/usr/share/nodejs
 WEB_DIR  := $(BUILD)/web
 WEB_SRCS := $(shell find src/core src/geom src/field src/rfunc -name '*.c' | sort)
 WEB_OBJ  := $(WEB_SRCS:%.c=$(WEB_DIR)/obj/%.o)
-WEB_API  := $(WEB_DIR)/obj/src/web/dflweb.o
+WEB_API  := $(WEB_DIR)/obj/src/web/dflweb.o $(WEB_DIR)/obj/src/web/lsq_stub.o
 WEB_LIB  := $(WEB_DIR)/obj/libdfl-web.a
 WEB_PAGE := $(wildcard src/web/page/*)
 WEB_CFLAGS := -std=c11 -O2 -Wall -Wextra -Wno-unknown-pragmas -Isrc -D_POSIX_C_SOURCE=200809L -MMD -MP
 WEB_FUNCS := malloc free dflw_scene_new dflw_scene_free dflw_scene_error dflw_two_segments \
   dflw_scene_polyline dflw_scene_exact dflw_scene_curve dflw_scene_nvertices dflw_scene_vertices dflw_eval \
-  dflw_grid dflw_jet dflw_order dflw_bounds dflw_ring dflw_bulge
+  dflw_grid dflw_jet dflw_order dflw_bounds dflw_ring dflw_bulge dflw_curve_bulge
 WEB_COMMA := ,
 WEB_EXPORTS := $(subst $(eval) ,$(WEB_COMMA),$(strip $(WEB_FUNCS:%=_%)))
 WEB_LDFLAGS := -O2 -sMODULARIZE=1 -sEXPORT_NAME=createDflab -sENVIRONMENT=web \

@@ -187,6 +187,24 @@ try {
       check(worst <= 1e-12, `d1..d13 shown = dflab probe --jet 13 (scaled |d_k/k!| L^(k-1) diff ${worst})`);
     }
 
+    // 4b. The curve's bulge = the bs04_bulging table (case W_fig2: the W, eps 1e-3,
+    // strip trims, delta 0.05) for p = 3.
+    {
+      const bdir = path.join(OUT, 'bs04_bulging');
+      const bcfg = path.join(path.dirname(cfgPath), 'bs04_bulging.ini');
+      const br = spawnSync(DFLAB, ['run', bcfg, '--set', 'study.p=3', '--out', bdir, '--quiet'], { encoding: 'utf8' });
+      check(br.status === 0, `dflab run bs04_bulging.ini --set study.p=3${br.status ? ': ' + br.stderr.trim() : ''}`);
+      const bl = fs.readFileSync(path.join(bdir, 'bs04_bulging.csv'), 'utf8').trim().split('\n');
+      const bh = bl[0].split(','), bc = n => bh.indexOf(n);
+      const row = bl.slice(1).map(l => l.split(',')).find(c => c[bc('case')] === 'W_fig2' && Number(c[bc('delta')]) === 0.05);
+      await open('#eps=0.001&bp=3');
+      const pb = Number(await page.getAttribute('#bulge-m', 'data-bulge'));
+      const pj = Number(await page.getAttribute('#bulge-m', 'data-joint'));
+      const tb = row ? Number(row[bc('bulge_max')]) : NaN, tj = row ? Number(row[bc('bulge_joint_max')]) : NaN;
+      check(Math.abs(pb - tb) <= 1e-9 && Math.abs(pj - tj) <= 1e-9,
+            `curve bulge shown (max ${pb}, joints ${pj}) = bs04_bulging W_fig2 p=3 delta=0.05 (${tb}, ${tj})`);
+    }
+
     // 5. URL state round-trips: a view set by the controls, reloaded from its URL, is the same view.
     await open('');
     await page.fill('#two-alpha', '150'); await page.dispatchEvent('#two-alpha', 'input');

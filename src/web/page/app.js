@@ -46,7 +46,7 @@ function parseHash(h) {
   if (!['disk', 'disk_smooth', 'strip'].includes(s.ntrim)) s.ntrim = DEFAULTS.ntrim;
   if (!['u', 'err'].includes(s.view)) s.view = DEFAULTS.view;
   if (!(s.shape in SHAPES)) s.shape = DEFAULTS.shape;
-  if (!['0.05', '0.02', '0.01', '0.005', '0.002'].includes(s.eps)) s.eps = DEFAULTS.eps;
+  if (!['0.05', '0.02', '0.01', '0.005', '0.002', '0.001'].includes(s.eps)) s.eps = DEFAULTS.eps;
   if (s.cp) {
     const c = s.cp.split(',').map(Number);
     if (c.length !== SHAPES[s.shape].length || !c.every(Number.isFinite)) s.cp = '';
@@ -328,7 +328,7 @@ function bulgeCp() { return state.cp ? state.cp.split(',').map(Number) : SHAPES[
 function drawBulge() {
   const sc = scenes.bulge, cp = bulgeCp(), eps = Number(state.eps);
   setDoubles(buf, cp);
-  const st = M._dflw_scene_curve(sc, buf, cp.length / 2, 4, eps, 0, state.bp, 0);
+  const st = M._dflw_scene_curve(sc, buf, cp.length / 2, 4, eps, 0, state.bp, TRIMS.indexOf('strip'));
   document.getElementById('bulge-msg').textContent = st ? 'dflab: ' + errorOf(sc) : '';
   bul.grid.run(sc, -0.1, -0.1, 1.1, 1.1);
   paintField(bul.cu, bul.grid, 'u');
@@ -345,23 +345,25 @@ function drawBulge() {
   ctx.fillStyle = '#ddd';
   for (let i = 0; i < cp.length; i += 2) { const [X, Y] = P(cp[i], cp[i + 1]); ctx.fillRect(X - 4, Y - 4, 8, 8); }
   bul.P = P;
-  /* Bulge of the level set u = c against the exact offset d = c: the largest
-   * d on the grid cells that u puts on the level c, relative to c. */
-  const c = 0.05, g = bul.grid, n = g.n;
-  let worst = 0;
-  for (let k = 0; k + 1 < n * n; k++)
-    if ((g.u[k] - c) * (g.u[k + 1] - c) <= 0) worst = Math.max(worst, g.d[k] / c - 1);
-  document.getElementById('bulge-m').textContent = nv
-    ? 'Polyline of ' + (nv - 1) + ' segments within ε = ' + eps + '. Bulge of the level set u = ' + c +
-      ': its points lie up to ' + fmt(worst) + ' × c beyond the exact offset d = c (grid estimate, free ends included; ' +
-      '2^(1/p) − 1 = ' + fmt(Math.pow(2, 1 / state.bp) - 1) + ' at a sharp joint).'
-    : '';
+  /* The bs04_bulging study's measure (field/curveprobe through dflw_curve_bulge):
+   * r = (s - delta) / delta along rays normal to the exact curve. */
+  const c = 0.05, rp = buf + 8 * 700;
+  const rst = nv ? M._dflw_curve_bulge(sc, c, 801, 64, rp)  /* rays, cap_rays of bs04_bulging.ini */ : 1;
+  const r = getDoubles(rp, 4);
+  const mel = document.getElementById('bulge-m');
+  mel.dataset.bulge = String(r[0]);
+  mel.dataset.joint = String(r[1]);
+  mel.textContent = !nv ? '' : rst ? 'bulge measure: ' + errorOf(sc)
+    : 'Polyline of ' + (nv - 1) + ' segments within ε = ' + eps + '. Bulge of the level set u = δ = ' + c +
+      ' (bs04_bulging\'s measure: rays along the exact curve\'s normals, r = (s − δ)/δ): max r = ' + fmt(r[0]) +
+      '; at the joints ' + fmt(r[1]) + ', on the sides ' + fmt(r[2]) + ', around the free ends ' + fmt(r[3]) +
+      '. A joint of collinear parts gives 2^(1/p) − 1 = ' + fmt(Math.pow(2, 1 / state.bp) - 1) + '.';
   const pts = [];
   for (let i = 0; i < cp.length; i += 2) pts.push(cp[i] + ' ' + cp[i + 1]);
   document.getElementById('bulge-ini').textContent = iniText([
-    '# the ' + state.shape + ' curve, polygonized within eps, joined by R-equivalence',
+    '# the ' + state.shape + ' curve, polygonized within eps, strip trims, joined by R-equivalence',
     '#   build/dflab probe THIS.ini --points P.csv      (P.csv: header x,y)',
-    '[field]', 'kind = rfunc', 'curve = shape', 'eps = ' + eps, 'join = requiv', 'p = ' + state.bp, 'trim = disk', '',
+    '[field]', 'kind = rfunc', 'curve = shape', 'eps = ' + eps, 'join = requiv', 'p = ' + state.bp, 'trim = strip', '',
     '[shape]', 'kind = bspline_curve', 'order = 4', 'control = ' + pts.join('; ')]);
 }
 
