@@ -318,7 +318,7 @@ function normClick(ev) {
     if (!best || dd < best.dd) best = { i, t, dd, side: (dx * ey - dy * ex) >= 0 ? 1 : -1 };
   }
   state.nseg = best.i; state.nt = Math.round(best.t * 100) / 100; state.nside = best.side;
-  syncControls(); update();
+  syncControls(); update(['norm']);
 }
 
 /* ---- panel 3: bulging of a curve ------------------------------------------------ */
@@ -389,7 +389,7 @@ function bulgeDrag() {
     const [x, y] = at(ev), cp = bulgeCp();
     cp[drag] = Math.round(x * 1000) / 1000; cp[drag + 1] = Math.round(y * 1000) / 1000;
     state.cp = cp.join(',');
-    update();
+    update(['bulge']);
   });
   cv.addEventListener('pointerup', () => { drag = -1; });
 }
@@ -413,10 +413,13 @@ function syncControls() {
   }
 }
 
-function update() {
-  drawTwo();
-  drawNorm();
-  drawBulge();
+/* Redraws the panels named (all by default): a control redraws its own
+ * panel only, so that dragging on the curve does not recompute the others. */
+function update(panels) {
+  const all = !panels;
+  if (all || panels.includes('two')) drawTwo();
+  if (all || panels.includes('norm')) drawNorm();
+  if (all || panels.includes('bulge')) drawBulge();
   const h = formatHash(state);
   if (h !== location.hash && !(h === '' && location.hash === ''))
     history.replaceState(null, '', h || location.pathname + location.search);
@@ -469,14 +472,14 @@ createDflab().then(mod => {
     document.getElementById(id).addEventListener('input', ev => {
       state[key] = conv(ev.target.value);
       if (key === 'shape') state.cp = '';
-      syncControls(); update();
+      syncControls(); update([id.split('-')[0]]);
     });
   }
   window.addEventListener('hashchange', () => { Object.assign(state, parseHash(location.hash)); syncControls(); update(); });
   for (const k of ['two', 'norm', 'bulge'])
     document.getElementById(k + '-config').addEventListener('click', ev => toggle(ev.target, document.getElementById(k + '-ini')));
   document.getElementById('norm-u').addEventListener('click', normClick);
-  document.getElementById('bulge-reset').addEventListener('click', () => { state.cp = ''; update(); });
+  document.getElementById('bulge-reset').addEventListener('click', () => { state.cp = ''; update(['bulge']); });
   bulgeDrag();
   exposeHooks();
   update();
