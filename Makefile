@@ -80,8 +80,11 @@ $(EXPLIB): $(EXP_OBJ)
 $(DFLAB): $(CLI_OBJ) $(EXPLIB) $(LIB)
 	$(CXX) $(LDFLAGS) -o $@ $(CLI_OBJ) $(EXPLIB) $(LIB) $(LDLIBS)
 
-$(TESTS): $(TEST_OBJ) $(EXPLIB) $(LIB)
-	$(CXX) $(LDFLAGS) -o $@ $(TEST_OBJ) $(EXPLIB) $(LIB) $(LDLIBS) -lcriterion
+# The web page's C API (src/web, not in the library) is linked into the
+# tests natively, so that make sanitize checks it too.
+WEB_API_OBJ := $(BUILD)/src/web/dflweb.o
+$(TESTS): $(TEST_OBJ) $(WEB_API_OBJ) $(EXPLIB) $(LIB)
+	$(CXX) $(LDFLAGS) -o $@ $(TEST_OBJ) $(WEB_API_OBJ) $(EXPLIB) $(LIB) $(LDLIBS) -lcriterion
 
 $(BENCH): $(BENCH_OBJ) $(EXPLIB) $(LIB)
 	$(CXX) $(LDFLAGS) -o $@ $(BENCH_OBJ) $(EXPLIB) $(LIB) $(LDLIBS)
