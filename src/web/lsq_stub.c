@@ -7,13 +7,12 @@
 #include "solve/lsq.h"
 
 #include <stddef.h>
+#include <string.h>
 
+/* No solver runs, so no option is ever read: zeros. */
 void dfl_lsq_options_default(dfl_lsq_options *opt)
 {
-    opt->max_iterations = 100;
-    opt->function_tolerance = 1e-16;
-    opt->gradient_tolerance = 1e-16;
-    opt->parameter_tolerance = 1e-14;
+    memset(opt, 0, sizeof *opt);
 }
 
 dfl_status dfl_lsq_ctx_new(dfl_lsq_ctx **out, dfl_err *err)

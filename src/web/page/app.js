@@ -5,6 +5,7 @@
 'use strict';
 
 const JOINS = ['requiv', 'rconj', 'requiv_corrected'];          /* rfunc/join.h order */
+const JOIN_LABELS = ['R-equivalence (eq. 6)', 'R-conjunction (eq. 7)', 'corrected (eq. 20)'];
 const TRIMS = ['disk', 'disk_smooth', 'strip', 'strip_smooth']; /* rfunc/segment.h order */
 /* bs04_normalization.ini's polyline. */
 const NORM_V = [0.05, 0.9, 0.3, 0.1, 0.5, 0.6, 0.72, 0.12, 0.95, 0.85];
@@ -466,6 +467,8 @@ createDflab().then(mod => {
   two.cb = document.getElementById('two-b').getContext('2d');
   norm.cu = document.getElementById('norm-u').getContext('2d');
   bul.cu = document.getElementById('bulge-u').getContext('2d');
+  for (const el of document.querySelectorAll('select[data-options="joins"]'))
+    JOINS.forEach((j, i) => el.add(new Option(JOIN_LABELS[i], j)));
   Object.assign(state, parseHash(location.hash));
   syncControls();
   for (const [id, key, conv] of BIND) {
