@@ -31,7 +31,7 @@ $(shell mkdir -p $(BUILD)/gen && echo '#define DFL_GIT_REV "$(GIT_REV)"' > $(VER
   (cmp -s $(VERSION_H).new $(VERSION_H) || mv $(VERSION_H).new $(VERSION_H)); rm -f $(VERSION_H).new)
 CPPFLAGS += -I$(BUILD)/gen
 
-LIB_C   := $(shell find src -name '*.c' ! -path 'src/cli/*' | sort)
+LIB_C   := $(shell find src -name '*.c' ! -path 'src/cli/*' ! -path 'src/web/*' | sort)
 LIB_CC  := $(shell find src -name '*.cc' | sort)
 EXP_C   := $(shell find experiments -name '*.c' | sort)
 CLI_C   := $(shell find src/cli -name '*.c' | sort)
@@ -55,9 +55,10 @@ TESTS   := $(BUILD)/dflab-tests
 BENCH   := $(BUILD)/dflab-bench
 
 APT_PKGS := libinih-dev libceres-dev libopenexr-dev libimath-dev libcriterion-dev zlib1g-dev \
-            python3-matplotlib python3-numpy python3-vtk9 openexr pkg-config
+            python3-matplotlib python3-numpy python3-vtk9 openexr pkg-config \
+            emscripten chromium
 
-.PHONY: all deps test sanitize bench reproduce clean check-layout
+.PHONY: all deps test sanitize bench reproduce clean check-layout web web-test web-bench
 all: $(DFLAB) $(LIB)
 
 $(BUILD)/%.o: %.c
@@ -79,8 +80,11 @@ $(EXPLIB): $(EXP_OBJ)
 $(DFLAB): $(CLI_OBJ) $(EXPLIB) $(LIB)
 	$(CXX) $(LDFLAGS) -o $@ $(CLI_OBJ) $(EXPLIB) $(LIB) $(LDLIBS)
 
-$(TESTS): $(TEST_OBJ) $(EXPLIB) $(LIB)
-	$(CXX) $(LDFLAGS) -o $@ $(TEST_OBJ) $(EXPLIB) $(LIB) $(LDLIBS) -lcriterion
+# The web page's C API (src/web, not in the library) is linked into the
+# tests natively, so that make sanitize checks it too.
+WEB_API_OBJ := $(BUILD)/src/web/dflweb.o
+$(TESTS): $(TEST_OBJ) $(WEB_API_OBJ) $(EXPLIB) $(LIB)
+	$(CXX) $(LDFLAGS) -o $@ $(TEST_OBJ) $(WEB_API_OBJ) $(EXPLIB) $(LIB) $(LDLIBS) -lcriterion
 
 $(BENCH): $(BENCH_OBJ) $(EXPLIB) $(LIB)
 	$(CXX) $(LDFLAGS) -o $@ $(BENCH_OBJ) $(EXPLIB) $(LIB) $(LDLIBS)
@@ -109,6 +113,7 @@ check-layout:
 test: deps check-layout
 	$(MAKE) --no-print-directory $(DFLAB) $(TESTS)
 	DFL_PYTHON=$(PYTHON) DFL_DFLAB=$(abspath $(DFLAB)) $(TESTS) -j2 --timeout 600
+	$(MAKE) --no-print-directory web-test
 
 sanitize: deps
 	$(MAKE) --no-print-directory BUILD=build-san OPT=-O1 \
@@ -119,9 +124,12 @@ sanitize: deps
 	  DFL_PYTHON=$(PYTHON) DFL_DFLAB=$(abspath build-san/dflab) DFL_SANITIZE=1 \
 	  build-san/dflab-tests -j2 --timeout 1200
 
+include src/web/web.mk
+
 bench: deps
 	$(MAKE) --no-print-directory OPT=-O3 BUILD=build-bench build-bench/dflab-bench
 	DFL_PYTHON=$(PYTHON) build-bench/dflab-bench
+	$(MAKE) --no-print-directory web-bench
 
 # One folder per paper under configs/paper/; results/<config name>/ each.
 PAPER_CONFIGS := $(sort $(wildcard configs/paper/*/*.ini))

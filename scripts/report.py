@@ -20,6 +20,7 @@ import traceback
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import dflio  # noqa: E402
+import web_section  # noqa: E402
 
 SECTIONS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "sections")
 OTHER = "other"
@@ -162,6 +163,7 @@ def main(argv=None):
            "Each section names the config that produced it; paper values come from "
            "`results/reference/` (transcribed from the papers). Signed distance is negative "
            "inside everywhere in dflab.", ""]
+    out += web_section.lines(a.out)
     failures = 0
     for p in found + [None]:
         key = p.folder if p else OTHER
