@@ -27,12 +27,12 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "core/fit.h"
 #include "cfg/curve_cfg.h"
 #include "cfg/list_cfg.h"
 #include "harness/experiment.h"
 #include "geom/polygonize.h"
 #include "io/vtk.h"
-#include "io/path.h"
 
 #define MAX_CURVES 16
 #define NAME_MAX_LEN DFL_SECTION_NAME_LEN
@@ -137,7 +137,7 @@ static dfl_status bs04_poly_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, df
     if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
     double paper_fit = NAN;
     if (st == DFL_OK && k.npaper >= 2)
-        paper_fit = dfl_bs04_loglog_slope(k.npaper, k.paper_eps, k.paper_seg);
+        paper_fit = dfl_fit_loglog_slope(k.npaper, k.paper_eps, k.paper_seg);
     for (int c = 0; c < k.ncurves && st == DFL_OK; c++) {
         /* fitted exponent over fit_eps */
         double *cnt = malloc(k.nfit * sizeof(double));
@@ -155,7 +155,7 @@ static dfl_status bs04_poly_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, df
             cnt[i] = (double)(q.n - 1);
             dfl_polyline_free(&q);
         }
-        double fit = st == DFL_OK ? dfl_bs04_loglog_slope(k.nfit, k.fit_eps, cnt) : NAN;
+        double fit = st == DFL_OK ? dfl_fit_loglog_slope(k.nfit, k.fit_eps, cnt) : NAN;
         free(cnt);
         if (st != DFL_OK) break;
         st = dfl_polygonize_curve(&curves[c], k.eps, 0, &polys[c], err);
@@ -167,10 +167,8 @@ static dfl_status bs04_poly_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, df
         double meas;
         if ((st = dfl_polyline_deviation(&curves[c], &polys[c], (int)k.samples, &meas, err)))
             break;
-        char stem[NAME_MAX_LEN + 16], path[4096];
+        char stem[NAME_MAX_LEN + 16];
         snprintf(stem, sizeof stem, "%s_polyline", k.names[c]);
-        dfl_study_path(ctx, stem, "vtp", path, sizeof path);
-        const char *base = dfl_path_base(path);
         double paper = NAN;
         if (k.paper_curve && strcmp(k.paper_curve, k.names[c]) == 0)
             for (size_t i = 0; i < k.npaper; i++)
@@ -186,7 +184,7 @@ static dfl_status bs04_poly_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, df
         if (!st && !isnan(paper)) st = dfl_table_set_int(table, "paper_segments", (long)paper, err);
         if (!st && k.paper_curve && strcmp(k.paper_curve, k.names[c]) == 0)
             st = dfl_table_set_double(table, "paper_fit_exponent", paper_fit, err);
-        if (!st) st = dfl_table_set_string(table, "vtp", base, err);
+        if (!st) st = dfl_study_put_file(table, "vtp", ctx, stem, "vtp", true, err);
     }
     for (int c = 0; c < npoly && st == DFL_OK; c++) {
         char stem[NAME_MAX_LEN + 16], path[4096];

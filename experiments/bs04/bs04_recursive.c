@@ -50,16 +50,16 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bs04/bs04_space_util.h"
+#include "core/fit.h"
 #include "geom/ellipse.h"
 #include "core/vec.h"
 #include "harness/experiment.h"
 #include "field/sample.h"
 #include "harness/field_out.h"
 #include "cfg/grid_cfg.h"
+#include "field/metrics.h"
 #include "field/normorder.h"
 #include "rfunc/normalize.h"
-#include "io/path.h"
 
 #define REC_MAX_DELTAS 8
 #define REC_MAX_BANDS 8
@@ -119,40 +119,6 @@ static dfl_status read_keys(const dfl_cfg *cfg, rec_keys *k, dfl_err *err)
                                k->deltas[i]);
     if ((st = dfl_grid_from_cfg(cfg, "grid", 2, &k->grid, err))) return st;
     return dfl_field_out_from_cfg(cfg, &k->out, err);
-}
-
-/* Error metrics over the nodes with |d| <= band; a non-finite value or
- * gradient makes linf (and the means) infinite instead of failing: far
- * from the curve the recursion may overflow. */
-typedef struct band_metrics {
-    long n;
-    double l1, rms, linf, gmean, gmax;
-} band_metrics;
-
-static band_metrics band_compute(size_t nn, const double *u, const double *gu, const double *d,
-                                 double band)
-{
-    band_metrics b = {0, 0, 0, 0, 0, 0};
-    double se = 0;
-    for (size_t i = 0; i < nn; i++) {
-        if (!(fabs(d[i]) <= band)) continue;
-        double e = fabs(u[i] - d[i]);
-        double g = fabs(hypot(gu[2 * i], gu[2 * i + 1]) - 1.0);
-        if (!isfinite(e)) e = INFINITY;
-        if (!isfinite(g)) g = INFINITY;
-        b.n++;
-        b.l1 += e;
-        se += e * e;
-        b.gmean += g;
-        if (e > b.linf) b.linf = e;
-        if (g > b.gmax) b.gmax = g;
-    }
-    if (b.n) {
-        b.l1 /= (double)b.n;
-        b.rms = sqrt(se / (double)b.n);
-        b.gmean /= (double)b.n;
-    }
-    return b;
 }
 
 /* Jets at the boundary points, both sides of the normal. */
@@ -243,7 +209,7 @@ static dfl_status rec_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
     rec_keys k;
     dfl_rfunc_poly poly;
     dfl_field f = {0};
-    double *u = NULL, *gu = NULL, *d = NULL;
+    dfl_field_bufs b = {0};
     int have_poly = 0;
     memset(&poly, 0, sizeof poly);
     dfl_status st = read_keys(cfg, &k, err);
@@ -262,19 +228,13 @@ static dfl_status rec_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
 
     /* the grid against the exact signed distance */
     const size_t nn = dfl_grid_size(&k.grid);
-    u = malloc(nn * sizeof *u);
-    gu = malloc(2 * nn * sizeof *gu);
-    d = malloc(nn * sizeof *d);
-    if (!u || !gu || !d) {
+    if (!dfl_field_bufs_alloc(&b, nn, 2, true)) {
         st = dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu nodes", nn);
         goto done;
     }
     long nonfinite = 0;
-    if ((st = sample_grid(&k, &f, ctx->threads, u, gu, d, &nonfinite, err))) goto done;
+    if ((st = sample_grid(&k, &f, ctx->threads, b.u, b.gu, b.ref, &nonfinite, err))) goto done;
 
-    char path[4400];
-    dfl_study_path(ctx, "normalized", "vti", path, sizeof path);
-    const char *base = dfl_path_base(path);
     st = dfl_table_row(table, err);
 #define SETI(c, v) \
     if (!st) st = dfl_table_set_int(table, c, (long)(v), err)
@@ -302,12 +262,15 @@ static dfl_status rec_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
         snprintf(c, sizeof c, "line_err_%zu", q + 1);
         SETD(c, lerr[q]);
     }
-    SETD("line_slope", dfl_bs04_loglog_slope(k.ndeltas, k.deltas, lerr));
+    SETD("line_slope", dfl_fit_loglog_slope(k.ndeltas, k.deltas, lerr));
     SETI("line_slope_theory", m + 1);
     SETI("nodes", nn);
     SETI("nonfinite_nodes", nonfinite);
-    for (size_t q = 0; q < k.nbands; q++) {
-        const band_metrics bm = band_compute(nn, u, gu, d, k.bands[q]);
+    for (size_t q = 0; q < k.nbands && !st; q++) {
+        /* far from the curve the recursion may overflow: such nodes enter
+         * the band metrics as +inf (they are counted in nonfinite_nodes) */
+        dfl_metrics bm;
+        st = dfl_metrics_compute_saturating(nn, 2, b.u, b.gu, b.ref, k.bands[q], &bm, err);
         char c[48];
 #define SETB(name, v)                                         \
     do {                                                      \
@@ -316,25 +279,23 @@ static dfl_status rec_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
     } while (0)
         SETB("band", k.bands[q]);
         snprintf(c, sizeof c, "band_nodes_%zu", q + 1);
-        SETI(c, bm.n);
-        if (bm.n) {
+        SETI(c, bm.count);
+        if (bm.count) {
             SETB("l1_band", bm.l1);
             SETB("rms_band", bm.rms);
             SETB("linf_band", bm.linf);
-            SETB("graddefect_mean_band", bm.gmean);
-            SETB("graddefect_max_band", bm.gmax);
+            SETB("graddefect_mean_band", bm.gdef_mean);
+            SETB("graddefect_max_band", bm.gdef_max);
         }
 #undef SETB
     }
-    if (!st) st = dfl_table_set_string(table, "vti", k.out.vti ? base : "", err);
+    if (!st) st = dfl_study_put_file(table, "vti", ctx, "normalized", "vti", k.out.vti, err);
 #undef SETI
 #undef SETD
     if (st != DFL_OK) goto done;
-    st = dfl_field_out_write(ctx, "normalized", &k.grid, u, gu, d, &k.out, err);
+    st = dfl_field_out_write(ctx, "normalized", &k.grid, b.u, b.gu, b.ref, &k.out, err);
 done:
-    free(u);
-    free(gu);
-    free(d);
+    dfl_field_bufs_free(&b);
     free(k.deltas);
     free(k.bands);
     dfl_field_destroy(&f);

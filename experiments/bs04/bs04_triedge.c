@@ -48,18 +48,13 @@
 #include "cfg/slice_cfg.h"
 #include "harness/field_out.h"
 
-#define MAX_SLICES 4
-
 typedef struct keys {
     double theta, L, zc, z0, radius;
     dfl_rfunc_tri_opts o;
     dfl_rfunc_join join;
     int p;
     long samples;
-    dfl_grid slices[MAX_SLICES];
-    int nslices;
-    bool compress;
-    dfl_field_write_opts out;
+    dfl_bs04_space_out so;
 } keys;
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
@@ -89,10 +84,7 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
         return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "samples", 3600, 8, 10000000, &k->samples, err)))
         return st;
-    if ((st = dfl_slices_from_cfg(cfg, "study", k->slices, MAX_SLICES, &k->nslices, err)))
-        return st;
-    if ((st = dfl_cfg_bool_opt(cfg, "study", "compress", true, &k->compress, err))) return st;
-    return dfl_field_out_from_cfg(cfg, &k->out, err);
+    return dfl_bs04_space_out_from_cfg(cfg, true, &k->so, err);
 }
 
 /* Distance from the in-plane point X to the ray from 0 in direction d, and
@@ -203,9 +195,8 @@ static dfl_status edge_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
                               R2[0], R2[1], R2[2]};
     const size_t tris[6] = {0, 1, 2, 0, 1, 3};
     st = dfl_bs04_vtp_trimesh(dfl_study_path(ctx, "triangles", "vtp", path, sizeof path), 4, verts,
-                              2, tris, k.compress, err);
-    if (st == DFL_OK)
-        st = dfl_bs04_write_slices(ctx, &f, k.slices, k.nslices, "edge_slice", &k.out, err);
+                              2, tris, k.so.compress, err);
+    if (st == DFL_OK) st = dfl_bs04_write_slices(ctx, &f, &k.so, "edge_slice", err);
 done:
     dfl_field_destroy(&f);
     return st;
