@@ -37,6 +37,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cfg/cfg_err.h"
 #include "harness/experiment.h"
 #include "field/sample.h"
 #include "harness/field_out.h"
@@ -59,7 +60,6 @@ typedef struct fields_keys {
 
 static dfl_status read_keys(const dfl_cfg *cfg, fields_keys *k, dfl_err *err)
 {
-    char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
     static const char *const seg_what = "the 2 end points of a segment";
@@ -71,8 +71,7 @@ static dfl_status read_keys(const dfl_cfg *cfg, fields_keys *k, dfl_err *err)
     if ((st = dfl_rfunc_trim_from_cfg(cfg, "study", &k->trim, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.1, 0.0, 1e300, &k->band, err))) return st;
     if (!(k->band > 0.0))
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected band > 0, got %g",
-                           dfl_cfg_where(cfg, "study", "band", w, sizeof w), k->band);
+        return dfl_cfg_reject(cfg, "study", "band", err, "expected band > 0, got %g", k->band);
     if ((st = dfl_grid_from_cfg(cfg, "grid", 2, &k->grid, err))) return st;
     return dfl_field_out_from_cfg(cfg, &k->out, err);
 }

@@ -114,11 +114,10 @@ static void probe(const dfl_field *f, const double *x, double delta, bstat *b)
  * order); geometry errors name the key. */
 static dfl_status add_parts(const dfl_cfg *cfg, const keys *k, dfl_rfield *rf, dfl_err *err)
 {
-    char w[600];
     dfl_status st = dfl_rfield_add_region(rf, k->region, k->nreg, err);
-    if (st) return dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "region", w, sizeof w));
+    if (st) return dfl_cfg_err_at(cfg, "study", "region", st, err);
     st = dfl_rfield_add_segment(rf, k->seg, k->seg + 2, k->trim, err);
-    if (st) return dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "segment", w, sizeof w));
+    if (st) return dfl_cfg_err_at(cfg, "study", "segment", st, err);
     return dfl_rfield_add_point(rf, k->pt, err);
 }
 

@@ -50,6 +50,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cfg/cfg_err.h"
 #include "core/fit.h"
 #include "geom/ellipse.h"
 #include "core/vec.h"
@@ -76,7 +77,6 @@ typedef struct rec_keys {
 static dfl_status read_keys(const dfl_cfg *cfg, rec_keys *k, dfl_err *err)
 {
     static const char *const kinds[] = {"ellipse"};
-    char w[600];
     int kind;
     dfl_status st;
     memset(k, 0, sizeof *k);
@@ -87,19 +87,17 @@ static dfl_status read_keys(const dfl_cfg *cfg, rec_keys *k, dfl_err *err)
     if ((st = dfl_cfg_int_opt(cfg, "study", "points", 64, 1, 100000, &k->points, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "K", 8, 2, DFL_JET_MAX, &k->K, err))) return st;
     if (k->K <= k->m)
-        return dfl_err_set(err, DFL_E_INPUT,
-                           "%s: the jet order must exceed m = %ld to see the first non-zero"
-                           " coefficient, got %ld",
-                           dfl_cfg_where(cfg, "study", "K", w, sizeof w), k->m, k->K);
+        return dfl_cfg_reject(cfg, "study", "K", err,
+                              "the jet order must exceed m = %ld to see the first non-zero"
+                              " coefficient, got %ld", k->m, k->K);
     if ((st = dfl_cfg_double_opt(cfg, "study", "tol", 1e-9, 1e-15, 1e-2, &k->tol, err))) return st;
     if ((st = dfl_cfg_doubles(cfg, "study", "bands", 1, &k->bands, &k->nbands, err))) return st;
     if (k->nbands > REC_MAX_BANDS)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: at most %d values",
-                           dfl_cfg_where(cfg, "study", "bands", w, sizeof w), REC_MAX_BANDS);
+        return dfl_cfg_reject(cfg, "study", "bands", err, "at most %d values", REC_MAX_BANDS);
     for (size_t i = 0; i < k->nbands; i++)
         if (!(k->bands[i] > 0.0) || (i > 0 && !(k->bands[i] > k->bands[i - 1])))
-            return dfl_err_set(err, DFL_E_INPUT, "%s: expected increasing values > 0, got %g",
-                               dfl_cfg_where(cfg, "study", "bands", w, sizeof w), k->bands[i]);
+            return dfl_cfg_reject(cfg, "study", "bands", err,
+                                  "expected increasing values > 0, got %g", k->bands[i]);
     if ((st = dfl_cfg_doubles(cfg, "study", "deltas", 2, &k->deltas, &k->ndeltas, err))) return st;
     /* rho >= rho_min = min(a, b)^2 / max(a, b) everywhere, and a disk of
      * radius rho_min rolls freely inside (Blaschke): below it every inward
@@ -107,16 +105,13 @@ static dfl_status read_keys(const dfl_cfg *cfg, rec_keys *k, dfl_err *err)
      * p, so the exact distance along it is delta */
     const double rho_min = fmin(k->a, k->b) * fmin(k->a, k->b) / fmax(k->a, k->b);
     if (k->ndeltas > REC_MAX_DELTAS)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: at most %d values",
-                           dfl_cfg_where(cfg, "study", "deltas", w, sizeof w), REC_MAX_DELTAS);
+        return dfl_cfg_reject(cfg, "study", "deltas", err, "at most %d values", REC_MAX_DELTAS);
     for (size_t i = 0; i < k->ndeltas; i++)
         if (!(k->deltas[i] > 0.0 && k->deltas[i] < rho_min) ||
             (i > 0 && !(k->deltas[i] > k->deltas[i - 1])))
-            return dfl_err_set(err, DFL_E_INPUT,
-                               "%s: expected increasing values in (0, %g) (the smallest radius"
-                               " of curvature), got %g",
-                               dfl_cfg_where(cfg, "study", "deltas", w, sizeof w), rho_min,
-                               k->deltas[i]);
+            return dfl_cfg_reject(cfg, "study", "deltas", err,
+                                  "expected increasing values in (0, %g) (the smallest radius of"
+                                  " curvature), got %g", rho_min, k->deltas[i]);
     if ((st = dfl_grid_from_cfg(cfg, "grid", 2, &k->grid, err))) return st;
     return dfl_field_out_from_cfg(cfg, &k->out, err);
 }

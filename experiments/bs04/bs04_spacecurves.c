@@ -32,6 +32,7 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "cfg/cfg_err.h"
 #include "cfg/rfunc_cfg.h"
 #include "cfg/curve_cfg.h"
 #include "cfg/list_cfg.h"
@@ -64,7 +65,6 @@ typedef struct keys {
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 {
-    char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
     if ((st = dfl_section_names_from_cfg(cfg, "study", "curves", MAX_CURVES, k->names,
@@ -80,9 +80,8 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
         if ((st = dfl_cfg_doubles(cfg, "study", "paper_segments", 1, &k->paper, &k->npaper, err)))
             return st;
         if (k->npaper != (size_t)k->ncurves)
-            return dfl_err_set(err, DFL_E_INPUT, "%s: expected %d values (one per curve)",
-                               dfl_cfg_where(cfg, "study", "paper_segments", w, sizeof w),
-                               k->ncurves);
+            return dfl_cfg_reject(cfg, "study", "paper_segments", err,
+                                  "expected %d values (one per curve)", k->ncurves);
     }
     /* [grid] is read whenever present, so that volume = false does not turn
      * its keys into "unknown key" errors */
@@ -96,16 +95,14 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 static dfl_status load_curve(const dfl_cfg *cfg, const char *sec, dfl_bspline *c, dfl_field *exact,
                              dfl_err *err)
 {
-    char w[600];
     dfl_status st;
     if (!dfl_cfg_has_section(cfg, sec))
-        return dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s]",
-                           dfl_cfg_where(cfg, "study", "curves", w, sizeof w), sec);
+        return dfl_cfg_reject(cfg, "study", "curves", err, "no section [%s]", sec);
     if ((st = dfl_curve_section_from_cfg(cfg, sec, c, err))) return st;
     if (c->dim != 3) {
         dfl_bspline_free(c);
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected a space curve (3D control points)",
-                           dfl_cfg_where(cfg, sec, "control", w, sizeof w));
+        return dfl_cfg_reject(cfg, sec, "control", err,
+                              "expected a space curve (3D control points)");
     }
     dfl_shape sh;
     if ((st = dfl_param_shape_from_cfg(cfg, sec, "bspline_curve", &sh, err))) {

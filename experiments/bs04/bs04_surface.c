@@ -34,6 +34,7 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "cfg/cfg_err.h"
 #include "cfg/rfunc_cfg.h"
 #include "cfg/curve_cfg.h"
 #include "harness/experiment.h"
@@ -58,17 +59,15 @@ typedef struct keys {
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 {
-    char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
     if ((st = dfl_cfg_string(cfg, "study", "surface", &k->sec, err))) return st;
     if (!dfl_cfg_has_section(cfg, k->sec))
-        return dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s]",
-                           dfl_cfg_where(cfg, "study", "surface", w, sizeof w), k->sec);
+        return dfl_cfg_reject(cfg, "study", "surface", err, "no section [%s]", k->sec);
     if ((st = dfl_cfg_string(cfg, k->sec, "kind", &k->kind, err))) return st;
     if (strcmp(k->kind, "bspline_surface") != 0 && strcmp(k->kind, "bezier_surface") != 0)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected bspline_surface or bezier_surface",
-                           dfl_cfg_where(cfg, k->sec, "kind", w, sizeof w));
+        return dfl_cfg_reject(cfg, k->sec, "kind", err,
+                              "expected bspline_surface or bezier_surface");
     if ((st = dfl_cfg_double(cfg, "study", "eps", 1e-9, 1e3, &k->eps, err))) return st;
     if ((st = dfl_rfunc_join_p_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
     if ((st = dfl_rfunc_tri_opts_from_cfg(cfg, "study", true, &k->o, err))) return st;
@@ -142,7 +141,7 @@ static dfl_status surf_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     dfl_field exact = {0}, f = {0};
     dfl_trimesh M;
     int haveS = 0, haveM = 0;
-    char path[4400], w[600];
+    char path[4400];
     memset(&M, 0, sizeof M);
     dfl_status st = read_keys(cfg, &k, err);
     if (!st) st = dfl_surface_from_cfg(cfg, k.sec, k.kind, &S, err);
@@ -153,7 +152,7 @@ static dfl_status surf_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     if (st) goto done;
 
     if ((st = dfl_polygonize_surface(&S, k.eps, (size_t)k.max_tris, &M, err))) {
-        dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "eps", w, sizeof w));
+        dfl_cfg_err_at(cfg, "study", "eps", st, err);
         goto done;
     }
     haveM = 1;

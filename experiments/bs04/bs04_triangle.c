@@ -55,6 +55,7 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "cfg/cfg_err.h"
 #include "core/vec.h"
 #include "cfg/list_cfg.h"
 #include "cfg/rfunc_cfg.h"
@@ -79,7 +80,6 @@ typedef struct keys {
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 {
-    char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
     if ((st = dfl_points_n_from_cfg(cfg, "study", "triangle", 3, 3, k->v, "exactly 3 vertices",
@@ -97,8 +97,8 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
         const int vi = (int)list[i];
         if (nl > 3 || (double)vi != list[i] || vi < 0 || vi > 2) {
             free(list);
-            return dfl_err_set(err, DFL_E_INPUT, "%s: expected up to 3 vertex indices 0, 1, 2",
-                               dfl_cfg_where(cfg, "study", "vertices", w, sizeof w));
+            return dfl_cfg_reject(cfg, "study", "vertices", err,
+                                  "expected up to 3 vertex indices 0, 1, 2");
         }
         k->vertices[k->nvert++] = vi;
     }
@@ -106,7 +106,7 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
     if ((st = dfl_rfunc_tri_opts_from_cfg(cfg, "study", true, &k->o, err))) return st;
     dfl_rfunc_tri tri;
     if ((st = dfl_rfunc_tri_init(k->v, k->v + 3, k->v + 6, &k->o, &tri, err))) {
-        dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "triangle", w, sizeof w));
+        dfl_cfg_err_at(cfg, "study", "triangle", st, err);
         return st;
     }
     nl = 0;
@@ -119,8 +119,8 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
     for (size_t i = 0; i < nl; i++) {
         if (nl > MAX_RADII || !(list[i] > 0.0)) {
             free(list);
-            return dfl_err_set(err, DFL_E_INPUT, "%s: expected up to %d radii > 0",
-                               dfl_cfg_where(cfg, "study", "radii", w, sizeof w), MAX_RADII);
+            return dfl_cfg_reject(cfg, "study", "radii", err, "expected up to %d radii > 0",
+                                  MAX_RADII);
         }
         k->radii[k->nradii++] = list[i];
     }

@@ -40,6 +40,7 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "cfg/cfg_err.h"
 #include "core/vec.h"
 #include "cfg/rfunc_cfg.h"
 #include "harness/experiment.h"
@@ -61,19 +62,16 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 {
     const double dapex[2] = {1.0, 0.5};
     double apex[2], deg;
-    char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
     if ((st = dfl_cfg_double(cfg, "study", "dihedral", 1e-6, 360 - 1e-6, &deg, err))) return st;
     if (fabs(deg - 180.0) < 1e-6)
-        return dfl_err_set(err, DFL_E_INPUT,
-                           "%s: 180 degrees makes the triangles coplanar (no joining edge)",
-                           dfl_cfg_where(cfg, "study", "dihedral", w, sizeof w));
+        return dfl_cfg_reject(cfg, "study", "dihedral", err,
+                              "180 degrees makes the triangles coplanar (no joining edge)");
     k->theta = deg * DFL_PI / 180.0;
     if ((st = dfl_cfg_vec_opt(cfg, "study", "apex", 2, dapex, apex, err))) return st;
     if (!(apex[0] > 0.0) || !(apex[1] > 0.0 && apex[1] < 1.0))
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected L > 0 and 0 < zc < 1",
-                           dfl_cfg_where(cfg, "study", "apex", w, sizeof w));
+        return dfl_cfg_reject(cfg, "study", "apex", err, "expected L > 0 and 0 < zc < 1");
     k->L = apex[0];
     k->zc = apex[1];
     if ((st = dfl_cfg_double_opt(cfg, "study", "section", 0.35, 1e-9, 1 - 1e-9, &k->z0, err)))

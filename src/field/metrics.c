@@ -25,6 +25,24 @@ static inline double grad_norm(const double *g, int dim)
     return sqrt(n2);
 }
 
+/* The dfl_metrics of cnt samples from the sums of |e|, e^2 and the
+ * gradient defect and the maxima; NAN metrics for cnt == 0. */
+static void metrics_finish(size_t cnt, double s1, double s2, double mx, int has_grad, double g1,
+                           double gmx, dfl_metrics *out)
+{
+    out->count = cnt;
+    if (cnt == 0) {
+        out->l1 = out->mse = out->rms = out->linf = out->gdef_mean = out->gdef_max = NAN;
+        return;
+    }
+    out->l1 = s1 / (double)cnt;
+    out->mse = s2 / (double)cnt;
+    out->rms = sqrt(out->mse);
+    out->linf = mx;
+    out->gdef_mean = has_grad ? g1 / (double)cnt : NAN;
+    out->gdef_max = has_grad ? gmx : NAN;
+}
+
 dfl_status dfl_metrics_compute(size_t m, int dim, const double *u, const double *gu,
                                const double *ref, double band, dfl_metrics *out, dfl_err *err)
 {
@@ -54,17 +72,7 @@ dfl_status dfl_metrics_compute(size_t m, int dim, const double *u, const double 
     }
     if (bad != (size_t)-1)
         return dfl_err_set(err, DFL_E_NUMERIC, "non-finite field value at sample %zu", bad);
-    out->count = cnt;
-    if (cnt == 0) {
-        out->l1 = out->mse = out->rms = out->linf = out->gdef_mean = out->gdef_max = NAN;
-        return DFL_OK;
-    }
-    out->l1 = s1 / (double)cnt;
-    out->mse = s2 / (double)cnt;
-    out->rms = sqrt(out->mse);
-    out->linf = mx;
-    out->gdef_mean = gu ? g1 / (double)cnt : NAN;
-    out->gdef_max = gu ? gmx : NAN;
+    metrics_finish(cnt, s1, s2, mx, gu != NULL, g1, gmx, out);
     return DFL_OK;
 }
 
@@ -122,17 +130,7 @@ dfl_status dfl_metrics_compute_saturating(size_t m, int dim, const double *u, co
             if (gd > gmx) gmx = gd;
         }
     }
-    out->count = cnt;
-    if (cnt == 0) {
-        out->l1 = out->mse = out->rms = out->linf = out->gdef_mean = out->gdef_max = NAN;
-        return DFL_OK;
-    }
-    out->l1 = s1 / (double)cnt;
-    out->mse = s2 / (double)cnt;
-    out->rms = sqrt(out->mse);
-    out->linf = mx;
-    out->gdef_mean = gu ? g1 / (double)cnt : NAN;
-    out->gdef_max = gu ? gmx : NAN;
+    metrics_finish(cnt, s1, s2, mx, gu != NULL, g1, gmx, out);
     return DFL_OK;
 }
 
