@@ -11,12 +11,8 @@
 #include <stddef.h>
 
 #include "core/status.h"
-#include "field/metrics.h"
 #include "io/config.h"
-#include "io/table.h"
 #include "io/vtk.h"
-#include "rfunc/join.h"
-#include "rfunc/segment.h"
 #include "harness/field_out.h"
 
 #define DFL_BS04_MAX_SLICES 4
