@@ -57,6 +57,7 @@
 #include <string.h>
 
 #include "bs04/bs04_offsets.h"
+#include "cfg/cfg_err.h"
 #include "cfg/curve_cfg.h"
 #include "field/curveprobe.h"
 #include "harness/experiment.h"
@@ -109,20 +110,16 @@ static void keys_free(bulge_keys *k)
 static dfl_status read_case(const dfl_cfg *cfg, bulge_case *c, dfl_err *err)
 {
     const char *sec = c->name, *gsec;
-    char w[600];
     dfl_status st;
     if (!dfl_cfg_has_section(cfg, sec))
-        return dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s]",
-                           dfl_cfg_where(cfg, "study", "cases", w, sizeof w), sec);
+        return dfl_cfg_reject(cfg, "study", "cases", err, "no section [%s]", sec);
     if ((st = dfl_cfg_string(cfg, sec, "curve", &c->curve_sec, err))) return st;
     if (!dfl_cfg_has_section(cfg, c->curve_sec))
-        return dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s]",
-                           dfl_cfg_where(cfg, sec, "curve", w, sizeof w), c->curve_sec);
+        return dfl_cfg_reject(cfg, sec, "curve", err, "no section [%s]", c->curve_sec);
     if ((st = dfl_curve_section_from_cfg(cfg, c->curve_sec, &c->curve, err))) return st;
     c->have_curve = 1;
     if (c->curve.dim != 2)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: a planar curve is required",
-                           dfl_cfg_where(cfg, c->curve_sec, "control", w, sizeof w));
+        return dfl_cfg_reject(cfg, c->curve_sec, "control", err, "a planar curve is required");
     if ((st = dfl_param_shape_from_cfg(cfg, c->curve_sec, "bspline_curve", &c->shape, err)))
         return st;
     c->have_shape = 1;
@@ -132,14 +129,13 @@ static dfl_status read_case(const dfl_cfg *cfg, bulge_case *c, dfl_err *err)
     if ((st = dfl_cfg_doubles(cfg, sec, "levels", 1, &c->levels, &c->nlevels, err))) return st;
     for (size_t i = 0; i < c->nlevels; i++)
         if (!(c->levels[i] > 0.0))
-            return dfl_err_set(err, DFL_E_INPUT, "%s: expected offsets > 0, got %g",
-                               dfl_cfg_where(cfg, sec, "levels", w, sizeof w), c->levels[i]);
+            return dfl_cfg_reject(cfg, sec, "levels", err, "expected offsets > 0, got %g",
+                                  c->levels[i]);
     if ((st = dfl_cfg_int_opt(cfg, sec, "rays", 801, 2, 1000000, &c->rays, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, sec, "cap_rays", 64, 0, 100000, &c->cap_rays, err))) return st;
     if ((st = dfl_cfg_string(cfg, sec, "grid", &gsec, err))) return st;
     if (!dfl_cfg_has_section(cfg, gsec))
-        return dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s]",
-                           dfl_cfg_where(cfg, sec, "grid", w, sizeof w), gsec);
+        return dfl_cfg_reject(cfg, sec, "grid", err, "no section [%s]", gsec);
     return dfl_grid_from_cfg(cfg, gsec, 2, &c->grid, err);
 }
 

@@ -202,7 +202,8 @@ static dfl_status cj_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table
 {
     cj_keys k;
     dfl_field f = {0};
-    double *spts = NULL, *sval = NULL, *sgrad = NULL, *u = NULL, *gu = NULL, *d = NULL;
+    double *spts = NULL, *sval = NULL, *sgrad = NULL;
+    dfl_field_bufs b = {0};
     dfl_status st = read_keys(cfg, &k, err);
     if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
     if (st != DFL_OK) return st;
@@ -212,10 +213,8 @@ static dfl_status cj_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table
     spts = malloc(2 * ns * sizeof *spts);
     sval = malloc(ns * sizeof *sval);
     sgrad = malloc(2 * ns * sizeof *sgrad);
-    u = malloc(m * sizeof *u);
-    gu = malloc(2 * m * sizeof *gu);
-    d = malloc(m * sizeof *d);
-    if (!spts || !sval || !sgrad || !u || !gu || !d) {
+    const bool grid_ok = dfl_field_bufs_alloc(&b, m, 2, true);
+    if (!spts || !sval || !sgrad || !grid_ok) {
         st = dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu grid nodes", m);
         goto done;
     }
@@ -224,7 +223,7 @@ static dfl_status cj_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table
     for (size_t i = 0; i < m; i++) {
         double x[3];
         dfl_grid_node(&k.grid, i, x);
-        d[i] = dfl_vjoin_dist(&k.vj, x, NULL);
+        b.ref[i] = dfl_vjoin_dist(&k.vj, x, NULL);
     }
     static const dfl_rfunc_join joins[2] = {DFL_RFUNC_REQUIV, DFL_RFUNC_REQUIV_CORRECTED};
     static const char *const stems[2] = {"requiv", "corrected"};
@@ -234,16 +233,17 @@ static dfl_status cj_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table
         sector_stats ss;
         region_stats band, vert;
         measure_sector(&k, &f, nsec, spts, sval, sgrad, &ss);
-        st = dfl_field_sample(&f, &k.grid, ctx->threads, u, gu, err);
+        st = dfl_field_sample(&f, &k.grid, ctx->threads, b.u, b.gu, err);
         if (st == DFL_OK) {
-            measure_grid(&k, u, gu, d, &band, &vert);
+            measure_grid(&k, b.u, b.gu, b.ref, &band, &vert);
             st = put_row(table, &k, joins[j], &ss, &band, &vert, err);
         }
-        if (st == DFL_OK) st = dfl_field_out_write(ctx, stems[j], &k.grid, u, gu, d, &k.oo, err);
+        if (st == DFL_OK) st = dfl_field_out_write(ctx, stems[j], &k.grid, b.u, b.gu, b.ref, &k.oo, err);
         dfl_field_destroy(&f);
     }
 done:
-    free(spts), free(sval), free(sgrad), free(u), free(gu), free(d);
+    free(spts), free(sval), free(sgrad);
+    dfl_field_bufs_free(&b);
     dfl_field_destroy(&f);
     return st;
 }

@@ -37,6 +37,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cfg/cfg_err.h"
 #include "harness/experiment.h"
 #include "field/sample.h"
 #include "harness/field_out.h"
@@ -45,7 +46,7 @@
 #include "cfg/rfunc_cfg.h"
 #include "rfunc/rfield.h"
 #include "rfunc/segment.h"
-#include "io/path.h"
+#include "geom/segdist.h"
 
 typedef struct fields_keys {
     double seg[2][4];   /* a0 a1 b0 b1 per segment */
@@ -59,7 +60,6 @@ typedef struct fields_keys {
 
 static dfl_status read_keys(const dfl_cfg *cfg, fields_keys *k, dfl_err *err)
 {
-    char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
     static const char *const seg_what = "the 2 end points of a segment";
@@ -71,19 +71,9 @@ static dfl_status read_keys(const dfl_cfg *cfg, fields_keys *k, dfl_err *err)
     if ((st = dfl_rfunc_trim_from_cfg(cfg, "study", &k->trim, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.1, 0.0, 1e300, &k->band, err))) return st;
     if (!(k->band > 0.0))
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected band > 0, got %g",
-                           dfl_cfg_where(cfg, "study", "band", w, sizeof w), k->band);
+        return dfl_cfg_reject(cfg, "study", "band", err, "expected band > 0, got %g", k->band);
     if ((st = dfl_grid_from_cfg(cfg, "grid", 2, &k->grid, err))) return st;
     return dfl_field_out_from_cfg(cfg, &k->out, err);
-}
-
-/* Unsigned distance from x to the segment a-b (closest point clamped). */
-static double seg_dist(const double *s, const double *x)
-{
-    const double ex = s[2] - s[0], ey = s[3] - s[1];
-    double l = ((x[0] - s[0]) * ex + (x[1] - s[1]) * ey) / (ex * ex + ey * ey);
-    l = l < 0 ? 0 : l > 1 ? 1 : l;
-    return hypot(x[0] - s[0] - l * ex, x[1] - s[1] - l * ey);
 }
 
 /* The field of the segments sel (bit 0: A, bit 1: B) joined by k's join. */
@@ -128,30 +118,26 @@ static void gs_add(gstats *s, double v)
     if (v > s->max) s->max = v;
 }
 
-/* u, grad u of the three fields (a, b, join) on the grid, and the exact
- * distances d to A, to B and to their union; the arrays are allocated
- * here (the caller frees them, also on failure). */
+/* u, grad u of the three fields (a, b, join) on the grid, and as their
+ * references the exact distances to A, to B and to their union; the
+ * buffers are allocated here (the caller frees them, also on failure). */
 static dfl_status sample_fields(const fields_keys *k, const dfl_field *f, int threads,
-                                double **u, double **gu, double **d, dfl_err *err)
+                                dfl_field_bufs *b, dfl_err *err)
 {
     const size_t m = dfl_grid_size(&k->grid);
-    for (int i = 0; i < 3; i++) {
-        u[i] = malloc(m * sizeof(double));
-        gu[i] = malloc(2 * m * sizeof(double));
-        d[i] = malloc(m * sizeof(double));
-        if (!u[i] || !gu[i] || !d[i])
+    for (int i = 0; i < 3; i++)
+        if (!dfl_field_bufs_alloc(&b[i], m, 2, true))
             return dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu nodes", m);
-    }
     dfl_status st = DFL_OK;
     for (int i = 0; i < 3 && st == DFL_OK; i++)
-        st = dfl_field_sample(&f[i], &k->grid, threads, u[i], gu[i], err);
+        st = dfl_field_sample(&f[i], &k->grid, threads, b[i].u, b[i].gu, err);
     if (st != DFL_OK) return st;
     for (size_t j = 0; j < m; j++) {
         double x[2];
         dfl_grid_node(&k->grid, j, x);
-        d[0][j] = seg_dist(k->seg[0], x);
-        d[1][j] = seg_dist(k->seg[1], x);
-        d[2][j] = fmin(d[0][j], d[1][j]);
+        b[0].ref[j] = dfl_point_segment_dist_hypot(x, k->seg[0], k->seg[0] + 2);
+        b[1].ref[j] = dfl_point_segment_dist_hypot(x, k->seg[1], k->seg[1] + 2);
+        b[2].ref[j] = fmin(b[0].ref[j], b[1].ref[j]);
     }
     return DFL_OK;
 }
@@ -166,9 +152,10 @@ typedef struct field_stats {
 } field_stats;
 
 static void field_stats_compute(const fields_keys *k, const dfl_rfunc_seg *seg, int i, size_t m,
-                                double *const *u, double *const *gu, double *const *d,
-                                field_stats *fs)
+                                const dfl_field_bufs *b, field_stats *fs)
 {
+    const double *const u[3] = {b[0].u, b[1].u, b[2].u};
+    const double *const gu = b[i].gu, *const d = b[i].ref;
     gstats all, band, trim;
     gs_init(&all);
     gs_init(&band);
@@ -176,18 +163,18 @@ static void field_stats_compute(const fields_keys *k, const dfl_rfunc_seg *seg, 
     double l1 = 0, linf = 0, l1b = 0, linfb = 0, vdev = 0, rmin = INFINITY, rmax = -INFINITY;
     long nb = 0;
     for (size_t j = 0; j < m; j++) {
-        const double e = fabs(u[i][j] - d[i][j]);
+        const double e = fabs(u[i][j] - d[j]);
         l1 += e;
         if (e > linf) linf = e;
-        if (d[i][j] <= k->band) {
+        if (d[j] <= k->band) {
             nb++;
             l1b += e;
             if (e > linfb) linfb = e;
         }
         if (!(u[i][j] > 0.0)) continue;
-        const double gn = hypot(gu[i][2 * j], gu[i][2 * j + 1]);
+        const double gn = hypot(gu[2 * j], gu[2 * j + 1]);
         gs_add(&all, gn);
-        if (d[i][j] <= k->band) gs_add(&band, gn);
+        if (d[j] <= k->band) gs_add(&band, gn);
         double x[2];
         dfl_grid_node(&k->grid, j, x);
         if (i < 2 && dfl_rfunc_seg_trim(&seg[i], x, NULL) > 0.0) {
@@ -209,9 +196,10 @@ static dfl_status fields_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
 {
     fields_keys k;
     dfl_field f[3];
-    double *u[3] = {NULL, NULL, NULL}, *gu[3] = {NULL, NULL, NULL}, *d[3] = {NULL, NULL, NULL};
+    dfl_field_bufs b[3];
     char w[2][600];
     memset(f, 0, sizeof f);
+    memset(b, 0, sizeof b);
     dfl_status st = read_keys(cfg, &k, err);
     if (st == DFL_OK) {
         dfl_cfg_where(cfg, "study", "segment_a", w[0], sizeof w[0]);
@@ -226,7 +214,7 @@ static dfl_status fields_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
     dfl_rfunc_seg seg[2];
     for (int i = 0; i < 2 && st == DFL_OK; i++)
         st = dfl_rfunc_seg_init(2, k.seg[i], k.seg[i] + 2, k.trim, &seg[i], err);
-    if (st == DFL_OK) st = sample_fields(&k, f, ctx->threads, u, gu, d, err);
+    if (st == DFL_OK) st = sample_fields(&k, f, ctx->threads, b, err);
     if (st != DFL_OK) goto done;
 
     const size_t m = dfl_grid_size(&k.grid);
@@ -234,15 +222,13 @@ static dfl_status fields_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
     static const char *const names[3] = {"a", "b", "join"};
     for (int i = 0; i < 3 && st == DFL_OK; i++) {
         field_stats fs;
-        field_stats_compute(&k, seg, i, m, u, gu, d, &fs);
+        field_stats_compute(&k, seg, i, m, b, &fs);
         const gstats all = fs.all, band = fs.band, trim = fs.trim;
         const double l1 = fs.l1, linf = fs.linf, l1b = fs.l1b, linfb = fs.linfb, vdev = fs.vdev;
         const double rmin = fs.rmin, rmax = fs.rmax;
         const long nb = fs.nb;
-        char stem[32], path[4400];
+        char stem[32];
         snprintf(stem, sizeof stem, "field_%s", names[i]);
-        dfl_study_path(ctx, stem, "vti", path, sizeof path);
-        const char *base = dfl_path_base(path);
         st = dfl_table_row(table, err);
 #define SETI(c, v) \
     if (!st) st = dfl_table_set_int(table, c, (long)(v), err)
@@ -285,21 +271,17 @@ static dfl_status fields_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
                 SETD("ratio_hi", 1.0);
             }
         }
-        if (!st) st = dfl_table_set_string(table, "vti", k.out.vti ? base : "", err);
+        if (!st) st = dfl_study_put_file(table, "vti", ctx, stem, "vti", k.out.vti, err);
 #undef SETI
 #undef SETD
     }
     for (int i = 0; i < 3 && st == DFL_OK; i++) {
         char stem[32];
         snprintf(stem, sizeof stem, "field_%s", names[i]);
-        st = dfl_field_out_write(ctx, stem, &k.grid, u[i], gu[i], d[i], &k.out, err);
+        st = dfl_field_out_write(ctx, stem, &k.grid, b[i].u, b[i].gu, b[i].ref, &k.out, err);
     }
 done:
-    for (int i = 0; i < 3; i++) {
-        free(u[i]);
-        free(gu[i]);
-        free(d[i]);
-    }
+    for (int i = 0; i < 3; i++) dfl_field_bufs_free(&b[i]);
     for (int i = 0; i < 3; i++) dfl_field_destroy(&f[i]); /* zeroed when not built */
     return st;
 }

@@ -52,6 +52,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cfg/cfg_err.h"
 #include "core/vec.h"
 #include "harness/experiment.h"
 #include "rfunc/gradbound.h"
@@ -95,7 +96,6 @@ static void keys_free(gb_keys *k)
 
 static dfl_status read_keys(const dfl_cfg *cfg, gb_keys *k, dfl_err *err)
 {
-    char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
     if ((st = dfl_vjoin_from_cfg(cfg, "study", &k->vj, err))) return st;
@@ -104,13 +104,13 @@ static dfl_status read_keys(const dfl_cfg *cfg, gb_keys *k, dfl_err *err)
         return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "p", 2, 1, DFL_RFUNC_P_MAX, &k->p, err))) return st;
     if ((st = dfl_gradbound_check(join_of(k->join), (int)k->p, err)))
-        return dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "p", w, sizeof w));
+        return dfl_cfg_err_at(cfg, "study", "p", st, err);
     if ((st = dfl_cfg_doubles(cfg, "study", "radii", 1, &k->radii, &k->nradii, err))) return st;
     for (size_t i = 0; i < k->nradii; i++)
         if (!(k->radii[i] > 0.0 && k->radii[i] <= 0.5))
-            return dfl_err_set(err, DFL_E_INPUT,
-                               "%s: radius %g (relative to the length): expected (0, 0.5]",
-                               dfl_cfg_where(cfg, "study", "radii", w, sizeof w), k->radii[i]);
+            return dfl_cfg_reject(cfg, "study", "radii", err,
+                                  "radius %g (relative to the length): expected (0, 0.5]",
+                                  k->radii[i]);
     if ((st = dfl_cfg_int_opt(cfg, "study", "samples", 3600, 8, 10000000, &k->samples, err)))
         return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "fd_rel", 1e-5, 1e-9, 1e-2, &k->fd_rel, err)))
@@ -124,18 +124,15 @@ static dfl_status read_keys(const dfl_cfg *cfg, gb_keys *k, dfl_err *err)
                               &k->profile_samples, err)))
         return st;
     if (k->samples % k->profile_samples != 0)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: %ld does not divide samples = %ld",
-                           dfl_cfg_where(cfg, "study", "profile_samples", w, sizeof w),
-                           k->profile_samples, k->samples);
+        return dfl_cfg_reject(cfg, "study", "profile_samples", err,
+                              "%ld does not divide samples = %ld", k->profile_samples, k->samples);
     if ((st = dfl_cfg_doubles(cfg, "study", "fig5_p", 1, &k->fig5_p, &k->nfig5, err))) return st;
     for (size_t i = 0; i < k->nfig5; i++)
         if (!(k->fig5_p[i] >= 2 && k->fig5_p[i] <= DFL_RFUNC_P_MAX) ||
             k->fig5_p[i] != floor(k->fig5_p[i]))
-            return dfl_err_set(err, DFL_E_INPUT,
-                               "%s: order %g: expected integers in [2, %d] (the table has"
-                               " R-conjunction too)",
-                               dfl_cfg_where(cfg, "study", "fig5_p", w, sizeof w), k->fig5_p[i],
-                               DFL_RFUNC_P_MAX);
+            return dfl_cfg_reject(cfg, "study", "fig5_p", err,
+                                  "order %g: expected integers in [2, %d] (the table has"
+                                  " R-conjunction too)", k->fig5_p[i], DFL_RFUNC_P_MAX);
     if ((st = dfl_cfg_int_opt(cfg, "study", "fig5_nphi", 91, 2, 100000, &k->fig5_nphi, err)))
         return st;
     return DFL_OK;

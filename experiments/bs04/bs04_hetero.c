@@ -39,14 +39,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bs04/bs04_space_util.h"
 #include "cfg/rfunc_cfg.h"
 #include "core/vec.h"
 #include "harness/experiment.h"
 #include "field/metrics.h"
 #include "field/sample.h"
 #include "harness/field_out.h"
-#include "geom/polygonize.h"
+#include "geom/polygon.h"
+#include "geom/segdist.h"
 #include "io/vtk.h"
 #include "cfg/grid_cfg.h"
 #include "cfg/list_cfg.h"
@@ -87,29 +87,12 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
     return dfl_field_out_from_cfg(cfg, &k->out, err);
 }
 
-/* Orientation sign of the polygon (+1 counter-clockwise). */
-static double orient(const double *v, size_t n)
-{
-    double a = 0;
-    for (size_t i = 0; i < n; i++) {
-        const double *p = v + 2 * i, *q = v + 2 * ((i + 1) % n);
-        a += p[0] * q[1] - q[0] * p[1];
-    }
-    return a > 0 ? 1.0 : -1.0;
-}
-
-/* Exact distance to the union of the convex region, the segment, the point. */
+/* Exact distance to the union of the convex region (orientation o), the
+ * segment, the point. */
 static double exact_union(const keys *k, double o, const double *x)
 {
-    int inside = 1;
-    double dr = INFINITY;
-    for (size_t i = 0; i < k->nreg; i++) {
-        const double *p = k->region + 2 * i, *q = k->region + 2 * ((i + 1) % k->nreg);
-        const double cr = (q[0] - p[0]) * (x[1] - p[1]) - (q[1] - p[1]) * (x[0] - p[0]);
-        if (o * cr < 0) inside = 0;
-        dr = fmin(dr, dfl_point_segment_dist(2, x, p, q));
-    }
-    if (inside) return 0.0;
+    const double dr = dfl_convex_polygon_dist(k->region, k->nreg, o, x);
+    if (dr == 0.0) return 0.0; /* in the region (or on its boundary) */
     const double ds = dfl_point_segment_dist(2, x, k->seg, k->seg + 2);
     const double dp = hypot(x[0] - k->pt[0], x[1] - k->pt[1]);
     return fmin(dr, fmin(ds, dp));
@@ -131,33 +114,11 @@ static void probe(const dfl_field *f, const double *x, double delta, bstat *b)
  * order); geometry errors name the key. */
 static dfl_status add_parts(const dfl_cfg *cfg, const keys *k, dfl_rfield *rf, dfl_err *err)
 {
-    char w[600];
     dfl_status st = dfl_rfield_add_region(rf, k->region, k->nreg, err);
-    if (st) return dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "region", w, sizeof w));
+    if (st) return dfl_cfg_err_at(cfg, "study", "region", st, err);
     st = dfl_rfield_add_segment(rf, k->seg, k->seg + 2, k->trim, err);
-    if (st) return dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "segment", w, sizeof w));
+    if (st) return dfl_cfg_err_at(cfg, "study", "segment", st, err);
     return dfl_rfield_add_point(rf, k->pt, err);
-}
-
-/* Metrics over the m samples whose mask is set (through compacted copies). */
-static dfl_status masked_metrics(size_t m, const double *u, const double *gu, const double *d,
-                                 const unsigned char *mask, dfl_metrics *out, dfl_err *err)
-{
-    size_t nb2 = 0;
-    double *bu = malloc(m * sizeof *bu), *bg = malloc(2 * m * sizeof *bg),
-           *bd = malloc(m * sizeof *bd);
-    dfl_status st = DFL_OK;
-    if (!bu || !bg || !bd) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-    for (size_t i = 0; i < m && !st; i++) {
-        if (!mask[i]) continue;
-        bu[nb2] = u[i];
-        bg[2 * nb2] = gu[2 * i];
-        bg[2 * nb2 + 1] = gu[2 * i + 1];
-        bd[nb2++] = d[i];
-    }
-    if (!st) st = dfl_metrics_compute(nb2, 2, bu, bg, bd, 0.0, out, err);
-    free(bu), free(bg), free(bd);
-    return st;
 }
 
 /* Samples at offset delta along the outward normals of the parts (see the
@@ -207,7 +168,8 @@ static dfl_status hetero_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
 {
     keys k;
     dfl_field f = {0};
-    double *u = NULL, *gu = NULL, *d = NULL, *outline = NULL;
+    dfl_field_bufs b = {0};
+    double *outline = NULL;
     unsigned char *mask = NULL;
     char path[4400];
     dfl_rfield *rf = NULL;
@@ -222,20 +184,18 @@ static dfl_status hetero_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
     if ((st = dfl_rfield_finish(&rf, &f, err))) goto done;
 
     const size_t m = dfl_grid_size(&k.grid);
-    u = malloc(m * sizeof *u);
-    gu = malloc(2 * m * sizeof *gu);
-    d = malloc(m * sizeof *d);
     mask = malloc(m);
-    if (!u || !gu || !d || !mask) {
+    if (!dfl_field_bufs_alloc(&b, m, 2, true) || !mask) {
         st = dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu samples", m);
         goto done;
     }
-    if ((st = dfl_field_sample(&f, &k.grid, ctx->threads, u, gu, err))) goto done;
-    const double o = orient(k.region, k.nreg);
+    const double *u = b.u, *gu = b.gu, *d = b.ref;
+    if ((st = dfl_field_sample(&f, &k.grid, ctx->threads, b.u, b.gu, err))) goto done;
+    const double o = dfl_polygon_orientation(k.region, k.nreg);
     for (size_t i = 0; i < m; i++) {
         double x[2];
         dfl_grid_node(&k.grid, i, x);
-        d[i] = exact_union(&k, o, x);
+        b.ref[i] = exact_union(&k, o, x);
         /* the band excludes the set itself (inside the region u = 0 and
          * the gradient is 0 by convention, not a normalization defect) */
         mask[i] = d[i] > 0.0 && d[i] <= k.band;
@@ -243,8 +203,8 @@ static dfl_status hetero_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
     dfl_metrics all, inb;
     dfl_gradstat gs;
     if ((st = dfl_metrics_compute(m, 2, u, gu, d, 0.0, &all, err))) goto done;
-    if ((st = masked_metrics(m, u, gu, d, mask, &inb, err))) goto done;
-    dfl_bs04_gradstat(m, 2, gu, mask, &gs);
+    if ((st = dfl_metrics_compute_masked(m, 2, u, gu, d, mask, &inb, err))) goto done;
+    dfl_metrics_gradstat(m, 2, gu, mask, &gs);
     bstat br, bs, bp;
     boundary_probes(&k, &f, o, &br, &bs, &bp);
 
@@ -254,7 +214,7 @@ static dfl_status hetero_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
     if (!st) st = dfl_table_set_string(table, "trim", dfl_rfunc_trim_name(k.trim), err);
     if (!st) st = dfl_metrics_put(table, "", &all, err);
     if (!st) st = dfl_metrics_put(table, "_band", &inb, err);
-    if (!st) st = dfl_bs04_put_gradstat(table, "_band", &gs, err);
+    if (!st) st = dfl_metrics_put_gradstat(table, "_band", &gs, err);
     if (!st) st = dfl_table_set_double(table, "delta", k.delta, err);
     const double rmax = fmax(br.ratio, fmax(bs.ratio, bp.ratio));
     const double gmax = fmax(br.grad, fmax(bs.grad, bp.grad));
@@ -294,7 +254,8 @@ static dfl_status hetero_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
     st = dfl_vtp_write(dfl_study_path(ctx, "parts", "vtp", path, sizeof path), &vd, k.compress, err);
 done:
     dfl_field_destroy(&f);
-    free(u), free(gu), free(d), free(mask), free(outline), free(k.region);
+    dfl_field_bufs_free(&b);
+    free(mask), free(outline), free(k.region);
     return st;
 }
 

@@ -76,6 +76,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cfg/cfg_err.h"
 #include "core/vec.h"
 #include "harness/experiment.h"
 #include "cfg/field_cfg.h"
@@ -133,25 +134,22 @@ static void ext_add(extremes *e, const dfl_normorder *r)
 
 static dfl_status read_keys(const dfl_cfg *cfg, norm_keys *k, dfl_err *err)
 {
-    char w[600];
     const dfl_field_kind *kind;
     dfl_status st;
     memset(k, 0, sizeof *k);
     if ((st = dfl_field_kind_from_cfg(cfg, "field", &kind, err))) return st;
     if (kind->build != dfl_rfunc_field_from_cfg)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: bs04_normalization needs kind = rfunc, got '%s'",
-                           dfl_cfg_where(cfg, "field", "kind", w, sizeof w), kind->name);
+        return dfl_cfg_reject(cfg, "field", "kind", err,
+                              "bs04_normalization needs kind = rfunc, got '%s'", kind->name);
     if ((st = dfl_rfunc_spec_from_cfg(cfg, "field", &k->spec, err))) return st;
     if (k->spec.curve)
-        return dfl_err_set(err, DFL_E_INPUT,
-                           "%s: bs04_normalization measures at the segments of [field] vertices;"
-                           " give vertices, not a curve",
-                           dfl_cfg_where(cfg, "field", "curve", w, sizeof w));
+        return dfl_cfg_reject(cfg, "field", "curve", err,
+                              "bs04_normalization measures at the segments of [field] vertices;"
+                              " give vertices, not a curve");
     if (k->spec.dim != 2)
-        return dfl_err_set(err, DFL_E_INPUT,
-                           "%s: bs04_normalization measures planar polylines, expected points of"
-                           " 2 numbers, got %d",
-                           dfl_cfg_where(cfg, "field", "vertices", w, sizeof w), k->spec.dim);
+        return dfl_cfg_reject(cfg, "field", "vertices", err,
+                              "bs04_normalization measures planar polylines, expected points of 2"
+                              " numbers, got %d", k->spec.dim);
     k->join = k->spec.join;
     k->trim = k->spec.trim;
     k->p = k->spec.p;
@@ -160,14 +158,13 @@ static dfl_status read_keys(const dfl_cfg *cfg, norm_keys *k, dfl_err *err)
     k->n = k->spec.n;
     if ((st = dfl_cfg_doubles(cfg, "study", "fractions", 1, &k->frac, &k->nfrac, err))) return st;
     if (k->nfrac > NORM_MAX_FRAC)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: at most %d fractions",
-                           dfl_cfg_where(cfg, "study", "fractions", w, sizeof w), NORM_MAX_FRAC);
+        return dfl_cfg_reject(cfg, "study", "fractions", err, "at most %d fractions",
+                              NORM_MAX_FRAC);
     for (size_t i = 0; i < k->nfrac; i++)
         if (!(k->frac[i] > 0.0 && k->frac[i] < 1.0))
-            return dfl_err_set(err, DFL_E_INPUT,
-                               "%s: expected fractions strictly between 0 and 1 (interior"
-                               " points), got %g",
-                               dfl_cfg_where(cfg, "study", "fractions", w, sizeof w), k->frac[i]);
+            return dfl_cfg_reject(cfg, "study", "fractions", err,
+                                  "expected fractions strictly between 0 and 1 (interior points),"
+                                  " got %g", k->frac[i]);
     if ((st = dfl_cfg_int_opt(cfg, "study", "K", 16, 2, DFL_JET_MAX, &k->K, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "tol", 1e-9, 1e-15, 1e-2, &k->tol, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "fan", 9, 1, 1000, &k->fan, err))) return st;

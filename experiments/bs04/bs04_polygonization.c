@@ -27,12 +27,13 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "cfg/cfg_err.h"
+#include "core/fit.h"
 #include "cfg/curve_cfg.h"
 #include "cfg/list_cfg.h"
 #include "harness/experiment.h"
 #include "geom/polygonize.h"
 #include "io/vtk.h"
-#include "io/path.h"
 
 #define MAX_CURVES 16
 #define NAME_MAX_LEN DFL_SECTION_NAME_LEN
@@ -59,7 +60,6 @@ static void keys_free(study_keys *k)
 
 static dfl_status read_keys(const dfl_cfg *cfg, study_keys *k, dfl_err *err)
 {
-    char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
     if ((st = dfl_section_names_from_cfg(cfg, "study", "curves", MAX_CURVES, k->names,
@@ -67,20 +67,17 @@ static dfl_status read_keys(const dfl_cfg *cfg, study_keys *k, dfl_err *err)
         return st;
     if ((st = dfl_cfg_double(cfg, "study", "eps", 0.0, 1e300, &k->eps, err))) return st;
     if (!(k->eps > 0.0))
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected eps > 0, got %g",
-                           dfl_cfg_where(cfg, "study", "eps", w, sizeof w), k->eps);
+        return dfl_cfg_reject(cfg, "study", "eps", err, "expected eps > 0, got %g", k->eps);
     if ((st = dfl_cfg_doubles(cfg, "study", "fit_eps", 2, &k->fit_eps, &k->nfit, err))) return st;
     int distinct = 0;
     for (size_t i = 0; i < k->nfit; i++) {
         if (!(k->fit_eps[i] > 0.0))
-            return dfl_err_set(err, DFL_E_INPUT, "%s: expected values > 0, got %g",
-                               dfl_cfg_where(cfg, "study", "fit_eps", w, sizeof w),
-                               k->fit_eps[i]);
+            return dfl_cfg_reject(cfg, "study", "fit_eps", err, "expected values > 0, got %g",
+                                  k->fit_eps[i]);
         if (k->fit_eps[i] != k->fit_eps[0]) distinct = 1;
     }
     if (!distinct)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected at least 2 distinct values",
-                           dfl_cfg_where(cfg, "study", "fit_eps", w, sizeof w));
+        return dfl_cfg_reject(cfg, "study", "fit_eps", err, "expected at least 2 distinct values");
     if ((st = dfl_cfg_int_opt(cfg, "study", "samples", 16, 2, 100000, &k->samples, err)))
         return st;
     if ((st = dfl_cfg_bool_opt(cfg, "study", "compress", true, &k->compress, err))) return st;
@@ -92,14 +89,12 @@ static dfl_status read_keys(const dfl_cfg *cfg, study_keys *k, dfl_err *err)
         if ((st = dfl_cfg_doubles(cfg, "study", "paper_segments", 1, &k->paper_seg, &ns, err)))
             return st;
         if (ns != k->npaper)
-            return dfl_err_set(err, DFL_E_INPUT, "%s: expected %zu values (one per paper_eps)",
-                               dfl_cfg_where(cfg, "study", "paper_segments", w, sizeof w),
-                               k->npaper);
+            return dfl_cfg_reject(cfg, "study", "paper_segments", err,
+                                  "expected %zu values (one per paper_eps)", k->npaper);
         for (size_t i = 0; i < ns; i++)
             if (!(k->paper_eps[i] > 0.0) || !(k->paper_seg[i] >= 1.0))
-                return dfl_err_set(err, DFL_E_INPUT,
-                                   "%s: paper eps must be > 0 and segment counts >= 1",
-                                   dfl_cfg_where(cfg, "study", "paper_segments", w, sizeof w));
+                return dfl_cfg_reject(cfg, "study", "paper_segments", err,
+                                      "paper eps must be > 0 and segment counts >= 1");
     }
     return DFL_OK;
 }
@@ -121,13 +116,12 @@ static dfl_status bs04_poly_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, df
     int nbuilt = 0, npoly = 0;
     memset(curves, 0, sizeof curves);
     memset(polys, 0, sizeof polys);
-    char w[600];
     dfl_status st = read_keys(cfg, &k, err);
     for (int c = 0; c < k.ncurves && st == DFL_OK; c++) {
         const char *sec = k.names[c];
         if (!dfl_cfg_has_section(cfg, sec)) {
-            st = dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s] for curve '%s'",
-                             dfl_cfg_where(cfg, "study", "curves", w, sizeof w), sec, sec);
+            st = dfl_cfg_reject(cfg, "study", "curves", err, "no section [%s] for curve '%s'", sec,
+                                sec);
             break;
         }
         if ((st = dfl_curve_section_from_cfg(cfg, sec, &curves[c], err))) break;
@@ -137,7 +131,7 @@ static dfl_status bs04_poly_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, df
     if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
     double paper_fit = NAN;
     if (st == DFL_OK && k.npaper >= 2)
-        paper_fit = dfl_bs04_loglog_slope(k.npaper, k.paper_eps, k.paper_seg);
+        paper_fit = dfl_fit_loglog_slope(k.npaper, k.paper_eps, k.paper_seg);
     for (int c = 0; c < k.ncurves && st == DFL_OK; c++) {
         /* fitted exponent over fit_eps */
         double *cnt = malloc(k.nfit * sizeof(double));
@@ -149,28 +143,26 @@ static dfl_status bs04_poly_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, df
             dfl_polyline q;
             st = dfl_polygonize_curve(&curves[c], k.fit_eps[i], 0, &q, err);
             if (st != DFL_OK) {
-                dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "fit_eps", w, sizeof w));
+                dfl_cfg_err_at(cfg, "study", "fit_eps", st, err);
                 break;
             }
             cnt[i] = (double)(q.n - 1);
             dfl_polyline_free(&q);
         }
-        double fit = st == DFL_OK ? dfl_bs04_loglog_slope(k.nfit, k.fit_eps, cnt) : NAN;
+        double fit = st == DFL_OK ? dfl_fit_loglog_slope(k.nfit, k.fit_eps, cnt) : NAN;
         free(cnt);
         if (st != DFL_OK) break;
         st = dfl_polygonize_curve(&curves[c], k.eps, 0, &polys[c], err);
         if (st != DFL_OK) {
-            dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "eps", w, sizeof w));
+            dfl_cfg_err_at(cfg, "study", "eps", st, err);
             break;
         }
         npoly++;
         double meas;
         if ((st = dfl_polyline_deviation(&curves[c], &polys[c], (int)k.samples, &meas, err)))
             break;
-        char stem[NAME_MAX_LEN + 16], path[4096];
+        char stem[NAME_MAX_LEN + 16];
         snprintf(stem, sizeof stem, "%s_polyline", k.names[c]);
-        dfl_study_path(ctx, stem, "vtp", path, sizeof path);
-        const char *base = dfl_path_base(path);
         double paper = NAN;
         if (k.paper_curve && strcmp(k.paper_curve, k.names[c]) == 0)
             for (size_t i = 0; i < k.npaper; i++)
@@ -186,7 +178,7 @@ static dfl_status bs04_poly_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, df
         if (!st && !isnan(paper)) st = dfl_table_set_int(table, "paper_segments", (long)paper, err);
         if (!st && k.paper_curve && strcmp(k.paper_curve, k.names[c]) == 0)
             st = dfl_table_set_double(table, "paper_fit_exponent", paper_fit, err);
-        if (!st) st = dfl_table_set_string(table, "vtp", base, err);
+        if (!st) st = dfl_study_put_file(table, "vtp", ctx, stem, "vtp", true, err);
     }
     for (int c = 0; c < npoly && st == DFL_OK; c++) {
         char stem[NAME_MAX_LEN + 16], path[4096];

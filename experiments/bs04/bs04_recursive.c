@@ -50,16 +50,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bs04/bs04_space_util.h"
+#include "cfg/cfg_err.h"
+#include "core/fit.h"
 #include "geom/ellipse.h"
 #include "core/vec.h"
 #include "harness/experiment.h"
 #include "field/sample.h"
 #include "harness/field_out.h"
 #include "cfg/grid_cfg.h"
+#include "field/metrics.h"
 #include "field/normorder.h"
 #include "rfunc/normalize.h"
-#include "io/path.h"
 
 #define REC_MAX_DELTAS 8
 #define REC_MAX_BANDS 8
@@ -76,7 +77,6 @@ typedef struct rec_keys {
 static dfl_status read_keys(const dfl_cfg *cfg, rec_keys *k, dfl_err *err)
 {
     static const char *const kinds[] = {"ellipse"};
-    char w[600];
     int kind;
     dfl_status st;
     memset(k, 0, sizeof *k);
@@ -87,19 +87,17 @@ static dfl_status read_keys(const dfl_cfg *cfg, rec_keys *k, dfl_err *err)
     if ((st = dfl_cfg_int_opt(cfg, "study", "points", 64, 1, 100000, &k->points, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "K", 8, 2, DFL_JET_MAX, &k->K, err))) return st;
     if (k->K <= k->m)
-        return dfl_err_set(err, DFL_E_INPUT,
-                           "%s: the jet order must exceed m = %ld to see the first non-zero"
-                           " coefficient, got %ld",
-                           dfl_cfg_where(cfg, "study", "K", w, sizeof w), k->m, k->K);
+        return dfl_cfg_reject(cfg, "study", "K", err,
+                              "the jet order must exceed m = %ld to see the first non-zero"
+                              " coefficient, got %ld", k->m, k->K);
     if ((st = dfl_cfg_double_opt(cfg, "study", "tol", 1e-9, 1e-15, 1e-2, &k->tol, err))) return st;
     if ((st = dfl_cfg_doubles(cfg, "study", "bands", 1, &k->bands, &k->nbands, err))) return st;
     if (k->nbands > REC_MAX_BANDS)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: at most %d values",
-                           dfl_cfg_where(cfg, "study", "bands", w, sizeof w), REC_MAX_BANDS);
+        return dfl_cfg_reject(cfg, "study", "bands", err, "at most %d values", REC_MAX_BANDS);
     for (size_t i = 0; i < k->nbands; i++)
         if (!(k->bands[i] > 0.0) || (i > 0 && !(k->bands[i] > k->bands[i - 1])))
-            return dfl_err_set(err, DFL_E_INPUT, "%s: expected increasing values > 0, got %g",
-                               dfl_cfg_where(cfg, "study", "bands", w, sizeof w), k->bands[i]);
+            return dfl_cfg_reject(cfg, "study", "bands", err,
+                                  "expected increasing values > 0, got %g", k->bands[i]);
     if ((st = dfl_cfg_doubles(cfg, "study", "deltas", 2, &k->deltas, &k->ndeltas, err))) return st;
     /* rho >= rho_min = min(a, b)^2 / max(a, b) everywhere, and a disk of
      * radius rho_min rolls freely inside (Blaschke): below it every inward
@@ -107,52 +105,15 @@ static dfl_status read_keys(const dfl_cfg *cfg, rec_keys *k, dfl_err *err)
      * p, so the exact distance along it is delta */
     const double rho_min = fmin(k->a, k->b) * fmin(k->a, k->b) / fmax(k->a, k->b);
     if (k->ndeltas > REC_MAX_DELTAS)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: at most %d values",
-                           dfl_cfg_where(cfg, "study", "deltas", w, sizeof w), REC_MAX_DELTAS);
+        return dfl_cfg_reject(cfg, "study", "deltas", err, "at most %d values", REC_MAX_DELTAS);
     for (size_t i = 0; i < k->ndeltas; i++)
         if (!(k->deltas[i] > 0.0 && k->deltas[i] < rho_min) ||
             (i > 0 && !(k->deltas[i] > k->deltas[i - 1])))
-            return dfl_err_set(err, DFL_E_INPUT,
-                               "%s: expected increasing values in (0, %g) (the smallest radius"
-                               " of curvature), got %g",
-                               dfl_cfg_where(cfg, "study", "deltas", w, sizeof w), rho_min,
-                               k->deltas[i]);
+            return dfl_cfg_reject(cfg, "study", "deltas", err,
+                                  "expected increasing values in (0, %g) (the smallest radius of"
+                                  " curvature), got %g", rho_min, k->deltas[i]);
     if ((st = dfl_grid_from_cfg(cfg, "grid", 2, &k->grid, err))) return st;
     return dfl_field_out_from_cfg(cfg, &k->out, err);
-}
-
-/* Error metrics over the nodes with |d| <= band; a non-finite value or
- * gradient makes linf (and the means) infinite instead of failing: far
- * from the curve the recursion may overflow. */
-typedef struct band_metrics {
-    long n;
-    double l1, rms, linf, gmean, gmax;
-} band_metrics;
-
-static band_metrics band_compute(size_t nn, const double *u, const double *gu, const double *d,
-                                 double band)
-{
-    band_metrics b = {0, 0, 0, 0, 0, 0};
-    double se = 0;
-    for (size_t i = 0; i < nn; i++) {
-        if (!(fabs(d[i]) <= band)) continue;
-        double e = fabs(u[i] - d[i]);
-        double g = fabs(hypot(gu[2 * i], gu[2 * i + 1]) - 1.0);
-        if (!isfinite(e)) e = INFINITY;
-        if (!isfinite(g)) g = INFINITY;
-        b.n++;
-        b.l1 += e;
-        se += e * e;
-        b.gmean += g;
-        if (e > b.linf) b.linf = e;
-        if (g > b.gmax) b.gmax = g;
-    }
-    if (b.n) {
-        b.l1 /= (double)b.n;
-        b.rms = sqrt(se / (double)b.n);
-        b.gmean /= (double)b.n;
-    }
-    return b;
 }
 
 /* Jets at the boundary points, both sides of the normal. */
@@ -243,7 +204,7 @@ static dfl_status rec_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
     rec_keys k;
     dfl_rfunc_poly poly;
     dfl_field f = {0};
-    double *u = NULL, *gu = NULL, *d = NULL;
+    dfl_field_bufs b = {0};
     int have_poly = 0;
     memset(&poly, 0, sizeof poly);
     dfl_status st = read_keys(cfg, &k, err);
@@ -262,19 +223,13 @@ static dfl_status rec_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
 
     /* the grid against the exact signed distance */
     const size_t nn = dfl_grid_size(&k.grid);
-    u = malloc(nn * sizeof *u);
-    gu = malloc(2 * nn * sizeof *gu);
-    d = malloc(nn * sizeof *d);
-    if (!u || !gu || !d) {
+    if (!dfl_field_bufs_alloc(&b, nn, 2, true)) {
         st = dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu nodes", nn);
         goto done;
     }
     long nonfinite = 0;
-    if ((st = sample_grid(&k, &f, ctx->threads, u, gu, d, &nonfinite, err))) goto done;
+    if ((st = sample_grid(&k, &f, ctx->threads, b.u, b.gu, b.ref, &nonfinite, err))) goto done;
 
-    char path[4400];
-    dfl_study_path(ctx, "normalized", "vti", path, sizeof path);
-    const char *base = dfl_path_base(path);
     st = dfl_table_row(table, err);
 #define SETI(c, v) \
     if (!st) st = dfl_table_set_int(table, c, (long)(v), err)
@@ -302,12 +257,15 @@ static dfl_status rec_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
         snprintf(c, sizeof c, "line_err_%zu", q + 1);
         SETD(c, lerr[q]);
     }
-    SETD("line_slope", dfl_bs04_loglog_slope(k.ndeltas, k.deltas, lerr));
+    SETD("line_slope", dfl_fit_loglog_slope(k.ndeltas, k.deltas, lerr));
     SETI("line_slope_theory", m + 1);
     SETI("nodes", nn);
     SETI("nonfinite_nodes", nonfinite);
-    for (size_t q = 0; q < k.nbands; q++) {
-        const band_metrics bm = band_compute(nn, u, gu, d, k.bands[q]);
+    for (size_t q = 0; q < k.nbands && !st; q++) {
+        /* far from the curve the recursion may overflow: such nodes enter
+         * the band metrics as +inf (they are counted in nonfinite_nodes) */
+        dfl_metrics bm;
+        st = dfl_metrics_compute_saturating(nn, 2, b.u, b.gu, b.ref, k.bands[q], &bm, err);
         char c[48];
 #define SETB(name, v)                                         \
     do {                                                      \
@@ -316,25 +274,23 @@ static dfl_status rec_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
     } while (0)
         SETB("band", k.bands[q]);
         snprintf(c, sizeof c, "band_nodes_%zu", q + 1);
-        SETI(c, bm.n);
-        if (bm.n) {
+        SETI(c, bm.count);
+        if (bm.count) {
             SETB("l1_band", bm.l1);
             SETB("rms_band", bm.rms);
             SETB("linf_band", bm.linf);
-            SETB("graddefect_mean_band", bm.gmean);
-            SETB("graddefect_max_band", bm.gmax);
+            SETB("graddefect_mean_band", bm.gdef_mean);
+            SETB("graddefect_max_band", bm.gdef_max);
         }
 #undef SETB
     }
-    if (!st) st = dfl_table_set_string(table, "vti", k.out.vti ? base : "", err);
+    if (!st) st = dfl_study_put_file(table, "vti", ctx, "normalized", "vti", k.out.vti, err);
 #undef SETI
 #undef SETD
     if (st != DFL_OK) goto done;
-    st = dfl_field_out_write(ctx, "normalized", &k.grid, u, gu, d, &k.out, err);
+    st = dfl_field_out_write(ctx, "normalized", &k.grid, b.u, b.gu, b.ref, &k.out, err);
 done:
-    free(u);
-    free(gu);
-    free(d);
+    dfl_field_bufs_free(&b);
     free(k.deltas);
     free(k.bands);
     dfl_field_destroy(&f);

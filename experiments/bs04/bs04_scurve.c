@@ -60,6 +60,7 @@
 #include <string.h>
 
 #include "bs04/bs04_offsets.h"
+#include "cfg/cfg_err.h"
 #include "cfg/curve_cfg.h"
 #include "field/curveprobe.h"
 #include "harness/experiment.h"
@@ -89,7 +90,6 @@ typedef struct scurve_keys {
 
 static dfl_status read_keys(const dfl_cfg *cfg, scurve_keys *k, dfl_err *err)
 {
-    char w[600];
     const dfl_field_kind *kind;
     dfl_status st;
     if ((st = dfl_field_kind_from_cfg(cfg, "field", &kind, err))) return st;
@@ -97,9 +97,8 @@ static dfl_status read_keys(const dfl_cfg *cfg, scurve_keys *k, dfl_err *err)
         (st = dfl_rfunc_spec_from_cfg(cfg, "field", &k->spec, err)))
         return st;
     if (kind->build != dfl_rfunc_field_from_cfg || !k->spec.curve)
-        return dfl_err_set(err, DFL_E_INPUT,
-                           "%s: bs04_scurve needs kind = rfunc with a curve (curve = <section>)",
-                           dfl_cfg_where(cfg, "field", "kind", w, sizeof w));
+        return dfl_cfg_reject(cfg, "field", "kind", err,
+                              "bs04_scurve needs kind = rfunc with a curve (curve = <section>)");
     k->curve_sec = k->spec.curve;
     k->eps = k->spec.eps;
     k->p = k->spec.p;
@@ -108,8 +107,8 @@ static dfl_status read_keys(const dfl_cfg *cfg, scurve_keys *k, dfl_err *err)
     if ((st = dfl_cfg_doubles(cfg, "study", "levels", 1, &k->levels, &k->nlevels, err))) return st;
     for (size_t i = 0; i < k->nlevels; i++)
         if (!(k->levels[i] > 0.0))
-            return dfl_err_set(err, DFL_E_INPUT, "%s: expected offsets > 0, got %g",
-                               dfl_cfg_where(cfg, "study", "levels", w, sizeof w), k->levels[i]);
+            return dfl_cfg_reject(cfg, "study", "levels", err, "expected offsets > 0, got %g",
+                                  k->levels[i]);
     if ((st = dfl_cfg_int_opt(cfg, "study", "rays", 801, 2, 1000000, &k->rays, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "cap_rays", 32, 0, 100000, &k->cap_rays, err)))
         return st;
@@ -162,14 +161,12 @@ static dfl_status scurve_run_point(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
     dfl_bs04_offsets r;
     dfl_shape shape;
     int have_shape = 0;
-    char w[600];
     memset(&k, 0, sizeof k);
     memset(&r, 0, sizeof r);
     dfl_status st = read_keys(cfg, &k, err);
     if (st == DFL_OK) st = dfl_rfunc_field_from_spec(cfg, "field", &k.spec, &r.u, err);
     if (st == DFL_OK && k.spec.dim != 2)
-        st = dfl_err_set(err, DFL_E_INPUT, "%s: a planar curve is required",
-                         dfl_cfg_where(cfg, "field", "curve", w, sizeof w));
+        st = dfl_cfg_reject(cfg, "field", "curve", err, "a planar curve is required");
     if (st == DFL_OK) {
         st = dfl_param_shape_from_cfg(cfg, k.curve_sec, "bspline_curve", &shape, err);
         have_shape = st == DFL_OK;

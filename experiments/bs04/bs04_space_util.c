@@ -5,56 +5,18 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cfg/slice_cfg.h"
 #include "io/vtk.h"
 
-void dfl_bs04_gradstat(size_t m, int dim, const double *grad, const unsigned char *mask,
-                       dfl_gradstat *out)
+dfl_status dfl_bs04_space_out_from_cfg(const dfl_cfg *cfg, bool with_compress,
+                                       dfl_bs04_space_out *o, dfl_err *err)
 {
-    size_t c = 0;
-    double mn = INFINITY, mx = -INFINITY, s = 0;
-    for (size_t i = 0; i < m; i++) {
-        if (mask && !mask[i]) continue;
-        double q = 0;
-        const double *g = grad + i * (size_t)dim;
-        for (int j = 0; j < dim; j++) q += g[j] * g[j];
-        q = sqrt(q);
-        mn = fmin(mn, q);
-        mx = fmax(mx, q);
-        s += q;
-        c++;
-    }
-    out->count = c;
-    out->min = c ? mn : NAN;
-    out->max = c ? mx : NAN;
-    out->mean = c ? s / (double)c : NAN;
-}
-
-dfl_status dfl_bs04_put_gradstat(dfl_table *t, const char *sfx, const dfl_gradstat *g,
-                                 dfl_err *err)
-{
-    char col[96];
-    dfl_status st;
-    snprintf(col, sizeof col, "grad_min%s", sfx);
-    st = dfl_table_set_double(t, col, g->min, err);
-    snprintf(col, sizeof col, "grad_mean%s", sfx);
-    if (st == DFL_OK) st = dfl_table_set_double(t, col, g->mean, err);
-    snprintf(col, sizeof col, "grad_max%s", sfx);
-    if (st == DFL_OK) st = dfl_table_set_double(t, col, g->max, err);
+    dfl_status st = dfl_slices_from_cfg(cfg, "study", o->slices, DFL_BS04_MAX_SLICES,
+                                        &o->nslices, err);
+    if (st == DFL_OK && with_compress)
+        st = dfl_cfg_bool_opt(cfg, "study", "compress", true, &o->compress, err);
+    if (st == DFL_OK) st = dfl_field_out_from_cfg(cfg, &o->out, err);
     return st;
-}
-
-double dfl_bs04_loglog_slope(size_t n, const double *x, const double *y)
-{
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    for (size_t i = 0; i < n; i++) {
-        const double lx = log(x[i]), ly = log(y[i]);
-        sx += lx;
-        sy += ly;
-        sxx += lx * lx;
-        sxy += lx * ly;
-    }
-    const double dn = (double)n;
-    return (dn * sxy - sx * sy) / (dn * sxx - sx * sx);
 }
 
 static double *to3d(int dim, size_t n, const double *pts)
@@ -119,20 +81,19 @@ dfl_status dfl_bs04_vtp_points(const char *path, size_t n, const double *pts, co
 }
 
 dfl_status dfl_bs04_write_slices(const dfl_study_ctx *ctx, const dfl_field *f,
-                                 const dfl_grid *slices, int n, const char *prefix,
-                                 const dfl_field_write_opts *o, dfl_err *err)
+                                 const dfl_bs04_space_out *o, const char *prefix, dfl_err *err)
 {
     char stem[64];
     dfl_status st = DFL_OK;
-    for (int s = 0; s < n && st == DFL_OK; s++) {
-        const size_t m = dfl_grid_size(&slices[s]);
-        double *u = malloc(m * sizeof *u), *gu = malloc(3 * m * sizeof *gu);
-        if (!u || !gu) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-        if (!st) st = dfl_field_sample(f, &slices[s], ctx->threads, u, gu, err);
+    for (int s = 0; s < o->nslices && st == DFL_OK; s++) {
+        const dfl_grid *g = &o->slices[s];
+        dfl_field_bufs b;
+        if (!dfl_field_bufs_alloc(&b, dfl_grid_size(g), 3, false))
+            st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+        if (!st) st = dfl_field_sample(f, g, ctx->threads, b.u, b.gu, err);
         snprintf(stem, sizeof stem, "%s%d", prefix, s);
-        if (!st) st = dfl_field_out_write(ctx, stem, &slices[s], u, gu, NULL, o, err);
-        free(u);
-        free(gu);
+        if (!st) st = dfl_field_out_write(ctx, stem, g, b.u, b.gu, NULL, &o->out, err);
+        dfl_field_bufs_free(&b);
     }
     return st;
 }

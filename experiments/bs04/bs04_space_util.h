@@ -1,39 +1,38 @@
-/* Helpers shared by the bs04 studies (bs04_spacecurves, bs04_triangle,
- * bs04_triedge, bs04_surface, bs04_hetero, bs04_polygonization): table
- * cells for gradient statistics (error metrics: field/metrics.h),
- * log-log slopes,
- * .vtp output of polylines, triangle meshes and point samples, and slices
- * of 3D fields.
+/* Helpers shared by the bs04 studies in space (bs04_spacecurves,
+ * bs04_triangle, bs04_triedge, bs04_surface; bs04_polygonization): their
+ * output keys, .vtp output of polylines, triangle meshes and point
+ * samples, and slices of 3D fields.  (Gradient statistics and error
+ * metrics: field/metrics.h; log-log slopes: core/fit.h.)
  */
 #ifndef DFL_EXPERIMENTS_BS04_SPACE_UTIL_H
 #define DFL_EXPERIMENTS_BS04_SPACE_UTIL_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "core/status.h"
-#include "field/metrics.h"
 #include "io/config.h"
-#include "io/table.h"
 #include "io/vtk.h"
-#include "rfunc/join.h"
-#include "rfunc/segment.h"
 #include "harness/field_out.h"
 
-/* Statistics of |grad u| over the m samples whose mask entry is non-zero
- * (mask may be NULL: all): min, mean, max; NAN when none. */
-typedef struct dfl_gradstat {
-    size_t count;
-    double min, mean, max;
-} dfl_gradstat;
-void dfl_bs04_gradstat(size_t m, int dim, const double *grad, const unsigned char *mask,
-                       dfl_gradstat *out);
-/* Sets grad_min<sfx>, grad_mean<sfx>, grad_max<sfx>. */
-dfl_status dfl_bs04_put_gradstat(dfl_table *t, const char *sfx, const dfl_gradstat *g,
-                                 dfl_err *err);
+#define DFL_BS04_MAX_SLICES 4
 
-/* Least-squares slope of log(y) against log(x) over n >= 2 pairs (x, y >
- * 0, not all x equal): the growth exponent of y in x. */
-double dfl_bs04_loglog_slope(size_t n, const double *x, const double *y);
+/* What the studies in space write besides their table: section planes of
+ * the field, zlib-compressed .vtp files or not, and the field files. */
+typedef struct dfl_bs04_space_out {
+    dfl_grid slices[DFL_BS04_MAX_SLICES];
+    int nslices;
+    bool compress;             /* [study] compress (default true): zlib .vtp */
+    dfl_field_write_opts out;  /* [output] (harness/field_out.h) */
+} dfl_bs04_space_out;
+
+/* Reads the [study] section planes (cfg/slice_cfg.h: slices, slice_n,
+ * slice_lo, slice_hi; at most DFL_BS04_MAX_SLICES), then, when
+ * with_compress, [study] compress (a study that reads it earlier passes
+ * false and sets o->compress itself), then [output], in that order.  Fails
+ * as those readers do (DFL_E_INPUT naming file, line and key). */
+dfl_status dfl_bs04_space_out_from_cfg(const dfl_cfg *cfg, bool with_compress,
+                                       dfl_bs04_space_out *o, dfl_err *err);
 
 /* .vtp writers (through dfl_vtp_write: atomic, optional zlib).
  *   polyline: n points of dimension dim (2D gets z = 0), one line, and
@@ -47,12 +46,10 @@ dfl_status dfl_bs04_vtp_trimesh(const char *path, size_t nv, const double *verts
 dfl_status dfl_bs04_vtp_points(const char *path, size_t n, const double *pts, const char *name,
                                const double *values, int compress, dfl_err *err);
 
-/* Samples the 3D field f (value and gradient) on each of the n slices
- * (plane grids, cfg/slice_cfg.h) and writes slice s as <prefix><s> (see
- * dfl_field_out_write; no reference).  Stops at the first failure;
- * temporary buffers are freed. */
+/* Samples the 3D field f (value and gradient) on each of o's slices and
+ * writes slice s as <prefix><s> as o->out asks (dfl_field_out_write; no
+ * reference).  Stops at the first failure; temporary buffers are freed. */
 dfl_status dfl_bs04_write_slices(const dfl_study_ctx *ctx, const dfl_field *f,
-                                 const dfl_grid *slices, int n, const char *prefix,
-                                 const dfl_field_write_opts *o, dfl_err *err);
+                                 const dfl_bs04_space_out *o, const char *prefix, dfl_err *err);
 
 #endif

@@ -32,11 +32,11 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "cfg/cfg_err.h"
 #include "cfg/rfunc_cfg.h"
 #include "cfg/curve_cfg.h"
 #include "cfg/list_cfg.h"
 #include "harness/experiment.h"
-#include "io/path.h"
 #include "field/exact.h"
 #include "field/metrics.h"
 #include "field/sample.h"
@@ -47,7 +47,6 @@
 #include "cfg/slice_cfg.h"
 
 #define MAX_CURVES 8
-#define MAX_SLICES 4
 #define NAME_LEN DFL_SECTION_NAME_LEN
 
 typedef struct keys {
@@ -59,16 +58,13 @@ typedef struct keys {
     dfl_rfunc_trim trim;
     double *paper;
     size_t npaper;
-    bool volume, compress;
+    bool volume;
     dfl_grid grid;
-    dfl_grid slices[MAX_SLICES];
-    int nslices;
-    dfl_field_write_opts out;
+    dfl_bs04_space_out so;     /* compress is read before the other keys */
 } keys;
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 {
-    char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
     if ((st = dfl_section_names_from_cfg(cfg, "study", "curves", MAX_CURVES, k->names,
@@ -79,39 +75,34 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
     if ((st = dfl_rfunc_trim_from_cfg(cfg, "study", &k->trim, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.05, 0.0, 1e300, &k->band, err))) return st;
     if ((st = dfl_cfg_bool_opt(cfg, "study", "volume", true, &k->volume, err))) return st;
-    if ((st = dfl_cfg_bool_opt(cfg, "study", "compress", true, &k->compress, err))) return st;
+    if ((st = dfl_cfg_bool_opt(cfg, "study", "compress", true, &k->so.compress, err))) return st;
     if (dfl_cfg_has(cfg, "study", "paper_segments")) {
         if ((st = dfl_cfg_doubles(cfg, "study", "paper_segments", 1, &k->paper, &k->npaper, err)))
             return st;
         if (k->npaper != (size_t)k->ncurves)
-            return dfl_err_set(err, DFL_E_INPUT, "%s: expected %d values (one per curve)",
-                               dfl_cfg_where(cfg, "study", "paper_segments", w, sizeof w),
-                               k->ncurves);
+            return dfl_cfg_reject(cfg, "study", "paper_segments", err,
+                                  "expected %d values (one per curve)", k->ncurves);
     }
     /* [grid] is read whenever present, so that volume = false does not turn
      * its keys into "unknown key" errors */
     if ((k->volume || dfl_cfg_has_section(cfg, "grid")) &&
         (st = dfl_grid_from_cfg(cfg, "grid", 3, &k->grid, err)))
         return st;
-    if ((st = dfl_slices_from_cfg(cfg, "study", k->slices, MAX_SLICES, &k->nslices, err)))
-        return st;
-    return dfl_field_out_from_cfg(cfg, &k->out, err);
+    return dfl_bs04_space_out_from_cfg(cfg, false, &k->so, err);
 }
 
 /* The curve of section sec (3D required) and its exact distance field. */
 static dfl_status load_curve(const dfl_cfg *cfg, const char *sec, dfl_bspline *c, dfl_field *exact,
                              dfl_err *err)
 {
-    char w[600];
     dfl_status st;
     if (!dfl_cfg_has_section(cfg, sec))
-        return dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s]",
-                           dfl_cfg_where(cfg, "study", "curves", w, sizeof w), sec);
+        return dfl_cfg_reject(cfg, "study", "curves", err, "no section [%s]", sec);
     if ((st = dfl_curve_section_from_cfg(cfg, sec, c, err))) return st;
     if (c->dim != 3) {
         dfl_bspline_free(c);
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected a space curve (3D control points)",
-                           dfl_cfg_where(cfg, sec, "control", w, sizeof w));
+        return dfl_cfg_reject(cfg, sec, "control", err,
+                              "expected a space curve (3D control points)");
     }
     dfl_shape sh;
     if ((st = dfl_param_shape_from_cfg(cfg, sec, "bspline_curve", &sh, err))) {
@@ -139,12 +130,31 @@ static dfl_status put_field(dfl_table *t, const char *sfx, size_t m, const doubl
     if (!mask) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
     for (size_t i = 0; i < m; i++) mask[i] = d[i] <= band;
     dfl_gradstat gs;
-    dfl_bs04_gradstat(m, 3, gu, mask, &gs);
+    dfl_metrics_gradstat(m, 3, gu, mask, &gs);
     free(mask);
     snprintf(s2, sizeof s2, "%s_band", sfx);
     st = dfl_metrics_put(t, sfx, &all, err);
     if (st == DFL_OK) st = dfl_metrics_put(t, s2, &inb, err);
-    if (st == DFL_OK) st = dfl_bs04_put_gradstat(t, s2, &gs, err);
+    if (st == DFL_OK) st = dfl_metrics_put_gradstat(t, s2, &gs, err);
+    return st;
+}
+
+/* u and the exact distance on grid g: the metrics into the row (suffix
+ * sfx, put_field) and the field files <stem>. */
+static dfl_status sample_grid(const keys *k, const dfl_field *f, const dfl_field *exact,
+                              const dfl_grid *g, const char *sfx, const char *stem,
+                              const dfl_study_ctx *ctx, dfl_table *table, dfl_err *err)
+{
+    const size_t m = dfl_grid_size(g);
+    dfl_field_bufs b;
+    dfl_status st = DFL_OK;
+    if (!dfl_field_bufs_alloc(&b, m, 3, true))
+        st = dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu samples", m);
+    if (!st) st = dfl_field_sample(f, g, ctx->threads, b.u, b.gu, err);
+    if (!st) st = dfl_field_sample(exact, g, ctx->threads, b.ref, NULL, err);
+    if (!st) st = put_field(table, sfx, m, b.u, b.gu, b.ref, k->band, err);
+    if (!st) st = dfl_field_out_write(ctx, stem, g, b.u, b.gu, b.ref, &k->so.out, err);
+    dfl_field_bufs_free(&b);
     return st;
 }
 
@@ -155,7 +165,6 @@ static dfl_status do_curve(const keys *k, int c, const dfl_bspline *curve, const
     char stem[NAME_LEN + 32], path[4400], sfx[32];
     dfl_polyline pl;
     dfl_field f = {0};
-    double *u = NULL, *gu = NULL, *d = NULL;
     dfl_status st = dfl_polygonize_curve(curve, k->eps, 0, &pl, err);
     if (st != DFL_OK) return st;
     /* a closed curve repeats its first point: drop it, close the polyline */
@@ -180,57 +189,25 @@ static dfl_status do_curve(const keys *k, int c, const dfl_bspline *curve, const
 
     snprintf(stem, sizeof stem, "%s_polyline", name);
     st = dfl_bs04_vtp_polyline(dfl_study_path(ctx, stem, "vtp", path, sizeof path), 3, pl.n,
-                               pl.pts, NULL, k->compress, err);
-    if (!st) st = dfl_table_set_string(table, "vtp", dfl_path_base(path), err);
-    if (st) goto done;
-
-    if (k->volume) {
-        const size_t m = dfl_grid_size(&k->grid);
-        u = malloc(m * sizeof *u);
-        gu = malloc(3 * m * sizeof *gu);
-        d = malloc(m * sizeof *d);
-        if (!u || !gu || !d) {
-            st = dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu samples", m);
-            goto done;
-        }
-        st = dfl_field_sample(&f, &k->grid, ctx->threads, u, gu, err);
-        if (!st) st = dfl_field_sample(exact, &k->grid, ctx->threads, d, NULL, err);
-        if (!st) st = put_field(table, "", m, u, gu, d, k->band, err);
+                               pl.pts, NULL, k->so.compress, err);
+    if (!st) st = dfl_study_put_file(table, "vtp", ctx, stem, "vtp", true, err);
+    if (!st && k->volume) {
         snprintf(stem, sizeof stem, "%s_volume", name);
-        if (!st) st = dfl_field_out_write(ctx, stem, &k->grid, u, gu, d, &k->out, err);
-        if (!st && k->out.vti)
-            st = dfl_table_set_string(
-                table, "volume_vti",
-                dfl_path_base(dfl_study_path(ctx, stem, "vti", path, sizeof path)), err);
-        free(u), free(gu), free(d);
-        u = gu = d = NULL;
-        if (st) goto done;
+        st = sample_grid(k, &f, exact, &k->grid, "", stem, ctx, table, err);
+        if (!st && k->so.out.vti)
+            st = dfl_study_put_file(table, "volume_vti", ctx, stem, "vti", true, err);
     }
-    for (int s = 0; s < k->nslices && st == DFL_OK; s++) {
-        const dfl_grid *sl = &k->slices[s];
-        const size_t m = dfl_grid_size(sl);
-        u = malloc(m * sizeof *u);
-        gu = malloc(3 * m * sizeof *gu);
-        d = malloc(m * sizeof *d);
-        if (!u || !gu || !d) {
-            st = dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu samples", m);
-            break;
-        }
-        st = dfl_field_sample(&f, sl, ctx->threads, u, gu, err);
-        if (!st) st = dfl_field_sample(exact, sl, ctx->threads, d, NULL, err);
-        snprintf(sfx, sizeof sfx, "_s%d", s);
-        if (!st) st = put_field(table, sfx, m, u, gu, d, k->band, err);
-        snprintf(stem, sizeof stem, "%s_slice%d", name, s);
-        if (!st) st = dfl_field_out_write(ctx, stem, sl, u, gu, d, &k->out, err);
+    for (int s = 0; s < k->so.nslices && st == DFL_OK; s++) {
+        const dfl_grid *sl = &k->so.slices[s];
         char col[32], desc[64];
+        snprintf(sfx, sizeof sfx, "_s%d", s);
+        snprintf(stem, sizeof stem, "%s_slice%d", name, s);
+        st = sample_grid(k, &f, exact, sl, sfx, stem, ctx, table, err);
         snprintf(col, sizeof col, "slice%d", s);
         dfl_slice_label(sl, desc, sizeof desc);
         if (!st) st = dfl_table_set_string(table, col, desc, err);
-        free(u), free(gu), free(d);
-        u = gu = d = NULL;
     }
 done:
-    free(u), free(gu), free(d);
     dfl_field_destroy(&f);
     dfl_polyline_free(&pl);
     return st;

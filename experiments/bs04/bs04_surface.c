@@ -34,19 +34,18 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "cfg/cfg_err.h"
 #include "cfg/rfunc_cfg.h"
 #include "cfg/curve_cfg.h"
 #include "harness/experiment.h"
-#include "io/path.h"
 #include "field/exact.h"
+#include "field/meshdist.h"
 #include "field/metrics.h"
 #include "geom/polygonize.h"
 #include "rfunc/rfield.h"
 #include "rfunc/tri3d.h"
 #include "cfg/slice_cfg.h"
 #include "harness/field_out.h"
-
-#define MAX_SLICES 4
 
 typedef struct keys {
     const char *sec, *kind;
@@ -55,70 +54,47 @@ typedef struct keys {
     int p;
     dfl_rfunc_tri_opts o;
     long max_tris;
-    dfl_grid slices[MAX_SLICES];
-    int nslices;
-    bool compress;
-    dfl_field_write_opts out;
+    dfl_bs04_space_out so;
 } keys;
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 {
-    char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
     if ((st = dfl_cfg_string(cfg, "study", "surface", &k->sec, err))) return st;
     if (!dfl_cfg_has_section(cfg, k->sec))
-        return dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s]",
-                           dfl_cfg_where(cfg, "study", "surface", w, sizeof w), k->sec);
+        return dfl_cfg_reject(cfg, "study", "surface", err, "no section [%s]", k->sec);
     if ((st = dfl_cfg_string(cfg, k->sec, "kind", &k->kind, err))) return st;
     if (strcmp(k->kind, "bspline_surface") != 0 && strcmp(k->kind, "bezier_surface") != 0)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected bspline_surface or bezier_surface",
-                           dfl_cfg_where(cfg, k->sec, "kind", w, sizeof w));
+        return dfl_cfg_reject(cfg, k->sec, "kind", err,
+                              "expected bspline_surface or bezier_surface");
     if ((st = dfl_cfg_double(cfg, "study", "eps", 1e-9, 1e3, &k->eps, err))) return st;
     if ((st = dfl_rfunc_join_p_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
     if ((st = dfl_rfunc_tri_opts_from_cfg(cfg, "study", true, &k->o, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.05, 0.0, 1e300, &k->band, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "max_tris", 200000, 1, 10000000, &k->max_tris, err)))
         return st;
-    if ((st = dfl_slices_from_cfg(cfg, "study", k->slices, MAX_SLICES, &k->nslices, err)))
-        return st;
-    if ((st = dfl_cfg_bool_opt(cfg, "study", "compress", true, &k->compress, err))) return st;
-    return dfl_field_out_from_cfg(cfg, &k->out, err);
-}
-
-/* Exact distance to the mesh at the slice samples (parallel brute force). */
-static void mesh_distance(const dfl_trimesh *M, const dfl_grid *s, int threads, double *dm)
-{
-    const long m = (long)dfl_grid_size(s);
-#pragma omp parallel for schedule(dynamic, 64) num_threads(threads > 0 ? threads : 1)
-    for (long i = 0; i < m; i++) {
-        double x[3], best = INFINITY;
-        dfl_grid_node(s, (size_t)i, x);
-        for (size_t t = 0; t < M->ntris; t++) {
-            const size_t *v = M->tris + 3 * t;
-            best = fmin(best, dfl_point_triangle_dist(x, M->verts + 3 * v[0], M->verts + 3 * v[1],
-                                                      M->verts + 3 * v[2]));
-        }
-        dm[i] = best;
-    }
+    return dfl_bs04_space_out_from_cfg(cfg, true, &k->so, err);
 }
 
 static dfl_status do_slice(const keys *k, int s, const dfl_field *f, const dfl_field *exact,
                            const dfl_trimesh *M, const dfl_study_ctx *ctx, dfl_table *table,
                            dfl_err *err)
 {
-    const dfl_grid *sl = &k->slices[s];
+    const dfl_grid *sl = &k->so.slices[s];
     const size_t m = dfl_grid_size(sl);
-    double *u = malloc(m * sizeof *u), *gu = malloc(3 * m * sizeof *gu);
-    double *ds = malloc(m * sizeof *ds), *dm = malloc(m * sizeof *dm);
+    dfl_field_bufs b;
+    double *dm = malloc(m * sizeof *dm);
     unsigned char *mask = malloc(m);
     char sfx[48], col[64], stem[64];
     dfl_status st = DFL_OK;
-    if (!u || !gu || !ds || !dm || !mask) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-    if (!st) st = dfl_field_sample(f, sl, ctx->threads, u, gu, err);
-    if (!st) st = dfl_field_sample(exact, sl, ctx->threads, ds, NULL, err);
+    if (!dfl_field_bufs_alloc(&b, m, 3, true) || !dm || !mask)
+        st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    const double *u = b.u, *gu = b.gu, *ds = b.ref;
+    if (!st) st = dfl_field_sample(f, sl, ctx->threads, b.u, b.gu, err);
+    if (!st) st = dfl_field_sample(exact, sl, ctx->threads, b.ref, NULL, err);
     if (st) goto done;
-    mesh_distance(M, sl, ctx->threads, dm);
+    dfl_meshdist_sample(M, sl, ctx->threads, dm);
     dfl_metrics all, inb, mesh;
     st = dfl_metrics_compute(m, 3, u, gu, ds, 0.0, &all, err);
     if (!st) st = dfl_metrics_compute(m, 3, u, gu, ds, k->band, &inb, err);
@@ -132,12 +108,12 @@ static dfl_status do_slice(const keys *k, int s, const dfl_field *f, const dfl_f
         mask[i] = ds[i] <= k->band;
     }
     dfl_gradstat gs;
-    dfl_bs04_gradstat(m, 3, gu, mask, &gs);
+    dfl_metrics_gradstat(m, 3, gu, mask, &gs);
     snprintf(sfx, sizeof sfx, "_s%d", s);
     st = dfl_metrics_put(table, sfx, &all, err);
     snprintf(sfx, sizeof sfx, "_s%d_band", s);
     if (!st) st = dfl_metrics_put(table, sfx, &inb, err);
-    if (!st) st = dfl_bs04_put_gradstat(table, sfx, &gs, err);
+    if (!st) st = dfl_metrics_put_gradstat(table, sfx, &gs, err);
     snprintf(sfx, sizeof sfx, "_s%d_mesh", s);
     if (!st) st = dfl_metrics_put(table, sfx, &mesh, err);
     snprintf(col, sizeof col, "mesh_dev_max_s%d", s);
@@ -149,9 +125,10 @@ static dfl_status do_slice(const keys *k, int s, const dfl_field *f, const dfl_f
     dfl_slice_label(sl, desc, sizeof desc);
     if (!st) st = dfl_table_set_string(table, col, desc, err);
     snprintf(stem, sizeof stem, "surface_slice%d", s);
-    if (!st) st = dfl_field_out_write(ctx, stem, sl, u, gu, ds, &k->out, err);
+    if (!st) st = dfl_field_out_write(ctx, stem, sl, u, gu, ds, &k->so.out, err);
 done:
-    free(u), free(gu), free(ds), free(dm), free(mask);
+    dfl_field_bufs_free(&b);
+    free(dm), free(mask);
     return st;
 }
 
@@ -164,7 +141,7 @@ static dfl_status surf_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     dfl_field exact = {0}, f = {0};
     dfl_trimesh M;
     int haveS = 0, haveM = 0;
-    char path[4400], w[600];
+    char path[4400];
     memset(&M, 0, sizeof M);
     dfl_status st = read_keys(cfg, &k, err);
     if (!st) st = dfl_surface_from_cfg(cfg, k.sec, k.kind, &S, err);
@@ -175,7 +152,7 @@ static dfl_status surf_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     if (st) goto done;
 
     if ((st = dfl_polygonize_surface(&S, k.eps, (size_t)k.max_tris, &M, err))) {
-        dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "eps", w, sizeof w));
+        dfl_cfg_err_at(cfg, "study", "eps", st, err);
         goto done;
     }
     haveM = 1;
@@ -203,9 +180,9 @@ static dfl_status surf_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
         st = dfl_table_set_string(table, "tri_trim",
                                   dfl_rfunc_tri_trim_name(k.o.trim), err);
     if (!st) st = dfl_bs04_vtp_trimesh(dfl_study_path(ctx, "mesh", "vtp", path, sizeof path),
-                                       M.nverts, M.verts, M.ntris, M.tris, k.compress, err);
-    if (!st) st = dfl_table_set_string(table, "mesh_vtp", dfl_path_base(path), err);
-    for (int s = 0; s < k.nslices && !st; s++)
+                                       M.nverts, M.verts, M.ntris, M.tris, k.so.compress, err);
+    if (!st) st = dfl_study_put_file(table, "mesh_vtp", ctx, "mesh", "vtp", true, err);
+    for (int s = 0; s < k.so.nslices && !st; s++)
         st = do_slice(&k, s, &f, &exact, &M, ctx, table, err);
 done:
     dfl_field_destroy(&f);

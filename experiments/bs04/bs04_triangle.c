@@ -55,18 +55,17 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "cfg/cfg_err.h"
 #include "core/vec.h"
 #include "cfg/list_cfg.h"
 #include "cfg/rfunc_cfg.h"
 #include "harness/experiment.h"
-#include "io/path.h"
 #include "field/field.h"
 #include "rfunc/rfield.h"
 #include "rfunc/tri3d.h"
 #include "cfg/slice_cfg.h"
 #include "harness/field_out.h"
 
-#define MAX_SLICES 4
 #define MAX_RADII 8
 
 typedef struct keys {
@@ -76,15 +75,11 @@ typedef struct keys {
     double radii[MAX_RADII];
     int nradii;
     long samples, theory_samples;
-    dfl_grid slices[MAX_SLICES];
-    int nslices;
-    bool compress;
-    dfl_field_write_opts out;
+    dfl_bs04_space_out so;
 } keys;
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 {
-    char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
     if ((st = dfl_points_n_from_cfg(cfg, "study", "triangle", 3, 3, k->v, "exactly 3 vertices",
@@ -102,8 +97,8 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
         const int vi = (int)list[i];
         if (nl > 3 || (double)vi != list[i] || vi < 0 || vi > 2) {
             free(list);
-            return dfl_err_set(err, DFL_E_INPUT, "%s: expected up to 3 vertex indices 0, 1, 2",
-                               dfl_cfg_where(cfg, "study", "vertices", w, sizeof w));
+            return dfl_cfg_reject(cfg, "study", "vertices", err,
+                                  "expected up to 3 vertex indices 0, 1, 2");
         }
         k->vertices[k->nvert++] = vi;
     }
@@ -111,7 +106,7 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
     if ((st = dfl_rfunc_tri_opts_from_cfg(cfg, "study", true, &k->o, err))) return st;
     dfl_rfunc_tri tri;
     if ((st = dfl_rfunc_tri_init(k->v, k->v + 3, k->v + 6, &k->o, &tri, err))) {
-        dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, "study", "triangle", w, sizeof w));
+        dfl_cfg_err_at(cfg, "study", "triangle", st, err);
         return st;
     }
     nl = 0;
@@ -124,8 +119,8 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
     for (size_t i = 0; i < nl; i++) {
         if (nl > MAX_RADII || !(list[i] > 0.0)) {
             free(list);
-            return dfl_err_set(err, DFL_E_INPUT, "%s: expected up to %d radii > 0",
-                               dfl_cfg_where(cfg, "study", "radii", w, sizeof w), MAX_RADII);
+            return dfl_cfg_reject(cfg, "study", "radii", err, "expected up to %d radii > 0",
+                                  MAX_RADII);
         }
         k->radii[k->nradii++] = list[i];
     }
@@ -135,10 +130,7 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
     if ((st = dfl_cfg_int_opt(cfg, "study", "theory_samples", 100000, 100, 100000000,
                               &k->theory_samples, err)))
         return st;
-    if ((st = dfl_slices_from_cfg(cfg, "study", k->slices, MAX_SLICES, &k->nslices, err)))
-        return st;
-    if ((st = dfl_cfg_bool_opt(cfg, "study", "compress", true, &k->compress, err))) return st;
-    return dfl_field_out_from_cfg(cfg, &k->out, err);
+    return dfl_bs04_space_out_from_cfg(cfg, true, &k->so, err);
 }
 
 static void sub3(const double *a, const double *b, double *c)
@@ -147,7 +139,7 @@ static void sub3(const double *a, const double *b, double *c)
 }
 static void unit3(double *a)
 {
-    const double n = sqrt(dfl_vec3_dot(a, a));
+    const double n = dfl_vec3_norm(a);
     for (int j = 0; j < 3; j++) a[j] /= n;
 }
 
@@ -176,9 +168,7 @@ static frame vertex_frame(const double *v, int vi)
     const double c = dfl_vec3_dot(ac, f.e1);
     for (int j = 0; j < 3; j++) f.e2[j] = ac[j] - c * f.e1[j];
     unit3(f.e2);
-    f.n[0] = f.e1[1] * f.e2[2] - f.e1[2] * f.e2[1];
-    f.n[1] = f.e1[2] * f.e2[0] - f.e1[0] * f.e2[2];
-    f.n[2] = f.e1[0] * f.e2[1] - f.e1[1] * f.e2[0];
+    dfl_vec3_cross(f.e1, f.e2, f.n);
     f.alpha = atan2(dfl_vec3_dot(ac, f.e2), c);
     return f;
 }
@@ -270,8 +260,8 @@ static dfl_status do_sphere(const keys *k, const dfl_rfunc_tri *tri, int vi, int
     snprintf(stem, sizeof stem, "sphere_v%d_r%d", vi, ri);
     if (!st)
         st = dfl_bs04_vtp_points(dfl_study_path(ctx, stem, "vtp", path, sizeof path), N, sph,
-                                 "grad_norm", gn, k->compress, err);
-    if (!st) st = dfl_table_set_string(table, "sphere_vtp", dfl_path_base(path), err);
+                                 "grad_norm", gn, k->so.compress, err);
+    if (!st) st = dfl_study_put_file(table, "sphere_vtp", ctx, stem, "vtp", true, err);
 done:
     free(sph);
     free(gn);
@@ -301,7 +291,7 @@ static dfl_status tri_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
         goto done;
     }
     if ((st = dfl_rfield_finish(&rf, &fld, err))) goto done;
-    st = dfl_bs04_write_slices(ctx, &fld, k.slices, k.nslices, "triangle_slice", &k.out, err);
+    st = dfl_bs04_write_slices(ctx, &fld, &k.so, "triangle_slice", err);
 done:
     dfl_field_destroy(&fld);
     return st;

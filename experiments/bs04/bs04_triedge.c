@@ -40,6 +40,7 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
+#include "cfg/cfg_err.h"
 #include "core/vec.h"
 #include "cfg/rfunc_cfg.h"
 #include "harness/experiment.h"
@@ -48,37 +49,29 @@
 #include "cfg/slice_cfg.h"
 #include "harness/field_out.h"
 
-#define MAX_SLICES 4
-
 typedef struct keys {
     double theta, L, zc, z0, radius;
     dfl_rfunc_tri_opts o;
     dfl_rfunc_join join;
     int p;
     long samples;
-    dfl_grid slices[MAX_SLICES];
-    int nslices;
-    bool compress;
-    dfl_field_write_opts out;
+    dfl_bs04_space_out so;
 } keys;
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 {
     const double dapex[2] = {1.0, 0.5};
     double apex[2], deg;
-    char w[600];
     dfl_status st;
     memset(k, 0, sizeof *k);
     if ((st = dfl_cfg_double(cfg, "study", "dihedral", 1e-6, 360 - 1e-6, &deg, err))) return st;
     if (fabs(deg - 180.0) < 1e-6)
-        return dfl_err_set(err, DFL_E_INPUT,
-                           "%s: 180 degrees makes the triangles coplanar (no joining edge)",
-                           dfl_cfg_where(cfg, "study", "dihedral", w, sizeof w));
+        return dfl_cfg_reject(cfg, "study", "dihedral", err,
+                              "180 degrees makes the triangles coplanar (no joining edge)");
     k->theta = deg * DFL_PI / 180.0;
     if ((st = dfl_cfg_vec_opt(cfg, "study", "apex", 2, dapex, apex, err))) return st;
     if (!(apex[0] > 0.0) || !(apex[1] > 0.0 && apex[1] < 1.0))
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected L > 0 and 0 < zc < 1",
-                           dfl_cfg_where(cfg, "study", "apex", w, sizeof w));
+        return dfl_cfg_reject(cfg, "study", "apex", err, "expected L > 0 and 0 < zc < 1");
     k->L = apex[0];
     k->zc = apex[1];
     if ((st = dfl_cfg_double_opt(cfg, "study", "section", 0.35, 1e-9, 1 - 1e-9, &k->z0, err)))
@@ -89,10 +82,7 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
         return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "samples", 3600, 8, 10000000, &k->samples, err)))
         return st;
-    if ((st = dfl_slices_from_cfg(cfg, "study", k->slices, MAX_SLICES, &k->nslices, err)))
-        return st;
-    if ((st = dfl_cfg_bool_opt(cfg, "study", "compress", true, &k->compress, err))) return st;
-    return dfl_field_out_from_cfg(cfg, &k->out, err);
+    return dfl_bs04_space_out_from_cfg(cfg, true, &k->so, err);
 }
 
 /* Distance from the in-plane point X to the ray from 0 in direction d, and
@@ -203,9 +193,8 @@ static dfl_status edge_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
                               R2[0], R2[1], R2[2]};
     const size_t tris[6] = {0, 1, 2, 0, 1, 3};
     st = dfl_bs04_vtp_trimesh(dfl_study_path(ctx, "triangles", "vtp", path, sizeof path), 4, verts,
-                              2, tris, k.compress, err);
-    if (st == DFL_OK)
-        st = dfl_bs04_write_slices(ctx, &f, k.slices, k.nslices, "edge_slice", &k.out, err);
+                              2, tris, k.so.compress, err);
+    if (st == DFL_OK) st = dfl_bs04_write_slices(ctx, &f, &k.so, "edge_slice", err);
 done:
     dfl_field_destroy(&f);
     return st;

@@ -71,7 +71,6 @@ dfl_status dfl_vjoin_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_vjoin *ou
 {
     double alpha, length;
     int parts;
-    char w[600];
     dfl_status st = dfl_cfg_double(cfg, sec, "alpha", 0.0, 360.0, &alpha, err);
     if (st == DFL_OK) st = dfl_cfg_double_opt(cfg, sec, "length", 1.0, 0.0, 1e300, &length, err);
     if (st == DFL_OK)
@@ -83,7 +82,7 @@ dfl_status dfl_vjoin_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_vjoin *ou
         const char *key = !(alpha > 0.0 && alpha < 360.0) ? "alpha"
                           : !(length > 0.0)               ? "length"
                                                           : "parts";
-        dfl_err_prefix(err, "%s", dfl_cfg_where(cfg, sec, key, w, sizeof w));
+        dfl_cfg_err_at(cfg, sec, key, st, err);
     }
     return st;
 }

@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cfg/cfg_err.h"
+
 dfl_status dfl_curve_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_bspline *out,
                               dfl_err *err)
 {
@@ -16,17 +18,15 @@ dfl_status dfl_curve_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_bspline *
     const char *raw;
     bool closed;
     dfl_status st;
-    char w[600];
     if ((st = dfl_cfg_int_opt(cfg, sec, "order", 4, 2, DFL_BSPLINE_MAX_ORDER, &order, err)))
         return st;
     if ((st = dfl_cfg_bool_opt(cfg, sec, "closed", false, &closed, err))) return st;
     if ((st = dfl_cfg_string(cfg, sec, "control", &raw, err))) return st;
     int dim = dfl_cfg_point_dim(raw);
     if (dim != 2 && dim != 3)
-        return dfl_err_set(err, DFL_E_INPUT,
-                           "%s: expected points of 2 (planar) or 3 (space curve) numbers, the "
-                           "first point has %d",
-                           dfl_cfg_where(cfg, sec, "control", w, sizeof w), dim);
+        return dfl_cfg_reject(cfg, sec, "control", err,
+                              "expected points of 2 (planar) or 3 (space curve) numbers, the first"
+                              " point has %d", dim);
     double *cp = NULL, *knots = NULL;
     size_t ncp = 0, nk = 0;
     if ((st = dfl_cfg_points(cfg, sec, "control", dim, 2, &cp, &ncp, err))) return st;
@@ -72,10 +72,9 @@ dfl_status dfl_curve_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_bspline *
             double len = (c.knots[j + 1] - c.knots[j]);
             if (!(sqrt(sp) * len > 1e-12 * ext)) {
                 dfl_bspline_free(&c);
-                return dfl_err_set(err, DFL_E_INPUT,
-                                   "%s: degenerate control polygon: the curve has zero speed at "
-                                   "t = %g (coincident control points?)",
-                                   dfl_cfg_where(cfg, sec, "control", w, sizeof w), t);
+                return dfl_cfg_reject(cfg, sec, "control", err,
+                                      "degenerate control polygon: the curve has zero speed at"
+                                      " t = %g (coincident control points?)", t);
             }
         }
     }
@@ -87,12 +86,10 @@ dfl_status dfl_curve_section_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_b
                                       dfl_err *err)
 {
     const char *kind;
-    char w[600];
     dfl_status st = dfl_cfg_string(cfg, sec, "kind", &kind, err);
     if (st != DFL_OK) return st;
     if (strcmp(kind, "bspline_curve") != 0)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected bspline_curve, got '%s'",
-                           dfl_cfg_where(cfg, sec, "kind", w, sizeof w), kind);
+        return dfl_cfg_reject(cfg, sec, "kind", err, "expected bspline_curve, got '%s'", kind);
     return dfl_curve_from_cfg(cfg, sec, out, err);
 }
 
@@ -130,7 +127,6 @@ dfl_status dfl_surface_from_cfg(const dfl_cfg *cfg, const char *sec, const char 
     const int bezier = strcmp(kind_name, "bezier_surface") == 0;
     long ku, kv, npatch = 1, nu = 0, nv = 0;
     dfl_status st;
-    char w[600];
     if ((st = dfl_cfg_int_opt(cfg, sec, "order_u", 4, 2, DFL_BSPLINE_MAX_ORDER, &ku, err)))
         return st;
     if ((st = dfl_cfg_int_opt(cfg, sec, "order_v", 4, 2, DFL_BSPLINE_MAX_ORDER, &kv, err)))
@@ -150,14 +146,11 @@ dfl_status dfl_surface_from_cfg(const dfl_cfg *cfg, const char *sec, const char 
     if (ncp != want) {
         free(cp);
         if (bezier)
-            return dfl_err_set(err, DFL_E_INPUT,
-                               "%s: %zu control points given, expected %zu (patches %ld x "
-                               "order_u %ld x order_v %ld)",
-                               dfl_cfg_where(cfg, sec, "control", w, sizeof w), ncp, want, npatch,
-                               ku, kv);
-        return dfl_err_set(err, DFL_E_INPUT,
-                           "%s: %zu control points given, expected nu x nv = %zu",
-                           dfl_cfg_where(cfg, sec, "control", w, sizeof w), ncp, want);
+            return dfl_cfg_reject(cfg, sec, "control", err,
+                                  "%zu control points given, expected %zu (patches %ld x order_u"
+                                  " %ld x order_v %ld)", ncp, want, npatch, ku, kv);
+        return dfl_cfg_reject(cfg, sec, "control", err,
+                              "%zu control points given, expected nu x nv = %zu", ncp, want);
     }
     if (!bezier) {
         if (dfl_cfg_has(cfg, sec, "knots_u") &&
@@ -213,16 +206,13 @@ dfl_status dfl_surface_from_cfg(const dfl_cfg *cfg, const char *sec, const char 
             if (iso < np || (int)j < want_c) {
                 dfl_surface_set_free(&set);
                 if (iso < np)
-                    st = dfl_err_set(err, DFL_E_INPUT,
-                                     "%s: continuity %s required, but patch %zu shares no edge "
-                                     "with another patch",
-                                     dfl_cfg_where(cfg, sec, "continuity", w, sizeof w),
-                                     conts[want_c], iso);
+                    st = dfl_cfg_reject(cfg, sec, "continuity", err,
+                                        "continuity %s required, but patch %zu shares no edge with"
+                                        " another patch", conts[want_c], iso);
                 else
-                    st = dfl_err_set(err, DFL_E_INPUT,
-                                     "%s: continuity %s required, but a shared edge is only %s",
-                                     dfl_cfg_where(cfg, sec, "continuity", w, sizeof w),
-                                     conts[want_c], conts[j]);
+                    st = dfl_cfg_reject(cfg, sec, "continuity", err,
+                                        "continuity %s required, but a shared edge is only %s",
+                                        conts[want_c], conts[j]);
                 goto fail;
             }
         }
@@ -244,7 +234,6 @@ dfl_status dfl_param_shape_from_cfg(const dfl_cfg *cfg, const char *sec, const c
 {
     dfl_foot_opts o;
     dfl_status st;
-    char w[600];
     if (strcmp(kind_name, "bspline_curve") == 0) {
         static const char *const modes[] = {"auto", "signed", "unsigned"};
         int mode;
@@ -256,12 +245,10 @@ dfl_status dfl_param_shape_from_cfg(const dfl_cfg *cfg, const char *sec, const c
         if (mode == 1 && !closed2d) {
             int dim = c.dim;
             dfl_bspline_free(&c);
-            return dfl_err_set(err, DFL_E_INPUT,
-                               "%s: signed distance needs a closed planar curve, but this curve "
-                               "is %s (set closed = true, or make the first and last control "
-                               "points equal)",
-                               dfl_cfg_where(cfg, sec, "distance", w, sizeof w),
-                               dim != 2 ? "a space curve" : "open");
+            return dfl_cfg_reject(cfg, sec, "distance", err,
+                                  "signed distance needs a closed planar curve, but this curve is"
+                                  " %s (set closed = true, or make the first and last control"
+                                  " points equal)", dim != 2 ? "a space curve" : "open");
         }
         int sgn = mode == 1 || (mode == 0 && closed2d);
         dfl_shape sh;
@@ -279,6 +266,5 @@ dfl_status dfl_param_shape_from_cfg(const dfl_cfg *cfg, const char *sec, const c
         *out = sh;
         return DFL_OK;
     }
-    return dfl_err_set(err, DFL_E_INPUT, "%s: unknown parametric kind '%s'",
-                       dfl_cfg_where(cfg, sec, "kind", w, sizeof w), kind_name);
+    return dfl_cfg_reject(cfg, sec, "kind", err, "unknown parametric kind '%s'", kind_name);
 }

@@ -2,6 +2,8 @@
 
 #include <string.h>
 
+#include "cfg/cfg_err.h"
+
 dfl_status dfl_grid_from_cfg(const dfl_cfg *cfg, const char *sec, int dim, dfl_grid *out,
                              dfl_err *err)
 {
@@ -18,9 +20,9 @@ dfl_status dfl_grid_from_cfg(const dfl_cfg *cfg, const char *sec, int dim, dfl_g
     for (int d = 0; d < 3; d++) out->n[d] = d < dim ? (int)n : 1;
     for (int d = 0; d < dim; d++)
         if (!(out->lo[d] < out->hi[d])) {
-            char w[600];
-            return dfl_err_set(err, DFL_E_INPUT, "%s: expected hi > lo on every axis (axis %d: %g <= %g)",
-                               dfl_cfg_where(cfg, sec, "hi", w, sizeof w), d, out->hi[d], out->lo[d]);
+            return dfl_cfg_reject(cfg, sec, "hi", err,
+                                  "expected hi > lo on every axis (axis %d: %g <= %g)", d,
+                                  out->hi[d], out->lo[d]);
         }
     return dfl_grid_check(out, err);
 }

@@ -3,12 +3,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cfg/cfg_err.h"
+
 dfl_status dfl_section_names_from_cfg(const dfl_cfg *cfg, const char *sec, const char *key,
                                       int max, char (*names)[DFL_SECTION_NAME_LEN], int *n,
                                       const char *what, dfl_err *err)
 {
     const char *list;
-    char w[600];
     dfl_status st = dfl_cfg_string(cfg, sec, key, &list, err);
     if (st != DFL_OK) return st;
     *n = 0;
@@ -17,18 +18,16 @@ dfl_status dfl_section_names_from_cfg(const dfl_cfg *cfg, const char *sec, const
         if (!*s) break;
         const size_t len = strcspn(s, " \t");
         if (*n == max || len >= DFL_SECTION_NAME_LEN)
-            return dfl_err_set(err, DFL_E_INPUT,
-                               "%s: expected at most %d section names of < %d characters",
-                               dfl_cfg_where(cfg, sec, key, w, sizeof w), max,
-                               DFL_SECTION_NAME_LEN);
+            return dfl_cfg_reject(cfg, sec, key, err,
+                                  "expected at most %d section names of < %d characters", max,
+                                  DFL_SECTION_NAME_LEN);
         memcpy(names[*n], s, len);
         names[*n][len] = '\0';
         (*n)++;
         s += len;
     }
     if (*n == 0)
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected at least one %s",
-                           dfl_cfg_where(cfg, sec, key, w, sizeof w), what);
+        return dfl_cfg_reject(cfg, sec, key, err, "expected at least one %s", what);
     return DFL_OK;
 }
 
@@ -37,13 +36,11 @@ dfl_status dfl_points_n_from_cfg(const dfl_cfg *cfg, const char *sec, const char
 {
     double *pts = NULL;
     size_t got = 0;
-    char w[600];
     dfl_status st = dfl_cfg_points(cfg, sec, key, dim, n, &pts, &got, err);
     if (st != DFL_OK) return st;
     if (got != n) {
         free(pts);
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected %s, got %zu",
-                           dfl_cfg_where(cfg, sec, key, w, sizeof w), what, got);
+        return dfl_cfg_reject(cfg, sec, key, err, "expected %s, got %zu", what, got);
     }
     memcpy(out, pts, n * (size_t)dim * sizeof *out);
     free(pts);

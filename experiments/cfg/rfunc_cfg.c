@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cfg/cfg_err.h"
 #include "cfg/curve_cfg.h"
 #include "rfunc/rfield.h"
 
@@ -17,24 +18,20 @@ static dfl_status curve_polyline(const dfl_cfg *cfg, const char *sec, dfl_rfunc_
                                  dfl_err *err)
 {
     const char *kind;
-    char w[600];
     dfl_status st;
     if ((st = dfl_cfg_string(cfg, sec, "curve", &s->curve, err))) return st;
     if ((st = dfl_cfg_double(cfg, sec, "eps", 1e-300, 1e300, &s->eps, err))) return st;
     if (dfl_cfg_has(cfg, sec, "closed"))
-        return dfl_err_set(err, DFL_E_INPUT,
-                           "%s: closed applies to vertices only (a curve's closedness comes"
-                           " from the curve)",
-                           dfl_cfg_where(cfg, sec, "closed", w, sizeof w));
+        return dfl_cfg_reject(cfg, sec, "closed", err,
+                              "closed applies to vertices only (a curve's closedness comes from"
+                              " the curve)");
     if (!dfl_cfg_has_section(cfg, s->curve))
-        return dfl_err_set(err, DFL_E_INPUT, "%s: no section [%s]",
-                           dfl_cfg_where(cfg, sec, "curve", w, sizeof w), s->curve);
+        return dfl_cfg_reject(cfg, sec, "curve", err, "no section [%s]", s->curve);
     if ((st = dfl_cfg_string(cfg, s->curve, "kind", &kind, err))) return st;
     if (strcmp(kind, "bspline_curve") != 0)
-        return dfl_err_set(err, DFL_E_INPUT,
-                           "%s: expected a curve (kind = bspline_curve), section [%s] has"
-                           " kind = %s",
-                           dfl_cfg_where(cfg, sec, "curve", w, sizeof w), s->curve, kind);
+        return dfl_cfg_reject(cfg, sec, "curve", err,
+                              "expected a curve (kind = bspline_curve), section [%s] has kind = %s",
+                              s->curve, kind);
     if ((st = dfl_curve_from_cfg(cfg, s->curve, &s->bspline, err))) return st;
     if ((st = dfl_polygonize_curve(&s->bspline, s->eps, 0, &s->pl, err)))
         return dfl_cfg_err_at(cfg, sec, "eps", st, err);
@@ -57,15 +54,13 @@ static dfl_status vertex_polyline(const dfl_cfg *cfg, const char *sec, dfl_rfunc
                                   dfl_err *err)
 {
     const char *raw;
-    char w[600];
     dfl_status st;
     if ((st = dfl_cfg_bool_opt(cfg, sec, "closed", false, &s->closed, err))) return st;
     if ((st = dfl_cfg_string(cfg, sec, "vertices", &raw, err))) return st;
     s->dim = dfl_cfg_point_dim(raw);
     if (s->dim != 2 && s->dim != 3)
-        return dfl_err_set(err, DFL_E_INPUT,
-                           "%s: expected vertices of 2 or 3 numbers, the first has %d",
-                           dfl_cfg_where(cfg, sec, "vertices", w, sizeof w), s->dim);
+        return dfl_cfg_reject(cfg, sec, "vertices", err,
+                              "expected vertices of 2 or 3 numbers, the first has %d", s->dim);
     return dfl_cfg_points(cfg, sec, "vertices", s->dim, s->closed ? 3 : 2, &s->v, &s->n, err);
 }
 

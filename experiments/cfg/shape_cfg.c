@@ -1,5 +1,6 @@
 #include "cfg/shape_cfg.h"
 
+#include "cfg/cfg_err.h"
 #include "cfg/curve_cfg.h"
 #include "geom/ellipse.h"
 #include "geom/implicit.h"
@@ -9,27 +10,16 @@
 #include <string.h>
 
 /* The getters name file:line and key for syntax and range errors; values
- * that parse but describe degenerate geometry (radius 0, zero axis) get a
- * message built with dfl_cfg_where so they name the key just the same. */
-
-static dfl_status bad_value(const dfl_cfg *cfg, const char *sec, const char *key, const char *why,
-                            dfl_err *err)
-{
-    char w[512];
-    dfl_cfg_where(cfg, sec, key, w, sizeof w);
-    return dfl_err_set(err, DFL_E_INPUT, "%s: %s", w, why);
-}
+ * that parse but describe degenerate geometry (radius 0, zero axis) are
+ * rejected with dfl_cfg_reject, so they name the key just the same. */
 
 static dfl_status get_pos(const dfl_cfg *cfg, const char *sec, const char *key, double *out,
                           dfl_err *err)
 {
     dfl_status st = dfl_cfg_double(cfg, sec, key, -HUGE_VAL, HUGE_VAL, out, err);
     if (st != DFL_OK) return st;
-    if (!(*out > 0.0)) {
-        char why[96];
-        snprintf(why, sizeof why, "expected a number > 0, got %g", *out);
-        return bad_value(cfg, sec, key, why, err);
-    }
+    if (!(*out > 0.0))
+        return dfl_cfg_reject(cfg, sec, key, err, "expected a number > 0, got %g", *out);
     return DFL_OK;
 }
 
@@ -40,23 +30,15 @@ static dfl_status get_nonzero_vec(const dfl_cfg *cfg, const char *sec, const cha
     if (st != DFL_OK) return st;
     double n2 = 0.0;
     for (int j = 0; j < dim; j++) n2 += out[j] * out[j];
-    if (!(n2 > 0.0)) return bad_value(cfg, sec, key, "expected a non-zero vector", err);
+    if (!(n2 > 0.0)) return dfl_cfg_reject(cfg, sec, key, err, "expected a non-zero vector");
     return DFL_OK;
 }
 
-/* Turns a constructor's message into one that names the section. */
-static dfl_status ctor_fail(const dfl_cfg *cfg, const char *sec, dfl_status st, dfl_err *err)
-{
-    char w[512];
-    dfl_cfg_where(cfg, sec, "kind", w, sizeof w);
-    dfl_err_prefix(err, "%s", w);
-    return st;
-}
-
-/* A constructor's status, its message naming the section on failure. */
+/* A constructor's status, its message naming the section (its kind key)
+ * on failure. */
 static dfl_status ctor_result(const dfl_cfg *cfg, const char *sec, dfl_status st, dfl_err *err)
 {
-    return st == DFL_OK ? DFL_OK : ctor_fail(cfg, sec, st, err);
+    return st == DFL_OK ? DFL_OK : dfl_cfg_err_at(cfg, sec, "kind", st, err);
 }
 
 static dfl_status get_dim(const dfl_cfg *cfg, const char *sec, long def, int *dim, dfl_err *err)
@@ -100,9 +82,9 @@ static dfl_status csg_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *err
     if ((st = dfl_cfg_string(cfg, sec, "a", &na, err)) != DFL_OK) return st;
     if ((st = dfl_cfg_string(cfg, sec, "b", &nb, err)) != DFL_OK) return st;
     if (rq->depth >= MAX_CSG_DEPTH)
-        return bad_value(cfg, sec, "a", "csg nesting too deep (a cycle of sections?)", err);
-    if (!dfl_cfg_has_section(cfg, na)) return bad_value(cfg, sec, "a", "no such section", err);
-    if (!dfl_cfg_has_section(cfg, nb)) return bad_value(cfg, sec, "b", "no such section", err);
+        return dfl_cfg_reject(cfg, sec, "a", err, "csg nesting too deep (a cycle of sections?)");
+    if (!dfl_cfg_has_section(cfg, na)) return dfl_cfg_reject(cfg, sec, "a", err, "no such section");
+    if (!dfl_cfg_has_section(cfg, nb)) return dfl_cfg_reject(cfg, sec, "b", err, "no such section");
     dfl_shape a = {0}, b = {0};
     if ((st = from_cfg(cfg, na, rq->depth + 1, &a, err)) != DFL_OK) return st;
     if ((st = from_cfg(cfg, nb, rq->depth + 1, &b, err)) != DFL_OK) {
@@ -122,7 +104,7 @@ static dfl_status torus_keys(const dfl_cfg *cfg, const char *sec, double c[3], d
     if ((st = get_nonzero_vec(cfg, sec, "axis", 3, ax, err)) != DFL_OK) return st;
     if ((st = get_pos(cfg, sec, "major", R, err)) != DFL_OK) return st;
     if ((st = get_pos(cfg, sec, "minor", r, err)) != DFL_OK) return st;
-    if (!(*r < *R)) return bad_value(cfg, sec, "minor", "expected minor < major", err);
+    if (!(*r < *R)) return dfl_cfg_reject(cfg, sec, "minor", err, "expected minor < major");
     return DFL_OK;
 }
 
@@ -164,7 +146,7 @@ static dfl_status implicit_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err
         if ((st = dfl_cfg_vec_opt(cfg, sec, "center", 3, zero, c, err)) != DFL_OK) return st;
         if ((st = dfl_cfg_double_opt(cfg, sec, "a", 0.0, -HUGE_VAL, HUGE_VAL, &a, err)) != DFL_OK)
             return st;
-        if (!(a > -1.0 / 3.0)) return bad_value(cfg, sec, "a", "expected a > -1/3", err);
+        if (!(a > -1.0 / 3.0)) return dfl_cfg_reject(cfg, sec, "a", err, "expected a > -1/3");
         if ((st = dfl_cfg_double_opt(cfg, sec, "b", -5.0, -HUGE_VAL, HUGE_VAL, &b, err)) != DFL_OK)
             return st;
         if ((st = dfl_cfg_double_opt(cfg, sec, "c", 11.8, -HUGE_VAL, HUGE_VAL, &cc, err)) !=
@@ -178,7 +160,7 @@ static dfl_status implicit_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err
             DFL_OK)
             return st;
         if (!(eps > 0.0 && eps < 0.25))
-            return bad_value(cfg, sec, "eps", "expected 0 < eps < 0.25", err);
+            return dfl_cfg_reject(cfg, sec, "eps", err, "expected 0 < eps < 0.25");
         st = dfl_implicit_genus2(c, eps, &opt, &imp, err);
         break;
     }
@@ -245,9 +227,9 @@ static dfl_status cone_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *er
     if ((st = dfl_cfg_vec(cfg, sec, "b", 3, b, err)) != DFL_OK) return st;
     if ((st = dfl_cfg_double(cfg, sec, "ra", 0.0, HUGE_VAL, &ra, err)) != DFL_OK) return st;
     if ((st = dfl_cfg_double(cfg, sec, "rb", 0.0, HUGE_VAL, &rb, err)) != DFL_OK) return st;
-    if (!(ra + rb > 0.0)) return bad_value(cfg, sec, "rb", "ra and rb are both 0", err);
+    if (!(ra + rb > 0.0)) return dfl_cfg_reject(cfg, sec, "rb", err, "ra and rb are both 0");
     if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
-        return bad_value(cfg, sec, "b", "a and b coincide", err);
+        return dfl_cfg_reject(cfg, sec, "b", err, "a and b coincide");
     return ctor_result(cfg, sec, dfl_shape_cone(a, b, ra, rb, out, err), err);
 }
 
@@ -262,7 +244,7 @@ static dfl_status box_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *err
     if ((st = dfl_cfg_vec(cfg, sec, "center", dim, c, err)) != DFL_OK) return st;
     if ((st = dfl_cfg_vec(cfg, sec, "half", dim, h, err)) != DFL_OK) return st;
     for (int j = 0; j < dim; j++)
-        if (!(h[j] > 0.0)) return bad_value(cfg, sec, "half", "expected all > 0", err);
+        if (!(h[j] > 0.0)) return dfl_cfg_reject(cfg, sec, "half", err, "expected all > 0");
     return ctor_result(cfg, sec, dfl_shape_box(dim, c, h, out, err), err);
 }
 

@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cfg/cfg_err.h"
+
 #define MAX_N 2048
 
 typedef struct slice_entry {
@@ -68,8 +70,7 @@ dfl_status dfl_slices_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_grid *ou
     if ((st = dfl_cfg_vec_opt(cfg, sec, "slice_lo", 2, dlo, lo, err))) return st;
     if ((st = dfl_cfg_vec_opt(cfg, sec, "slice_hi", 2, dhi, hi, err))) return st;
     if (!(lo[0] < hi[0] && lo[1] < hi[1]))
-        return dfl_err_set(err, DFL_E_INPUT, "%s: expected slice_hi > slice_lo per axis",
-                           dfl_cfg_where(cfg, sec, "slice_hi", w, sizeof w));
+        return dfl_cfg_reject(cfg, sec, "slice_hi", err, "expected slice_hi > slice_lo per axis");
     dfl_cfg_where(cfg, sec, "slices", w, sizeof w);
     const int nn[2] = {(int)n, (int)n};
     int c = 0;

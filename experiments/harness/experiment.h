@@ -12,6 +12,7 @@
 #ifndef DFL_EXPERIMENTS_EXPERIMENT_H
 #define DFL_EXPERIMENTS_EXPERIMENT_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "core/status.h"
@@ -47,6 +48,13 @@ const char *dfl_study_path(const dfl_study_ctx *ctx, const char *stem, const cha
  * once per run (e.g. a reference image shared by all sweep points). */
 const char *dfl_study_path_at(const dfl_study_ctx *ctx, size_t point, const char *stem,
                               const char *ext, char *buf, size_t size);
+/* Sets column col of t's current row to the name of this point's file
+ * <stem><tag>.<ext> as dfl_study_path gives it, without the directory, or
+ * to "" when written is false (the point does not write that file): how a
+ * table names its files.  Fails as the table setters do (io/table.h). */
+dfl_status dfl_study_put_file(dfl_table *t, const char *col, const dfl_study_ctx *ctx,
+                              const char *stem, const char *ext, bool written, dfl_err *err);
+
 /* The file-name tag of sweep point `point` of `npoints`: "" when the run
  * has one point, else "_ptNNN".  The runner and dfl_study_path_at use it. */
 const char *dfl_study_tag(size_t point, size_t npoints, char *buf, size_t size);

@@ -7,6 +7,7 @@
 
 #include "bs04/bs04.h"
 #include "harness/experiment.h"
+#include "io/path.h"
 #include "smoke/smoke.h"
 
 static const dfl_study *const *const papers[] = {
@@ -44,6 +45,15 @@ const char *dfl_study_path(const dfl_study_ctx *ctx, const char *stem, const cha
 {
     snprintf(buf, size, "%s/%s%s.%s", ctx->stage_dir, stem, ctx->tag, ext);
     return buf;
+}
+
+dfl_status dfl_study_put_file(dfl_table *t, const char *col, const dfl_study_ctx *ctx,
+                              const char *stem, const char *ext, bool written, dfl_err *err)
+{
+    char path[4400];
+    const char *name = written ? dfl_path_base(dfl_study_path(ctx, stem, ext, path, sizeof path))
+                               : "";
+    return dfl_table_set_string(t, col, name, err);
 }
 
 const char *dfl_study_tag(size_t point, size_t npoints, char *buf, size_t size)

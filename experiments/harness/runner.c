@@ -8,6 +8,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "cfg/cfg_err.h"
 #include "harness/experiment.h"
 #include "io/path.h"
 #include "io/atomic.h"
@@ -77,9 +78,8 @@ dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
     }
     const dfl_study *study = dfl_study_find(study_name);
     if (!study) {
-        char w[600];
-        dfl_cfg_where(cfg, "study", "name", w, sizeof w);
-        dfl_err_set(err, DFL_E_INPUT, "%s: unknown study '%s' (see `dflab list`)", w, study_name);
+        dfl_cfg_reject(cfg, "study", "name", err, "unknown study '%s' (see `dflab list`)",
+                       study_name);
         dfl_cfg_free(cfg); /* study_name points into cfg */
         return DFL_E_INPUT;
     }

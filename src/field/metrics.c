@@ -1,11 +1,14 @@
-/* The two computations keep separate loops on purpose: dfl_metrics_compute
- * reduces in parallel, dfl_metrics_bandstats sums serially, and each
- * order of summation is what the reproduced tables hold.  They share the
- * band rule and the gradient norm. */
+/* The computations keep separate loops on purpose: dfl_metrics_compute
+ * reduces in parallel, dfl_metrics_bandstats and the saturating variant sum
+ * serially, and each order of summation (and the saturating variant's
+ * hypot) is what the reproduced tables hold.  They share the band rule and,
+ * but for the saturating variant, the gradient norm. */
 #include "field/metrics.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 /* The band rule of metrics.h: *use = 0 means every sample. */
 static dfl_status band_rule(double band, int *use, dfl_err *err)
@@ -20,6 +23,24 @@ static inline double grad_norm(const double *g, int dim)
     double n2 = 0;
     for (int d = 0; d < dim; d++) n2 += g[d] * g[d];
     return sqrt(n2);
+}
+
+/* The dfl_metrics of cnt samples from the sums of |e|, e^2 and the
+ * gradient defect and the maxima; NAN metrics for cnt == 0. */
+static void metrics_finish(size_t cnt, double s1, double s2, double mx, int has_grad, double g1,
+                           double gmx, dfl_metrics *out)
+{
+    out->count = cnt;
+    if (cnt == 0) {
+        out->l1 = out->mse = out->rms = out->linf = out->gdef_mean = out->gdef_max = NAN;
+        return;
+    }
+    out->l1 = s1 / (double)cnt;
+    out->mse = s2 / (double)cnt;
+    out->rms = sqrt(out->mse);
+    out->linf = mx;
+    out->gdef_mean = has_grad ? g1 / (double)cnt : NAN;
+    out->gdef_max = has_grad ? gmx : NAN;
 }
 
 dfl_status dfl_metrics_compute(size_t m, int dim, const double *u, const double *gu,
@@ -51,17 +72,65 @@ dfl_status dfl_metrics_compute(size_t m, int dim, const double *u, const double 
     }
     if (bad != (size_t)-1)
         return dfl_err_set(err, DFL_E_NUMERIC, "non-finite field value at sample %zu", bad);
-    out->count = cnt;
-    if (cnt == 0) {
-        out->l1 = out->mse = out->rms = out->linf = out->gdef_mean = out->gdef_max = NAN;
-        return DFL_OK;
+    metrics_finish(cnt, s1, s2, mx, gu != NULL, g1, gmx, out);
+    return DFL_OK;
+}
+
+dfl_status dfl_metrics_compute_masked(size_t m, int dim, const double *u, const double *gu,
+                                      const double *ref, const unsigned char *mask,
+                                      dfl_metrics *out, dfl_err *err)
+{
+    const size_t n = m ? m : 1, nd = (size_t)dim;
+    double *cu = malloc(n * sizeof *cu), *cr = malloc(n * sizeof *cr);
+    double *cg = gu ? malloc(n * nd * sizeof *cg) : NULL;
+    dfl_status st = DFL_OK;
+    if (!cu || !cr || (gu && !cg)) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    size_t k = 0;
+    for (size_t i = 0; i < m && st == DFL_OK; i++) {
+        if (!mask[i]) continue;
+        cu[k] = u[i];
+        cr[k] = ref[i];
+        for (size_t j = 0; gu && j < nd; j++) cg[k * nd + j] = gu[i * nd + j];
+        k++;
     }
-    out->l1 = s1 / (double)cnt;
-    out->mse = s2 / (double)cnt;
-    out->rms = sqrt(out->mse);
-    out->linf = mx;
-    out->gdef_mean = gu ? g1 / (double)cnt : NAN;
-    out->gdef_max = gu ? gmx : NAN;
+    if (st == DFL_OK) st = dfl_metrics_compute(k, dim, cu, cg, cr, 0.0, out, err);
+    free(cu), free(cr), free(cg);
+    return st;
+}
+
+static double hypot_norm(const double *g, int dim)
+{
+    assert(dim >= 1 && dim <= 3);
+    if (dim == 1) return fabs(g[0]);
+    const double h = hypot(g[0], g[1]);
+    return dim == 2 ? h : hypot(h, g[2]);
+}
+
+dfl_status dfl_metrics_compute_saturating(size_t m, int dim, const double *u, const double *gu,
+                                          const double *ref, double band, dfl_metrics *out,
+                                          dfl_err *err)
+{
+    int use_band = 0;
+    dfl_status st = band_rule(band, &use_band, err);
+    if (st != DFL_OK) return st;
+    double s1 = 0, s2 = 0, mx = 0, g1 = 0, gmx = 0;
+    size_t cnt = 0;
+    for (size_t i = 0; i < m; i++) {
+        if (use_band && !(fabs(ref[i]) <= band)) continue;
+        double e = fabs(u[i] - ref[i]);
+        if (!isfinite(e)) e = INFINITY;
+        cnt++;
+        s1 += e;
+        s2 += e * e;
+        if (e > mx) mx = e;
+        if (gu) {
+            double gd = fabs(hypot_norm(gu + i * (size_t)dim, dim) - 1.0);
+            if (!isfinite(gd)) gd = INFINITY;
+            g1 += gd;
+            if (gd > gmx) gmx = gd;
+        }
+    }
+    metrics_finish(cnt, s1, s2, mx, gu != NULL, g1, gmx, out);
     return DFL_OK;
 }
 
@@ -109,6 +178,25 @@ dfl_status dfl_metrics_bandstats(size_t m, int dim, const double *u, const doubl
     return DFL_OK;
 }
 
+void dfl_metrics_gradstat(size_t m, int dim, const double *grad, const unsigned char *mask,
+                          dfl_gradstat *out)
+{
+    size_t c = 0;
+    double mn = INFINITY, mx = -INFINITY, s = 0;
+    for (size_t i = 0; i < m; i++) {
+        if (mask && !mask[i]) continue;
+        const double q = grad_norm(grad + i * (size_t)dim, dim);
+        mn = fmin(mn, q);
+        mx = fmax(mx, q);
+        s += q;
+        c++;
+    }
+    out->count = c;
+    out->min = c ? mn : NAN;
+    out->max = c ? mx : NAN;
+    out->mean = c ? s / (double)c : NAN;
+}
+
 dfl_status dfl_metrics_put(dfl_table *t, const char *sfx, const dfl_metrics *m, dfl_err *err)
 {
     const char *const names[7] = {"count", "l1", "mse", "rms", "linf", "graddefect_mean",
@@ -131,5 +219,19 @@ dfl_status dfl_metrics_put_bandstats(dfl_table *t, const dfl_bandstats *b, dfl_e
     const double v[8] = {b->bias, b->rel_bias, b->l1, b->rms, b->linf, b->gmin, b->gmean, b->gmax};
     dfl_status st = dfl_table_set_int(t, "band_count", (long)b->count, err);
     for (int i = 0; i < 8 && st == DFL_OK; i++) st = dfl_table_set_double(t, names[i], v[i], err);
+    return st;
+}
+
+dfl_status dfl_metrics_put_gradstat(dfl_table *t, const char *sfx, const dfl_gradstat *g,
+                                    dfl_err *err)
+{
+    const char *const names[3] = {"grad_min", "grad_mean", "grad_max"};
+    const double v[3] = {g->min, g->mean, g->max};
+    char col[96];
+    dfl_status st = DFL_OK;
+    for (int i = 0; i < 3 && st == DFL_OK; i++) {
+        snprintf(col, sizeof col, "%s%s", names[i], sfx);
+        st = dfl_table_set_double(t, col, v[i], err);
+    }
     return st;
 }

@@ -3,13 +3,17 @@
  *
  * Function index
  *   dfl_metrics_compute        L1, MSE, RMS, Linf, gradient-norm defect
+ *   dfl_metrics_compute_masked the same over the samples a mask selects
+ *   dfl_metrics_compute_saturating  the same, non-finite errors as +inf
  *   dfl_metrics_bandstats      bias, relative bias, L1, RMS, Linf, |grad u|
+ *   dfl_metrics_gradstat       min, mean, max of |grad u| over a mask
  *   dfl_metrics_put            the dfl_metrics as cells of a table row
  *   dfl_metrics_put_bandstats  the dfl_bandstats as cells of a table row
+ *   dfl_metrics_put_gradstat   the dfl_gradstat as cells of a table row
  *
- * The band rule (both computations): the band is the set of samples with
- * |ref| <= band.  band <= 0 or band = +inf means every sample; a NaN band
- * is DFL_E_INPUT.
+ * The band rule (every computation with a band): the band is the set of
+ * samples with |ref| <= band.  band <= 0 or band = +inf means every
+ * sample; a NaN band is DFL_E_INPUT.
  *
  * dfl_metrics:
  *   L1   = mean |u - d|          MSE  = mean (u - d)^2
@@ -27,7 +31,10 @@
  *                           their zero set, where they are not
  *                           differentiable)
  *
- * |grad u| is sqrt(sum_j g_j^2) summed in axis order, in both.
+ * dfl_gradstat: min, mean, max of |grad u| over the selected samples.
+ *
+ * |grad u| is sqrt(sum_j g_j^2) summed in axis order from 0, everywhere
+ * except in dfl_metrics_compute_saturating (C's hypot, see there).
  */
 #ifndef DFL_FIELD_METRICS_H
 #define DFL_FIELD_METRICS_H
@@ -43,6 +50,11 @@ typedef struct dfl_metrics {
     double gdef_mean, gdef_max;  /* NAN when no gradient was given */
 } dfl_metrics;
 
+typedef struct dfl_gradstat {
+    size_t count;                 /* selected samples */
+    double min, mean, max;
+} dfl_gradstat;
+
 typedef struct dfl_bandstats {
     size_t count;                 /* samples in the band */
     double bias, rel_bias, l1, rms, linf;
@@ -57,6 +69,28 @@ typedef struct dfl_bandstats {
 dfl_status dfl_metrics_compute(size_t m, int dim, const double *u, const double *gu,
                                const double *ref, double band, dfl_metrics *out, dfl_err *err);
 
+/* dfl_metrics_compute (band: every sample) over the samples i with
+ * mask[i] != 0, taken in index order into compacted copies, so the result
+ * equals dfl_metrics_compute of the selected samples alone.  gu may be
+ * NULL.  Failures: DFL_E_NOMEM for the copies, else as dfl_metrics_compute
+ * (the sample a DFL_E_NUMERIC message names is the index among the
+ * selected samples). */
+dfl_status dfl_metrics_compute_masked(size_t m, int dim, const double *u, const double *gu,
+                                      const double *ref, const unsigned char *mask,
+                                      dfl_metrics *out, dfl_err *err);
+
+/* dfl_metrics for fields that may overflow far from their zero set (e.g.
+ * rfunc's recursive normalization): the band rule above, but a sample
+ * whose |u - ref| or gradient defect is not finite enters it as +inf
+ * instead of failing, so linf (gdef_max) and the means become +inf; a NaN
+ * ref lies in no finite band.  Serial, summed in sample order; |grad u| is
+ * hypot(g0, g1) (dim 2; dim 1: |g0|; dim 3: hypot(hypot(g0, g1), g2)), as
+ * bs04_recursive's tables were computed.  dim 1..3 (asserted).  Empty band:
+ * count 0 and NAN metrics.  Fails only with DFL_E_INPUT for a NaN band. */
+dfl_status dfl_metrics_compute_saturating(size_t m, int dim, const double *u, const double *gu,
+                                          const double *ref, double band, dfl_metrics *out,
+                                          dfl_err *err);
+
 /* u, ref: m values; gu: m*dim gradient components (may be NULL: gradient
  * statistics NAN).  Band: see the band rule above.  Empty band: count 0 and
  * NAN statistics, DFL_OK.  DFL_E_NUMERIC naming the sample for a NaN ref
@@ -64,6 +98,14 @@ dfl_status dfl_metrics_compute(size_t m, int dim, const double *u, const double 
 dfl_status dfl_metrics_bandstats(size_t m, int dim, const double *u, const double *gu,
                                  const double *ref, double band, dfl_bandstats *out,
                                  dfl_err *err);
+
+/* Statistics of |grad u| (grad: m*dim components) over the samples whose
+ * mask entry is non-zero (mask NULL: all): count, min, mean (summed in
+ * sample order), max; NAN statistics when none is selected.  Cannot fail;
+ * non-finite gradients propagate (fmin/fmax skip a NaN norm, the mean
+ * does not). */
+void dfl_metrics_gradstat(size_t m, int dim, const double *grad, const unsigned char *mask,
+                          dfl_gradstat *out);
 
 /* Sets count<sfx>, l1<sfx>, mse<sfx>, rms<sfx>, linf<sfx>,
  * graddefect_mean<sfx>, graddefect_max<sfx> in the current row of t.
@@ -74,5 +116,10 @@ dfl_status dfl_metrics_put(dfl_table *t, const char *sfx, const dfl_metrics *m, 
  * grad_min, grad_mean, grad_max in the current row of t.  Fails as the
  * table setters do. */
 dfl_status dfl_metrics_put_bandstats(dfl_table *t, const dfl_bandstats *b, dfl_err *err);
+
+/* Sets grad_min<sfx>, grad_mean<sfx>, grad_max<sfx> (not the count) in the
+ * current row of t.  Fails as the table setters do. */
+dfl_status dfl_metrics_put_gradstat(dfl_table *t, const char *sfx, const dfl_gradstat *g,
+                                    dfl_err *err);
 
 #endif

@@ -70,3 +70,11 @@ double dfl_point_segment_dist(int dim, const double *x, const double *a, const d
     }
     return dfl_segdist_residual(dim, a, e, ee, x, r);
 }
+
+double dfl_point_segment_dist_hypot(const double *x, const double *a, const double *b)
+{
+    const double e[2] = {b[0] - a[0], b[1] - a[1]};
+    double r[2];
+    (void)dfl_segdist_residual(2, a, e, e[0] * e[0] + e[1] * e[1], x, r);
+    return hypot(r[0], r[1]);
+}

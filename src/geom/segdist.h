@@ -6,8 +6,9 @@
  *   dfl_segdist_closest_is_start(dim, a, b, x)   is the closest point a?
  *   dfl_segdist_residual(dim, a, e, ee, x, r)    clamped projection, residual r
  *   dfl_point_segment_dist(dim, x, a, b)         dfl_segdist_residual with e = b - a
+ *   dfl_point_segment_dist_hypot(x, a, b)        the same residual, length by hypot (2D)
  *
- * Two roundings, both exact to a few ulps, kept apart because results are
+ * Three roundings, all exact to a few ulps, kept apart because results are
  * reproduced bit for bit:
  *   - eval treats the end-point regions as distances to the end point itself
  *     (x - a, x - b) and measures lengths with dfl_hypot_vec, so that it
@@ -15,7 +16,10 @@
  *     corrected join cancels exactly in the hatched sector only then);
  *   - residual projects, clamps the parameter to [0, 1] and subtracts
  *     s e from x - a (also at the ends), and takes the square root of the
- *     sum of squares accumulated from 0.0 in coordinate order.
+ *     sum of squares accumulated from 0.0 in coordinate order;
+ *   - the hypot member takes the same residual and measures it with C's
+ *     hypot(r0, r1) (no intermediate overflow or underflow, rounded once
+ *     by libm): bs04_fields' exact distances to its two segments.
  *
  * dim is 2 or 3 (residual and dfl_point_segment_dist: 1 to 3; asserted).
  * Everything is pure, allocation-free and thread-safe. */
@@ -48,5 +52,11 @@ double dfl_segdist_residual(int dim, const double *a, const double *e, double ee
 /* dfl_segdist_residual for the segment a-b without the residual (note the
  * argument order: the point first). */
 double dfl_point_segment_dist(int dim, const double *x, const double *a, const double *b);
+
+/* 2D: hypot(r0, r1) of the residual r that dfl_point_segment_dist(2, x, a,
+ * b) forms (the clamped projection, a == b: the point a).  Differs from
+ * dfl_point_segment_dist in the last bits only; used where reproduced
+ * tables were computed with hypot (bs04_fields). */
+double dfl_point_segment_dist_hypot(const double *x, const double *a, const double *b);
 
 #endif

@@ -7,15 +7,21 @@
 #include "field/metrics.h"
 #include "io/table.h"
 
-/* Hand-computed metrics of a 4-sample case. */
-Test(metrics, hand_computed)
+/* A 4-sample case with hand-computed metrics, which dfl_metrics_compute
+ * and its saturating variant (finite data) both must give. */
+static const double hc_ref[4] = {-0.2, 0.0, 0.05, 0.5};
+static const double hc_u[4] = {-0.1, 0.0, 0.05, 0.2};
+static const double hc_g[8] = {1, 0, 0, 2, 0.6, 0.8, 3, 4};
+
+typedef dfl_status (*metrics_fn)(size_t m, int dim, const double *u, const double *gu,
+                                 const double *ref, double band, dfl_metrics *out, dfl_err *err);
+
+static void hand_case(metrics_fn compute)
 {
-    const double ref[4] = {-0.2, 0.0, 0.05, 0.5};
-    const double u[4] = {-0.1, 0.0, 0.05, 0.2};
-    const double g[8] = {1, 0, 0, 2, 0.6, 0.8, 3, 4};
+    const double *ref = hc_ref, *u = hc_u, *g = hc_g;
     dfl_metrics m;
     dfl_err err;
-    cr_assert_eq(dfl_metrics_compute(4, 2, u, g, ref, 0.0, &m, &err), DFL_OK);
+    cr_assert_eq(compute(4, 2, u, g, ref, 0.0, &m, &err), DFL_OK);
     cr_expect_eq(m.count, 4);
     cr_expect_float_eq(m.l1, (0.1 + 0 + 0 + 0.3) / 4, 1e-15);
     cr_expect_float_eq(m.mse, (0.01 + 0.09) / 4, 1e-15);
@@ -25,10 +31,12 @@ Test(metrics, hand_computed)
     cr_expect_float_eq(m.gdef_mean, 5.0 / 4, 1e-15);
     cr_expect_float_eq(m.gdef_max, 4.0, 1e-15);
     /* band |ref| <= 0.1 keeps samples 1 and 2 only */
-    cr_assert_eq(dfl_metrics_compute(4, 2, u, g, ref, 0.1, &m, &err), DFL_OK);
+    cr_assert_eq(compute(4, 2, u, g, ref, 0.1, &m, &err), DFL_OK);
     cr_expect_eq(m.count, 2);
     cr_expect_float_eq(m.gdef_mean, 0.5, 1e-15);
 }
+
+Test(metrics, hand_computed) { hand_case(dfl_metrics_compute); }
 
 Test(metrics, rejects_non_finite)
 {
@@ -145,4 +153,130 @@ Test(metrics, table_cells)
     cr_expect_eq(dfl_metrics_put(t, "", &m, &err), DFL_E_INTERNAL);
     cr_expect(strstr(err.msg, "count") != NULL, "%s", err.msg);
     dfl_table_free(t);
+}
+
+/* gradstat: hand-computed norms over a mask, all samples, none. */
+Test(metrics, gradstat_over_a_mask)
+{
+    /* |g| = 5, 1, 13, 2 (3D: (3, 4, 0), (0, 0, 1), (3, 4, 12), (0, 2, 0)) */
+    const double g[12] = {3, 4, 0, 0, 0, 1, 3, 4, 12, 0, 2, 0};
+    const unsigned char mask[4] = {1, 0, 1, 1};
+    dfl_gradstat s;
+    dfl_metrics_gradstat(4, 3, g, mask, &s);
+    cr_expect_eq(s.count, 3);
+    cr_expect_eq(s.min, 2.0);
+    cr_expect_eq(s.max, 13.0);
+    cr_expect_eq(s.mean, 20.0 / 3.0);
+    dfl_metrics_gradstat(4, 3, g, NULL, &s);
+    cr_expect(s.count == 4 && s.min == 1.0 && s.max == 13.0 && s.mean == 21.0 / 4.0);
+    /* 2D reading of the same numbers: |(3, 4)|, |(0, 0)|, ... */
+    dfl_metrics_gradstat(2, 2, g, NULL, &s);
+    cr_expect(s.count == 2 && s.min == 0.0 && s.max == 5.0 && s.mean == 2.5);
+    const unsigned char none[4] = {0, 0, 0, 0};
+    dfl_metrics_gradstat(4, 3, g, none, &s);
+    cr_expect(s.count == 0 && isnan(s.min) && isnan(s.mean) && isnan(s.max));
+}
+
+/* compute_masked is dfl_metrics_compute of the selected samples alone, to
+ * the bit, with and without gradients. */
+Test(metrics, masked_is_compute_of_the_selection)
+{
+    const double ref[5] = {0.1, -0.3, 0.7, 0.2, 1.5};
+    const double u[5] = {0.12, -0.2, 0.9, 0.2, 1.0};
+    const double g[10] = {1, 0, 0.6, 0.7, 3, 4, 0.1, 0.2, 1, 1};
+    const unsigned char mask[5] = {0, 1, 1, 0, 1};
+    const double su[3] = {-0.2, 0.9, 1.0}, sr[3] = {-0.3, 0.7, 1.5};
+    const double sg[6] = {0.6, 0.7, 3, 4, 1, 1};
+    dfl_metrics a, b;
+    dfl_err err;
+    cr_assert_eq(dfl_metrics_compute_masked(5, 2, u, g, ref, mask, &a, &err), DFL_OK);
+    cr_assert_eq(dfl_metrics_compute(3, 2, su, sg, sr, 0.0, &b, &err), DFL_OK);
+    cr_expect(a.count == 3 && a.l1 == b.l1 && a.mse == b.mse && a.rms == b.rms &&
+              a.linf == b.linf && a.gdef_mean == b.gdef_mean && a.gdef_max == b.gdef_max);
+    cr_expect_float_eq(a.linf, 0.5, 1e-15);
+    cr_assert_eq(dfl_metrics_compute_masked(5, 2, u, NULL, ref, mask, &a, &err), DFL_OK);
+    cr_expect(a.count == 3 && a.l1 == b.l1 && isnan(a.gdef_mean) && isnan(a.gdef_max));
+    /* an unselected non-finite sample does not matter, a selected one does */
+    const double bad[5] = {NAN, -0.2, 0.9, 0.2, INFINITY};
+    const unsigned char first[5] = {0, 1, 1, 1, 0};
+    cr_expect_eq(dfl_metrics_compute_masked(5, 2, bad, g, ref, first, &a, &err), DFL_OK);
+    cr_expect_eq(dfl_metrics_compute_masked(5, 2, bad, g, ref, mask, &a, &err), DFL_E_NUMERIC);
+    const unsigned char none[5] = {0};
+    cr_assert_eq(dfl_metrics_compute_masked(5, 2, u, g, ref, none, &a, &err), DFL_OK);
+    cr_expect(a.count == 0 && isnan(a.l1));
+}
+
+/* The saturating variant: hand-computed values with hypot norms, +inf for
+ * non-finite errors instead of a failure, the band rule, and the serial
+ * sum written out bit for bit. */
+Test(metrics, saturating_hand_computed_and_inf)
+{
+    hand_case(dfl_metrics_compute_saturating);
+    const double *ref = hc_ref, *u = hc_u, *g = hc_g;
+    dfl_metrics m;
+    dfl_err err;
+    cr_assert_eq(dfl_metrics_compute_saturating(4, 2, u, g, ref, 0.1, &m, &err), DFL_OK);
+    cr_expect(m.count == 2 && m.l1 == 0.0);
+    cr_expect_float_eq(m.gdef_max, 1.0, 1e-15);
+    /* the band rule: band <= 0 and +inf mean every sample */
+    const double every[2] = {-1.0, INFINITY};
+    for (int i = 0; i < 2; i++) {
+        cr_assert_eq(dfl_metrics_compute_saturating(4, 2, u, g, ref, every[i], &m, &err), DFL_OK);
+        cr_expect_eq(m.count, 4);
+    }
+    /* overflowed samples: +inf, not a failure */
+    const double uo[4] = {-0.1, INFINITY, NAN, 0.2};
+    const double go[8] = {1, 0, NAN, 0, 0.6, 0.8, 1e308, 1e308};
+    cr_assert_eq(dfl_metrics_compute_saturating(4, 2, uo, go, ref, 0.0, &m, &err), DFL_OK);
+    cr_expect(m.count == 4 && isinf(m.l1) && isinf(m.rms) && isinf(m.linf));
+    cr_expect(isinf(m.gdef_mean) && isinf(m.gdef_max));
+    /* outside the band they do not count */
+    const double uf[4] = {NAN, 0.0, 0.05, NAN};
+    cr_assert_eq(dfl_metrics_compute_saturating(4, 2, uf, g, ref, 0.1, &m, &err), DFL_OK);
+    cr_expect(m.count == 2 && m.linf == 0.0);
+    /* a NaN reference lies in no band */
+    const double rn[4] = {NAN, 0.0, 0.05, 0.5};
+    cr_assert_eq(dfl_metrics_compute_saturating(4, 2, u, g, rn, 1.0, &m, &err), DFL_OK);
+    cr_expect_eq(m.count, 3);
+    cr_expect_eq(dfl_metrics_compute_saturating(4, 2, u, g, ref, NAN, &m, &err), DFL_E_INPUT);
+    cr_assert_eq(dfl_metrics_compute_saturating(4, 2, u, g, ref, 1e-3, &m, &err), DFL_OK);
+    cr_expect(m.count == 1 && m.l1 == 0.0);
+    const double none[4] = {1, 2, 3, 4};
+    cr_assert_eq(dfl_metrics_compute_saturating(4, 2, u, g, none, 0.5, &m, &err), DFL_OK);
+    cr_expect(m.count == 0 && isnan(m.l1) && isnan(m.gdef_max));
+    cr_assert_eq(dfl_metrics_compute_saturating(4, 2, u, NULL, ref, 0.0, &m, &err), DFL_OK);
+    cr_expect(m.count == 4 && isnan(m.gdef_mean) && isnan(m.gdef_max));
+}
+
+Test(metrics, saturating_serial_hypot_bit_for_bit)
+{
+    enum { N = 257 };
+    double u[N], r[N], g[3 * N];
+    for (int i = 0; i < N; i++) {
+        r[i] = sin(0.37 * i) * (1 + i % 7);
+        u[i] = r[i] + 1e-3 * cos(1.3 * i);
+        for (int j = 0; j < 3; j++) g[3 * i + j] = 0.5 + 0.3 * sin(0.11 * i + j);
+    }
+    for (int dim = 1; dim <= 3; dim++) {
+        double s1 = 0, s2 = 0, mx = 0, g1 = 0, gmx = 0;
+        size_t c = 0;
+        for (int i = 0; i < N; i++) {
+            if (!(fabs(r[i]) <= 2.5)) continue;
+            const double e = fabs(u[i] - r[i]);
+            const double *q = g + i * dim;
+            const double h = dim == 1 ? fabs(q[0])
+                             : dim == 2 ? hypot(q[0], q[1])
+                                        : hypot(hypot(q[0], q[1]), q[2]);
+            const double gd = fabs(h - 1.0);
+            c++, s1 += e, s2 += e * e, g1 += gd;
+            if (e > mx) mx = e;
+            if (gd > gmx) gmx = gd;
+        }
+        dfl_metrics m;
+        dfl_err err;
+        cr_assert_eq(dfl_metrics_compute_saturating(N, dim, u, g, r, 2.5, &m, &err), DFL_OK);
+        cr_expect(m.count == c && m.l1 == s1 / (double)c && m.mse == s2 / (double)c, "dim %d", dim);
+        cr_expect(m.rms == sqrt(s2 / (double)c) && m.linf == mx, "dim %d", dim);
+        cr_expect(m.gdef_mean == g1 / (double)c && m.gdef_max == gmx, "dim %d", dim);
+    }
 }

@@ -36,3 +36,29 @@ Test(metrics_put, columns_in_order_with_suffix)
     }
     dfl_table_free(t);
 }
+
+/* dfl_metrics_put_gradstat: three columns with the suffix, in order, the
+ * values as %.17g, and the table's error when there is no row. */
+Test(metrics_put, gradstat_columns)
+{
+    dfl_table *t = dfl_table_new();
+    cr_assert_not_null(t);
+    const dfl_gradstat g = {.count = 9, .min = 0.25, .mean = 0.1, .max = 7.0};
+    dfl_err err = {0};
+    cr_assert_eq(dfl_table_row(t, &err), DFL_OK);
+    cr_assert_eq(dfl_metrics_put_gradstat(t, "_s1_band", &g, &err), DFL_OK);
+    cr_assert_eq(dfl_metrics_put_gradstat(t, "", &g, &err), DFL_OK);
+    const char *cols[6] = {"grad_min_s1_band", "grad_mean_s1_band", "grad_max_s1_band",
+                           "grad_min", "grad_mean", "grad_max"};
+    const char *vals[3] = {"0.25", "0.10000000000000001", "7"};
+    cr_assert_eq(dfl_table_cols(t), 6);
+    for (size_t j = 0; j < 6; j++) {
+        cr_expect_str_eq(dfl_table_col_name(t, j), cols[j]);
+        cr_expect_str_eq(dfl_table_get(t, 0, cols[j]), vals[j % 3], "%s", cols[j]);
+    }
+    dfl_table_free(t);
+    t = dfl_table_new();
+    cr_expect_eq(dfl_metrics_put_gradstat(t, "_x", &g, &err), DFL_E_INTERNAL);
+    cr_expect(strstr(err.msg, "grad_min_x") != NULL, "%s", err.msg);
+    dfl_table_free(t);
+}

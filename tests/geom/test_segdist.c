@@ -150,3 +150,47 @@ Test(segdist, members_agree_to_rounding)
                       d1, d2);
         }
 }
+
+/* The hypot member: bs04_fields' own formula written out (clamped
+ * projection, hypot of x - a - l e) bit for bit, the brute force to
+ * rounding, and a degenerate segment as the distance to its point. */
+static double fields_formula(const double *a, const double *b, const double *x)
+{
+    const double ex = b[0] - a[0], ey = b[1] - a[1];
+    double l = ((x[0] - a[0]) * ex + (x[1] - a[1]) * ey) / (ex * ex + ey * ey);
+    l = l < 0 ? 0 : l > 1 ? 1 : l;
+    return hypot(x[0] - a[0] - l * ex, x[1] - a[1] - l * ey);
+}
+
+Test(segdist, hypot_member_is_the_formula_bit_for_bit)
+{
+    uint64_t seed = 91;
+    int differs = 0;
+    for (int it = 0; it < 2000; it++) {
+        double a[2], b[2], x[2];
+        for (int j = 0; j < 2; j++) {
+            a[j] = dfl_rng_splitmix(&seed, -1, 1);
+            b[j] = dfl_rng_splitmix(&seed, -1, 1);
+            x[j] = dfl_rng_splitmix(&seed, -2, 2);
+        }
+        const double d = dfl_point_segment_dist_hypot(x, a, b);
+        cr_assert_eq(d, fields_formula(a, b, x), "it %d: %.17g vs %.17g", it, d,
+                     fields_formula(a, b, x));
+        cr_assert(fabs(d - brute(2, a, b, x)) <= 1e-12, "it %d", it);
+        differs += d != dfl_point_segment_dist(2, x, a, b);
+    }
+    /* it is a rounding of its own, not another name for the sqrt member */
+    cr_expect(differs > 0);
+    /* exact cases: beyond each end, across the middle */
+    const double a[2] = {0, 0}, b[2] = {4, 0};
+    const double p1[2] = {-3, 4}, p2[2] = {7, -4}, p3[2] = {1.5, -2};
+    cr_expect_eq(dfl_point_segment_dist_hypot(p1, a, b), 5.0);
+    cr_expect_eq(dfl_point_segment_dist_hypot(p2, a, b), 5.0);
+    cr_expect_eq(dfl_point_segment_dist_hypot(p3, a, b), 2.0);
+    /* far beyond double range of squares: hypot does not overflow */
+    const double big[2] = {1e200, 1e200}, o[2] = {0, 0}, e[2] = {1, 0};
+    cr_expect_float_eq(dfl_point_segment_dist_hypot(big, o, e), sqrt(2.0) * 1e200, 1e186);
+    /* a == b: the distance to the point */
+    const double q[2] = {3, 4};
+    cr_expect_eq(dfl_point_segment_dist_hypot(q, o, o), 5.0);
+}
