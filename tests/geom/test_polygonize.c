@@ -9,6 +9,7 @@
 
 #include "core/rng.h"
 #include "geom/footpoint.h"
+#include "core/fit.h"
 #include "geom/polygonize.h"
 
 static const double S_cp[] = {0.85, 0.85, 0.6, 1.0, 0.1, 0.95, 0.1, 0.6, 0.5,
@@ -120,19 +121,6 @@ Test(polygonize, closed_curve_polyline_closes)
 }
 
 /* least-squares slope of log(count) against log(eps) */
-static double fit_slope(int n, const double *eps, const double *cnt)
-{
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    for (int i = 0; i < n; i++) {
-        double x = log(eps[i]), y = log(cnt[i]);
-        sx += x;
-        sy += y;
-        sxx += x * x;
-        sxy += x * y;
-    }
-    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
-
 Test(polygonize, segment_counts_grow_like_eps_to_minus_half)
 {
     const double eps[] = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6};
@@ -149,7 +137,7 @@ Test(polygonize, segment_counts_grow_like_eps_to_minus_half)
             if (i > 0) cr_assert(cnt[i] > cnt[i - 1]);
             dfl_polyline_free(&p);
         }
-        double k = fit_slope(5, eps, cnt);
+        double k = dfl_fit_loglog_slope(5, eps, cnt);
         cr_assert(k >= -0.6 && k <= -0.4, "curve %d: fitted exponent %g", w, k);
         dfl_bspline_free(&c);
     }
@@ -350,7 +338,7 @@ Test(polygonize, surface_bound_property_and_growth)
         cnt[i] = (double)m.ntris;
         dfl_trimesh_free(&m);
     }
-    double k = fit_slope(5, eps, cnt);
+    double k = dfl_fit_loglog_slope(5, eps, cnt);
     cr_assert(k >= -1.25 && k <= -0.75, "surface: fitted exponent %g", k);
     dfl_surface_set_free(&s);
 }
