@@ -57,7 +57,6 @@
 #include <string.h>
 
 #include "bs04/bs04_offsets.h"
-#include "cfg/cfg_err.h"
 #include "cfg/curve_cfg.h"
 #include "field/curveprobe.h"
 #include "harness/experiment.h"

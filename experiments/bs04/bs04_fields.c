@@ -37,7 +37,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cfg/cfg_err.h"
 #include "harness/experiment.h"
 #include "field/sample.h"
 #include "harness/field_out.h"

@@ -52,7 +52,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cfg/cfg_err.h"
 #include "core/vec.h"
 #include "harness/experiment.h"
 #include "rfunc/gradbound.h"

@@ -76,7 +76,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cfg/cfg_err.h"
 #include "core/vec.h"
 #include "harness/experiment.h"
 #include "cfg/field_cfg.h"

@@ -27,7 +27,6 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
-#include "cfg/cfg_err.h"
 #include "core/fit.h"
 #include "cfg/curve_cfg.h"
 #include "cfg/list_cfg.h"

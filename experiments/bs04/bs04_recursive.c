@@ -50,7 +50,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cfg/cfg_err.h"
 #include "core/fit.h"
 #include "geom/ellipse.h"
 #include "core/vec.h"

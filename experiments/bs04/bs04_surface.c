@@ -34,7 +34,6 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
-#include "cfg/cfg_err.h"
 #include "cfg/rfunc_cfg.h"
 #include "cfg/curve_cfg.h"
 #include "harness/experiment.h"

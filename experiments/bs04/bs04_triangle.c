@@ -55,7 +55,6 @@
 #include <string.h>
 
 #include "bs04/bs04_space_util.h"
-#include "cfg/cfg_err.h"
 #include "core/vec.h"
 #include "cfg/list_cfg.h"
 #include "cfg/rfunc_cfg.h"

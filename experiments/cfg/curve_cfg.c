@@ -9,7 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cfg/cfg_err.h"
 
 dfl_status dfl_curve_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_bspline *out,
                               dfl_err *err)

@@ -2,7 +2,6 @@
 
 #include <string.h>
 
-#include "cfg/cfg_err.h"
 
 dfl_status dfl_grid_from_cfg(const dfl_cfg *cfg, const char *sec, int dim, dfl_grid *out,
                              dfl_err *err)

@@ -3,7 +3,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cfg/cfg_err.h"
 
 dfl_status dfl_section_names_from_cfg(const dfl_cfg *cfg, const char *sec, const char *key,
                                       int max, char (*names)[DFL_SECTION_NAME_LEN], int *n,

@@ -7,7 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cfg/cfg_err.h"
 #include "cfg/curve_cfg.h"
 #include "rfunc/rfield.h"
 

@@ -1,6 +1,5 @@
 #include "cfg/shape_cfg.h"
 
-#include "cfg/cfg_err.h"
 #include "cfg/curve_cfg.h"
 #include "geom/ellipse.h"
 #include "geom/implicit.h"

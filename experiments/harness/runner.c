@@ -8,7 +8,6 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "cfg/cfg_err.h"
 #include "harness/experiment.h"
 #include "io/path.h"
 #include "io/atomic.h"

@@ -11,7 +11,7 @@
  *                                    dfl_cfg_axis_value
  *   typed getters  config_get.c      dfl_cfg_string/int/double/bool/enum/vec[_opt],
  *                                    dfl_cfg_points, dfl_cfg_doubles, dfl_cfg_point_dim
- *   locations      config_where.c    dfl_cfg_where, dfl_cfg_err_at,
+ *   locations      config_where.c    dfl_cfg_where, dfl_cfg_err_at, dfl_cfg_reject,
  *                                    dfl_cfg_check_used, dfl_cfg_check_used_in
  *
  * A configuration file is parsed by libinih into (section, key, value, line)
@@ -152,6 +152,17 @@ const char *dfl_cfg_where(const dfl_cfg *c, const char *sec, const char *key, ch
  * st, so that callers can write `return dfl_cfg_err_at(...)`. */
 dfl_status dfl_cfg_err_at(const dfl_cfg *c, const char *sec, const char *key, dfl_status st,
                           dfl_err *err);
+
+/* The one way to reject a value that parsed but cannot be used (out of
+ * range for this study, degenerate geometry, a section that does not
+ * exist): sets err (may be NULL) to DFL_E_INPUT with "<where>: <message>",
+ * where is dfl_cfg_where(c, sec, key) ("file:line: [sec] key", or the
+ * include or --set that gave it) and the message is fmt formatted as
+ * printf does; the whole is truncated to DFL_ERR_MSG_MAX - 1 characters.
+ * Returns DFL_E_INPUT, so that callers write `return dfl_cfg_reject(...)`.
+ * For a library error about such a value use dfl_cfg_err_at instead. */
+dfl_status dfl_cfg_reject(const dfl_cfg *c, const char *sec, const char *key, dfl_err *err,
+                          const char *fmt, ...) __attribute__((format(printf, 5, 6)));
 
 /* Number of blank-separated values in the first point of a point-list
  * value ("x y; ..." -> 2): tells 2D from 3D lists before parsing them. */

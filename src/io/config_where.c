@@ -2,6 +2,7 @@
  * with where the key was written, so that a user can go to it: the file and
  * line, the --set that gave it, or for an included key the shape file's
  * line and the include that brought it. */
+#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -73,4 +74,15 @@ dfl_status dfl_cfg_check_used(const dfl_cfg *c, dfl_err *err)
 dfl_status dfl_cfg_check_used_in(const dfl_cfg *c, const char *sec, dfl_err *err)
 {
     return first_unused(c, sec, "unknown key", err);
+}
+
+dfl_status dfl_cfg_reject(const dfl_cfg *c, const char *sec, const char *key, dfl_err *err,
+                          const char *fmt, ...)
+{
+    char w[1024], msg[DFL_ERR_MSG_MAX];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return dfl_err_set(err, DFL_E_INPUT, "%s: %s", dfl_cfg_where(c, sec, key, w, sizeof w), msg);
 }

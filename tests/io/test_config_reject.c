@@ -1,14 +1,13 @@
-/* cfg/cfg_err: dfl_cfg_reject's message is "<where>: <formatted message>"
+/* io/config dfl_cfg_reject's message is "<where>: <formatted message>"
  * for a key of the file, a --set key and a key that is absent, with the
  * status DFL_E_INPUT, a NULL err, and truncation of a long message. */
 #include <criterion/criterion.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "cfg_util.h"
-#include "cfg/cfg_err.h"
+#include "experiments/cfg/cfg_util.h"
 
-Test(cfg_err, reject_names_where_the_key_was_written)
+Test(config_reject, reject_names_where_the_key_was_written)
 {
     dfl_cfg *cfg = tu_cfg("r.ini", "[study]\nband = -2\n\n[grid]\nn = 3\n");
     dfl_err err = {0};
@@ -31,7 +30,7 @@ Test(cfg_err, reject_names_where_the_key_was_written)
     dfl_cfg_free(cfg);
 }
 
-Test(cfg_err, reject_truncates_to_the_message_size)
+Test(config_reject, reject_truncates_to_the_message_size)
 {
     dfl_cfg *cfg = tu_cfg("t.ini", "[s]\nk = 1\n");
     char longmsg[3000];
