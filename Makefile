@@ -56,7 +56,7 @@ BENCH   := $(BUILD)/dflab-bench
 
 APT_PKGS := libinih-dev libceres-dev libopenexr-dev libimath-dev libcriterion-dev zlib1g-dev \
             python3-matplotlib python3-numpy python3-vtk9 openexr pkg-config \
-            emscripten chromium
+            emscripten chromium python3-scipy parallel slurm-wlm munge clang-14
 
 .PHONY: all deps test sanitize bench reproduce clean check-layout web web-test web-bench
 all: $(DFLAB) $(LIB)

@@ -6,13 +6,17 @@
 #include <string.h>
 
 #include "bs04/bs04.h"
+#include "hvb25/hvb25.h"
 #include "harness/experiment.h"
 #include "io/path.h"
+#include "sjp10/sjp10.h"
 #include "smoke/smoke.h"
 
 static const dfl_study *const *const papers[] = {
     dfl_smoke_studies,
     dfl_bs04_studies,
+    dfl_sjp10_studies,
+    dfl_hvb25_studies,
     NULL,
 };
 
