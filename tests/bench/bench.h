@@ -24,5 +24,6 @@ void bench_field(void);
 void bench_footpoint(void);
 void bench_rfunc(void);
 void bench_proxy(void);
+void bench_proxy_input(void);
 
 #endif

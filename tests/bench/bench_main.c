@@ -39,5 +39,6 @@ int main(void)
     bench_footpoint();
     bench_rfunc();
     bench_proxy();
+    bench_proxy_input();
     return 0;
 }
