@@ -9,6 +9,9 @@
 #include "field/exact.h"
 #include "geom/shape.h"
 #include "proxy/filter.h"
+#include "geom/implicit.h"
+#include "proxy/input_implicit.h"
+#include "proxy/input_param.h"
 #include "proxy/input_sdf.h"
 #include "proxy/proxy.h"
 
@@ -50,24 +53,45 @@ static dfl_shape sphere_shape(void)
     return s;
 }
 
+/* Inputs by name: the SDF sphere (order 1, order 2 analytic / fit), the
+ * parametric torus and the robust implicit torus (order 2). */
+static void make_input(int row, dfl_proxy_input *in)
+{
+    const double c[3] = {0.01, -0.02, 0.03}, ax[3] = {0, 0, 1};
+    const dfl_curvfit_opts fit = {5, 0.01};
+    dfl_shape s = sphere_shape();
+    dfl_implicit *imp = NULL;
+    dfl_status st;
+    if (row <= 2)
+        st = dfl_proxy_input_sdf(&s, row == 2 ? DFL_PROXY_CURV_FIT : DFL_PROXY_CURV_ANALYTIC,
+                                 &fit, in, NULL);
+    else {
+        dfl_shape_free(&s);
+        st = row == 3 ? dfl_proxy_input_param_torus(c, ax, 0.6, 0.25, NULL, in, NULL)
+             : dfl_implicit_torus(c, ax, 0.6, 0.25, NULL, &imp, NULL) == DFL_OK
+                 ? dfl_proxy_input_implicit(&imp, DFL_IMPLICIT_FOOT_ROBUST, in, NULL)
+                 : DFL_E_INPUT;
+    }
+    if (st != DFL_OK) abort();
+}
+
 static void bench_builds(void)
 {
     static const struct {
         const char *name;
-        int order;
-        dfl_proxy_curv_method curv;
-    } rows[] = {{"proxy.build.sdf.order1", 1, DFL_PROXY_CURV_ANALYTIC},
-                {"proxy.build.sdf.order2.analytic", 2, DFL_PROXY_CURV_ANALYTIC},
-                {"proxy.build.sdf.order2.fit", 2, DFL_PROXY_CURV_FIT}};
-    for (size_t r = 0; r < sizeof rows / sizeof rows[0]; r++) {
-        dfl_shape s = sphere_shape();
+        int order, res;
+    } rows[] = {{"proxy.build.sdf.order1", 1, 64},
+                {"proxy.build.sdf.order2.analytic", 2, 64},
+                {"proxy.build.sdf.order2.fit", 2, 32},
+                {"proxy.build.parametric.torus.order2", 2, 32},
+                {"proxy.build.implicit_robust.torus.order2", 2, 16}};
+    for (int r = 0; r < (int)(sizeof rows / sizeof rows[0]); r++) {
         dfl_proxy_input in;
-        const dfl_curvfit_opts fit = {5, 0.01};
-        if (dfl_proxy_input_sdf(&s, rows[r].curv, &fit, &in, NULL) != DFL_OK) abort();
+        make_input(r, &in);
         build_job j = {&in, {0}, {0}};
         dfl_proxy_build_opts_default(&j.o);
         j.o.order = rows[r].order;
-        j.o.res = rows[r].curv == DFL_PROXY_CURV_FIT ? 32 : 64;
+        j.o.res = rows[r].res;
         run_build(&j);
         const double n = (double)j.g.ncells;
         const double t = bench_best(3, run_build, &j);
