@@ -138,14 +138,15 @@ static inline void dfl_proxy_decode(int order, dfl_proxy_position pos, const dou
     const double *lt = s + 5;
     const double l2 = dfl_vec3_dot(lt, lt);
     const double sgn = l2 > 2.25 ? -1.0 : 1.0;
-    for (int j = 0; j < 3; j++) g->n[j] = sgn * d[j] / dl;
+    const double in = sgn / dl;
+    for (int j = 0; j < 3; j++) g->n[j] = in * d[j];
     /* t is orthogonal to n up to the storage's rounding; project it back
      * so that (n, t, b) is orthonormal. */
     const double tn = dfl_vec3_dot(lt, g->n);
     double t[3];
     for (int j = 0; j < 3; j++) t[j] = lt[j] - tn * g->n[j];
-    const double tl = dfl_vec3_norm(t);
-    for (int j = 0; j < 3; j++) g->t[j] = t[j] / tl;
+    const double it = 1.0 / dfl_vec3_norm(t);
+    for (int j = 0; j < 3; j++) g->t[j] = it * t[j];
     dfl_vec3_cross(g->n, g->t, g->b);
     g->kr = s[3];
     g->kR = s[4];
@@ -172,14 +173,18 @@ static inline double dfl_proxy_geom_eval(const dfl_proxy_geom *g, int order, con
     const double phi = (kr * (a * a + vt * vt) + 2.0 * a) / (1.0 + Sr);
     if (grad) {
         double ga[3];
-        if (SR > 0)
-            for (int j = 0; j < 3; j++) ga[j] = (uR * g->n[j] + wR * g->b[j]) / SR;
-        else
+        if (SR > 0) {
+            const double i = 1.0 / SR;
+            for (int j = 0; j < 3; j++) ga[j] = i * (uR * g->n[j] + wR * g->b[j]);
+        } else {
             for (int j = 0; j < 3; j++) ga[j] = g->n[j];
-        if (Sr > 0)
-            for (int j = 0; j < 3; j++) grad[j] = (ur * ga[j] + wr * g->t[j]) / Sr;
-        else
+        }
+        if (Sr > 0) {
+            const double i = 1.0 / Sr;
+            for (int j = 0; j < 3; j++) grad[j] = i * (ur * ga[j] + wr * g->t[j]);
+        } else {
             for (int j = 0; j < 3; j++) grad[j] = ga[j];
+        }
     }
     return phi;
 }
