@@ -73,6 +73,8 @@ Test(proxy_input_cfg, bad_keys_name_the_key)
                   "fit_spacing", NULL);
     expect_reject("[field]\nfit_grid = 2\n[shape]\nkind = sphere\n", "fit_grid", NULL);
     expect_reject("[field]\nfootpoint = fast\n[shape]\nkind = sphere\n", "footpoint", NULL);
+    expect_reject("[field]\nimplicit_resolution = 4\n[shape]\nkind = sphere\n",
+                  "implicit_resolution", NULL);
 }
 
 /* Every hvb25 shape file builds every representation the table says it
@@ -83,7 +85,8 @@ Test(proxy_input_cfg, implicit_footpoint_methods)
     for (int k = 0; k < 2; k++) {
         char text[256];
         snprintf(text, sizeof text,
-                 "[field]\ninput = implicit\nfootpoint = %s\n[shape]\nkind = torus\n"
+                 "[field]\ninput = implicit\nfootpoint = %s\nimplicit_resolution = 24\n"
+                 "[shape]\nkind = torus\n"
                  "center = 0 0 0\naxis = 0 0 1\nmajor = 0.6\nminor = 0.25\n", m[k]);
         dfl_proxy_input in;
         dfl_err err;
