@@ -26,6 +26,7 @@ typedef struct input_keys {
     dfl_curvfit_opts fit;
     int param_grid;
     int implicit_resolution;
+    int param_starts;
 } input_keys;
 
 static dfl_status read_keys(const dfl_cfg *cfg, const char *sec, input_keys *k, dfl_err *err)
@@ -51,6 +52,9 @@ static dfl_status read_keys(const dfl_cfg *cfg, const char *sec, input_keys *k, 
     if ((st = dfl_cfg_int_opt(cfg, sec, "implicit_resolution", 64, 8, 1024, &ir, err)) != DFL_OK)
         return st;
     k->implicit_resolution = (int)ir;
+    long ps;
+    if ((st = dfl_cfg_int_opt(cfg, sec, "param_starts", 3, 1, 3, &ps, err)) != DFL_OK) return st;
+    k->param_starts = (int)ps;
     k->curv = cv ? DFL_PROXY_CURV_FIT : DFL_PROXY_CURV_ANALYTIC;
     k->footpoint_robust = fp;
     k->fit.g = (int)g;
@@ -87,6 +91,7 @@ static void param_opts(const build_req *rq, dfl_param_input_opts *o)
 {
     dfl_param_input_opts_default(o);
     o->grid = rq->k->param_grid;
+    o->starts = rq->k->param_starts;
 }
 
 /* sphere: center, radius; torus: center, axis, major, minor; cone: a, b,
