@@ -8,6 +8,7 @@
 
 #include "core/linalg.h"
 #include "core/vec.h"
+#include "proxy/input_implicit_fast.h"
 
 #define PAPER_STARTS 4
 #define PAPER_ITERS 30
@@ -16,6 +17,7 @@ typedef struct imp_ctx {
     dfl_implicit *s;
     dfl_implicit_foot_method method;
     double scale;
+    dfl_imp_index *ix;   /* robust only: the fast path's samples */
 } imp_ctx;
 
 static void nan_curv(dfl_curvature *k)
@@ -125,6 +127,13 @@ static void paper_point(const imp_ctx *c, const double x[3], int need_curv, dfl_
 
 static void robust_point(const imp_ctx *c, const double x[3], int need_curv, dfl_surfpoint *o)
 {
+    double fp[3], fd;
+    if (c->ix && dfl_imp_fast_foot(c->ix, x, fp, &fd)) {
+        o->certified = 1;
+        fill(c, x, fp, need_curv, o);
+        o->d = fd;
+        return;
+    }
     dfl_footpoint f;
     int ok = dfl_implicit_footpoint_with(c->s, DFL_FOOT_NEWTON, x, &f, NULL) == DFL_OK;
     int cert = ok && dfl_proxy_implicit_certify(c->s, x, f.p, f.d);
@@ -166,6 +175,7 @@ static dfl_status imp_query(const void *vctx, size_t m, const double *x, int nee
 static void imp_destroy(void *vctx)
 {
     imp_ctx *c = vctx;
+    dfl_imp_index_free(c->ix);
     dfl_implicit_free(c->s);
     free(c);
 }
@@ -184,6 +194,10 @@ dfl_status dfl_proxy_input_implicit(dfl_implicit **imp, dfl_implicit_foot_method
     *imp = NULL;
     c->method = method;
     c->scale = dfl_implicit_scale(c->s);
+    if (method == DFL_IMPLICIT_FOOT_ROBUST && !(c->ix = dfl_imp_index_new(c->s))) {
+        imp_destroy(c);
+        return dfl_err_set(err, DFL_E_NOMEM, "implicit input: out of memory");
+    }
     out->name = "implicit";
     out->query = imp_query;
     out->destroy = imp_destroy;
