@@ -154,8 +154,7 @@ static size_t nearest(const dfl_imp_index *ix, const double x[3])
     return bi;
 }
 
-/* Newton on (p - x + t grad g(p), g(p)) = 0 from p (in place). */
-static int newton(const dfl_implicit *s, const double x[3], double p[3], double scale)
+int dfl_imp_square_newton(const dfl_implicit *s, const double x[3], double p[3], double scale)
 {
     double G[3], H[9];
     dfl_implicit_g(s, p, G, NULL);
@@ -218,7 +217,7 @@ int dfl_imp_fast_foot(const dfl_imp_index *ix, const double x[3], double p[3], d
     const double scale = dfl_implicit_scale(ix->s);
     size_t t = nearest(ix, x);
     memcpy(p, ix->pts + 3 * t, 3 * sizeof *p);
-    if (!newton(ix->s, x, p, scale)) return 0;
+    if (!dfl_imp_square_newton(ix->s, x, p, scale)) return 0;
     double G[3];
     double gx = dfl_implicit_g(ix->s, x, NULL, NULL);
     dfl_implicit_g(ix->s, p, G, NULL);

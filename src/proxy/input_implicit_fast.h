@@ -4,6 +4,8 @@
  *   dfl_imp_index_new / _free   build / release the index
  *   dfl_imp_fast_foot           one Newton from the nearest sample, and the
  *                               cap test that says whether it is the answer
+ *   dfl_imp_square_newton       Newton on the square footpoint system (also
+ *                               the paper method's solver)
  *
  * The cap test: a surface point closer to x than the footpoint p found
  * (distance |d|) has a sample within the covering radius c = 2 h (h the
@@ -32,5 +34,11 @@ void dfl_imp_index_free(dfl_imp_index *ix);
 /* 1 with p, d (signed, sign of g(x)) when the fast path answers x;
  * 0 when the full search must. */
 int dfl_imp_fast_foot(const dfl_imp_index *ix, const double x[3], double p[3], double *d);
+
+/* Newton on F(p, t) = (p - x + t grad g(p), g(p)) = 0 from p (in place;
+ * t starts at the projection of x - p on grad g), 30 steps, converged when
+ * |F_p| <= 1e-13 scale and |g| / |grad g| <= 1e-13 scale: 1, else 0 (p then
+ * holds the last iterate). */
+int dfl_imp_square_newton(const dfl_implicit *s, const double x[3], double p[3], double scale);
 
 #endif
