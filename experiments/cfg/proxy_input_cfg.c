@@ -94,6 +94,20 @@ static void param_opts(const build_req *rq, dfl_param_input_opts *o)
     o->starts = rq->k->param_starts;
 }
 
+/* cone: a, b, ra, rb of the shape section (ranges checked by the
+ * constructors) */
+static dfl_status cone_keys(const build_req *rq, double a[3], double b[3], double *ra,
+                            double *rb, dfl_err *err)
+{
+    const dfl_cfg *cfg = rq->cfg;
+    const char *sec = rq->shape_sec;
+    dfl_status st;
+    if ((st = dfl_cfg_vec(cfg, sec, "a", 3, a, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_vec(cfg, sec, "b", 3, b, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_double(cfg, sec, "ra", 0.0, HUGE_VAL, ra, err)) != DFL_OK) return st;
+    return dfl_cfg_double(cfg, sec, "rb", 0.0, HUGE_VAL, rb, err);
+}
+
 /* sphere: center, radius; torus: center, axis, major, minor; cone: a, b,
  * ra, rb (the keys of experiments/cfg/shape_cfg.h; the constructors check
  * the ranges) */
@@ -107,10 +121,7 @@ static dfl_status build_param_analytic(const build_req *rq, dfl_proxy_input *out
     dfl_status st;
     if (rq->kind == DFL_SHAPE_CONE) {
         double a[3], b[3], ra, rb;
-        if ((st = dfl_cfg_vec(cfg, sec, "a", 3, a, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_vec(cfg, sec, "b", 3, b, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_double(cfg, sec, "ra", 0.0, HUGE_VAL, &ra, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_double(cfg, sec, "rb", 0.0, HUGE_VAL, &rb, err)) != DFL_OK) return st;
+        if ((st = cone_keys(rq, a, b, &ra, &rb, err)) != DFL_OK) return st;
         return at_kind(rq, dfl_proxy_input_param_cone(a, b, ra, rb, &o, out, err), err);
     }
     if ((st = dfl_cfg_vec(cfg, sec, "center", 3, c, err)) != DFL_OK) return st;
@@ -279,12 +290,7 @@ dfl_status dfl_proxy_truth_from_cfg(const dfl_cfg *cfg, const char *field_sec,
     }
     if (kind == DFL_SHAPE_CONE && k.input == IN_PARAMETRIC) {
         double a[3], b[3], ra, rb;
-        if ((st = dfl_cfg_vec(cfg, shape_sec, "a", 3, a, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_vec(cfg, shape_sec, "b", 3, b, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_double(cfg, shape_sec, "ra", 0.0, HUGE_VAL, &ra, err)) != DFL_OK)
-            return st;
-        if ((st = dfl_cfg_double(cfg, shape_sec, "rb", 0.0, HUGE_VAL, &rb, err)) != DFL_OK)
-            return st;
+        if ((st = cone_keys(&rq, a, b, &ra, &rb, err)) != DFL_OK) return st;
         return at_kind(&rq, dfl_proxy_truth_cone_lateral(a, b, ra, rb, 0, out, err), err);
     }
     dfl_shape s = {0};

@@ -1,5 +1,9 @@
 /* [field] + [shape] -> the proxy input (src/proxy/input.h) of issue 9.
  *
+ * Function index
+ *   dfl_proxy_input_from_cfg   the input the keys below pick
+ *   dfl_proxy_truth_from_cfg   the ground truth of the same sections
+ *
  * Keys of the field section (the rest of it, order, res, filter, ... is the
  * proxy grid's, experiments/cfg/proxy_cfg.c):
  *   input     = parametric | sdf | implicit     (default sdf)

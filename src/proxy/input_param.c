@@ -233,12 +233,6 @@ static void newton(const param_ctx *c, const patch *P, const double x[3], double
     memcpy(o->D, D, sizeof D);
 }
 
-static void nan_curv(dfl_curvature *k)
-{
-    k->k1 = k->k2 = k->K = k->H = NAN;
-    for (int j = 0; j < 3; j++) k->e1[j] = k->e2[j] = k->n[j] = NAN;
-}
-
 /* Each patch's nearest node, for patches the NSTART nearest nodes missed
  * (a chart's dense pole region can crowd out the chart that is regular
  * there); appended to st (capacity NSTART + MAXEXTRA). */
@@ -303,7 +297,7 @@ static void point_query(const param_ctx *c, const double x[3], int need_curv, df
     }
     if (!need_curv || dfl_curvature_parametric(D + 3, D + 6, D + 9, D + 12, D + 15, o->n,
                                                &o->curv, NULL) != DFL_OK)
-        nan_curv(&o->curv);
+        dfl_curvature_set_nan(&o->curv);
 }
 
 static dfl_status param_query(const void *vctx, size_t m, const double *x, int need_curv,
