@@ -49,8 +49,11 @@
  *      the core radius is R = |1/kappa_R - 1/kappa_r|: R' + r when the
  *      curvatures have opposite signs (p on the inner equator, hyperbolic),
  *      R' - r when they agree (outer equator, elliptic), as eq. 8 states.
- *      Choosing |kappa_r| >= |kappa_R| keeps R >= 0 with p on the outer
- *      part of the surface.
+ *      Choosing |kappa_r| >= |kappa_R| (the paper: t along the larger
+ *      curvature) keeps the tube on p's side of the axis (R' >= r), so p
+ *      lies on the outer equator of a ring, horn or spindle torus (same
+ *      signs) or the inner equator of a ring torus (opposite signs); the
+ *      formula itself matches the surface to second order at p either way.
  *   3. The cases of eq. 10 are limits of this one formula, with no branch:
  *      kappa_R = 0 gives a = v_n, a cylinder about the line through
  *      p - n/kappa_r along b (eq. 6-7); kappa_r = kappa_R = 0 the plane
