@@ -35,7 +35,7 @@ LIB_C   := $(shell find src -name '*.c' ! -path 'src/cli/*' ! -path 'src/web/*' 
 LIB_CC  := $(shell find src -name '*.cc' | sort)
 EXP_C   := $(shell find experiments -name '*.c' | sort)
 CLI_C   := $(shell find src/cli -name '*.c' | sort)
-TEST_C  := $(shell find tests -name '*.c' ! -path 'tests/bench/*' | sort)
+TEST_C  := $(shell find tests -name '*.c' ! -path 'tests/bench/*' ! -path 'tests/fuzz/*' | sort)
 BENCH_C := $(shell find tests/bench -name '*.c' 2>/dev/null | sort)
 
 LIB_OBJ   := $(LIB_C:%.c=$(BUILD)/%.o) $(LIB_CC:%.cc=$(BUILD)/%.o)
@@ -56,7 +56,7 @@ BENCH   := $(BUILD)/dflab-bench
 
 APT_PKGS := libinih-dev libceres-dev libopenexr-dev libimath-dev libcriterion-dev zlib1g-dev \
             python3-matplotlib python3-numpy python3-vtk9 openexr pkg-config \
-            emscripten chromium python3-scipy parallel slurm-wlm munge clang-14
+            emscripten chromium python3-scipy parallel slurm-wlm munge clang-14 libomp-14-dev
 
 .PHONY: all deps test sanitize bench reproduce clean check-layout web web-test web-bench
 all: $(DFLAB) $(LIB)
@@ -125,6 +125,7 @@ sanitize: deps
 	  build-san/dflab-tests -j2 --timeout 1200
 
 include src/web/web.mk
+include tests/fuzz/fuzz.mk
 
 bench: deps
 	$(MAKE) --no-print-directory OPT=-O3 BUILD=build-bench build-bench/dflab-bench
