@@ -58,7 +58,7 @@ APT_PKGS := libinih-dev libceres-dev libopenexr-dev libimath-dev libcriterion-de
             python3-matplotlib python3-numpy python3-vtk9 openexr pkg-config \
             emscripten chromium python3-scipy parallel slurm-wlm munge clang-14 libomp-14-dev
 
-.PHONY: all deps test sanitize bench reproduce clean check-layout web web-test web-bench
+.PHONY: all deps test sanitize bench reproduce clean check-layout web web-test web-bench check-threads
 all: $(DFLAB) $(LIB)
 
 $(BUILD)/%.o: %.c
@@ -114,6 +114,7 @@ test: deps check-layout
 	$(MAKE) --no-print-directory $(DFLAB) $(TESTS)
 	DFL_PYTHON=$(PYTHON) DFL_DFLAB=$(abspath $(DFLAB)) $(TESTS) -j2 --timeout 600
 	$(MAKE) --no-print-directory web-test
+	$(MAKE) --no-print-directory fuzz-short
 
 sanitize: deps
 	$(MAKE) --no-print-directory BUILD=build-san OPT=-O1 \
@@ -139,7 +140,13 @@ reproduce: deps
 	@set -e; for c in $(PAPER_CONFIGS); do echo "== $$c"; $(DFLAB) run $$c; done
 	$(PYTHON) scripts/report.py --results results --out results/REPORT.md
 
+# Every paper and smoke config at --threads 1, --threads 2 and
+# OMP_NUM_THREADS=1, compared byte for byte (make test runs a quick subset).
+check-threads: deps
+	$(MAKE) --no-print-directory $(DFLAB)
+	$(PYTHON) scripts/check_threads.py $(DFLAB)
+
 clean:
-	rm -rf build build-san build-bench
+	rm -rf build build-san build-bench build-fuzz
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

@@ -1,7 +1,9 @@
 /* INI loading.  libinih does the syntax; we feed it through ini_parse_stream
- * with our own line reader so that every handler call knows its line number
- * and whether the line was an indented continuation (multi-line values are
- * joined with a blank).  Debian's libinih exposes its limits as library
+ * with our own line reader (io/lines.h: the text rules, shared with the
+ * points CSV) so that every handler call knows its line number and whether
+ * the line was an indented continuation (multi-line values are joined with
+ * a blank), and so that duplicate sections and over-long names are caught
+ * on the line that has them.  Debian's libinih exposes its limits as library
  * globals; we raise the line limit (process-wide, idempotent) so that long
  * point lists are not cut at 200 characters, and make '#' the only
  * inline-comment prefix so that ';' can separate points.
