@@ -27,7 +27,7 @@ fuzz-build:
 	  SAN="$(FUZZ_SAN)" $(FUZZ_BUILD)/libdfl.a $(FUZZ_BUILD)/libdflexp.a
 	$(MAKE) --no-print-directory $(FUZZ_BINS)
 
-$(FUZZ_BUILD)/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_BUILD)/libdfl.a $(FUZZ_BUILD)/libdflexp.a
+$(FUZZ_BUILD)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_util.h $(FUZZ_BUILD)/libdfl.a $(FUZZ_BUILD)/libdflexp.a
 	clang-14 -Isrc -Iexperiments -D_POSIX_C_SOURCE=200809L -std=c11 -g -O1 \
 	  -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -c $< -o $@.o
 	clang++-14 -fsanitize=fuzzer,address,undefined -fopenmp -o $@ $@.o \

@@ -13,8 +13,10 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "fuzz_util.h"
 #include "io/config.h"
 #include "io/config_impl.h"
+#include "io/lines.h"
 
 static void getters(dfl_cfg *c)
 {
@@ -52,16 +54,19 @@ static void getters(dfl_cfg *c)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    char *text = malloc(size + 1);
+    char *text = fuzz_text(data, size);
     if (!text) return 0;
-    memcpy(text, data, size);
-    text[size] = '\0';
     dfl_cfg *c = NULL;
     dfl_err err;
     if (dfl_cfg_parse_string("/nonexistent-dir/fuzz.ini", text, &c, &err) == DFL_OK) {
         getters(c);
         dfl_cfg_free(c);
     }
+    /* the CLI escapes every message; an escaped text holds no control byte */
+    char esc[4 * DFL_ERR_MSG_MAX];
+    dfl_text_escape(text, esc, sizeof esc);
+    for (const char *q = esc; *q; q++)
+        if ((unsigned char)*q < 0x20 || *q == 0x7f) __builtin_trap();
     free(text);
     /* the FILE path, through a file in memory */
     char path[64];

@@ -10,15 +10,14 @@
 #include <string.h>
 
 #include "cfg/field_cfg.h"
+#include "fuzz_util.h"
 #include "io/config.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     if (size > 4096) return 0; /* keep constructions small */
-    char *text = malloc(size + 1);
+    char *text = fuzz_text(data, size);
     if (!text) return 0;
-    memcpy(text, data, size);
-    text[size] = '\0';
     dfl_cfg *c = NULL;
     dfl_err err;
     if (dfl_cfg_parse_string("/nonexistent-dir/fuzz.ini", text, &c, &err) == DFL_OK &&
