@@ -295,6 +295,9 @@ static int flushed(int rc)
 static void passive_omp(char **argv)
 {
     if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT")) return;
+    /* under valgrind /proc/self/exe is the tool, not dflab: no re-exec */
+    const char *pre = getenv("LD_PRELOAD");
+    if (pre && strstr(pre, "vgpreload")) return;
     if (setenv("OMP_WAIT_POLICY", "PASSIVE", 1) != 0) return;
     execv("/proc/self/exe", argv);
     /* exec failed: carry on with the active default */
