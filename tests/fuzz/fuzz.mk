@@ -49,10 +49,10 @@ fuzz-regress: fuzz-build
 
 # One harness for $(1) seconds; fails on any finding (the input is left in
 # $(FUZZ_BUILD)/ as crash-*, leak-*, timeout-*: add it to tests/fuzz/regress/).
-fuzz_run = $(FUZZ_ENV) $(FUZZ_BUILD)/fuzz_$(2) $(FUZZ_FLAGS) -max_total_time=$(1) \
+fuzz_run = ( $(FUZZ_ENV) $(FUZZ_BUILD)/fuzz_$(2) $(FUZZ_FLAGS) -max_total_time=$(1) \
 	  -artifact_prefix=$(FUZZ_BUILD)/ $(FUZZ_BUILD)/corpus/$(2) </dev/null \
 	  >$(FUZZ_BUILD)/fuzz_$(2).log 2>&1 || { echo "fuzz: $(2) found a crash"; tail -40 $(FUZZ_BUILD)/fuzz_$(2).log; exit 1; }; \
-	  grep -E 'stat::number_of_executed_units|cov:' $(FUZZ_BUILD)/fuzz_$(2).log | tail -2 | sed 's/^/fuzz $(2): /'
+	  grep -E 'stat::number_of_executed_units|DONE' $(FUZZ_BUILD)/fuzz_$(2).log | tail -2 | sed 's/^/fuzz $(2): /' )
 
 fuzz-short: fuzz-regress $(FUZZERS:%=$(FUZZ_BUILD)/corpus/%/.seeded)
 	@set -e; $(call fuzz_run,$(FUZZ_SHORT),config) & p1=$$!; $(call fuzz_run,$(FUZZ_SHORT),points) & p2=$$!; \
