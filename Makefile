@@ -35,7 +35,7 @@ LIB_C   := $(shell find src -name '*.c' ! -path 'src/cli/*' ! -path 'src/web/*' 
 LIB_CC  := $(shell find src -name '*.cc' | sort)
 EXP_C   := $(shell find experiments -name '*.c' | sort)
 CLI_C   := $(shell find src/cli -name '*.c' | sort)
-TEST_C  := $(shell find tests -name '*.c' ! -path 'tests/bench/*' | sort)
+TEST_C  := $(shell find tests -name '*.c' ! -path 'tests/bench/*' ! -path 'tests/fuzz/*' | sort)
 BENCH_C := $(shell find tests/bench -name '*.c' 2>/dev/null | sort)
 
 LIB_OBJ   := $(LIB_C:%.c=$(BUILD)/%.o) $(LIB_CC:%.cc=$(BUILD)/%.o)
@@ -56,9 +56,9 @@ BENCH   := $(BUILD)/dflab-bench
 
 APT_PKGS := libinih-dev libceres-dev libopenexr-dev libimath-dev libcriterion-dev zlib1g-dev \
             python3-matplotlib python3-numpy python3-vtk9 openexr pkg-config \
-            emscripten chromium python3-scipy parallel slurm-wlm munge clang-14
+            emscripten chromium python3-scipy parallel slurm-wlm munge clang-14 libomp-14-dev
 
-.PHONY: all deps test sanitize bench reproduce clean check-layout web web-test web-bench
+.PHONY: all deps test sanitize bench reproduce clean check-layout web web-test web-bench check-threads
 all: $(DFLAB) $(LIB)
 
 $(BUILD)/%.o: %.c
@@ -114,6 +114,7 @@ test: deps check-layout
 	$(MAKE) --no-print-directory $(DFLAB) $(TESTS)
 	DFL_PYTHON=$(PYTHON) DFL_DFLAB=$(abspath $(DFLAB)) $(TESTS) -j2 --timeout 600
 	$(MAKE) --no-print-directory web-test
+	$(MAKE) --no-print-directory fuzz-short
 
 sanitize: deps
 	$(MAKE) --no-print-directory BUILD=build-san OPT=-O1 \
@@ -125,6 +126,7 @@ sanitize: deps
 	  build-san/dflab-tests -j2 --timeout 1200
 
 include src/web/web.mk
+include tests/fuzz/fuzz.mk
 
 bench: deps
 	$(MAKE) --no-print-directory OPT=-O3 BUILD=build-bench build-bench/dflab-bench
@@ -138,7 +140,13 @@ reproduce: deps
 	@set -e; for c in $(PAPER_CONFIGS); do echo "== $$c"; $(DFLAB) run $$c; done
 	$(PYTHON) scripts/report.py --results results --out results/REPORT.md
 
+# Every paper and smoke config at --threads 1, --threads 2 and
+# OMP_NUM_THREADS=1, compared byte for byte (make test runs a quick subset).
+check-threads: deps
+	$(MAKE) --no-print-directory $(DFLAB)
+	$(PYTHON) scripts/check_threads.py $(DFLAB)
+
 clean:
-	rm -rf build build-san build-bench
+	rm -rf build build-san build-bench build-fuzz
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

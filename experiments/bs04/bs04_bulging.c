@@ -122,7 +122,9 @@ static dfl_status read_case(const dfl_cfg *cfg, bulge_case *c, dfl_err *err)
     if ((st = dfl_param_shape_from_cfg(cfg, c->curve_sec, "bspline_curve", &c->shape, err)))
         return st;
     c->have_shape = 1;
-    if ((st = dfl_cfg_double(cfg, sec, "eps", 1e-300, 1e300, &c->eps, err))) return st;
+    /* >= 1e-12: see the eps of experiments/cfg/rfunc_cfg.c (segment count
+     * and coordinate rounding) */
+    if ((st = dfl_cfg_double(cfg, sec, "eps", 1e-12, 1e300, &c->eps, err))) return st;
     if ((st = dfl_rfunc_join_from_cfg(cfg, sec, &c->join, err))) return st;
     if ((st = dfl_rfunc_trim_from_cfg(cfg, sec, &c->trim, err))) return st;
     if ((st = dfl_cfg_doubles(cfg, sec, "levels", 1, &c->levels, &c->nlevels, err))) return st;

@@ -64,15 +64,15 @@ static dfl_status read_keys(const dfl_cfg *cfg, study_keys *k, dfl_err *err)
     if ((st = dfl_section_names_from_cfg(cfg, "study", "curves", MAX_CURVES, k->names,
                                          &k->ncurves, "curve section name", err)))
         return st;
-    if ((st = dfl_cfg_double(cfg, "study", "eps", 0.0, 1e300, &k->eps, err))) return st;
-    if (!(k->eps > 0.0))
-        return dfl_cfg_reject(cfg, "study", "eps", err, "expected eps > 0, got %g", k->eps);
+    /* >= 1e-12: see the eps of experiments/cfg/rfunc_cfg.c (segment count
+     * and coordinate rounding); smaller values fail for want of memory */
+    if ((st = dfl_cfg_double(cfg, "study", "eps", 1e-12, 1e300, &k->eps, err))) return st;
     if ((st = dfl_cfg_doubles(cfg, "study", "fit_eps", 2, &k->fit_eps, &k->nfit, err))) return st;
     int distinct = 0;
     for (size_t i = 0; i < k->nfit; i++) {
-        if (!(k->fit_eps[i] > 0.0))
-            return dfl_cfg_reject(cfg, "study", "fit_eps", err, "expected values > 0, got %g",
-                                  k->fit_eps[i]);
+        if (!(k->fit_eps[i] >= 1e-12))
+            return dfl_cfg_reject(cfg, "study", "fit_eps", err,
+                                  "expected values >= 1e-12 (as eps), got %g", k->fit_eps[i]);
         if (k->fit_eps[i] != k->fit_eps[0]) distinct = 1;
     }
     if (!distinct)

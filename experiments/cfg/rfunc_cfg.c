@@ -19,7 +19,11 @@ static dfl_status curve_polyline(const dfl_cfg *cfg, const char *sec, dfl_rfunc_
     const char *kind;
     dfl_status st;
     if ((st = dfl_cfg_string(cfg, sec, "curve", &s->curve, err))) return st;
-    if ((st = dfl_cfg_double(cfg, sec, "eps", 1e-300, 1e300, &s->eps, err))) return st;
+    /* eps >= 1e-12: the polygon needs about L sqrt(kappa / (8 eps)) segments,
+     * above 10^6 below 1e-12 for unit-size curves, where the rounding of the
+     * coordinates (1e-16 of their size) is of the order of the bound itself;
+     * smaller values were accepted and then failed for want of memory. */
+    if ((st = dfl_cfg_double(cfg, sec, "eps", 1e-12, 1e300, &s->eps, err))) return st;
     if (dfl_cfg_has(cfg, sec, "closed"))
         return dfl_cfg_reject(cfg, sec, "closed", err,
                               "closed applies to vertices only (a curve's closedness comes from"

@@ -5,6 +5,8 @@
 #include "geom/implicit.h"
 
 #include <math.h>
+
+#include "core/domain.h"
 #include <stdio.h>
 #include <string.h>
 
@@ -15,7 +17,7 @@
 static dfl_status get_pos(const dfl_cfg *cfg, const char *sec, const char *key, double *out,
                           dfl_err *err)
 {
-    dfl_status st = dfl_cfg_double(cfg, sec, key, -HUGE_VAL, HUGE_VAL, out, err);
+    dfl_status st = dfl_cfg_double(cfg, sec, key, -DFL_COORD_MAX, DFL_COORD_MAX, out, err);
     if (st != DFL_OK) return st;
     if (!(*out > 0.0))
         return dfl_cfg_reject(cfg, sec, key, err, "expected a number > 0, got %g", *out);
@@ -145,12 +147,12 @@ dfl_status dfl_implicit_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_implic
         break;
     case 1:
         if ((st = dfl_cfg_vec_opt(cfg, sec, "center", 3, zero, c, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_double_opt(cfg, sec, "a", 0.0, -HUGE_VAL, HUGE_VAL, &a, err)) != DFL_OK)
+        if ((st = dfl_cfg_double_opt(cfg, sec, "a", 0.0, -DFL_COORD_MAX, DFL_COORD_MAX, &a, err)) != DFL_OK)
             return st;
         if (!(a > -1.0 / 3.0)) return dfl_cfg_reject(cfg, sec, "a", err, "expected a > -1/3");
-        if ((st = dfl_cfg_double_opt(cfg, sec, "b", -5.0, -HUGE_VAL, HUGE_VAL, &b, err)) != DFL_OK)
+        if ((st = dfl_cfg_double_opt(cfg, sec, "b", -5.0, -DFL_COORD_MAX, DFL_COORD_MAX, &b, err)) != DFL_OK)
             return st;
-        if ((st = dfl_cfg_double_opt(cfg, sec, "c", 11.8, -HUGE_VAL, HUGE_VAL, &cc, err)) !=
+        if ((st = dfl_cfg_double_opt(cfg, sec, "c", 11.8, -DFL_COORD_MAX, DFL_COORD_MAX, &cc, err)) !=
             DFL_OK)
             return st;
         st = dfl_implicit_goursat(c, a, b, cc, &opt, &imp, err);
@@ -173,7 +175,7 @@ dfl_status dfl_implicit_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_implic
     }
     default:
         if ((st = dfl_cfg_vec_opt(cfg, sec, "center", 3, zero, c, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_double_opt(cfg, sec, "eps", 0.1, -HUGE_VAL, HUGE_VAL, &eps, err)) !=
+        if ((st = dfl_cfg_double_opt(cfg, sec, "eps", 0.1, -DFL_COORD_MAX, DFL_COORD_MAX, &eps, err)) !=
             DFL_OK)
             return st;
         if (!(eps > 0.0 && eps < 0.25))
@@ -250,8 +252,8 @@ static dfl_status cone_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *er
     dfl_status st;
     if ((st = dfl_cfg_vec(cfg, sec, "a", 3, a, err)) != DFL_OK) return st;
     if ((st = dfl_cfg_vec(cfg, sec, "b", 3, b, err)) != DFL_OK) return st;
-    if ((st = dfl_cfg_double(cfg, sec, "ra", 0.0, HUGE_VAL, &ra, err)) != DFL_OK) return st;
-    if ((st = dfl_cfg_double(cfg, sec, "rb", 0.0, HUGE_VAL, &rb, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_double(cfg, sec, "ra", 0.0, DFL_COORD_MAX, &ra, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_double(cfg, sec, "rb", 0.0, DFL_COORD_MAX, &rb, err)) != DFL_OK) return st;
     if (!(ra + rb > 0.0)) return dfl_cfg_reject(cfg, sec, "rb", err, "ra and rb are both 0");
     if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
         return dfl_cfg_reject(cfg, sec, "b", err, "a and b coincide");

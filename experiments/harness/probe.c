@@ -1,137 +1,86 @@
 #include "harness/probe.h"
 
-#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cfg/field_cfg.h"
+#include "core/domain.h"
 #include "io/config.h"
+#include "io/points.h"
 
-enum { C_X, C_Y, C_Z, C_DX, C_DY, C_DZ, C_N };
-static const char *const colnames[C_N] = {"x", "y", "z", "dx", "dy", "dz"};
-
-static char *trim(char *s)
+/* A point of the points file inside dflab's domain (core/domain.h), and
+ * with --jet a direction that is finite, inside it and not zero. */
+static dfl_status check_point(const char *path, size_t i, const double *row, int dim, int K,
+                              dfl_err *err)
 {
-    while (isspace((unsigned char)*s)) s++;
-    size_t n = strlen(s);
-    while (n && isspace((unsigned char)s[n - 1])) s[--n] = '\0';
-    return s;
-}
-
-/* Splits line at commas in place; returns the field count (max maxf). */
-static int split(char *line, char **f, int maxf)
-{
-    int n = 0;
-    char *s = line;
-    for (;;) {
-        char *c = strchr(s, ',');
-        if (c) *c = '\0';
-        if (n < maxf) f[n] = trim(s);
-        n++;
-        if (!c) break;
-        s = c + 1;
+    for (int j = 0; j < dim; j++)
+        if (!dfl_coord_ok(row[j]))
+            return dfl_err_set(err, DFL_E_INPUT,
+                               "%s: point %zu: coordinate %c = %g is outside dflab's range "
+                               "|x| <= %g",
+                               path, i + 1, "xyz"[j], row[j], DFL_COORD_MAX);
+    if (K == 0) return DFL_OK;
+    double n2 = 0.0;
+    for (int j = 0; j < dim; j++) {
+        if (!dfl_coord_ok(row[3 + j]))
+            return dfl_err_set(err, DFL_E_INPUT,
+                               "%s: point %zu: direction d%c = %g is outside |d| <= %g", path,
+                               i + 1, "xyz"[j], row[3 + j], DFL_COORD_MAX);
+        n2 = fmax(n2, fabs(row[3 + j]));
     }
-    return n;
+    if (!(n2 > 0.0))
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "%s: point %zu: the --jet direction is zero (expected a non-zero "
+                           "dx,dy%s)",
+                           path, i + 1, dim == 3 ? ",dz" : "");
+    return DFL_OK;
 }
 
-typedef struct pts {
-    double *v;   /* rows of 6: x y z dx dy dz */
-    size_t n, cap;
-} pts;
-
-static dfl_status read_points(const char *path, int dim, int want_dir, pts *p, dfl_err *err)
+/* Reads the points file: io/points.h's format, each point checked. */
+static dfl_status read_points(const char *path, int dim, int K, dfl_points *p, dfl_err *err)
 {
     FILE *fp = fopen(path, "r");
-    if (!fp) return dfl_err_set(err, DFL_E_INPUT, "%s: cannot open points file: %s", path, strerror(errno));
-    char line[4096];
-    int lineno = 0, map[16], ncols = 0, have[C_N] = {0};
-    dfl_status st = DFL_OK;
-    char *f[16];
-    while (fgets(line, sizeof line, fp)) {
-        lineno++;
-        size_t len = strlen(line);
-        if (len == sizeof line - 1 && line[len - 1] != '\n') {
-            st = dfl_err_set(err, DFL_E_INPUT, "%s:%d: line too long", path, lineno);
-            break;
-        }
-        char *t = trim(line);
-        if (*t == '\0') continue;
-        int nf = split(t, f, 16);
-        if (ncols == 0) { /* header */
-            if (nf > 16) {
-                st = dfl_err_set(err, DFL_E_INPUT, "%s:%d: too many columns", path, lineno);
-                break;
-            }
-            for (int i = 0; i < nf && st == DFL_OK; i++) {
-                int k = -1;
-                for (int c = 0; c < C_N; c++)
-                    if (strcmp(f[i], colnames[c]) == 0) k = c;
-                if (k < 0)
-                    st = dfl_err_set(err, DFL_E_INPUT,
-                                     "%s:%d: unknown column '%s' (expected header x,y[,z][,dx,dy[,dz]])",
-                                     path, lineno, f[i]);
-                else if (have[k])
-                    st = dfl_err_set(err, DFL_E_INPUT, "%s:%d: duplicate column '%s'", path, lineno, f[i]);
-                else
-                    have[k] = 1, map[i] = k;
-            }
-            if (st != DFL_OK) break;
-            ncols = nf;
-            int need[C_N] = {1, 1, dim == 3, want_dir, want_dir, want_dir && dim == 3};
-            for (int c = 0; c < C_N && st == DFL_OK; c++) {
-                if (need[c] && !have[c])
-                    st = dfl_err_set(err, DFL_E_INPUT, "%s:%d: missing column '%s'%s", path, lineno,
-                                     colnames[c], c >= C_DX ? " (the --jet direction)" : "");
-                if (!need[c] && have[c])
-                    st = dfl_err_set(err, DFL_E_INPUT, "%s:%d: column '%s' not expected for a %dD field%s",
-                                     path, lineno, colnames[c], dim, want_dir ? "" : " without --jet");
-            }
-            if (st != DFL_OK) break;
-            continue;
-        }
-        if (nf != ncols) {
-            st = dfl_err_set(err, DFL_E_INPUT, "%s:%d: expected %d fields, got %d", path, lineno,
-                             ncols, nf);
-            break;
-        }
-        if (p->n == p->cap) {
-            size_t cap = p->cap ? 2 * p->cap : 256;
-            double *v = realloc(p->v, cap * 6 * sizeof *v);
-            if (!v) {
-                st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-                break;
-            }
-            p->v = v;
-            p->cap = cap;
-        }
-        double *row = p->v + 6 * p->n;
-        for (int c = 0; c < 6; c++) row[c] = 0.0;
-        for (int i = 0; i < nf && st == DFL_OK; i++) {
-            char *end;
-            errno = 0;
-            double x = strtod(f[i], &end);
-            if (end == f[i] || *end != '\0' || errno == ERANGE || !isfinite(x))
-                st = dfl_err_set(err, DFL_E_INPUT, "%s:%d: column '%s': expected a finite number, got '%.60s'",
-                                 path, lineno, colnames[map[i]], f[i]);
-            row[map[i]] = x;
-        }
-        if (st != DFL_OK) break;
-        p->n++;
-    }
-    if (st == DFL_OK && ferror(fp)) st = dfl_err_set(err, DFL_E_INPUT, "%s: read error", path);
-    if (st == DFL_OK && ncols == 0) st = dfl_err_set(err, DFL_E_INPUT, "%s: empty file (expected a header x,y[,z])", path);
-    if (st == DFL_OK && p->n == 0) st = dfl_err_set(err, DFL_E_INPUT, "%s: no points after the header", path);
+    if (!fp)
+        return dfl_err_set(err, DFL_E_INPUT, "%s: cannot open points file: %s", path,
+                           strerror(errno));
+    struct stat sb;
+    dfl_status st;
+    if (fstat(fileno(fp), &sb) == 0 && S_ISDIR(sb.st_mode))
+        st = dfl_err_set(err, DFL_E_INPUT, "%s: cannot read points file: a directory", path);
+    else
+        st = dfl_points_read(fp, path, dim, K > 0, p, err);
     fclose(fp);
+    for (size_t i = 0; st == DFL_OK && i < p->n; i++)
+        st = check_point(path, i, p->v + 6 * i, dim, K, err);
+    if (st != DFL_OK) dfl_points_free(p);
     return st;
+}
+
+/* A value that is not finite at a point inside the domain is a failure of
+ * the method, never a number to print. */
+static dfl_status check_row(const char *path, size_t i, const double *r, int w, dfl_err *err)
+{
+    static const char *const names[7] = {"x", "y", "z", "value", "gx", "gy", "gz"};
+    for (int c = 3; c < w; c++)
+        if (!isfinite(r[c])) {
+            char nm[16];
+            if (c < 7) snprintf(nm, sizeof nm, "%s", names[c]);
+            else snprintf(nm, sizeof nm, "d%d", c - 6);
+            return dfl_err_set(err, DFL_E_NUMERIC,
+                               "%s: point %zu: %s is not finite (%g); nothing printed", path,
+                               i + 1, nm, r[c]);
+        }
+    return DFL_OK;
 }
 
 dfl_status dfl_probe(const dfl_probe_opts *o, FILE *out, dfl_err *err)
 {
     dfl_cfg *cfg = NULL;
     dfl_field f = {0};
-    pts p = {0};
+    dfl_points p = {0};
     double *res = NULL;
     dfl_status st = dfl_cfg_load(o->config, &cfg, err);
     for (int i = 0; st == DFL_OK && i < o->nsets; i++) st = dfl_cfg_set(cfg, o->sets[i], err);
@@ -155,7 +104,7 @@ dfl_status dfl_probe(const dfl_probe_opts *o, FILE *out, dfl_err *err)
         st = dfl_err_set(err, DFL_E_INPUT, "--jet: field '%s' has no exact derivatives", f.ops->name);
         goto done;
     }
-    st = read_points(o->points, f.dim, o->jet > 0, &p, err);
+    st = read_points(o->points, f.dim, o->jet, &p, err);
     if (st != DFL_OK) goto done;
     const int dim = f.dim, K = o->jet, w = 7 + K;
     res = malloc(p.n * (size_t)w * sizeof *res);
@@ -180,6 +129,7 @@ dfl_status dfl_probe(const dfl_probe_opts *o, FILE *out, dfl_err *err)
             }
             for (int k = 1; k <= K; k++) r[6 + k] = dfl_jet_deriv(&j, k);
         }
+        if ((st = check_row(o->points, i, r, w, err)) != DFL_OK) goto done;
     }
     fprintf(out, "x,y,z,value,gx,gy,gz");
     for (int k = 1; k <= K; k++) fprintf(out, ",d%d", k);
@@ -191,7 +141,7 @@ dfl_status dfl_probe(const dfl_probe_opts *o, FILE *out, dfl_err *err)
     if (fflush(out) != 0) st = dfl_err_set(err, DFL_E_IO, "cannot write probe output");
 done:
     free(res);
-    free(p.v);
+    dfl_points_free(&p);
     dfl_field_destroy(&f);
     dfl_cfg_free(cfg);
     return st;

@@ -6,6 +6,13 @@
  * ignored.  Output CSV (to out, only after every point succeeded):
  * x,y,z,value,gx,gy,gz[,d1..dK] with z = gz = 0 for 2D fields, %.17g;
  * dk = d^k/ds^k u(x + s*dir) at s = 0+, exact (jets).
+ *
+ * Checks (exit status 2, naming the file and point): the file's text and
+ * format (io/points.h); every coordinate inside dflab's domain |x| <= 1e150
+ * (core/domain.h); with --jet a direction with |d_j| <= 1e150 that is not
+ * zero.  A value, gradient or derivative that is not finite at a point
+ * inside the domain is DFL_E_NUMERIC (exit 1) naming the point and the
+ * column: nothing is printed then, so stdout never holds inf or nan.
  */
 #ifndef DFL_EXPERIMENTS_PROBE_H
 #define DFL_EXPERIMENTS_PROBE_H

@@ -118,6 +118,8 @@ dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
             st = dfl_err_set(err, DFL_E_INPUT, "%s: [study] name cannot be a sweep", o->config);
             goto fail;
         }
+    /* a large sweep says what it is about to do, even with --quiet */
+    if (np >= 1000) fprintf(stderr, "dflab: %s: running %zu sweep points\n", study->name, np);
     for (size_t i = 0; i < np; i++) {
         dfl_cfg *pt = NULL;
         st = dfl_cfg_sweep_point(cfg, i, &pt, err);

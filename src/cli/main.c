@@ -1,10 +1,13 @@
 /* dflab command line.  Exit status: 0 success, 2 bad input (config, points
- * file, geometry, usage), 1 any other failure (I/O, numerical). */
+ * file, geometry, usage, an unusable --out), 1 any other failure (I/O such
+ * as a full disk or a closed stdout, out of memory, numerical). */
 #include <limits.h>
+#include <omp.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "core/jet.h"
 #include "dfl_version.h"
@@ -12,6 +15,9 @@
 #include "io/manifest.h"
 #include "harness/probe.h"
 #include "harness/runner.h"
+#include "io/lines.h"
+#include "io/path.h"
+#include "outdir.h"
 
 static const char *const usage_main =
     "usage: dflab <command> [options]\n"
@@ -23,7 +29,14 @@ static const char *const usage_main =
     "        evaluate the config's [field] at points; CSV on stdout\n"
     "  list  studies and the configs that use them\n"
     "  help [COMMAND]   this text, or a command's help\n"
-    "  --version\n";
+    "  --version\n"
+    "\n"
+    "exit status: 0 success; 2 bad input (config, points file, geometry, usage,\n"
+    "an unusable --out such as a file, / or a place where no directory can be\n"
+    "made); 1 a failure of the machine (disk full, stdout closed or full, out of\n"
+    "memory) or of a numerical method.  Every failure prints one line\n"
+    "`dflab: error: ...` on stderr (non-printable bytes as \\xNN) and leaves no\n"
+    "output behind.\n";
 
 static const char *const usage_run =
     "usage: dflab run CONFIG.ini [--set section.key=value]... [--out DIR] [--threads N] [--quiet]\n"
@@ -34,7 +47,9 @@ static const char *const usage_run =
     "--set overrides or adds a key (and may itself be a list).  Outputs go to DIR\n"
     "(default results/<config stem>/): <study>.csv, config.ini (resolved),\n"
     "manifest.json and the study's .vti/.vtp/.exr files; nothing is written unless\n"
-    "the whole run succeeds.  Exit 2 on bad input.\n";
+    "the whole run succeeds.  --threads N: OpenMP threads (default: OMP_NUM_THREADS,\n"
+    "else every core); results are the same bytes at any N.  Exit 2 on bad input\n"
+    "(incl. an unusable --out), 1 on machine failures (see `dflab help`).\n";
 
 static const char *const usage_probe =
     "usage: dflab probe CONFIG.ini --points FILE.csv [--jet K] [--set section.key=value]...\n"
@@ -48,7 +63,9 @@ static const char *const usage_list = "usage: dflab list\n\nLists the studies an
 
 static int fail(const dfl_err *err)
 {
-    fprintf(stderr, "dflab: error: %s\n", err->msg);
+    /* the message may quote input bytes: escaped, so it stays one line */
+    char esc[4 * DFL_ERR_MSG_MAX];
+    fprintf(stderr, "dflab: error: %s\n", dfl_text_escape(err->msg, esc, sizeof esc));
     return err->code == DFL_E_INPUT ? 2 : 1;
 }
 
@@ -61,7 +78,9 @@ static int usage_error(const char *usage, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    fprintf(stderr, "dflab: error: %s (see `dflab help %s`)\n", msg, cmd);
+    char esc[4 * sizeof msg];
+    fprintf(stderr, "dflab: error: %s (see `dflab help %s`)\n",
+            dfl_text_escape(msg, esc, sizeof esc), cmd);
     return 2;
 }
 
@@ -152,9 +171,23 @@ static int take_run(void *opts, const char *opt, const char *v)
 
 static int exec_run(void *opts)
 {
+    dfl_run_opts *o = opts;
     dfl_err err;
     dfl_err_clear(&err);
-    return dfl_run(opts, &err) == DFL_OK ? 0 : fail(&err);
+    /* --threads is the one control: every parallel region of the run
+     * (also those that take no thread count) uses it */
+    if (o->threads > 0) omp_set_num_threads(o->threads);
+    else o->threads = omp_get_max_threads();
+    char def[600], stem[512];
+    if (!o->outdir) {
+        dfl_path_stem(o->config, stem, sizeof stem);
+        snprintf(def, sizeof def, "results/%s", stem);
+    }
+    dfl_outdir_guard g;
+    if (dfl_outdir_check(o->outdir ? o->outdir : def, &g, &err) != DFL_OK) return fail(&err);
+    if (dfl_run(opts, &err) == DFL_OK) return 0;
+    dfl_outdir_undo(&g);
+    return fail(&err);
 }
 
 static int take_probe(void *opts, const char *opt, const char *v)
@@ -244,7 +277,41 @@ static int cmd_list(void)
     return 0;
 }
 
+/* Output to stdout that did not reach it (a closed or full stdout) is a
+ * failure of the machine: exit status 1, never 0. */
+static int flushed(int rc)
+{
+    if ((fflush(stdout) != 0 || ferror(stdout)) && rc == 0) {
+        fprintf(stderr, "dflab: error: cannot write to standard output\n");
+        return 1;
+    }
+    return rc;
+}
+
+/* libgomp reads OMP_WAIT_POLICY once, when it loads, before main: so the
+ * passive default (idle threads sleep instead of spinning, which on a busy
+ * machine made small runs crawl) is set by running dflab again with it in
+ * the environment.  A user's own OMP_WAIT_POLICY is left alone. */
+static void passive_omp(char **argv)
+{
+    if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT")) return;
+    /* under valgrind /proc/self/exe is the tool, not dflab: no re-exec */
+    const char *pre = getenv("LD_PRELOAD");
+    if (pre && strstr(pre, "vgpreload")) return;
+    if (setenv("OMP_WAIT_POLICY", "PASSIVE", 1) != 0) return;
+    execv("/proc/self/exe", argv);
+    /* exec failed: carry on with the active default */
+}
+
+static int dispatch(int argc, char **argv);
+
 int main(int argc, char **argv)
+{
+    passive_omp(argv);
+    return flushed(dispatch(argc, argv));
+}
+
+static int dispatch(int argc, char **argv)
 {
     if (argc < 2) {
         fputs(usage_main, stderr);
@@ -277,6 +344,8 @@ int main(int argc, char **argv)
         }
         return cmd_list();
     }
-    fprintf(stderr, "dflab: error: unknown command '%s'\n%s", cmd, usage_main);
+    char esc[1024];
+    fprintf(stderr, "dflab: error: unknown command '%s' (see `dflab help`)\n",
+            dfl_text_escape(cmd, esc, sizeof esc));
     return 2;
 }

@@ -3,7 +3,9 @@
  * The field forwards value, gradient and (when the shape has them) jets to
  * the shape unchanged, so it is the reference every approximation is
  * measured against.  Units and sign are the shape's (negative inside;
- * segments are unsigned).
+ * segments are unsigned).  Domain: the shape's (geom/shape.h); for the
+ * analytic kinds every point with |x_j| <= 1e150 (core/domain.h) gives a
+ * finite value.
  */
 #ifndef DFL_FIELD_EXACT_H
 #define DFL_FIELD_EXACT_H

@@ -1,5 +1,5 @@
 /* The computations keep separate loops on purpose: dfl_metrics_compute
- * reduces in parallel, dfl_metrics_bandstats and the saturating variant sum
+ * reduces in parallel over fixed chunks, dfl_metrics_bandstats and the saturating variant sum
  * serially, and each order of summation (and the saturating variant's
  * hypot) is what the reproduced tables hold.  They share the band rule and,
  * but for the saturating variant, the gradient norm. */
@@ -43,33 +43,61 @@ static void metrics_finish(size_t cnt, double s1, double s2, double mx, int has_
     out->gdef_max = has_grad ? gmx : NAN;
 }
 
+/* Sums of one fixed chunk of samples (see dfl_metrics_compute). */
+typedef struct chunk_sums {
+    double s1, s2, g1, mx, gmx;
+    size_t cnt, bad;
+} chunk_sums;
+
+static void chunk_sum(size_t i0, size_t i1, int dim, const double *u, const double *gu,
+                      const double *ref, int use_band, double band, chunk_sums *o)
+{
+    chunk_sums c = {0, 0, 0, 0, 0, 0, (size_t)-1};
+    for (size_t i = i0; i < i1; i++) {
+        if (!isfinite(u[i]) || !isfinite(ref[i])) {
+            if (i < c.bad) c.bad = i;
+            continue;
+        }
+        if (use_band && fabs(ref[i]) > band) continue;
+        double e = fabs(u[i] - ref[i]);
+        c.s1 += e;
+        c.s2 += e * e;
+        if (e > c.mx) c.mx = e;
+        if (gu) {
+            double gd = fabs(grad_norm(gu + i * (size_t)dim, dim) - 1.0);
+            c.g1 += gd;
+            if (gd > c.gmx) c.gmx = gd;
+        }
+        c.cnt++;
+    }
+    *o = c;
+}
+
+/* Bitwise the same at any thread count: the samples are cut into chunks of
+ * DFL_METRICS_CHUNK fixed by m alone, each chunk is summed in index order
+ * (in parallel over chunks), and the chunk sums are added in chunk order.
+ * Maxima and counts are exact in any order. */
 dfl_status dfl_metrics_compute(size_t m, int dim, const double *u, const double *gu,
                                const double *ref, double band, dfl_metrics *out, dfl_err *err)
 {
     int use_band = 0;
     dfl_status st = band_rule(band, &use_band, err);
     if (st != DFL_OK) return st;
-    size_t bad = (size_t)-1;
+    const size_t C = DFL_METRICS_CHUNK, nch = (m + C - 1) / C;
+    chunk_sums one, *cs = nch <= 1 ? &one : malloc(nch * sizeof *cs);
+    if (!cs) return dfl_err_set(err, DFL_E_NOMEM, "metrics: out of memory");
+#pragma omp parallel for schedule(static) if (nch > 1)
+    for (size_t k = 0; k < nch; k++)
+        chunk_sum(k * C, k + 1 == nch ? m : (k + 1) * C, dim, u, gu, ref, use_band, band, &cs[k]);
+    size_t bad = (size_t)-1, cnt = 0;
     double s1 = 0, s2 = 0, mx = 0, g1 = 0, gmx = 0;
-    size_t cnt = 0;
-#pragma omp parallel for reduction(+ : s1, s2, g1, cnt) reduction(max : mx, gmx) reduction(min : bad)
-    for (size_t i = 0; i < m; i++) {
-        if (!isfinite(u[i]) || !isfinite(ref[i])) {
-            if (i < bad) bad = i;
-            continue;
-        }
-        if (use_band && fabs(ref[i]) > band) continue;
-        double e = fabs(u[i] - ref[i]);
-        s1 += e;
-        s2 += e * e;
-        if (e > mx) mx = e;
-        if (gu) {
-            double gd = fabs(grad_norm(gu + i * (size_t)dim, dim) - 1.0);
-            g1 += gd;
-            if (gd > gmx) gmx = gd;
-        }
-        cnt++;
+    for (size_t k = 0; k < nch; k++) {
+        s1 += cs[k].s1, s2 += cs[k].s2, g1 += cs[k].g1, cnt += cs[k].cnt;
+        if (cs[k].mx > mx) mx = cs[k].mx;
+        if (cs[k].gmx > gmx) gmx = cs[k].gmx;
+        if (cs[k].bad < bad) bad = cs[k].bad;
     }
+    if (cs != &one) free(cs);
     if (bad != (size_t)-1)
         return dfl_err_set(err, DFL_E_NUMERIC, "non-finite field value at sample %zu", bad);
     metrics_finish(cnt, s1, s2, mx, gu != NULL, g1, gmx, out);

@@ -44,6 +44,10 @@
 #include "core/status.h"
 #include "io/table.h"
 
+/* Samples per chunk of dfl_metrics_compute's sums (fixes the summation
+ * order; changing it changes the last bits of l1, mse, gdef_mean). */
+#define DFL_METRICS_CHUNK 4096
+
 typedef struct dfl_metrics {
     size_t count;        /* samples that entered the metrics */
     double l1, mse, rms, linf;
@@ -65,7 +69,10 @@ typedef struct dfl_bandstats {
 /* u, ref: m values; gu: m*dim gradient of u (may be NULL).  Band: see the
  * band rule above.  Non-finite u or ref at any sample (in the band or
  * not): DFL_E_NUMERIC naming the first such sample.  count == 0 (empty
- * band) gives NAN metrics and DFL_OK.  Parallel (OpenMP) over samples. */
+ * band) gives NAN metrics and DFL_OK.  Parallel (OpenMP) over fixed
+ * chunks of DFL_METRICS_CHUNK samples whose sums are added in chunk order,
+ * so the result is bitwise the same at any thread count.  DFL_E_NOMEM when
+ * the chunk sums cannot be allocated. */
 dfl_status dfl_metrics_compute(size_t m, int dim, const double *u, const double *gu,
                                const double *ref, double band, dfl_metrics *out, dfl_err *err);
 

@@ -34,6 +34,14 @@
  *   parametric curves and surfaces (geom/param_shape.h), implicit surfaces
  *   (geom/implicit.h).
  *
+ * Domain of validity (core/domain.h): parameters and points with
+ * |x_j| <= 1e150.  The analytic kinds square differences of coordinates, so
+ * within it no intermediate overflows; circle and sphere measure |x - c|
+ * in a scaled form where the square sum leaves (1e-290, 1e290), so their
+ * values stay finite and within a few ulps across the whole domain (the
+ * same bits as the plain formula inside that range).  The config glue
+ * (experiments/cfg/shape_cfg.c) refuses larger parameters with exit 2.
+ *
  * Ownership: constructors allocate impl; dfl_shape_free releases it.  The
  * CSG constructor takes ownership of its children (their structs are zeroed).
  */

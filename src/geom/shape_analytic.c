@@ -17,6 +17,22 @@ typedef struct ball {
     double r;
 } ball;
 
+/* |u| for n <= 3 components: the plain sqrt of the square sum where that
+ * sum cannot overflow or underflow (the same bits as before), else scaled
+ * by the largest component, so that coordinates up to DFL_COORD_MAX
+ * (core/domain.h) give a finite, correctly rounded-to-a-few-ulp length. */
+static double ball_len(int n, const double *u)
+{
+    const double s = dfl_vecn_dot(n, u, u);
+    if (s > 1e-290 && s < 1e290) return sqrt(s);
+    double m = 0.0;
+    for (int j = 0; j < n; j++) m = fmax(m, fabs(u[j]));
+    if (m == 0.0 || !isfinite(m)) return m;
+    double t = 0.0;
+    for (int j = 0; j < n; j++) t += (u[j] / m) * (u[j] / m);
+    return m * sqrt(t);
+}
+
 static void ball_eval(const void *impl, size_t m, const double *pts, double *val, double *grad)
 {
     const ball *b = impl;
@@ -25,7 +41,7 @@ static void ball_eval(const void *impl, size_t m, const double *pts, double *val
         const double *x = pts + i * (size_t)n;
         double u[3] = {0, 0, 0};
         for (int j = 0; j < n; j++) u[j] = x[j] - b->c[j];
-        double len = sqrt(dfl_vecn_dot(n, u, u));
+        double len = ball_len(n, u);
         val[i] = len - b->r;
         if (grad) {
             double *g = grad + i * (size_t)n;

@@ -44,6 +44,23 @@
  *     unreadable FILE and FILE's own syntax errors are DFL_E_INPUT messages
  *     naming the including file and line, and FILE's line where it has one.
  *
+ * Text rules (io/lines.h, the same for the points CSV): lines of at most
+ * 65534 bytes (refused after reading one byte more, so /dev/zero or an
+ * endless line ends at once), at most 100000 lines and 16 MiB per file; a
+ * UTF-8 BOM at the start is skipped; NUL bytes, control characters (but
+ * TAB and a CR before the line end) and invalid UTF-8 are refused naming
+ * the line and column.  Section and key names longer than 49 characters
+ * are refused (libinih would cut them).
+ *
+ * Duplicates: a key written twice in a section and a section header
+ * written twice in a file are both DFL_E_INPUT naming the first line --
+ * sections are never merged, so what a reader sees in one [grid] block is
+ * all of [grid].  (Included keys and --set are the two documented ways to
+ * add keys to a section from elsewhere.)
+ *
+ * Sizes: a sweep may have at most 10^8 points (the product of the list
+ * lengths, checked when the axes are found, so no count overflows).
+ *
  * Getters validate type and range and mark the key as used; after a study
  * has read everything it needs, dfl_cfg_check_used() rejects keys nobody
  * read ("unknown key"), so a typo never goes unnoticed.  Every message
@@ -53,7 +70,9 @@
  *   int, double      decimal / C strtod syntax, finite only
  *   bool             true/false, yes/no, on/off, 1/0
  *   enum             one of a fixed list of names
- *   vector           "x y" or "x y z" (blank-separated doubles)
+ *   vector           "x y" or "x y z" (blank-separated doubles; vectors,
+ *                    point lists and double lists are coordinates, so each
+ *                    number must satisfy |v| <= 1e150, core/domain.h)
  *   point list       "x0 y0; x1 y1; ..." (';'-separated vectors of one dim)
  *   double list      "a b c" (blank-separated), for knots and the like
  *

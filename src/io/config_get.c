@@ -11,6 +11,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "core/domain.h"
 #include "io/config_impl.h"
 
 /* The entry of a required single value, marked used.  DFL_E_INPUT when it
@@ -195,7 +196,9 @@ dfl_status dfl_cfg_enum_opt(const dfl_cfg *c, const char *sec, const char *key,
 }
 
 /* Parses blank-separated finite doubles from s[0..len) into out (up to
- * max); returns the count or -1 on a bad token. */
+ * max); returns the count or -1 on a bad token.  These lists are
+ * coordinates, so a magnitude above DFL_COORD_MAX (core/domain.h) is a bad
+ * token too. */
 static long parse_doubles(const char *s, size_t len, double *out, size_t max)
 {
     long k = 0;
@@ -210,7 +213,7 @@ static long parse_doubles(const char *s, size_t len, double *out, size_t max)
         memcpy(tok, s + i, j - i);
         tok[j - i] = '\0';
         double v;
-        if (!parse_double(tok, &v)) return -1;
+        if (!parse_double(tok, &v) || !dfl_coord_ok(v)) return -1;
         if ((size_t)k < max && out) out[k] = v;
         k++;
         i = j;
@@ -222,7 +225,7 @@ dfl_status dfl_cfg_vec(const dfl_cfg *c, const char *sec, const char *key, int d
                        dfl_err *err)
 {
     char expect[128];
-    snprintf(expect, sizeof expect, "%d blank-separated finite numbers", dim);
+    snprintf(expect, sizeof expect, "%d blank-separated finite numbers (|v| <= 1e150)", dim);
     const dfl_cfg_entry *en;
     dfl_status st = fetch(c, sec, key, expect, &en, err);
     if (st != DFL_OK) return st;
@@ -247,7 +250,7 @@ dfl_status dfl_cfg_points(const dfl_cfg *c, const char *sec, const char *key, in
                           size_t min_count, double **out, size_t *count, dfl_err *err)
 {
     char expect[160];
-    snprintf(expect, sizeof expect, "at least %zu points of %d numbers each, written 'x y%s; ...'",
+    snprintf(expect, sizeof expect, "at least %zu points of %d numbers each (|v| <= 1e150), written 'x y%s; ...'",
              min_count, dim, dim == 3 ? " z" : "");
     *out = NULL;
     *count = 0;
@@ -274,7 +277,8 @@ dfl_status dfl_cfg_points(const dfl_cfg *c, const char *sec, const char *key, in
             free(pts);
             char w[1024];
             dfl_cfgi_where(en, w, sizeof w);
-            return dfl_err_set(err, DFL_E_INPUT, "%s: point %zu: expected %d numbers, got '%.*s'", w,
+            return dfl_err_set(err, DFL_E_INPUT,
+                               "%s: point %zu: expected %d numbers, got '%.*s' (each finite, |v| <= 1e150)", w,
                                i + 1, dim, (int)(len > 80 ? 80 : len), s);
         }
         memcpy(pts + i * (size_t)dim, tmp, (size_t)dim * sizeof *pts);
@@ -293,7 +297,7 @@ dfl_status dfl_cfg_doubles(const dfl_cfg *c, const char *sec, const char *key, s
                            double **out, size_t *count, dfl_err *err)
 {
     char expect[128];
-    snprintf(expect, sizeof expect, "at least %zu blank-separated finite numbers", min_count);
+    snprintf(expect, sizeof expect, "at least %zu blank-separated finite numbers (|v| <= 1e150)", min_count);
     *out = NULL;
     *count = 0;
     const dfl_cfg_entry *en;

@@ -25,6 +25,13 @@
 
 /* Longest accepted line (libinih's buffer; see config_parse.c). */
 #define DFL_CFG_LINE_MAX 65536
+/* Lines and bytes per file, and the longest section or key name (libinih
+ * keeps names in 50-byte buffers; longer ones are refused, not cut). */
+#define DFL_CFG_LINES_MAX 100000
+#define DFL_CFG_FILE_MAX (16 * 1024 * 1024)
+#define DFL_CFG_NAME_MAX 49
+/* Most points a sweep may have (checked when the axes are found). */
+#define DFL_CFG_SWEEP_MAX 100000000UL
 
 typedef struct dfl_cfg_entry {
     char *sec;

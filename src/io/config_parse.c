@@ -1,7 +1,9 @@
 /* INI loading.  libinih does the syntax; we feed it through ini_parse_stream
- * with our own line reader so that every handler call knows its line number
- * and whether the line was an indented continuation (multi-line values are
- * joined with a blank).  Debian's libinih exposes its limits as library
+ * with our own line reader (io/lines.h: the text rules, shared with the
+ * points CSV) so that every handler call knows its line number and whether
+ * the line was an indented continuation (multi-line values are joined with
+ * a blank), and so that duplicate sections and over-long names are caught
+ * on the line that has them.  Debian's libinih exposes its limits as library
  * globals; we raise the line limit (process-wide, idempotent) so that long
  * point lists are not cut at 200 characters, and make '#' the only
  * inline-comment prefix so that ';' can separate points.
@@ -14,20 +16,28 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "io/config_impl.h"
+#include "io/lines.h"
+
+typedef struct section_seen {
+    char *name;
+    int line;
+} section_seen;
 
 typedef struct parse_state {
     dfl_cfg *c;
     const char *name;
     bool allow_include;
     /* reader state */
-    FILE *fp;
-    const char *text; /* when parsing a string */
-    size_t pos;
+    dfl_lines lines;
+    char *buf;       /* DFL_CFG_LINE_MAX + 4 bytes */
+    size_t total;    /* bytes read so far */
     int line;
     int line_indented;
-    int too_long_line;
+    section_seen *secs; /* section headers seen, for duplicates */
+    size_t nsecs;
     /* last handler call, for continuation lines */
     ssize_t last;
     /* include lines, in file order */
@@ -37,30 +47,65 @@ typedef struct parse_state {
     dfl_status st;
 } parse_state;
 
+/* A section header written twice is an error: merging the two silently
+ * would let a second [grid] far down a file change keys the reader thinks
+ * it has read in the first (DESIGN.md, "config").  libinih keeps section
+ * and key names in 50-byte buffers and cuts longer ones; refused here so
+ * that no name is silently altered. */
+static dfl_status check_line(parse_state *ps, const char *s, size_t len)
+{
+    if (len == 0 || s[0] == ' ' || s[0] == '\t' || s[0] == '#' || s[0] == ';') return DFL_OK;
+    if (s[0] == '[') {
+        const char *e = memchr(s, ']', len);
+        if (!e) return DFL_OK; /* libinih reports the syntax error */
+        size_t n = (size_t)(e - s - 1);
+        if (n > DFL_CFG_NAME_MAX)
+            return dfl_err_set(ps->err, DFL_E_INPUT,
+                               "%s:%d: section name longer than %d characters", ps->name,
+                               ps->line, DFL_CFG_NAME_MAX);
+        for (size_t i = 0; i < ps->nsecs; i++)
+            if (strlen(ps->secs[i].name) == n && memcmp(ps->secs[i].name, s + 1, n) == 0)
+                return dfl_err_set(ps->err, DFL_E_INPUT,
+                                   "%s:%d: [%s]: duplicate section (first at line %d; write "
+                                   "each section once)",
+                                   ps->name, ps->line, ps->secs[i].name, ps->secs[i].line);
+        section_seen *v = realloc(ps->secs, (ps->nsecs + 1) * sizeof *v);
+        char *nm = v ? strndup(s + 1, n) : NULL;
+        if (v) ps->secs = v;
+        if (!nm) return dfl_err_set(ps->err, DFL_E_NOMEM, "out of memory reading config");
+        ps->secs[ps->nsecs++] = (section_seen){nm, ps->line};
+        return DFL_OK;
+    }
+    size_t n = strcspn(s, "=:");
+    while (n > 0 && (s[n - 1] == ' ' || s[n - 1] == '\t')) n--;
+    if (n > DFL_CFG_NAME_MAX)
+        return dfl_err_set(ps->err, DFL_E_INPUT, "%s:%d: key name longer than %d characters",
+                           ps->name, ps->line, DFL_CFG_NAME_MAX);
+    return DFL_OK;
+}
+
+/* libinih's line source: io/lines.h's rules, then the checks above.  An
+ * error ends the parse (NULL = end of input for libinih); parse_stream
+ * reports it. */
 static char *reader(char *str, int num, void *stream)
 {
     parse_state *ps = stream;
-    assert(num > 2);
-    size_t k = 0;
-    int ch = 0;
-    for (;;) {
-        if (ps->fp) {
-            ch = fgetc(ps->fp);
-        } else {
-            ch = ps->text[ps->pos] ? (unsigned char)ps->text[ps->pos++] : EOF;
-        }
-        if (ch == EOF) break;
-        if ((int)k < num - 2) {
-            str[k++] = (char)ch;
-        } else if (ch != '\n') {
-            ps->too_long_line = ps->line + 1;
-        }
-        if (ch == '\n') break;
+    assert(num >= DFL_CFG_LINE_MAX);
+    if (ps->st != DFL_OK) return NULL;
+    size_t len;
+    ps->st = dfl_lines_next(&ps->lines, ps->buf, DFL_CFG_LINE_MAX + 4, &len, ps->err);
+    if (ps->st != DFL_OK || len == (size_t)-1) return NULL;
+    ps->line = (int)ps->lines.line;
+    ps->total += len + 1;
+    if (ps->total > DFL_CFG_FILE_MAX) {
+        ps->st = dfl_err_set(ps->err, DFL_E_INPUT, "%s:%d: file larger than %d bytes", ps->name,
+                             ps->line, DFL_CFG_FILE_MAX);
+        return NULL;
     }
-    if (k == 0 && ch == EOF) return NULL;
-    str[k] = '\0';
-    ps->line++;
-    ps->line_indented = (k > 0 && (str[0] == ' ' || str[0] == '\t'));
+    ps->st = check_line(ps, ps->buf, len);
+    if (ps->st != DFL_OK) return NULL;
+    memcpy(str, ps->buf, len + 1);
+    ps->line_indented = (len > 0 && (str[0] == ' ' || str[0] == '\t'));
     return str;
 }
 
@@ -164,11 +209,16 @@ static dfl_status parse_stream(parse_state *ps)
 {
     dfl_err *err = ps->err;
     set_inih_limits();
+    ps->buf = malloc(DFL_CFG_LINE_MAX + 4);
+    if (!ps->buf) return dfl_err_set(err, DFL_E_NOMEM, "%s: out of memory", ps->name);
     int rc = ini_parse_stream(reader, ps, handler, ps);
+    free(ps->buf);
+    ps->buf = NULL;
+    for (size_t i = 0; i < ps->nsecs; i++) free(ps->secs[i].name);
+    free(ps->secs);
+    ps->secs = NULL;
+    ps->nsecs = 0;
     if (ps->st != DFL_OK) return ps->st;
-    if (ps->too_long_line)
-        return dfl_err_set(err, DFL_E_INPUT, "%s:%d: line longer than %d characters", ps->name,
-                           ps->too_long_line, DFL_CFG_LINE_MAX - 2);
     if (rc == -2) return dfl_err_set(err, DFL_E_NOMEM, "%s: out of memory", ps->name);
     if (rc != 0)
         return dfl_err_set(err, DFL_E_INPUT,
@@ -182,8 +232,6 @@ static dfl_status parse_stream(parse_state *ps)
 static dfl_status parse_common(parse_state *ps, dfl_cfg **out)
 {
     dfl_status st = parse_stream(ps);
-    if (st == DFL_OK && ps->fp && ferror(ps->fp))
-        st = dfl_err_set(ps->err, DFL_E_INPUT, "%s: read error", ps->name);
     if (st == DFL_OK) st = dfl_cfgi_resolve_includes(ps->c, ps->inc, ps->ninc, ps->err);
     if (st == DFL_OK) st = dfl_cfgi_find_axes(ps->c, ps->err);
     for (size_t i = 0; i < ps->ninc; i++) {
@@ -204,13 +252,19 @@ dfl_status dfl_cfgi_load(const char *path, bool allow_include, dfl_cfg **out, df
     *out = NULL;
     FILE *fp = fopen(path, "r");
     if (!fp) return dfl_err_set(err, DFL_E_INPUT, "%s: cannot open config: %s", path, strerror(errno));
+    struct stat sb;
+    if (fstat(fileno(fp), &sb) == 0 && S_ISDIR(sb.st_mode)) {
+        fclose(fp);
+        return dfl_err_set(err, DFL_E_INPUT, "%s: cannot read config: a directory", path);
+    }
     dfl_cfg *c = dfl_cfgi_new(path);
     if (!c) {
         fclose(fp);
         return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
     }
-    parse_state ps = {.c = c, .name = path, .allow_include = allow_include, .fp = fp,
-                      .last = -1, .err = err, .st = DFL_OK};
+    parse_state ps = {.c = c, .name = path, .allow_include = allow_include, .last = -1,
+                      .err = err, .st = DFL_OK};
+    dfl_lines_open_file(&ps.lines, fp, path, DFL_CFG_LINE_MAX - 2, DFL_CFG_LINES_MAX);
     dfl_status st = parse_common(&ps, out);
     fclose(fp);
     return st;
@@ -226,7 +280,8 @@ dfl_status dfl_cfg_parse_string(const char *name, const char *text, dfl_cfg **ou
     *out = NULL;
     dfl_cfg *c = dfl_cfgi_new(name);
     if (!c) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-    parse_state ps = {.c = c, .name = name, .allow_include = true, .text = text, .last = -1,
-                      .err = err, .st = DFL_OK};
+    parse_state ps = {.c = c, .name = name, .allow_include = true, .last = -1, .err = err,
+                      .st = DFL_OK};
+    dfl_lines_open_text(&ps.lines, text, name, DFL_CFG_LINE_MAX - 2, DFL_CFG_LINES_MAX);
     return parse_common(&ps, out);
 }

@@ -51,10 +51,11 @@ dfl_status dfl_cfgi_find_axes(dfl_cfg *c, dfl_err *err)
     c->axis = malloc(c->n * sizeof *c->axis);
     c->axis_name = calloc(c->n, sizeof *c->axis_name);
     if (!c->axis || !c->axis_name) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    size_t np = 1;
     for (size_t i = 0; i < c->n; i++) {
         const char *v = c->e[i].value;
         if (strchr(v, ',')) {
-            size_t k;
+            size_t k = 0;
             dfl_status st = count_items(&c->e[i], &k, err);
             if (st != DFL_OK) return st;
             size_t len = strlen(c->e[i].sec) + strlen(c->e[i].key) + 2;
@@ -63,6 +64,17 @@ dfl_status dfl_cfgi_find_axes(dfl_cfg *c, dfl_err *err)
             snprintf(nm, len, "%s.%s", c->e[i].sec, c->e[i].key);
             c->axis_name[c->naxes] = nm;
             c->axis[c->naxes++] = i;
+            /* the product is bounded here, so dfl_cfg_sweep_points cannot
+             * overflow */
+            if (np > DFL_CFG_SWEEP_MAX / k) {
+                char w[1024];
+                dfl_cfgi_where(&c->e[i], w, sizeof w);
+                return dfl_err_set(err, DFL_E_INPUT,
+                                   "%s: the sweep would have more than %lu points (the "
+                                   "product of the list lengths; split it with --set)",
+                                   w, (unsigned long)DFL_CFG_SWEEP_MAX);
+            }
+            np *= k;
         }
     }
     return DFL_OK;

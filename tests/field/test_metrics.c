@@ -2,6 +2,8 @@
  * band rule, the table cells. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <omp.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "field/metrics.h"
@@ -279,4 +281,41 @@ Test(metrics, saturating_serial_hypot_bit_for_bit)
         cr_expect(m.rms == sqrt(s2 / (double)c) && m.linf == mx, "dim %d", dim);
         cr_expect(m.gdef_mean == g1 / (double)c && m.gdef_max == gmx, "dim %d", dim);
     }
+}
+
+/* Bitwise independence of the team size: the same samples give the same
+ * bits at 1, 2, 3 and 7 threads, and equal the serial sum over fixed
+ * chunks of DFL_METRICS_CHUNK combined in chunk order. */
+Test(metrics, same_bits_at_any_thread_count)
+{
+    const size_t m = 5 * DFL_METRICS_CHUNK + 123;
+    double *u = malloc(m * sizeof *u), *r = malloc(m * sizeof *r), *g = malloc(2 * m * sizeof *g);
+    cr_assert(u && r && g);
+    for (size_t i = 0; i < m; i++) {
+        r[i] = sin(0.001 * (double)i) * 0.7;
+        u[i] = r[i] + 1e-3 * cos(0.37 * (double)i) + 1e-9 * (double)(i % 17);
+        g[2 * i] = cos(0.01 * (double)i), g[2 * i + 1] = sin(0.013 * (double)i);
+    }
+    dfl_metrics ref, got;
+    dfl_err err;
+    omp_set_num_threads(1);
+    cr_assert_eq(dfl_metrics_compute(m, 2, u, g, r, 0.5, &ref, &err), DFL_OK);
+    /* the serial fixed-chunk sum */
+    double s1 = 0;
+    for (size_t c = 0; c * DFL_METRICS_CHUNK < m; c++) {
+        double p = 0;
+        for (size_t i = c * DFL_METRICS_CHUNK; i < m && i < (c + 1) * DFL_METRICS_CHUNK; i++)
+            if (fabs(r[i]) <= 0.5) p += fabs(u[i] - r[i]);
+        s1 += p;
+    }
+    cr_expect_eq(ref.l1, s1 / (double)ref.count);
+    const int teams[] = {2, 3, 7};
+    for (int t = 0; t < 3; t++) {
+        omp_set_num_threads(teams[t]);
+        cr_assert_eq(dfl_metrics_compute(m, 2, u, g, r, 0.5, &got, &err), DFL_OK);
+        cr_expect(memcmp(&ref, &got, sizeof ref) == 0, "%d threads: l1 %.17g vs %.17g", teams[t],
+                  got.l1, ref.l1);
+    }
+    omp_set_num_threads(1);
+    free(u), free(r), free(g);
 }

@@ -386,3 +386,24 @@ Test(shape_analytic, rejects_degenerate_input)
     cr_assert_null(s.impl);
 }
 
+
+/* Inside dflab's domain (|x| <= 1e150, core/domain.h) the circle and the
+ * sphere stay finite and exact to a few ulps where the plain square sum
+ * would overflow: d = |x - c| - r with |x - c| = 2e150 (or sqrt(3) 2e150). */
+Test(shape_analytic, ball_is_finite_across_the_domain)
+{
+    const double c2[2] = {1e150, -1e150}, x2[2] = {-1e150, -1e150};
+    dfl_shape s;
+    cr_assert_eq(dfl_shape_circle(c2, 1.0, &s, NULL), DFL_OK);
+    double v, g[3];
+    s.ops->eval(s.impl, 1, x2, &v, g);
+    cr_expect(fabs(v - 2e150) <= 4 * 2e150 * 0x1p-52, "circle: %.17g", v);
+    cr_expect(fabs(g[0] + 1.0) < 1e-15 && fabs(g[1]) < 1e-15, "gradient %g %g", g[0], g[1]);
+    dfl_shape_free(&s);
+    const double c3[3] = {1e150, 1e150, 1e150}, x3[3] = {-1e150, -1e150, -1e150};
+    cr_assert_eq(dfl_shape_sphere(c3, 0.5, &s, NULL), DFL_OK);
+    s.ops->eval(s.impl, 1, x3, &v, g);
+    const double want = sqrt(3.0) * 2e150;
+    cr_expect(fabs(v - want) <= 8 * want * 0x1p-52, "sphere: %.17g vs %.17g", v, want);
+    dfl_shape_free(&s);
+}

@@ -40,6 +40,15 @@ Test(config, parse_errors_name_file_and_line)
         {"[a]\nx = 1\ny = 2\nx = 3\n", "t.ini:4: [a] x: duplicate key (first at line 2)"},
         {"[a]\nx = 1\nthis line has no equals sign\n", "t.ini:3: syntax error"},
         {"[a\nx = 1\n", "t.ini:1: syntax error"},
+        /* sections are never merged (config.h, "Duplicates") */
+        {"[a]\nx = 1\n[b]\ny = 2\n[a]\nz = 3\n", "t.ini:5: [a]: duplicate section (first at line 1"},
+        {"[a]\n[a]\n", "t.ini:2: [a]: duplicate section"},
+        /* names libinih would cut are refused */
+        {"[aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa]\n", "t.ini:1: section name longer than 49"},
+        {"[a]\nkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkk = 1\n", "t.ini:2: key name longer than 49"},
+        {"[a]\nx = 1\x01\n", "t.ini:2: control character 0x01 at column 6"},
+        {"[a]\nx = \xe9\n", "t.ini:2: invalid UTF-8 at column 5"},
+        {"[a]\nx = 1\ry\n", "t.ini:2: control character 0x0d"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         dfl_cfg *c = (dfl_cfg *)&c;
@@ -63,4 +72,22 @@ Test(config, parse_errors_name_file_and_line)
     free(text);
     const char *want[] = {"no/such/file.ini: cannot open config"};
     cfgu_expect_fail("no/such/file.ini", want, 1, NULL);
+}
+
+/* A BOM is skipped and CRLF line ends are accepted, as in the points CSV
+ * (io/lines.h); a 49-character name is the longest accepted. */
+Test(config, bom_crlf_and_longest_names)
+{
+    dfl_cfg *c = cfgu_parse("\xef\xbb\xbf[a]\r\nx = 1\r\n"
+                            "[sssssssssssssssssssssssssssssssssssssssssssssssss]\r\n"
+                            "kkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkk = 2\n");
+    long v;
+    dfl_err err;
+    cr_assert_eq(dfl_cfg_int(c, "a", "x", 0, 9, &v, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(v, 1);
+    cr_assert_eq(dfl_cfg_int(c, "sssssssssssssssssssssssssssssssssssssssssssssssss",
+                             "kkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkk", 0, 9, &v, &err),
+                 DFL_OK, "%s", err.msg);
+    cr_expect_eq(v, 2);
+    dfl_cfg_free(c);
 }

@@ -1,5 +1,6 @@
 /* Tests for src/io/config_sweep.c: sweep axes and points. */
 #include <criterion/criterion.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "io/config.h"
@@ -49,5 +50,25 @@ Test(config, sweep_rejects_empty_items)
     cr_assert_str_eq(dfl_cfg_axis_value(p, 0), "2");
     cr_assert_eq(dfl_cfg_sweep_point(c, 2, &p, &err), DFL_E_INTERNAL);
     dfl_cfg_free(p);
+    dfl_cfg_free(c);
+}
+
+/* The product of the list lengths is bounded when the axes are found
+ * (10^8), so the point count cannot overflow: 9 axes of 10 items are
+ * refused naming the axis that crosses the bound, 8 are accepted. */
+Test(config_sweep, point_count_is_bounded)
+{
+    char text[1024];
+    size_t k = (size_t)snprintf(text, sizeof text, "[a]\n");
+    for (int i = 0; i < 9; i++)
+        k += (size_t)snprintf(text + k, sizeof text - k, "k%d = 0,1,2,3,4,5,6,7,8,9\n", i);
+    dfl_cfg *c = NULL;
+    dfl_err err;
+    cr_assert_eq(dfl_cfg_parse_string("t.ini", text, &c, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "t.ini:10: [a] k8: the sweep would have more than 100000000 points"),
+              "%s", err.msg);
+    text[strlen(text) - strlen("k8 = 0,1,2,3,4,5,6,7,8,9\n")] = '\0';
+    cr_assert_eq(dfl_cfg_parse_string("t.ini", text, &c, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(dfl_cfg_sweep_points(c), 100000000u);
     dfl_cfg_free(c);
 }

@@ -277,3 +277,16 @@ void e2e_load_curve(const char *path, const char *sec, dfl_bspline *c)
     cr_assert_eq(dfl_curve_from_cfg(cfg, sec, c, &err), DFL_OK, "%s: %s", path, err.msg);
     dfl_cfg_free(cfg);
 }
+
+void e2e_expect_binary_script(const char *script, const char *extra, const char *what)
+{
+    const char *bin = getenv("DFL_DFLAB");
+    if (!bin || !*bin) bin = "build/dflab";
+    char dir[256];
+    e2e_tmpdir(dir, sizeof dir);
+    char *out = NULL;
+    const int rc = e2e_python_run(dir, &out, "%s %s %s", script, bin, extra ? extra : "");
+    cr_expect_eq(rc, 0, "%s:\n%s", what, out ? out : "");
+    free(out);
+    e2e_rmtree(dir);
+}

@@ -46,6 +46,12 @@ int e2e_rmtree(const char *dir);
 int e2e_python_run(const char *dir, char **out, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
+/* Runs `<python> <script> <dflab binary> <extra>` (extra may be NULL) in a
+ * fresh directory and expects (non-fatal) exit status 0, reporting the
+ * script's output under `what` otherwise: for checks kept as scripts
+ * (tests/cli/bad_input_table.py, scripts/check_threads.py). */
+void e2e_expect_binary_script(const char *script, const char *extra, const char *what);
+
 /* A .vti as VTK's own reader sees it (through tests/e2e/common/vtk_dump.py). */
 typedef struct e2e_vti {
     int dims[3];

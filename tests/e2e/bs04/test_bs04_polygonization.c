@@ -174,7 +174,8 @@ Test(e2e_bs04_poly, bad_shape_input)
 Test(e2e_bs04_poly, bad_study_input_exits_2_without_files)
 {
     static const char *const sets[][2] = {
-        {"--set study.eps=0", "study.eps: expected eps > 0"},
+        {"--set study.eps=0", "study.eps: expected a finite number in [1e-12, "},
+        {"--set study.eps=1e-300", "study.eps: expected a finite number in [1e-12, "},
         {"--set study.eps=-1e-3", "study.eps"},
         {"--set study.fit_eps=1e-3", "study.fit_eps"},
         {"--set study.curves=S_X", "no section [S_X]"},

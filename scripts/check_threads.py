@@ -1,0 +1,104 @@
+#!/usr/bin/env python3
+"""Thread-count determinism: runs configs with `--threads 1`, `--threads 2`
+and with OMP_NUM_THREADS=1 (no --threads) and compares every output file
+byte for byte; in manifest.json only the wall times, the date and the
+thread count may differ.
+
+    check_threads.py DFLAB [--quick] [--keep DIR] [CONFIG.ini ...]
+
+Without configs: every configs/paper/*/*.ini and configs/smoke/*.ini
+(`make check-threads`); --quick: the paper configs that run in about a
+second plus the smoke configs (part of `make test`).  Prints one line per
+difference and a summary; exit 0 when all agree."""
+import glob
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+# configs that run in ~1 s each (results_base wall times), for --quick
+QUICK = ["bs04_hetero", "bs04_normalization", "bs04_polygonization", "smoke", "smoke3d"]
+VOLATILE = {"date", "wall_seconds", "total_wall_seconds", "threads", "omp_threads"}
+
+
+def strip(o):
+    if isinstance(o, dict):
+        return {k: strip(v) for k, v in o.items() if k not in VOLATILE}
+    if isinstance(o, list):
+        return [strip(v) for v in o]
+    return o
+
+
+def run(dflab, cfg, out, threads, env_threads):
+    env = dict(os.environ)
+    env.pop("OMP_NUM_THREADS", None)
+    args = [dflab, "run", cfg, "--out", out, "--quiet"]
+    if threads:
+        args += ["--threads", str(threads)]
+    if env_threads:
+        env["OMP_NUM_THREADS"] = str(env_threads)
+    p = subprocess.run(args, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    if p.returncode != 0:
+        return "exit %d: %s" % (p.returncode, p.stderr.decode(errors="replace").strip()[-300:])
+    return None
+
+
+def compare(a, b, label):
+    diffs = []
+    fa, fb = set(os.listdir(a)), set(os.listdir(b))
+    for n in sorted(fa ^ fb):
+        diffs.append("%s: %s only in one run" % (label, n))
+    for n in sorted(fa & fb):
+        pa, pb = os.path.join(a, n), os.path.join(b, n)
+        if n == "manifest.json":
+            ma, mb = strip(json.load(open(pa))), strip(json.load(open(pb)))
+            if ma != mb:
+                diffs.append("%s: manifest.json differs beyond wall times" % label)
+        elif open(pa, "rb").read() != open(pb, "rb").read():
+            diffs.append("%s: %s differs" % (label, n))
+    return diffs
+
+
+def main():
+    argv = sys.argv[1:]
+    if not argv:
+        print(__doc__)
+        return 2
+    dflab = os.path.abspath(argv.pop(0))
+    quick = "--quick" in argv
+    keep = None
+    if "--keep" in argv:
+        keep = argv[argv.index("--keep") + 1]
+        argv.remove("--keep"), argv.remove(keep)
+    cfgs = [a for a in argv if not a.startswith("--")]
+    if not cfgs:
+        cfgs = sorted(glob.glob("configs/paper/*/*.ini")) + sorted(glob.glob("configs/smoke/*.ini"))
+        if quick:
+            cfgs = [c for c in cfgs if os.path.splitext(os.path.basename(c))[0] in QUICK]
+    base = keep or tempfile.mkdtemp(prefix="dfl_threads_")
+    bad, files = 0, 0
+    for cfg in cfgs:
+        stem = os.path.splitext(os.path.basename(cfg))[0]
+        outs = {k: os.path.join(base, k, stem) for k in ("t1", "t2", "env1")}
+        errs = [run(dflab, cfg, outs["t1"], 1, None), run(dflab, cfg, outs["t2"], 2, None),
+                run(dflab, cfg, outs["env1"], None, 1)]
+        if any(errs):
+            print("FAIL %s: %s" % (cfg, [e for e in errs if e]))
+            bad += 1
+            continue
+        d = compare(outs["t1"], outs["t2"], stem + " (--threads 1 vs 2)")
+        d += compare(outs["t1"], outs["env1"], stem + " (--threads 1 vs OMP_NUM_THREADS=1)")
+        files += len(os.listdir(outs["t1"]))
+        for x in d:
+            print("FAIL " + x)
+        bad += bool(d)
+    if not keep:
+        subprocess.run(["rm", "-rf", base])
+    print("check-threads: %d configs, %d files each compared 3 ways, %d configs differ"
+          % (len(cfgs), files, bad))
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
