@@ -132,10 +132,14 @@ bench: deps
 	$(MAKE) --no-print-directory web-bench
 
 # One folder per paper under configs/paper/; results/<config name>/ each.
+# Then every peer script scripts/peers/*.py (baselines from other libraries)
+# with --results results, then the report.
 PAPER_CONFIGS := $(sort $(wildcard configs/paper/*/*.ini))
 reproduce: deps
 	$(MAKE) --no-print-directory $(DFLAB)
 	@set -e; for c in $(PAPER_CONFIGS); do echo "== $$c"; $(DFLAB) run $$c; done
+	@set -e; for p in $(sort $(wildcard scripts/peers/*.py)); do echo "== peer $$p"; \
+	  $(PYTHON) $$p --results results; done
 	$(PYTHON) scripts/report.py --results results --out results/REPORT.md
 
 clean:
