@@ -1,7 +1,9 @@
-/* Cells are stored as text: every value is formatted once when set (%.17g
- * for doubles), which keeps the table simple and the CSV exact. */
+/* Cells are stored as text: every value is formatted once when set (the
+ * shortest decimal that reads back to the same double), which keeps the
+ * table simple and the CSV exact. */
 #include "io/table.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -133,11 +135,44 @@ dfl_status dfl_table_row(dfl_table *t, dfl_err *err)
     return DFL_OK;
 }
 
+static int round_trips(double v, int prec, char *buf, size_t size)
+{
+    snprintf(buf, size, "%.*g", prec, v);
+    return strtod(buf, NULL) == v;
+}
+
+/* %.17g always reads back; fewer digits usually do.  Reading back is
+ * monotone in the precision (a correctly rounded longer decimal is never
+ * farther from v), so a bisection over 1..17 finds the fewest digits. */
+const char *dfl_table_format_double(double v, char *buf, size_t size)
+{
+    if (!isfinite(v) || v == 0.0) {
+        snprintf(buf, size, "%.17g", v); /* nan, inf, 0, -0 as before */
+        return buf;
+    }
+    int lo = 1, hi = 17;
+    while (lo < hi) {
+        const int mid = (lo + hi) / 2;
+        if (round_trips(v, mid, buf, size)) hi = mid;
+        else lo = mid + 1;
+    }
+    snprintf(buf, size, "%.*g", lo, v);
+    /* %g writes 10 as 1e+01 at one digit; with exponent X below 17 the plain
+     * form needs X + 1 digits, and the shorter text wins (10, not 1e+01). */
+    const char *e = strchr(buf, 'e');
+    const int x = e ? atoi(e + 1) : -1;
+    if (x >= lo && x < 17) {
+        char plain[64];
+        snprintf(plain, sizeof plain, "%.*g", x + 1, v);
+        if (strlen(plain) < strlen(buf) && strlen(plain) < size) strcpy(buf, plain);
+    }
+    return buf;
+}
+
 dfl_status dfl_table_set_double(dfl_table *t, const char *col, double v, dfl_err *err)
 {
     char buf[64];
-    snprintf(buf, sizeof buf, "%.17g", v);
-    return set_text(t, col, buf, err);
+    return set_text(t, col, dfl_table_format_double(v, buf, sizeof buf), err);
 }
 
 dfl_status dfl_table_set_int(dfl_table *t, const char *col, long v, dfl_err *err)

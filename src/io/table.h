@@ -4,7 +4,8 @@
  * sets named cells, and the runner writes the table once the whole study
  * has succeeded.  Prefix cells (the swept keys of the current sweep point)
  * are copied into every new row, so each row is traceable to its config.
- * Doubles print with %.17g; absent cells print empty.
+ * Doubles print in the shortest form that reads back to the same double
+ * (0.1, not 0.10000000000000001); absent cells print empty.
  */
 #ifndef DFL_IO_TABLE_H
 #define DFL_IO_TABLE_H
@@ -22,6 +23,7 @@ typedef struct dfl_table dfl_table;
  *   dfl_table_set_double, _int, _string     cells of the current row
  *   dfl_table_rows, _cols, _col_name, _get  reading back
  *   dfl_table_write_csv                     the CSV file
+ *   dfl_table_format_double                 the text a double cell gets
  *
  * Failure behaviour of the setters (prefix_string, row, set_*): they return
  * DFL_OK, or DFL_E_NOMEM ("table: out of memory ...") or DFL_E_INTERNAL
@@ -43,7 +45,8 @@ dfl_status dfl_table_prefix_string(dfl_table *t, const char *col, const char *va
 /* Starts a new row (with the prefix cells). */
 dfl_status dfl_table_row(dfl_table *t, dfl_err *err);
 /* Sets a cell of the current row (replacing an earlier value of the same
- * column); creates the column on first use.  Doubles print with %.17g,
+ * column); creates the column on first use.  Doubles print as
+ * dfl_table_format_double gives them,
  * integers with %ld, strings as given (quoted in the CSV when needed). */
 dfl_status dfl_table_set_double(dfl_table *t, const char *col, double v, dfl_err *err);
 dfl_status dfl_table_set_int(dfl_table *t, const char *col, long v, dfl_err *err);
@@ -54,6 +57,12 @@ size_t dfl_table_cols(const dfl_table *t);
 const char *dfl_table_col_name(const dfl_table *t, size_t j);
 /* Cell text of row i, column col ("" when absent, NULL for unknown col). */
 const char *dfl_table_get(const dfl_table *t, size_t i, const char *col);
+
+/* The shortest %.Ng text (N in 1..17) that strtod reads back to exactly v
+ * (on equal length the fewer digits: 10 rather than 1e+01, 1e+300);
+ * NaN, infinities and zeros print as %.17g does ("nan", "inf", "0", "-0").
+ * buf needs 32 bytes; returns buf. */
+const char *dfl_table_format_double(double v, char *buf, size_t size);
 
 /* Writes the CSV through a temporary file renamed on success. */
 dfl_status dfl_table_write_csv(const dfl_table *t, const char *path, dfl_err *err);
