@@ -5,7 +5,8 @@
 
 Every CSV under OLD must exist under NEW with the same bytes, and NEW may
 hold no CSV that OLD lacks; manifest.json (wall times, revision) and the
-generated report and figures are ignored.  --all compares every other file
+generated report and figures and the per-point folders <run>.points/ are
+ignored.  --all compares every other file
 (VTK, EXR, config.ini) too.  --numeric compares CSVs by value instead of
 by bytes: the same columns (NEW may add `point` and swept `section.key`
 columns, which dflab writes since sweeps became units of work), the same
@@ -30,7 +31,8 @@ def files(root):
     out = set()
     for d, dirs, names in os.walk(root):
         rel = os.path.relpath(d, root)
-        dirs[:] = [x for x in dirs if not (rel == "." and x in IGNORED_DIRS) and ".stage." not in x]
+        dirs[:] = [x for x in dirs if not (rel == "." and x in IGNORED_DIRS) and ".stage." not in x
+                   and not x.endswith((".points", ".logs"))]
         for n in names:
             if n in IGNORED_FILES:
                 continue

@@ -187,6 +187,11 @@ dfl_status dfl_table_set_string(dfl_table *t, const char *col, const char *v, df
     return set_text(t, col, v, err);
 }
 
+dfl_status dfl_table_add_col(dfl_table *t, const char *col, dfl_err *err)
+{
+    return col_index(t, col, 1) < 0 ? no_memory(err, col) : DFL_OK;
+}
+
 size_t dfl_table_rows(const dfl_table *t) { return t->nrows; }
 size_t dfl_table_cols(const dfl_table *t) { return t->ncols; }
 const char *dfl_table_col_name(const dfl_table *t, size_t j)

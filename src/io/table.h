@@ -21,9 +21,11 @@ typedef struct dfl_table dfl_table;
  *   dfl_table_prefix_clear, _prefix_string  cells copied into each new row
  *   dfl_table_row                           starts a row
  *   dfl_table_set_double, _int, _string     cells of the current row
+ *   dfl_table_add_col                       a column ahead of any cell
  *   dfl_table_rows, _cols, _col_name, _get  reading back
  *   dfl_table_write_csv                     the CSV file
  *   dfl_table_format_double                 the text a double cell gets
+ *   dfl_table_csv_prepend                   leading columns for a CSV file (table_prefix.c)
  *
  * Failure behaviour of the setters (prefix_string, row, set_*): they return
  * DFL_OK, or DFL_E_NOMEM ("table: out of memory ...") or DFL_E_INTERNAL
@@ -52,6 +54,10 @@ dfl_status dfl_table_set_double(dfl_table *t, const char *col, double v, dfl_err
 dfl_status dfl_table_set_int(dfl_table *t, const char *col, long v, dfl_err *err);
 dfl_status dfl_table_set_string(dfl_table *t, const char *col, const char *v, dfl_err *err);
 
+/* Creates column col (at the end) unless it exists; no row needed (for
+ * rebuilding a table from its CSV with the same column order). */
+dfl_status dfl_table_add_col(dfl_table *t, const char *col, dfl_err *err);
+
 size_t dfl_table_rows(const dfl_table *t);
 size_t dfl_table_cols(const dfl_table *t);
 const char *dfl_table_col_name(const dfl_table *t, size_t j);
@@ -66,5 +72,13 @@ const char *dfl_table_format_double(double v, char *buf, size_t size);
 
 /* Writes the CSV through a temporary file renamed on success. */
 dfl_status dfl_table_write_csv(const dfl_table *t, const char *path, dfl_err *err);
+
+/* Rewrites the CSV file at path (through a temporary file) with n leading
+ * columns: cols[k] in the header, values[k] in every other record, each
+ * quoted when needed; a column the header already has is left out (so a
+ * second call changes nothing), an empty file stays empty.  Records are
+ * split at newlines outside quotes.  DFL_E_IO naming path on failure. */
+dfl_status dfl_table_csv_prepend(const char *path, size_t n, const char *const *cols,
+                                 const char *const *values, dfl_err *err);
 
 #endif

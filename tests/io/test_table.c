@@ -103,3 +103,34 @@ Test(table, doubles_print_in_the_shortest_form_that_reads_back)
         check_shortest(floor(v)); /* integers: plain or exponent form */
     }
 }
+
+static char *read_all(const char *path)
+{
+    static char buf[4096];
+    FILE *fp = fopen(path, "rb");
+    size_t n = fp ? fread(buf, 1, sizeof buf - 1, fp) : 0;
+    if (fp) fclose(fp);
+    buf[n] = '\0';
+    return buf;
+}
+
+/* Quoted newlines stay inside their record; a second call adds nothing. */
+Test(table, csv_prepend_adds_leading_columns_once)
+{
+    char path[] = "/tmp/dflab-prep-XXXXXX";
+    int fd = mkstemp(path);
+    cr_assert(fd >= 0);
+    const char *text = "a,b\n1,\"x\ny\"\n2,\"q,\"\"r\"\n";
+    cr_assert_eq(write(fd, text, strlen(text)), (ssize_t)strlen(text));
+    close(fd);
+    const char *cols[] = {"point", "study.p"}, *vals[] = {"3", "2,5"};
+    dfl_err err;
+    cr_assert_eq(dfl_table_csv_prepend(path, 2, cols, vals, &err), DFL_OK);
+    const char *want = "point,study.p,a,b\n3,\"2,5\",1,\"x\ny\"\n3,\"2,5\",2,\"q,\"\"r\"\n";
+    cr_expect_str_eq(read_all(path), want);
+    cr_assert_eq(dfl_table_csv_prepend(path, 2, cols, vals, &err), DFL_OK);
+    cr_expect_str_eq(read_all(path), want);
+    remove(path);
+    cr_expect_eq(dfl_table_csv_prepend(path, 2, cols, vals, &err), DFL_E_IO);
+    cr_expect(strstr(err.msg, path) != NULL);
+}
