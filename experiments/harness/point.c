@@ -12,6 +12,7 @@
 #include "io/atomic.h"
 #include "io/dirs.h"
 #include "io/manifest.h"
+#include "io/meta_attrs.h"
 #include "io/table.h"
 
 #include "dfl_version.h"
@@ -64,6 +65,40 @@ static void make_prefix(const dfl_sweep *s, const dfl_cfg *pt, size_t k, prefix 
         p->cols[p->n] = dfl_cfg_sweep_axis_name(s->cfg, a);
         p->vals[p->n] = dfl_cfg_axis_value(pt, a);
     }
+}
+
+static int ends_with(const char *s, const char *suffix)
+{
+    const size_t n = strlen(s), k = strlen(suffix);
+    return n > k && strcmp(s + n - k, suffix) == 0;
+}
+
+/* Study, config, sweep point and revision into every .vti/.vtp (FieldData)
+ * and .exr (header attributes) of the point, so a file opened in ParaView
+ * or an EXR viewer says where it came from. */
+static dfl_status annotate(const dfl_sweep *s, const char *dir, const prefix *p, const char *label,
+                           dfl_err *err)
+{
+    const char *names[] = {"dflab_study", "dflab_config", "dflab_point", "dflab_sweep",
+                           "dflab_revision"};
+    char point[64];
+    snprintf(point, sizeof point, "%s of %zu", p->point, s->np);
+    const char *values[] = {s->study->name, s->o->config, point, label, DFL_GIT_REV};
+    DIR *d = opendir(dir);
+    if (!d) return dfl_err_set(err, DFL_E_IO, "%s: cannot list", dir);
+    dfl_status st = DFL_OK;
+    struct dirent *de;
+    while ((de = readdir(d)) && st == DFL_OK) {
+        if (strstr(de->d_name, ".tmp.")) continue;
+        char path[8192];
+        snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
+        if (ends_with(de->d_name, ".vti") || ends_with(de->d_name, ".vtp"))
+            st = dfl_vtk_add_field_data(path, 5, names, values, err);
+        else if (ends_with(de->d_name, ".exr"))
+            st = dfl_exr_add_attrs(path, 5, names, values, err);
+    }
+    closedir(d);
+    return st;
 }
 
 static dfl_status prefix_csvs(const char *dir, const char *table_name, const prefix *p,
@@ -209,6 +244,9 @@ static dfl_status compute(const dfl_sweep *s, dfl_cfg *pt, size_t k, const char 
     if (st == DFL_OK) st = dfl_table_write_csv(t, path, err);
     dfl_table_free(t);
     if (st == DFL_OK) st = prefix_csvs(stage, name, &p, err);
+    char label[2048];
+    dfl_sweep_label(s, pt, label, sizeof label);
+    if (st == DFL_OK) st = annotate(s, stage, &p, label, err);
     snprintf(path, sizeof path, "%s/config.ini", stage);
     if (st == DFL_OK) st = dfl_cfg_write(s->cfg, path, err);
     if (st == DFL_OK) st = write_record(s, pt, k, &p, *seconds, stage, err);
