@@ -29,19 +29,6 @@ typedef struct pt_rec {
     double wall;
 } pt_rec;
 
-static char *read_text(const char *path)
-{
-    FILE *fp = fopen(path, "rb");
-    if (!fp) return NULL;
-    fseek(fp, 0, SEEK_END);
-    long n = ftell(fp);
-    fseek(fp, 0, SEEK_SET);
-    char *b = n >= 0 ? malloc((size_t)n + 1) : NULL;
-    if (b) b[fread(b, 1, (size_t)n, fp)] = '\0';
-    fclose(fp);
-    return b;
-}
-
 /* "ptNNN" -> NNN, else -1 (stage folders and other names). */
 static long point_name(const char *name)
 {
@@ -56,7 +43,7 @@ static dfl_status load_rec(const char *dir, pt_rec *r, dfl_err *err)
     char path[8300];
     snprintf(r->dir, sizeof r->dir, "%s", dir);
     snprintf(path, sizeof path, "%s/point.json", dir);
-    r->json = read_text(path);
+    r->json = dfl_file_read_all(path, NULL);
     double idx, np;
     if (!r->json || !dfl_json_find_number(r->json, "index", &idx) ||
         !dfl_json_find_number(r->json, "npoints", &np) ||
@@ -216,7 +203,7 @@ static char *next_cell(const char **p, int *eol)
 
 static dfl_status append_csv(dfl_table *t, const char *path, dfl_err *err)
 {
-    char *text = read_text(path);
+    char *text = dfl_file_read_all(path, NULL);
     if (!text) return dfl_err_set(err, DFL_E_INPUT, "%s: missing (an incomplete point?)", path);
     const char *p = text;
     char **cols = NULL;
@@ -314,7 +301,11 @@ static dfl_status write_manifest(const pt_rec *r, size_t n, const char *stage,
     dfl_manifest_put_string(m, "sweep_sha256", r[0].sweep);
     dfl_manifest_put_string(m, "binary_sha256", r[0].binary);
     dfl_manifest_put_int(m, "npoints", (long)n);
-    dfl_manifest_put_string(m, "merged_by", cmdline ? cmdline : "");
+    /* the command that assembled the folder: the run itself, or merge */
+    dfl_manifest_put_string(m, "command_line", cmdline ? cmdline : "");
+    double threads = 0;
+    if (dfl_json_find_number(r[0].json, "threads", &threads))
+        dfl_manifest_put_int(m, "threads", (long)threads);
     dfl_manifest_put_string(m, "host", host);
     dfl_manifest_put_raw(m, "libraries", dfl_manifest_libraries(libs, sizeof libs));
     double total = 0;

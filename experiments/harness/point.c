@@ -17,24 +17,11 @@
 
 #include "dfl_version.h"
 
-static char *read_text(const char *path)
-{
-    FILE *fp = fopen(path, "rb");
-    if (!fp) return NULL;
-    fseek(fp, 0, SEEK_END);
-    long n = ftell(fp);
-    fseek(fp, 0, SEEK_SET);
-    char *b = n >= 0 ? malloc((size_t)n + 1) : NULL;
-    if (b) b[fread(b, 1, (size_t)n, fp)] = '\0';
-    fclose(fp);
-    return b;
-}
-
 bool dfl_point_current(const dfl_sweep *s, size_t k)
 {
     char dir[4400], path[4500];
     snprintf(path, sizeof path, "%s/point.json", dfl_point_dir(s, k, dir, sizeof dir));
-    char *j = read_text(path);
+    char *j = dfl_file_read_all(path, NULL);
     if (!j) return false;
     char sw[80], bin[80];
     double idx = -1, np = -1;

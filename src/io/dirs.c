@@ -146,3 +146,32 @@ dfl_status dfl_dir_check_writable(const char *dir, const char *what, dfl_err *er
         *slash = '\0';
     }
 }
+
+char *dfl_file_read_all(const char *path, size_t *len)
+{
+    FILE *fp = fopen(path, "rb");
+    if (!fp) return NULL;
+    char *buf = NULL;
+    size_t cap = 0, n = 0, k;
+    do {
+        if (n + 65536 > cap) {
+            char *b = realloc(buf, cap = 2 * cap + 65536);
+            if (!b) {
+                free(buf), fclose(fp);
+                return NULL;
+            }
+            buf = b;
+        }
+        k = fread(buf + n, 1, cap - n - 1, fp);
+        n += k;
+    } while (k > 0);
+    const int bad = ferror(fp);
+    fclose(fp);
+    if (bad) {
+        free(buf);
+        return NULL;
+    }
+    buf[n] = '\0';
+    if (len) *len = n;
+    return buf;
+}

@@ -7,8 +7,9 @@
  *   dfl_dir_remove_tree     rm -r
  *   dfl_dir_replace         put a finished directory in place of another
  *   dfl_dir_link_or_copy    a file's bytes under a new name
- *   dfl_dir_is_writable     whether a directory (or its nearest existing
+ *   dfl_dir_check_writable  whether a directory (or its nearest existing
  *                           ancestor) accepts new entries
+ *   dfl_file_read_all       a whole (small) file as a string
  *
  * Staging directories and files carry the host and process id of their
  * writer, so a later run can tell a dead run's leftovers (same host, no
@@ -42,5 +43,10 @@ dfl_status dfl_dir_link_or_copy(const char *src, const char *dst, dfl_err *err);
  * and its nearest existing ancestor is a writable directory; else
  * DFL_E_INPUT "what DIR: not writable (...)". */
 dfl_status dfl_dir_check_writable(const char *dir, const char *what, dfl_err *err);
+
+/* The bytes of path plus a terminating NUL, malloc'ed (caller frees);
+ * *len (may be NULL) receives the byte count.  NULL when the file cannot
+ * be read or memory runs out. */
+char *dfl_file_read_all(const char *path, size_t *len);
 
 #endif

@@ -9,22 +9,7 @@
 #include <string.h>
 
 #include "io/atomic.h"
-
-static char *slurp(const char *path, size_t *len)
-{
-    FILE *fp = fopen(path, "rb");
-    if (!fp) return NULL;
-    fseek(fp, 0, SEEK_END);
-    long n = ftell(fp);
-    fseek(fp, 0, SEEK_SET);
-    char *b = n >= 0 ? malloc((size_t)n + 1) : NULL;
-    if (b) {
-        *len = fread(b, 1, (size_t)n, fp);
-        b[*len] = '\0';
-    }
-    fclose(fp);
-    return b;
-}
+#include "io/dirs.h"
 
 static void put_xml_attr(FILE *fp, const char *s)
 {
@@ -40,7 +25,7 @@ dfl_status dfl_vtk_add_field_data(const char *path, size_t n, const char *const 
                                   const char *const *values, dfl_err *err)
 {
     size_t len = 0;
-    char *text = slurp(path, &len);
+    char *text = dfl_file_read_all(path, &len);
     if (!text) return dfl_err_set(err, DFL_E_IO, "%s: cannot read", path);
     /* the header ends where appended data begins */
     char *app = strstr(text, "<AppendedData");

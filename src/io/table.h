@@ -25,7 +25,7 @@ typedef struct dfl_table dfl_table;
  *   dfl_table_rows, _cols, _col_name, _get  reading back
  *   dfl_table_write_csv                     the CSV file
  *   dfl_table_format_double                 the text a double cell gets
- *   dfl_table_csv_prepend                   leading columns for a CSV file (table_prefix.c)
+ *   dfl_table_csv_prepend                   leading columns for a CSV file
  *
  * Failure behaviour of the setters (prefix_string, row, set_*): they return
  * DFL_OK, or DFL_E_NOMEM ("table: out of memory ...") or DFL_E_INTERNAL
