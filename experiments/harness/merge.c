@@ -423,6 +423,8 @@ dfl_status dfl_merge(const char *dir, int quiet, const char *cmdline, dfl_err *e
     snprintf(d, sizeof d, "%s", dir);
     size_t l = strlen(d);
     while (l > 1 && d[l - 1] == '/') d[--l] = '\0';
+    dfl_status st = dfl_dir_check_replaceable(d, "manifest.json", "merge", err);
+    if (st != DFL_OK) return st;
     dfl_sweep_clean_stale(d);
     return dfl_merge_into(d, NULL, quiet, cmdline, err);
 }

@@ -163,6 +163,7 @@ dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
     dfl_sweep s;
     dfl_status st = dfl_sweep_open(o, &s, err);
     if (st == DFL_OK) st = dfl_dir_check_writable(s.outdir, "--out", err);
+    if (st == DFL_OK) st = dfl_dir_check_replaceable(s.outdir, "manifest.json", "--out", err);
     if (st != DFL_OK) {
         dfl_sweep_close(&s);
         return st;

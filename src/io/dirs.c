@@ -175,3 +175,22 @@ char *dfl_file_read_all(const char *path, size_t *len)
     if (len) *len = n;
     return buf;
 }
+
+dfl_status dfl_dir_check_replaceable(const char *dir, const char *marker, const char *what,
+                                     dfl_err *err)
+{
+    DIR *d = opendir(dir);
+    if (!d) return DFL_OK;
+    int entries = 0;
+    struct dirent *de;
+    while ((de = readdir(d)))
+        if (strcmp(de->d_name, ".") != 0 && strcmp(de->d_name, "..") != 0) entries++;
+    closedir(d);
+    char p[8192];
+    snprintf(p, sizeof p, "%s/%s", dir, marker);
+    if (entries == 0 || access(p, F_OK) == 0) return DFL_OK;
+    return dfl_err_set(err, DFL_E_INPUT,
+                       "%s %s: exists and is not a dflab results folder (no %s); a run replaces "
+                       "its folder as a whole, so give a new or a results folder",
+                       what, dir, marker);
+}

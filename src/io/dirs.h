@@ -10,6 +10,7 @@
  *   dfl_dir_check_writable  whether a directory (or its nearest existing
  *                           ancestor) accepts new entries
  *   dfl_file_read_all       a whole (small) file as a string
+ *   dfl_dir_check_replaceable  whether a folder may be replaced by a run
  *
  * Staging directories and files carry the host and process id of their
  * writer, so a later run can tell a dead run's leftovers (same host, no
@@ -43,6 +44,13 @@ dfl_status dfl_dir_link_or_copy(const char *src, const char *dst, dfl_err *err);
  * and its nearest existing ancestor is a writable directory; else
  * DFL_E_INPUT "what DIR: not writable (...)". */
 dfl_status dfl_dir_check_writable(const char *dir, const char *what, dfl_err *err);
+
+/* DFL_OK when dir does not exist, is empty, or holds a file named marker
+ * (a run's manifest.json: dflab made it); else DFL_E_INPUT "what DIR:
+ * exists and is not ...", so that `--out results` cannot wipe a folder of
+ * other things. */
+dfl_status dfl_dir_check_replaceable(const char *dir, const char *marker, const char *what,
+                                     dfl_err *err);
 
 /* The bytes of path plus a terminating NUL, malloc'ed (caller frees);
  * *len (may be NULL) receives the byte count.  NULL when the file cannot

@@ -29,6 +29,7 @@ static const sweep_case cases[] = {
     {"out under a file", "run {D}/s.ini --out {D}/s.ini/o", "--out", "not a directory"},
     {"out unwritable", "run {D}/s.ini --out /proc/dflab-nope/o", "--out /proc/dflab-nope/o", "not writable"},
     {"merge nothing", "merge {D}/o", "o.points", "no sweep points"},
+    {"out is not a results folder", "run {D}/s.ini --out {D}", "not a dflab results folder", "--out"},
     {"merge no dir", "merge", "missing DIR", "merge"},
 };
 
