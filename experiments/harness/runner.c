@@ -5,9 +5,11 @@
 #include "harness/runner.h"
 
 #include <omp.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "core/sha256.h"
@@ -137,25 +139,77 @@ void dfl_sweep_close(dfl_sweep *s)
     s->cfg = NULL;
 }
 
-/* Line-based progress for logs: the first and last point and at most one
- * line every 2 s between. */
+/* Line-based progress for logs (a Slurm log reads like a terminal): a line
+ * when the first point starts, then one every 2 s from a ticker thread, so
+ * a long point is not silent; --quiet: none. */
 typedef struct progress {
-    double t0, last;
-    size_t done, todo;
+    const dfl_sweep *s;
+    pthread_mutex_t mu;
+    pthread_cond_t cv;
+    pthread_t thread;
+    int running, stop;
+    double t0, tpoint;
+    size_t k, done, todo;
 } progress;
 
-static void progress_line(const dfl_sweep *s, progress *p, size_t k, int final)
+static void progress_print(progress *p)
 {
-    const double now = dfl_wall_seconds();
-    if (s->o->quiet || (!final && p->done > 0 && now - p->last < 2.0)) return;
-    p->last = now;
-    const double el = now - p->t0;
+    const double now = dfl_wall_seconds(), el = now - p->t0;
     char eta[64] = "";
     if (p->done > 0 && p->done < p->todo)
         snprintf(eta, sizeof eta, ", about %.0f s left",
                  el / (double)p->done * (double)(p->todo - p->done));
-    fprintf(stderr, "dflab: %s point %zu/%zu (%zu of %zu to compute done, %.1f s elapsed%s)\n",
-            s->study->name, k + 1, s->np, p->done, p->todo, el, eta);
+    fprintf(stderr, "dflab: %s point %zu/%zu (%.1f s on it; %zu of %zu to compute done, %.1f s "
+                    "elapsed%s)\n",
+            p->s->study->name, p->k + 1, p->s->np, now - p->tpoint, p->done, p->todo, el, eta);
+}
+
+static void *progress_tick(void *arg)
+{
+    progress *p = arg;
+    pthread_mutex_lock(&p->mu);
+    while (!p->stop) {
+        struct timespec ts;
+        clock_gettime(CLOCK_REALTIME, &ts);
+        ts.tv_sec += 2;
+        if (pthread_cond_timedwait(&p->cv, &p->mu, &ts) != 0 && !p->stop) progress_print(p);
+    }
+    pthread_mutex_unlock(&p->mu);
+    return NULL;
+}
+
+/* Point k starts (done points finished before it). */
+static void progress_point(progress *p, size_t k)
+{
+    if (p->s->o->quiet) return;
+    pthread_mutex_lock(&p->mu);
+    const int first = p->k == (size_t)-1;
+    p->k = k;
+    p->tpoint = dfl_wall_seconds();
+    if (first) progress_print(p);
+    pthread_mutex_unlock(&p->mu);
+    if (first && !p->running)
+        p->running = pthread_create(&p->thread, NULL, progress_tick, p) == 0;
+}
+
+static void progress_done(progress *p)
+{
+    pthread_mutex_lock(&p->mu);
+    p->done++;
+    pthread_mutex_unlock(&p->mu);
+}
+
+static void progress_stop(progress *p)
+{
+    if (p->running) {
+        pthread_mutex_lock(&p->mu);
+        p->stop = 1;
+        pthread_cond_signal(&p->cv);
+        pthread_mutex_unlock(&p->mu);
+        pthread_join(p->thread, NULL);
+    }
+    pthread_mutex_destroy(&p->mu);
+    pthread_cond_destroy(&p->cv);
 }
 
 dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
@@ -171,7 +225,9 @@ dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
     dfl_sweep_clean_stale(s.outdir);
     const size_t lo = o->has_point ? (size_t)o->point : 0;
     const size_t hi = o->has_point ? lo + 1 : s.np;
-    progress p = {.t0 = dfl_wall_seconds()};
+    progress p = {.s = &s, .t0 = dfl_wall_seconds(), .k = (size_t)-1};
+    pthread_mutex_init(&p.mu, NULL);
+    pthread_cond_init(&p.cv, NULL);
     bool *skip = calloc(s.np, sizeof *skip);
     if (!skip) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
     for (size_t k = lo; k < hi && st == DFL_OK; k++) {
@@ -183,11 +239,12 @@ dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
                 s.study->name, hi - lo - p.todo, hi - lo, hi - lo == 1 ? "" : "s", s.points);
     for (size_t k = lo; k < hi && st == DFL_OK; k++) {
         if (skip[k]) continue;
-        progress_line(&s, &p, k, 0);
+        progress_point(&p, k);
         double sec;
         st = dfl_point_run(&s, k, &sec, err);
-        p.done++;
+        progress_done(&p);
     }
+    progress_stop(&p);
     free(skip);
     if (st != DFL_OK) { /* folders this run made and left empty go */
         rmdir(s.points);
