@@ -258,7 +258,7 @@ static dfl_status link_files(const pt_rec *r, const char *stage, const char *tab
     struct dirent *de;
     while ((de = readdir(d)) && st == DFL_OK) {
         if (de->d_name[0] == '.' || is_point_meta(de->d_name, table)) continue;
-        char a[8192], b[8192];
+        char a[8600], b[8192];
         snprintf(a, sizeof a, "%s/%s", r->dir, de->d_name);
         snprintf(b, sizeof b, "%s/%s", stage, de->d_name);
         if (access(b, F_OK) == 0)
