@@ -12,24 +12,25 @@
 #define SWEEP "[study]\nname = smoke\n[shape]\nkind = circle\ncenter = 0.5 0.5\nradius = 0.3\n" \
               "[field]\nkind = exact\n[grid]\nn = 8, 12, 16\n"
 
+/* args: after "dflab", a printf format whose %1$s is the case directory */
 typedef struct sweep_case {
     const char *name, *args, *want1, *want2;
 } sweep_case;
 
 static const sweep_case cases[] = {
-    {"point out of range", "run {D}/s.ini --point 3 --out {D}/o", "--point 3", "3 sweep points (0..2)"},
-    {"point not a number", "run {D}/s.ini --point x --out {D}/o", "--point x", "index"},
-    {"negative point", "run {D}/s.ini --point -1 --out {D}/o", "--point -1", "index"},
-    {"bad point value", "run {D}/s.ini --set grid.n=8,1 --point 0 --out {D}/o", "sweep point 1", "grid.n"},
-    {"plan empty sweep item", "plan {D}/s.ini --set grid.n=8,", "grid.n", "empty item"},
-    {"plan bad value", "plan {D}/s.ini --set grid.n=8,16,0", "sweep point 2", "[2, 4096]"},
-    {"plan bad emit", "plan {D}/s.ini --emit cron", "--emit cron", "slurm or parallel"},
-    {"plan bad -j", "plan {D}/s.ini --emit slurm -j 0", "-j 0", "[1, 100000]"},
-    {"plan commands and emit", "plan {D}/s.ini --commands --emit slurm", "--commands", "exclude"},
-    {"out under a file", "run {D}/s.ini --out {D}/s.ini/o", "--out", "not a directory"},
-    {"out unwritable", "run {D}/s.ini --out /proc/dflab-nope/o", "--out /proc/dflab-nope/o", "not writable"},
-    {"merge nothing", "merge {D}/o", "o.points", "no sweep points"},
-    {"out is not a results folder", "run {D}/s.ini --out {D}", "not a dflab results folder", "--out"},
+    {"point out of range", "run %1$s/s.ini --point 3 --out %1$s/o", "--point 3", "3 sweep points (0..2)"},
+    {"point not a number", "run %1$s/s.ini --point x --out %1$s/o", "--point x", "index"},
+    {"negative point", "run %1$s/s.ini --point -1 --out %1$s/o", "--point -1", "index"},
+    {"bad point value", "run %1$s/s.ini --set grid.n=8,1 --point 0 --out %1$s/o", "sweep point 1", "grid.n"},
+    {"plan empty sweep item", "plan %1$s/s.ini --set grid.n=8,", "grid.n", "empty item"},
+    {"plan bad value", "plan %1$s/s.ini --set grid.n=8,16,0", "sweep point 2", "[2, 4096]"},
+    {"plan bad emit", "plan %1$s/s.ini --emit cron", "--emit cron", "slurm or parallel"},
+    {"plan bad -j", "plan %1$s/s.ini --emit slurm -j 0", "-j 0", "[1, 100000]"},
+    {"plan commands and emit", "plan %1$s/s.ini --commands --emit slurm", "--commands", "exclude"},
+    {"out under a file", "run %1$s/s.ini --out %1$s/s.ini/o", "--out", "not a directory"},
+    {"out unwritable", "run %1$s/s.ini --out /proc/dflab-nope/o", "--out /proc/dflab-nope/o", "not writable"},
+    {"merge nothing", "merge %1$s/o", "o.points", "no sweep points"},
+    {"out is not a results folder", "run %1$s/s.ini --out %1$s", "not a dflab results folder", "--out"},
     {"merge no dir", "merge", "missing DIR", "merge"},
 };
 
@@ -42,27 +43,13 @@ ParameterizedTestParameters(sweep_input, table)
     return cr_make_param_array(int, case_index, NCASES);
 }
 
-static void expand(const char *tmpl, const char *dir, char *out, size_t size)
-{
-    size_t k = 0;
-    for (const char *s = tmpl; *s && k + 1 < size; s++) {
-        if (strncmp(s, "{D}", 3) == 0) {
-            k += (size_t)snprintf(out + k, size - k, "%s", dir);
-            s += 2;
-        } else {
-            out[k++] = *s;
-        }
-    }
-    out[k] = '\0';
-}
-
 ParameterizedTest(const int *ci, sweep_input, table)
 {
     const sweep_case *c = &cases[*ci];
     char dir[256], path[512], args[2048];
     e2e_tmpdir(dir, sizeof dir);
     e2e_write(dir, "s.ini", SWEEP, path, sizeof path);
-    expand(c->args, dir, args, sizeof args);
+    snprintf(args, sizeof args, c->args, dir); /* every %1$s is the case directory */
     const int rc = e2e_dflab(dir, args);
     char *msg = e2e_err_text(dir);
     cr_assert_not_null(msg);
