@@ -27,7 +27,8 @@ LDFLAGS  += -fopenmp $(SAN)
 # changes, so that -MMD recompiles just the files that print it.
 GIT_REV := $(shell git rev-parse --short HEAD 2>/dev/null || echo unknown)$(shell git diff --quiet HEAD 2>/dev/null || echo +dirty)
 VERSION_H := $(BUILD)/gen/dfl_version.h
-$(shell mkdir -p $(BUILD)/gen && echo '#define DFL_GIT_REV "$(GIT_REV)"' > $(VERSION_H).new && \
+INIH_VERSION := $(shell pkg-config --modversion inih 2>/dev/null || echo unknown)
+$(shell mkdir -p $(BUILD)/gen && printf '#define DFL_GIT_REV "%s"\n#define DFL_INIH_VERSION "%s"\n' '$(GIT_REV)' '$(INIH_VERSION)' > $(VERSION_H).new && \
   (cmp -s $(VERSION_H).new $(VERSION_H) || mv $(VERSION_H).new $(VERSION_H)); rm -f $(VERSION_H).new)
 CPPFLAGS += -I$(BUILD)/gen
 
@@ -58,7 +59,7 @@ APT_PKGS := libinih-dev libceres-dev libopenexr-dev libimath-dev libcriterion-de
             python3-matplotlib python3-numpy python3-vtk9 openexr pkg-config \
             emscripten chromium python3-scipy parallel slurm-wlm munge clang-14 libomp-14-dev
 
-.PHONY: all deps test sanitize bench reproduce clean check-layout web web-test web-bench check-threads
+.PHONY: all deps test sanitize bench reproduce figures clean check-layout web web-test web-bench check-threads
 all: $(DFLAB) $(LIB)
 
 $(BUILD)/%.o: %.c
@@ -134,10 +135,17 @@ bench: deps
 	$(MAKE) --no-print-directory web-bench
 
 # One folder per paper under configs/paper/; results/<config name>/ each.
+# Then every peer script scripts/peers/*.py (baselines from other libraries)
+# with --results results, then the report.  Reruns are incremental: `dflab
+# run` skips every sweep point whose config (with its included shape files)
+# and dflab binary are unchanged (results/<name>.points/), so only changed
+# configs compute.  `make figures STUDY=name` redraws one section.
 PAPER_CONFIGS := $(sort $(wildcard configs/paper/*/*.ini))
 reproduce: deps
 	$(MAKE) --no-print-directory $(DFLAB)
 	@set -e; for c in $(PAPER_CONFIGS); do echo "== $$c"; $(DFLAB) run $$c; done
+	@set -e; for p in $(sort $(wildcard scripts/peers/*.py)); do echo "== peer $$p"; \
+	  $(PYTHON) $$p --results results; done
 	$(PYTHON) scripts/report.py --results results --out results/REPORT.md
 
 # Every paper and smoke config at --threads 1, --threads 2 and
@@ -145,6 +153,10 @@ reproduce: deps
 check-threads: deps
 	$(MAKE) --no-print-directory $(DFLAB)
 	$(PYTHON) scripts/check_threads.py $(DFLAB)
+
+figures:
+	@test -n "$(STUDY)" || { echo "usage: make figures STUDY=<results folder or study name>"; exit 2; }
+	$(PYTHON) scripts/report.py --results results --only $(STUDY)
 
 clean:
 	rm -rf build build-san build-bench build-fuzz

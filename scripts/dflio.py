@@ -92,6 +92,24 @@ def read_manifest(result_dir):
         return json.load(fp)
 
 
+def overrides(manifest):
+    """The --set overrides a run was made with (a list of "section.key=value";
+    [] for none).  Manifests from before the overrides array held one "set"
+    key, the last override only."""
+    ov = manifest.get("overrides")
+    if ov is None:
+        ov = [manifest["set"]] if "set" in manifest else []
+    return list(ov)
+
+
+def overrides_md(manifest):
+    """One markdown line naming a run's overrides."""
+    ov = overrides(manifest)
+    if not ov:
+        return "Overrides: none (the config as written)."
+    return "Overrides: " + ", ".join(f"`--set {o}`" for o in ov) + "."
+
+
 def read_vti(path):
     """(dims, origin, spacing, {name: numpy array}) of a .vti, arrays
     reshaped to (nz, ny, nx[, ncomp])."""

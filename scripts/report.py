@@ -133,10 +133,15 @@ def section(r, paper, assumptions):
 def main(argv=None):
     ap = argparse.ArgumentParser()
     ap.add_argument("--results", default="results")
-    ap.add_argument("--out", default="results/REPORT.md")
+    ap.add_argument("--out", default=None,
+                    help="default results/REPORT.md, with --only results/REPORT_<SECTION>.md")
+    ap.add_argument("--only", metavar="SECTION",
+                    help="redraw one section: a results folder name or a study name")
     ap.add_argument("--sections", default=SECTIONS,
                     help="folder of the paper folders (default: scripts/sections)")
     a = ap.parse_args(argv)
+    if a.out is None:
+        a.out = os.path.join(a.results, f"REPORT_{a.only}.md" if a.only else "REPORT.md")
     ref_dir = os.path.join(a.results, "reference")
     fig_dir = os.path.join(a.results, "figures")
     runs = []
@@ -145,8 +150,12 @@ def main(argv=None):
         if not os.path.isdir(full) or d in ("reference", "figures") or ".stage." in d:
             continue
         man = dflio.read_manifest(full)
-        if man:
+        if man and (not a.only or a.only in (d, man.get("study"))):
             runs.append(Ctx(full, man, ref_dir, fig_dir))
+    if a.only and not runs:
+        print(f"report: error: --only {a.only}: no results folder or study of that name "
+              f"under {a.results}", file=sys.stderr)
+        return 2
     try:
         found = papers(a.sections)
     except ValueError as e:
@@ -176,7 +185,8 @@ def main(argv=None):
         assumptions = []
         body = []
         for r in groups.get(key, (p, []))[1]:
-            body += [f"### {r.name} (`{r.config}`, study `{r.study}`)", ""]
+            body += [f"### {r.name} (`{r.config}`, study `{r.study}`)", "",
+                     dflio.overrides_md(r.manifest), ""]
             try:
                 body.append(section(r, p, assumptions))
             except Exception:  # a broken section must not hide the others

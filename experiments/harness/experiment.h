@@ -6,8 +6,10 @@
  * run() must read and validate every key it uses *before* it writes any
  * file (call dfl_cfg_check_used after reading), append its rows to the
  * table, and write its files only through dfl_study_path() names, which
- * live in a staging directory that the runner moves into place only when
- * every sweep point succeeded.
+ * live in the point's stage folder; the runner commits the point when it
+ * completes and merges the points (harness/runner.h).  Each point is first
+ * run as a validation pass, which dfl_cfg_check_used ends (io/config.h):
+ * nothing may be computed or written before it.
  */
 #ifndef DFL_EXPERIMENTS_EXPERIMENT_H
 #define DFL_EXPERIMENTS_EXPERIMENT_H

@@ -1,193 +1,265 @@
+/* The runner: load and validate a sweep, compute its points (or one),
+ * merge.  Points are the unit of work everywhere, so a one-process run,
+ * GNU parallel and a Slurm array produce the same folders and the merge
+ * makes the same files from them. */
 #include "harness/runner.h"
 
-#include <dirent.h>
-#include <errno.h>
-#include <libgen.h>
+#include <omp.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
-#include "harness/experiment.h"
-#include "io/path.h"
-#include "io/atomic.h"
-#include "io/config.h"
+#include "core/sha256.h"
+#include "harness/sweep.h"
+#include "io/dirs.h"
 #include "io/manifest.h"
+#include "io/path.h"
 #include "io/table.h"
 
-static void remove_dir(const char *dir)
+const char *dfl_sweep_label(const dfl_sweep *s, const dfl_cfg *pt, char *buf, size_t size)
 {
-    DIR *d = opendir(dir);
-    if (d) {
-        struct dirent *de;
-        char p[8192];
-        while ((de = readdir(d))) {
-            if (strcmp(de->d_name, ".") == 0 || strcmp(de->d_name, "..") == 0) continue;
-            snprintf(p, sizeof p, "%s/%s", dir, de->d_name);
-            remove(p);
-        }
-        closedir(d);
-    }
-    rmdir(dir);
+    size_t ll = 0;
+    if (size) buf[0] = '\0';
+    for (size_t a = 0; a < s->na && ll < size; a++)
+        ll += (size_t)snprintf(buf + ll, size - ll, "%s%s=%s", a ? " " : "",
+                               dfl_cfg_sweep_axis_name(s->cfg, a), dfl_cfg_axis_value(pt, a));
+    return buf;
 }
 
-static dfl_status move_all(const char *from, const char *to, dfl_err *err)
+static int isalnum_ascii(char c)
 {
-    DIR *d = opendir(from);
-    if (!d) return dfl_err_set(err, DFL_E_IO, "%s: cannot list: %s", from, strerror(errno));
-    struct dirent *de;
-    char a[8192], b[8192];
-    dfl_status st = DFL_OK;
-    /* manifest last, so a complete manifest means complete outputs */
-    while ((de = readdir(d))) {
-        if (de->d_name[0] == '.' || strcmp(de->d_name, "manifest.json") == 0) continue;
-        snprintf(a, sizeof a, "%s/%s", from, de->d_name);
-        snprintf(b, sizeof b, "%s/%s", to, de->d_name);
-        if (rename(a, b) != 0) {
-            st = dfl_err_set(err, DFL_E_IO, "%s: cannot move into place: %s", b, strerror(errno));
-            break;
-        }
-    }
-    closedir(d);
-    if (st != DFL_OK) return st;
-    snprintf(a, sizeof a, "%s/manifest.json", from);
-    snprintf(b, sizeof b, "%s/manifest.json", to);
-    if (rename(a, b) != 0)
-        return dfl_err_set(err, DFL_E_IO, "%s: cannot move into place: %s", b, strerror(errno));
-    return DFL_OK;
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
 }
 
-/* "configs/paper/x.ini" -> "x" */
-dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
+/* Hydra-style: the overrides name the folder, so two --set runs never
+ * share one and never touch the paper folder results/<stem>/. */
+void dfl_sweep_outdir(const dfl_run_opts *o, char *buf, size_t size)
 {
-    dfl_cfg *cfg = NULL;
-    dfl_status st = dfl_cfg_load(o->config, &cfg, err);
-    if (st != DFL_OK) return st;
-    for (int i = 0; i < o->nsets && st == DFL_OK; i++) st = dfl_cfg_set(cfg, o->sets[i], err);
-    if (st != DFL_OK) {
-        dfl_cfg_free(cfg);
-        return st;
-    }
-
-    const char *study_name;
-    st = dfl_cfg_string(cfg, "study", "name", &study_name, err);
-    if (st != DFL_OK) {
-        dfl_cfg_free(cfg);
-        return st;
-    }
-    const dfl_study *study = dfl_study_find(study_name);
-    if (!study) {
-        dfl_cfg_reject(cfg, "study", "name", err, "unknown study '%s' (see `dflab list`)",
-                       study_name);
-        dfl_cfg_free(cfg); /* study_name points into cfg */
-        return DFL_E_INPUT;
-    }
-
-    char stem[512], outdir[4096], stage[4200];
+    char stem[512];
     dfl_path_stem(o->config, stem, sizeof stem);
-    if (o->outdir)
-        snprintf(outdir, sizeof outdir, "%s", o->outdir);
-    else
-        snprintf(outdir, sizeof outdir, "results/%s", stem);
-    size_t ol = strlen(outdir);
-    while (ol > 1 && outdir[ol - 1] == '/') outdir[--ol] = '\0';
-    snprintf(stage, sizeof stage, "%s.stage.%ld", outdir, (long)getpid());
-
-    /* parent of the results directory must exist for the stage rename trick */
-    char parent[4096];
-    snprintf(parent, sizeof parent, "%s", outdir);
-    char *pd = dirname(parent);
-    st = dfl_mkdir_p(pd, err);
-    if (st == DFL_OK) st = dfl_mkdir_p(stage, err);
-    if (st != DFL_OK) {
-        dfl_cfg_free(cfg);
-        return st;
-    }
-
-    dfl_table *table = dfl_table_new();
-    dfl_manifest *man = dfl_manifest_new(o->config, study->name);
-    if (!table || !man) {
-        st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-        goto fail;
-    }
-    for (int i = 0; i < o->nsets; i++) dfl_manifest_note(man, "set", o->sets[i]);
-
-    size_t np = dfl_cfg_sweep_points(cfg), na = dfl_cfg_sweep_axes(cfg);
-    for (size_t a = 0; a < na; a++)
-        if (strcmp(dfl_cfg_sweep_axis_name(cfg, a), "study.name") == 0) {
-            st = dfl_err_set(err, DFL_E_INPUT, "%s: [study] name cannot be a sweep", o->config);
-            goto fail;
+    if (o->outdir) {
+        snprintf(buf, size, "%s", o->outdir);
+    } else if (o->nsets == 0) {
+        snprintf(buf, size, "results/%s", stem);
+    } else {
+        char name[4096] = "";
+        size_t n = 0;
+        for (int i = 0; i < o->nsets && n < sizeof name; i++)
+            n += (size_t)snprintf(name + n, sizeof name - n, "%s%s", i ? "," : "", o->sets[i]);
+        for (char *c = name; *c; c++)
+            if (!(isalnum_ascii(*c) || strchr("._=+-,", *c))) *c = '_';
+        if (strlen(name) > 120) {
+            char hex[65];
+            dfl_sha256_hex(name, strlen(name), hex);
+            snprintf(name + 100, sizeof name - 100, "-%.12s", hex);
         }
-    /* a large sweep says what it is about to do, even with --quiet */
-    if (np >= 1000) fprintf(stderr, "dflab: %s: running %zu sweep points\n", study->name, np);
-    for (size_t i = 0; i < np; i++) {
+        snprintf(buf, size, "results/runs/%s/%s", stem, name);
+    }
+    size_t ol = strlen(buf);
+    while (ol > 1 && buf[ol - 1] == '/') buf[--ol] = '\0';
+}
+
+const char *dfl_point_dir(const dfl_sweep *s, size_t k, char *buf, size_t size)
+{
+    snprintf(buf, size, "%s/pt%03zu", s->points, k);
+    return buf;
+}
+
+/* Runs every point's study with a validation-only config: the getters and
+ * dfl_cfg_check_used run, nothing computes, so a bad value at point 17
+ * fails at once, named by point and key. */
+static dfl_status validate_points(const dfl_sweep *s, dfl_err *err)
+{
+    dfl_table *t = dfl_table_new();
+    if (!t) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    dfl_status st = DFL_OK;
+    for (size_t i = 0; i < s->np && st == DFL_OK; i++) {
         dfl_cfg *pt = NULL;
-        st = dfl_cfg_sweep_point(cfg, i, &pt, err);
-        if (st != DFL_OK) goto fail;
+        st = dfl_cfg_sweep_point(s->cfg, i, &pt, err);
+        if (st != DFL_OK) break;
+        dfl_cfg_validate_only(pt);
         const char *dummy;
         dfl_cfg_string(pt, "study", "name", &dummy, NULL); /* mark used */
-        dfl_table_prefix_clear(table);
-        char label[2048] = "";
-        size_t ll = 0;
-        for (size_t a = 0; a < na; a++) {
-            st = dfl_table_prefix_string(table, dfl_cfg_sweep_axis_name(cfg, a),
-                                         dfl_cfg_axis_value(pt, a), err);
-            if (st != DFL_OK) {
-                dfl_cfg_free(pt);
-                goto fail;
-            }
-            if (ll < sizeof label)
-                ll += (size_t)snprintf(label + ll, sizeof label - ll, "%s%s=%s", a ? " " : "",
-                                       dfl_cfg_sweep_axis_name(cfg, a), dfl_cfg_axis_value(pt, a));
-        }
-        char tag[32];
-        dfl_study_tag(i, np, tag, sizeof tag);
-        dfl_study_ctx ctx = {.stage_dir = stage, .tag = tag, .point = i, .npoints = np,
-                             .threads = o->threads};
-        if (!o->quiet)
-            fprintf(stderr, "dflab: %s point %zu/%zu %s\n", study->name, i + 1, np, label);
-        double t0 = dfl_wall_seconds();
-        st = study->run(pt, &ctx, table, err);
-        if (st == DFL_OK) st = dfl_cfg_check_used(pt, err);
-        double t1 = dfl_wall_seconds();
-        dfl_cfg_free(pt);
+        char tag[32], label[2048];
+        dfl_study_tag(i, s->np, tag, sizeof tag);
+        dfl_study_ctx ctx = {.stage_dir = "/nonexistent/dflab-validation", .tag = tag, .point = i,
+                             .npoints = s->np, .threads = s->threads};
+        dfl_err e2;
+        dfl_err_clear(&e2);
+        st = s->study->run(pt, &ctx, t, &e2);
+        if (!dfl_cfg_validated(pt) && st == DFL_OK) st = dfl_cfg_check_used(pt, &e2);
+        if (dfl_cfg_validated(pt)) st = DFL_OK;
         if (st != DFL_OK) {
-            if (np > 1) dfl_err_prefix(err, "sweep point %zu (%s)", i, label);
-            goto fail;
+            *err = e2;
+            if (s->np > 1) dfl_err_prefix(err, "sweep point %zu (%s)", i,
+                                          dfl_sweep_label(s, pt, label, sizeof label));
         }
-        char step[2100];
-        snprintf(step, sizeof step, "point %zu%s%s", i, ll ? ": " : "", label);
-        dfl_manifest_step(man, step, t1 - t0);
+        dfl_cfg_free(pt);
     }
+    dfl_table_free(t);
+    return st;
+}
 
-    {
-        double t0 = dfl_wall_seconds();
-        char path[8192];
-        snprintf(path, sizeof path, "%s/%s.csv", stage, study->name);
-        st = dfl_table_write_csv(table, path, err);
-        if (st != DFL_OK) goto fail;
-        snprintf(path, sizeof path, "%s/config.ini", stage);
-        st = dfl_cfg_write(cfg, path, err);
-        if (st != DFL_OK) goto fail;
-        dfl_manifest_step(man, "write tables", dfl_wall_seconds() - t0);
-        st = dfl_manifest_write(man, stage, err);
-        if (st != DFL_OK) goto fail;
-        st = dfl_mkdir_p(outdir, err);
-        if (st != DFL_OK) goto fail;
-        st = move_all(stage, outdir, err);
-        if (st != DFL_OK) goto fail;
+dfl_status dfl_sweep_open(const dfl_run_opts *o, dfl_sweep *s, dfl_err *err)
+{
+    memset(s, 0, sizeof *s);
+    s->o = o;
+    dfl_status st = dfl_cfg_load(o->config, &s->cfg, err);
+    for (int i = 0; i < o->nsets && st == DFL_OK; i++) st = dfl_cfg_set(s->cfg, o->sets[i], err);
+    const char *study_name = NULL;
+    if (st == DFL_OK) st = dfl_cfg_string(s->cfg, "study", "name", &study_name, err);
+    if (st == DFL_OK && !(s->study = dfl_study_find(study_name)))
+        st = dfl_cfg_reject(s->cfg, "study", "name", err, "unknown study '%s' (see `dflab list`)",
+                            study_name);
+    if (st != DFL_OK) return st;
+    s->np = dfl_cfg_sweep_points(s->cfg);
+    s->na = dfl_cfg_sweep_axes(s->cfg);
+    for (size_t a = 0; a < s->na; a++)
+        if (strcmp(dfl_cfg_sweep_axis_name(s->cfg, a), "study.name") == 0)
+            return dfl_err_set(err, DFL_E_INPUT, "%s: [study] name cannot be a sweep", o->config);
+    if (o->has_point && (o->point < 0 || (size_t)o->point >= s->np))
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "--point %ld: out of range: %s has %zu sweep point%s (0..%zu)", o->point,
+                           o->config, s->np, s->np == 1 ? "" : "s", s->np - 1);
+    s->threads = o->threads > 0 ? o->threads : omp_get_max_threads();
+    dfl_sweep_outdir(o, s->outdir, sizeof s->outdir);
+    snprintf(s->points, sizeof s->points, "%s.points", s->outdir);
+    dfl_cfg_sweep_hash(s->cfg, s->sweep_sha);
+    st = dfl_sha256_file("/proc/self/exe", s->binary_sha, err);
+    if (st == DFL_OK) st = validate_points(s, err);
+    return st;
+}
+
+void dfl_sweep_close(dfl_sweep *s)
+{
+    dfl_cfg_free(s->cfg);
+    s->cfg = NULL;
+}
+
+/* Line-based progress for logs (a Slurm log reads like a terminal): a line
+ * when the first point starts, then one every 2 s from a ticker thread, so
+ * a long point is not silent; --quiet: none. */
+typedef struct progress {
+    const dfl_sweep *s;
+    pthread_mutex_t mu;
+    pthread_cond_t cv;
+    pthread_t thread;
+    int running, stop;
+    double t0, tpoint;
+    size_t k, done, todo;
+} progress;
+
+static void progress_print(progress *p)
+{
+    const double now = dfl_wall_seconds(), el = now - p->t0;
+    char eta[64] = "";
+    if (p->done > 0 && p->done < p->todo)
+        snprintf(eta, sizeof eta, ", about %.0f s left",
+                 el / (double)p->done * (double)(p->todo - p->done));
+    fprintf(stderr, "dflab: %s point %zu/%zu (%.1f s on it; %zu of %zu to compute done, %.1f s "
+                    "elapsed%s)\n",
+            p->s->study->name, p->k + 1, p->s->np, now - p->tpoint, p->done, p->todo, el, eta);
+}
+
+static void *progress_tick(void *arg)
+{
+    progress *p = arg;
+    pthread_mutex_lock(&p->mu);
+    while (!p->stop) {
+        struct timespec ts;
+        clock_gettime(CLOCK_REALTIME, &ts);
+        ts.tv_sec += 2;
+        if (pthread_cond_timedwait(&p->cv, &p->mu, &ts) != 0 && !p->stop) progress_print(p);
     }
-    remove_dir(stage);
-    if (!o->quiet) fprintf(stderr, "dflab: wrote %s/\n", outdir);
-    dfl_table_free(table);
-    dfl_manifest_free(man);
-    dfl_cfg_free(cfg);
-    return DFL_OK;
+    pthread_mutex_unlock(&p->mu);
+    return NULL;
+}
 
-fail:
-    remove_dir(stage);
-    dfl_table_free(table);
-    dfl_manifest_free(man);
-    dfl_cfg_free(cfg);
+/* Point k starts (done points finished before it). */
+static void progress_point(progress *p, size_t k)
+{
+    if (p->s->o->quiet) return;
+    pthread_mutex_lock(&p->mu);
+    const int first = p->k == (size_t)-1;
+    p->k = k;
+    p->tpoint = dfl_wall_seconds();
+    if (first) progress_print(p);
+    pthread_mutex_unlock(&p->mu);
+    if (first && !p->running)
+        p->running = pthread_create(&p->thread, NULL, progress_tick, p) == 0;
+}
+
+static void progress_done(progress *p)
+{
+    pthread_mutex_lock(&p->mu);
+    p->done++;
+    pthread_mutex_unlock(&p->mu);
+}
+
+static void progress_stop(progress *p)
+{
+    if (p->running) {
+        pthread_mutex_lock(&p->mu);
+        p->stop = 1;
+        pthread_cond_signal(&p->cv);
+        pthread_mutex_unlock(&p->mu);
+        pthread_join(p->thread, NULL);
+    }
+    pthread_mutex_destroy(&p->mu);
+    pthread_cond_destroy(&p->cv);
+}
+
+dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
+{
+    dfl_sweep s;
+    dfl_status st = dfl_sweep_open(o, &s, err);
+    if (st == DFL_OK) st = dfl_dir_check_writable(s.outdir, "--out", err);
+    if (st == DFL_OK) st = dfl_dir_check_replaceable(s.outdir, "manifest.json", "--out", err);
+    if (st != DFL_OK) {
+        dfl_sweep_close(&s);
+        return st;
+    }
+    dfl_sweep_clean_stale(s.outdir);
+    const size_t lo = o->has_point ? (size_t)o->point : 0;
+    const size_t hi = o->has_point ? lo + 1 : s.np;
+    progress p = {.s = &s, .t0 = dfl_wall_seconds(), .k = (size_t)-1};
+    pthread_mutex_init(&p.mu, NULL);
+    pthread_cond_init(&p.cv, NULL);
+    bool *skip = calloc(s.np, sizeof *skip);
+    if (!skip) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    for (size_t k = lo; k < hi && st == DFL_OK; k++) {
+        skip[k] = !o->force && dfl_point_current(&s, k);
+        p.todo += !skip[k];
+    }
+    /* a large sweep says what it is about to do, even with --quiet */
+    if (st == DFL_OK && p.todo >= 1000)
+        fprintf(stderr, "dflab: %s: running %zu sweep points\n", s.study->name, p.todo);
+    if (st == DFL_OK && !o->quiet && p.todo < hi - lo)
+        fprintf(stderr, "dflab: %s: %zu of %zu point%s up to date in %s (--force recomputes)\n",
+                s.study->name, hi - lo - p.todo, hi - lo, hi - lo == 1 ? "" : "s", s.points);
+    for (size_t k = lo; k < hi && st == DFL_OK; k++) {
+        if (skip[k]) continue;
+        progress_point(&p, k);
+        double sec;
+        st = dfl_point_run(&s, k, &sec, err);
+        progress_done(&p);
+    }
+    progress_stop(&p);
+    free(skip);
+    if (st != DFL_OK) { /* folders this run made and left empty go */
+        rmdir(s.points);
+        rmdir(s.outdir);
+    }
+    if (st == DFL_OK && !o->has_point)
+        st = dfl_merge_into(s.outdir, &s, o->quiet, o->cmdline, err);
+    if (st == DFL_OK && !o->quiet) {
+        char pd[4400];
+        fprintf(stderr, "dflab: wrote %s/\n", o->has_point ? dfl_point_dir(&s, lo, pd, sizeof pd)
+                                                            : s.outdir);
+    }
+    dfl_sweep_close(&s);
     return st;
 }

@@ -13,6 +13,8 @@
 #include "dfl_version.h"
 #include "harness/experiment.h"
 #include "io/manifest.h"
+#include "io/path.h"
+#include "harness/help.h"
 #include "harness/probe.h"
 #include "harness/runner.h"
 #include "io/lines.h"
@@ -24,11 +26,15 @@ static const char *const usage_main =
     "\n"
     "commands:\n"
     "  run CONFIG.ini [--set section.key=value]... [--out DIR] [--threads N] [--quiet]\n"
+    "        [--point K] [--force]\n"
     "        run the study the config names; a comma list in a value is a sweep axis\n"
+    "  plan CONFIG.ini [--set ...]... [--out DIR] [--commands | --emit slurm|parallel] [-j M]\n"
+    "        the sweep points, one command per point, or a Slurm array / GNU parallel job\n"
+    "  merge DIR   assemble the points run with --point into what one run writes\n"
     "  probe CONFIG.ini --points FILE.csv [--jet K] [--set section.key=value]...\n"
     "        evaluate the config's [field] at points; CSV on stdout\n"
     "  list  studies and the configs that use them\n"
-    "  help [COMMAND]   this text, or a command's help\n"
+    "  help [COMMAND | STUDY]   this text, a command's help, or the keys a study reads\n"
     "  --version\n"
     "\n"
     "exit status: 0 success; 2 bad input (config, points file, geometry, usage,\n"
@@ -40,16 +46,44 @@ static const char *const usage_main =
 
 static const char *const usage_run =
     "usage: dflab run CONFIG.ini [--set section.key=value]... [--out DIR] [--threads N] [--quiet]\n"
+    "                [--point K] [--force]\n"
     "\n"
     "Runs the study named by [study] name.  A value holding a comma list (e.g.\n"
-    "`n = 16, 32, 64`) is a sweep axis; several axes form a cartesian product, one\n"
-    "CSV row (or group of rows) per sweep point with a column per swept key.\n"
-    "--set overrides or adds a key (and may itself be a list).  Outputs go to DIR\n"
-    "(default results/<config stem>/): <study>.csv, config.ini (resolved),\n"
-    "manifest.json and the study's .vti/.vtp/.exr files; nothing is written unless\n"
-    "the whole run succeeds.  --threads N: OpenMP threads (default: OMP_NUM_THREADS,\n"
-    "else every core); results are the same bytes at any N.  Exit 2 on bad input\n"
-    "(incl. an unusable --out), 1 on machine failures (see `dflab help`).\n";
+    "`n = 16, 32, 64`) is a sweep axis; several axes form a cartesian product\n"
+    "(last axis fastest; `dflab plan` lists the points).  Every CSV gets a `point`\n"
+    "column and one column per swept key.  --set overrides or adds a key (and may\n"
+    "itself be a list).  Outputs go to DIR: default results/<config stem>/, or\n"
+    "results/runs/<config stem>/<overrides>/ when --set is given.  DIR holds\n"
+    "<study>.csv, config.ini (resolved), manifest.json and the study's .vti/.vtp/.exr\n"
+    "files; DIR.points/ptNNN/ holds each committed sweep point.  Every point is\n"
+    "validated before any computes; each is committed when it completes, and a\n"
+    "rerun skips points whose config and dflab binary match (--force recomputes).\n"
+    "DIR is replaced as a whole when the run succeeds.  --point K runs only point K\n"
+    "into DIR.points/ (for job arrays); `dflab merge DIR` then assembles DIR.\n"
+    "Progress goes to stderr at most every 2 s (--quiet: none).  --threads N: OpenMP\n"
+    "threads (default: OMP_NUM_THREADS, else every core); results are the same bytes\n"
+    "at any N.  Exit 2 on bad input (incl. an unusable --out), 1 on machine failures\n"
+    "(see `dflab help`).\n";
+
+static const char *const usage_plan =
+    "usage: dflab plan CONFIG.ini [--set section.key=value]... [--out DIR] [--threads N]\n"
+    "                 [--commands | --emit slurm | --emit parallel] [-j M]\n"
+    "\n"
+    "Validates every sweep point and prints them (index, then every swept\n"
+    "section.key=value).  --commands prints one `dflab run ... --point K` line per\n"
+    "point and the `dflab merge` line.  --emit slurm prints an sbatch script for a\n"
+    "job array (#SBATCH --array=0-(N-1)%M, one point per SLURM_ARRAY_TASK_ID, a log\n"
+    "per task in DIR.logs/); `bash` it to submit the array and a merge job that runs\n"
+    "when every task succeeded.  --emit parallel prints the GNU parallel line\n"
+    "(--joblog, --resume-failed: rerun it after a failure or kill).  -j M: at most M\n"
+    "points at once (default 4).  Exit 2 on bad input.\n";
+
+static const char *const usage_merge =
+    "usage: dflab merge DIR [--quiet]\n"
+    "\n"
+    "Assembles DIR.points/ptNNN/ (written by `dflab run CONFIG --point K --out DIR`)\n"
+    "into DIR exactly as a one-process run writes it.  Refuses (exit 2) when a point\n"
+    "is missing, claimed twice, or comes from another config or dflab binary.\n";
 
 static const char *const usage_probe =
     "usage: dflab probe CONFIG.ini --points FILE.csv [--jet K] [--set section.key=value]...\n"
@@ -59,7 +93,9 @@ static const char *const usage_probe =
     "CSV x,y,z,value,gx,gy,gz[,d1..dK] on stdout, where dk is the exact k-th\n"
     "derivative of s -> u(x + s*dir) at s = 0+.  Exit 2 on bad input.\n";
 
-static const char *const usage_list = "usage: dflab list\n\nLists the studies and the configs under configs/ that name them.\n";
+static const char *const usage_list =
+    "usage: dflab list\n\nLists the studies and the configs that name them: those under ./configs/,\n"
+    "or, from any other folder, under the configs/ beside the dflab binary's folder.\n";
 
 static int fail(const dfl_err *err)
 {
@@ -72,7 +108,11 @@ static int fail(const dfl_err *err)
 /* One line, like every other error; the usage text is one command away. */
 static int usage_error(const char *usage, const char *fmt, ...)
 {
-    const char *cmd = usage == usage_run ? "run" : usage == usage_probe ? "probe" : "";
+    const char *cmd = usage == usage_run     ? "run"
+                      : usage == usage_probe ? "probe"
+                      : usage == usage_plan  ? "plan"
+                      : usage == usage_merge ? "merge"
+                                             : "";
     char msg[512];
     va_list ap;
     va_start(ap, fmt);
@@ -134,7 +174,8 @@ static int parse_args(int argc, char **argv, const cmd_spec *spec, void *opts,
             rc = usage_error(spec->usage, "unexpected argument '%s'", a);
         }
     }
-    if (rc == 0 && !*config) rc = usage_error(spec->usage, "missing CONFIG.ini");
+    if (rc == 0 && !*config)
+        rc = usage_error(spec->usage, spec->usage == usage_merge ? "missing DIR" : "missing CONFIG.ini");
     return rc;
 }
 
@@ -163,6 +204,16 @@ static int take_run(void *opts, const char *opt, const char *v)
         if (*end || t < 1 || t > 1024)
             return usage_error(usage_run, "--threads %s: expected an integer in [1, 1024]", v);
         o->threads = (int)t;
+    } else if (strcmp(opt, "--point") == 0) {
+        char *end;
+        const long k = strtol(v, &end, 10);
+        if (*end || end == v || k < 0)
+            return usage_error(usage_run, "--point %s: expected a point index >= 0 (see `dflab plan`)",
+                               v);
+        o->point = k;
+        o->has_point = 1;
+    } else if (strcmp(opt, "--force") == 0) {
+        o->force = 1;
     } else {
         o->quiet = 1; /* --quiet, -q */
     }
@@ -218,13 +269,90 @@ static int exec_probe(void *opts)
     return dfl_probe(o, stdout, &err) == DFL_OK ? 0 : fail(&err);
 }
 
-static int cmd_run(int argc, char **argv)
+static int cmd_run(int argc, char **argv, const char *cmdline)
 {
-    static const char *const valued[] = {"--out", "--threads", NULL};
-    static const char *const flags[] = {"--quiet", "-q", NULL};
+    static const char *const valued[] = {"--out", "--threads", "--point", NULL};
+    static const char *const flags[] = {"--quiet", "-q", "--force", NULL};
     static const cmd_spec spec = {usage_run, valued, flags, take_run, exec_run};
-    dfl_run_opts o = {0};
+    dfl_run_opts o = {.cmdline = cmdline};
     return command(argc, argv, &spec, &o, &o.config, &o.sets, &o.nsets);
+}
+
+static int take_plan(void *opts, const char *opt, const char *v)
+{
+    dfl_plan_opts *o = opts;
+    if (strcmp(opt, "--emit") == 0) {
+        if (strcmp(v, "slurm") != 0 && strcmp(v, "parallel") != 0)
+            return usage_error(usage_plan, "--emit %s: expected slurm or parallel", v);
+        o->emit = v;
+    } else if (strcmp(opt, "-j") == 0) {
+        char *end;
+        const long m = strtol(v, &end, 10);
+        if (*end || end == v || m < 1 || m > 100000)
+            return usage_error(usage_plan, "-j %s: expected an integer in [1, 100000]", v);
+        o->max_parallel = m;
+    } else if (strcmp(opt, "--commands") == 0) {
+        o->commands = 1;
+    } else if (strcmp(opt, "--quiet") != 0 && strcmp(opt, "-q") != 0) {
+        return take_run(&o->run, opt, v); /* --out, --threads */
+    }
+    return 0;
+}
+
+static int exec_plan(void *opts)
+{
+    dfl_plan_opts *o = opts;
+    if (o->commands && o->emit)
+        return usage_error(usage_plan, "--commands and --emit exclude each other");
+    char exe[4096];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    exe[n > 0 ? n : 0] = '\0';
+    o->exe = n > 0 ? exe : "dflab";
+    dfl_err err;
+    dfl_err_clear(&err);
+    return dfl_plan(o, stdout, &err) == DFL_OK ? 0 : fail(&err);
+}
+
+static int cmd_plan(int argc, char **argv)
+{
+    static const char *const valued[] = {"--out", "--threads", "--emit", "-j", NULL};
+    static const char *const flags[] = {"--commands", "--quiet", "-q", NULL};
+    static const cmd_spec spec = {usage_plan, valued, flags, take_plan, exec_plan};
+    dfl_plan_opts o = {0};
+    return command(argc, argv, &spec, &o, &o.run.config, &o.run.sets, &o.run.nsets);
+}
+
+typedef struct merge_opts {
+    const char *dir, *cmdline;
+    int quiet;
+    const char *const *sets;
+    int nsets;
+} merge_opts;
+
+static int take_merge(void *opts, const char *opt, const char *v)
+{
+    (void)opt, (void)v;
+    ((merge_opts *)opts)->quiet = 1; /* --quiet, -q */
+    return 0;
+}
+
+static int exec_merge(void *opts)
+{
+    const merge_opts *o = opts;
+    if (o->nsets) return usage_error(usage_merge, "--set does not apply to merge");
+    dfl_err err;
+    dfl_err_clear(&err);
+    return dfl_merge(o->dir, o->quiet, o->cmdline, &err) == DFL_OK ? 0 : fail(&err);
+}
+
+static int cmd_merge(int argc, char **argv, const char *cmdline)
+{
+    static const char *const none[] = {NULL};
+    static const char *const flags[] = {"--quiet", "-q", NULL};
+    static const cmd_spec spec = {usage_merge, none, flags, take_merge, exec_merge};
+    merge_opts o = {.cmdline = cmdline};
+    int rc = command(argc, argv, &spec, &o, &o.dir, &o.sets, &o.nsets);
+    return rc;
 }
 
 static int cmd_probe(int argc, char **argv)
@@ -236,12 +364,33 @@ static int cmd_probe(int argc, char **argv)
     return command(argc, argv, &spec, &o, &o.config, &o.sets, &o.nsets);
 }
 
-/* Scans configs/ (two levels) for `name = <study>` lines under [study]. */
-static void list_configs_for(const char *study)
+/* The configs folder: ./configs when there is one, else the one beside the
+ * dflab binary's folder (build/dflab -> configs/), so `dflab list` works
+ * from any folder. */
+static void configs_root(char *buf, size_t size)
 {
-    FILE *p = popen("find configs -name '*.ini' 2>/dev/null | sort", "r");
+    char exe[4096];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (access("configs", R_OK | X_OK) == 0 || n <= 0) {
+        snprintf(buf, size, "configs");
+        return;
+    }
+    exe[n] = '\0';
+    if (!dfl_path_beside(exe, "../configs", buf, size)) snprintf(buf, size, "configs");
+}
+
+/* Scans the configs folder for `name = <study>` lines under [study]; prints
+ * each (indented) when out is not NULL, and keeps the first (configs/paper
+ * sorts first among the folders that name studies) in first. */
+static void list_configs_for(const char *study, FILE *out, char *first, size_t size)
+{
+    char root[4096], cmd[4300];
+    configs_root(root, sizeof root);
+    if (first && size) first[0] = '\0';
+    snprintf(cmd, sizeof cmd, "find '%s' -name '*.ini' 2>/dev/null | LC_ALL=C sort", root);
+    FILE *p = popen(cmd, "r");
     if (!p) return;
-    char path[1024];
+    char path[4096];
     while (fgets(path, sizeof path, p)) {
         path[strcspn(path, "\n")] = '\0';
         FILE *fp = fopen(path, "r");
@@ -262,7 +411,8 @@ static void list_configs_for(const char *study)
             }
         }
         fclose(fp);
-        if (hit) printf("    %s\n", path);
+        if (hit && out) fprintf(out, "    %s\n", path);
+        if (hit && first && !first[0]) snprintf(first, size, "%s", path);
     }
     pclose(p);
 }
@@ -272,9 +422,35 @@ static int cmd_list(void)
     for (size_t i = 0; i < dfl_study_count(); i++) {
         const dfl_study *s = dfl_study_at(i);
         printf("%-28s %s\n", s->name, s->summary);
-        list_configs_for(s->name);
+        list_configs_for(s->name, stdout, NULL, 0);
     }
     return 0;
+}
+
+/* `dflab help STUDY`: the study's keys through a config that uses it. */
+static int cmd_help_study(const dfl_study *s)
+{
+    char config[4096];
+    list_configs_for(s->name, NULL, config, sizeof config);
+    if (!config[0]) {
+        fprintf(stderr, "dflab: error: help %s: no config under configs/ names this study\n",
+                s->name);
+        return 2;
+    }
+    dfl_err err;
+    dfl_err_clear(&err);
+    return dfl_study_help(s, config, stdout, &err) == DFL_OK ? 0 : fail(&err);
+}
+
+/* The command line for manifests, arguments with blanks or quotes quoted. */
+static void join_args(int argc, char **argv, char *buf, size_t size)
+{
+    size_t n = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < argc && n < size; i++) {
+        const int q = !argv[i][0] || strpbrk(argv[i], " \t'\"\\$*?;&|<>()") != NULL;
+        n += (size_t)snprintf(buf + n, size - n, q ? "%s'%s'" : "%s%s", i ? " " : "", argv[i]);
+    }
 }
 
 /* Output to stdout that did not reach it (a closed or full stdout) is a
@@ -324,9 +500,13 @@ static int dispatch(int argc, char **argv)
     }
     if (strcmp(cmd, "help") == 0) {
         const char *t = argc > 2 ? argv[2] : "";
+        const dfl_study *study = dfl_study_find(t);
+        if (study) return cmd_help_study(study);
         fputs(strcmp(t, "run") == 0     ? usage_run
               : strcmp(t, "probe") == 0 ? usage_probe
               : strcmp(t, "list") == 0  ? usage_list
+              : strcmp(t, "plan") == 0  ? usage_plan
+              : strcmp(t, "merge") == 0 ? usage_merge
                                         : usage_main,
               stdout);
         return 0;
@@ -335,7 +515,11 @@ static int dispatch(int argc, char **argv)
         printf("dflab %s (%s)\n", DFL_VERSION, DFL_GIT_REV);
         return 0;
     }
-    if (strcmp(cmd, "run") == 0) return cmd_run(argc - 2, argv + 2);
+    char cmdline[8192];
+    join_args(argc, argv, cmdline, sizeof cmdline);
+    if (strcmp(cmd, "run") == 0) return cmd_run(argc - 2, argv + 2, cmdline);
+    if (strcmp(cmd, "plan") == 0) return cmd_plan(argc - 2, argv + 2);
+    if (strcmp(cmd, "merge") == 0) return cmd_merge(argc - 2, argv + 2, cmdline);
     if (strcmp(cmd, "probe") == 0) return cmd_probe(argc - 2, argv + 2);
     if (strcmp(cmd, "list") == 0) {
         if (argc > 2 && (strcmp(argv[2], "--help") == 0 || strcmp(argv[2], "-h") == 0)) {

@@ -8,11 +8,13 @@
  *   overrides      config_set.c      dfl_cfg_set
  *   sweeps         config_sweep.c    dfl_cfg_sweep_axes, dfl_cfg_sweep_points,
  *                                    dfl_cfg_sweep_axis_name, dfl_cfg_sweep_point,
- *                                    dfl_cfg_axis_value
+ *                                    dfl_cfg_axis_value, dfl_cfg_sweep_hash
  *   typed getters  config_get.c      dfl_cfg_string/int/double/bool/enum/vec[_opt],
  *                                    dfl_cfg_points, dfl_cfg_doubles, dfl_cfg_point_dim
  *   locations      config_where.c    dfl_cfg_where, dfl_cfg_err_at, dfl_cfg_reject,
  *                                    dfl_cfg_check_used, dfl_cfg_check_used_in
+ *   read record    config_log.c      dfl_cfg_reads, dfl_cfg_read_at,
+ *                                    dfl_cfg_validate_only, dfl_cfg_validated
  *
  * A configuration file is parsed by libinih into (section, key, value, line)
  * entries; `--set section.key=value` overrides are applied on top.  A value
@@ -117,6 +119,10 @@ const char *dfl_cfg_sweep_axis_name(const dfl_cfg *c, size_t a);
 dfl_status dfl_cfg_sweep_point(const dfl_cfg *c, size_t i, dfl_cfg **out, dfl_err *err);
 /* Value of axis a in a point configuration made by dfl_cfg_sweep_point. */
 const char *dfl_cfg_axis_value(const dfl_cfg *point, size_t a);
+/* SHA-256 (hex) of every (section, key, value) in entry order: equal for
+ * the same keys and values, wherever they were written.  For a point
+ * configuration it covers the point's single values. */
+void dfl_cfg_sweep_hash(const dfl_cfg *c, char hex[65]);
 
 /* ---- getters (all mark the key used) ---------------------------------- */
 bool dfl_cfg_has(const dfl_cfg *c, const char *sec, const char *key);
@@ -192,6 +198,28 @@ dfl_status dfl_cfg_check_used(const dfl_cfg *c, dfl_err *err);
 /* Same, restricted to section sec (for commands that read only part of a
  * study config, such as `dflab probe` reading [field] and [shape]). */
 dfl_status dfl_cfg_check_used_in(const dfl_cfg *c, const char *sec, dfl_err *err);
+
+/* ---- read record ----------------------------------------------------- */
+/* Every getter records the key it reads (the first read counts), what it
+ * expects (the text its error messages use: type and range) and, for an
+ * _opt getter of an absent key, the default it returned.  dfl_cfg_has
+ * alone records nothing. */
+typedef struct dfl_cfg_read {
+    const char *sec, *key;
+    const char *value;  /* as written, or the default's text */
+    const char *expect; /* e.g. "an integer in [1, 64]" */
+    bool is_default;
+} dfl_cfg_read;
+/* Number of keys read so far; the i-th in first-read order (false when
+ * i >= dfl_cfg_reads).  Strings live until dfl_cfg_free. */
+size_t dfl_cfg_reads(const dfl_cfg *c);
+bool dfl_cfg_read_at(const dfl_cfg *c, size_t i, dfl_cfg_read *out);
+/* Makes c a validation pass: once dfl_cfg_check_used finds every key
+ * known, it marks c validated and returns DFL_E_INTERNAL instead of DFL_OK,
+ * so that a study (which calls it right after reading its keys) stops
+ * before computing.  dfl_cfg_validated tells such a stop from a failure. */
+void dfl_cfg_validate_only(dfl_cfg *c);
+bool dfl_cfg_validated(const dfl_cfg *c);
 
 /* Writes the configuration (single-valued or not) as INI text to path,
  * through a temporary file renamed on success: every key as written, set

@@ -2,7 +2,9 @@
  * used (for dfl_cfg_check_used) before any check, so that a rejected value
  * is never also reported as unknown; then parses and range-checks it, and
  * on failure names the key's location, what was expected and what was
- * found.  The _opt forms return the default without inventing the key. */
+ * found.  The _opt forms return the default without inventing the key.
+ * Every read goes to the config's read record (dfl_cfgi_log) with the
+ * same `expect` text the messages use, and the default when one is taken. */
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -13,6 +15,7 @@
 
 #include "core/domain.h"
 #include "io/config_impl.h"
+#include "io/table.h"
 
 /* The entry of a required single value, marked used.  DFL_E_INPUT when it
  * is absent, or still a sweep list: a list reaching a getter means the
@@ -24,6 +27,7 @@ static dfl_status fetch(const dfl_cfg *c, const char *sec, const char *key, cons
     ssize_t i = dfl_cfgi_find(c, sec, key);
     if (i < 0) return dfl_cfgi_missing(c, sec, key, expect, err);
     c->used[i] = 1;
+    dfl_cfgi_log(c, sec, key, expect, NULL);
     *en = &c->e[i];
     if (strchr((*en)->value, ','))
         return dfl_cfgi_bad(*en, "a single value (lists are sweep axes)", err);
@@ -46,6 +50,7 @@ dfl_status dfl_cfg_string_opt(const dfl_cfg *c, const char *sec, const char *key
 {
     if (!dfl_cfg_has(c, sec, key)) {
         *out = def;
+        dfl_cfgi_log(c, sec, key, "a value", def ? def : "(none)");
         return DFL_OK;
     }
     return dfl_cfg_string(c, sec, key, out, err);
@@ -75,11 +80,16 @@ static int parse_long(const char *s, long *out)
     return 1;
 }
 
+static void int_expect(long lo, long hi, char *buf, size_t size)
+{
+    snprintf(buf, size, "an integer in [%ld, %ld]", lo, hi);
+}
+
 dfl_status dfl_cfg_int(const dfl_cfg *c, const char *sec, const char *key, long lo, long hi,
                        long *out, dfl_err *err)
 {
     char expect[128];
-    snprintf(expect, sizeof expect, "an integer in [%ld, %ld]", lo, hi);
+    int_expect(lo, hi, expect, sizeof expect);
     const dfl_cfg_entry *en;
     dfl_status st = fetch(c, sec, key, expect, &en, err);
     if (st != DFL_OK) return st;
@@ -94,23 +104,32 @@ dfl_status dfl_cfg_int_opt(const dfl_cfg *c, const char *sec, const char *key, l
 {
     if (!dfl_cfg_has(c, sec, key)) {
         *out = def;
+        char expect[128], d[32];
+        int_expect(lo, hi, expect, sizeof expect);
+        snprintf(d, sizeof d, "%ld", def);
+        dfl_cfgi_log(c, sec, key, expect, d);
         return DFL_OK;
     }
     return dfl_cfg_int(c, sec, key, lo, hi, out, err);
+}
+
+static void double_expect(double lo, double hi, char *expect, size_t size)
+{
+    if (isinf(lo) && isinf(hi))
+        snprintf(expect, size, "a finite number");
+    else if (isinf(hi))
+        snprintf(expect, size, "a finite number >= %g", lo);
+    else if (isinf(lo))
+        snprintf(expect, size, "a finite number <= %g", hi);
+    else
+        snprintf(expect, size, "a finite number in [%g, %g]", lo, hi);
 }
 
 dfl_status dfl_cfg_double(const dfl_cfg *c, const char *sec, const char *key, double lo, double hi,
                           double *out, dfl_err *err)
 {
     char expect[128];
-    if (isinf(lo) && isinf(hi))
-        snprintf(expect, sizeof expect, "a finite number");
-    else if (isinf(hi))
-        snprintf(expect, sizeof expect, "a finite number >= %g", lo);
-    else if (isinf(lo))
-        snprintf(expect, sizeof expect, "a finite number <= %g", hi);
-    else
-        snprintf(expect, sizeof expect, "a finite number in [%g, %g]", lo, hi);
+    double_expect(lo, hi, expect, sizeof expect);
     const dfl_cfg_entry *en;
     dfl_status st = fetch(c, sec, key, expect, &en, err);
     if (st != DFL_OK) return st;
@@ -125,17 +144,22 @@ dfl_status dfl_cfg_double_opt(const dfl_cfg *c, const char *sec, const char *key
 {
     if (!dfl_cfg_has(c, sec, key)) {
         *out = def;
+        char expect[128], d[32];
+        double_expect(lo, hi, expect, sizeof expect);
+        dfl_cfgi_log(c, sec, key, expect, dfl_table_format_double(def, d, sizeof d));
         return DFL_OK;
     }
     return dfl_cfg_double(c, sec, key, lo, hi, out, err);
 }
+
+#define BOOL_EXPECT "a boolean (true/false, yes/no, on/off, 1/0)"
 
 dfl_status dfl_cfg_bool(const dfl_cfg *c, const char *sec, const char *key, bool *out,
                         dfl_err *err)
 {
     static const char *const t[] = {"true", "yes", "on", "1"};
     static const char *const f[] = {"false", "no", "off", "0"};
-    const char *expect = "a boolean (true/false, yes/no, on/off, 1/0)";
+    const char *expect = BOOL_EXPECT;
     const dfl_cfg_entry *en;
     dfl_status st = fetch(c, sec, key, expect, &en, err);
     if (st != DFL_OK) return st;
@@ -157,6 +181,7 @@ dfl_status dfl_cfg_bool_opt(const dfl_cfg *c, const char *sec, const char *key, 
 {
     if (!dfl_cfg_has(c, sec, key)) {
         *out = def;
+        dfl_cfgi_log(c, sec, key, BOOL_EXPECT, def ? "true" : "false");
         return DFL_OK;
     }
     return dfl_cfg_bool(c, sec, key, out, err);
@@ -190,6 +215,9 @@ dfl_status dfl_cfg_enum_opt(const dfl_cfg *c, const char *sec, const char *key,
 {
     if (!dfl_cfg_has(c, sec, key)) {
         *out = def;
+        char expect[512];
+        enum_expect(names, count, expect, sizeof expect);
+        dfl_cfgi_log(c, sec, key, expect, def >= 0 && def < count ? names[def] : "(none)");
         return DFL_OK;
     }
     return dfl_cfg_enum(c, sec, key, names, count, out, err);
@@ -221,11 +249,16 @@ static long parse_doubles(const char *s, size_t len, double *out, size_t max)
     return k;
 }
 
+static void vec_expect(int dim, char *buf, size_t size)
+{
+    snprintf(buf, size, "%d blank-separated finite numbers (|v| <= 1e150)", dim);
+}
+
 dfl_status dfl_cfg_vec(const dfl_cfg *c, const char *sec, const char *key, int dim, double *out,
                        dfl_err *err)
 {
     char expect[128];
-    snprintf(expect, sizeof expect, "%d blank-separated finite numbers (|v| <= 1e150)", dim);
+    vec_expect(dim, expect, sizeof expect);
     const dfl_cfg_entry *en;
     dfl_status st = fetch(c, sec, key, expect, &en, err);
     if (st != DFL_OK) return st;
@@ -241,6 +274,14 @@ dfl_status dfl_cfg_vec_opt(const dfl_cfg *c, const char *sec, const char *key, i
 {
     if (!dfl_cfg_has(c, sec, key)) {
         memcpy(out, def, (size_t)dim * sizeof *out);
+        char expect[128], d[8 * 32] = "";
+        vec_expect(dim, expect, sizeof expect);
+        for (int i = 0; i < dim && i < 8; i++) {
+            char one[32];
+            strcat(d, i ? " " : "");
+            strcat(d, dfl_table_format_double(def[i], one, sizeof one));
+        }
+        dfl_cfgi_log(c, sec, key, expect, d);
         return DFL_OK;
     }
     return dfl_cfg_vec(c, sec, key, dim, out, err);

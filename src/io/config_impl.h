@@ -13,6 +13,9 @@
  *   dfl_cfgi_where(en, buf, size)            "file:line: [sec] key" of an entry
  *   dfl_cfgi_missing / _bad                  the getters' two error messages
  *   dfl_cfgi_resolve_includes(c, incs, n, err)  merge the recorded include lines
+ *   dfl_cfgi_log(c, sec, key, expect, def)   record a getter's read (config_log.c)
+ *   dfl_cfgi_free_log(c)                     drop the record
+ *   dfl_cfgi_stop_if_validating(c, err)      end of a validation pass
  */
 #ifndef DFL_IO_CONFIG_IMPL_H
 #define DFL_IO_CONFIG_IMPL_H
@@ -42,8 +45,24 @@ typedef struct dfl_cfg_entry {
     char *via;  /* "file:line" of the include line that brought the key, else NULL */
 } dfl_cfg_entry;
 
+/* What the getters read, in the order they first read it (config_log.c):
+ * the resolved configuration of a study, defaults included, and what each
+ * key expects.  Separate block, like used, so const getters can record. */
+typedef struct dfl_cfg_readrec {
+    char *sec, *key, *expect;
+    char *def; /* the default taken when the key is absent, else NULL */
+} dfl_cfg_readrec;
+
+typedef struct dfl_cfg_log {
+    dfl_cfg_readrec *r;
+    size_t n, cap;
+    int validate_only; /* dfl_cfg_check_used stops the study (dfl_cfg_validate_only) */
+    int validated;     /* ... and has been reached with every key known */
+} dfl_cfg_log;
+
 struct dfl_cfg {
     char *path;
+    dfl_cfg_log *log; /* NULL only when out of memory at creation: nothing is recorded */
     dfl_cfg_entry *e; /* file order; lists are tiny, lookups are linear */
     size_t n, cap;
     unsigned char *used; /* separate block so const getters can mark keys */
@@ -101,5 +120,16 @@ dfl_status dfl_cfgi_bad(const dfl_cfg_entry *en, const char *expect, dfl_err *er
  * failure c may hold part of the keys; the caller frees it. */
 dfl_status dfl_cfgi_resolve_includes(dfl_cfg *c, const dfl_cfg_include *incs, size_t n,
                                      dfl_err *err);
+
+/* Records that a getter read [sec] key expecting `expect` (the text of its
+ * error messages), taking def when the key is absent (NULL when present).
+ * The first read of a key counts; out of memory drops the record. */
+void dfl_cfgi_log(const dfl_cfg *c, const char *sec, const char *key, const char *expect,
+                  const char *def);
+void dfl_cfgi_free_log(dfl_cfg *c);
+/* DFL_OK, or in a validation pass marks the config validated and returns
+ * DFL_E_INTERNAL so that the study stops (dfl_cfg_check_used calls it once
+ * every key is known). */
+dfl_status dfl_cfgi_stop_if_validating(const dfl_cfg *c, dfl_err *err);
 
 #endif

@@ -12,8 +12,11 @@ dfl_cfg *dfl_cfgi_new(const char *name)
 {
     dfl_cfg *c = calloc(1, sizeof *c);
     if (!c) return NULL;
+    c->log = calloc(1, sizeof *c->log);
     c->path = strdup(name);
-    if (!c->path) {
+    if (!c->path || !c->log) {
+        free(c->path);
+        free(c->log);
         free(c);
         return NULL;
     }
@@ -105,6 +108,7 @@ void dfl_cfg_free(dfl_cfg *c)
     free(c->e);
     free(c->used);
     dfl_cfgi_free_axes(c);
+    dfl_cfgi_free_log(c);
     free(c->path);
     free(c);
 }

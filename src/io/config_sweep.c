@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/sha256.h"
 #include "io/config_impl.h"
 
 /* Counts the comma-separated items of en's value; rejects empty items. */
@@ -167,4 +168,21 @@ const char *dfl_cfg_axis_value(const dfl_cfg *point, size_t a)
 {
     if (a >= point->naxes) return "";
     return point->e[point->axis[a]].value;
+}
+
+/* Entry order is file order, so the same file with the same overrides
+ * hashes the same from any directory; origins (file, line) do not count. */
+void dfl_cfg_sweep_hash(const dfl_cfg *c, char hex[65])
+{
+    dfl_sha256 h;
+    dfl_sha256_init(&h);
+    for (size_t i = 0; i < c->n; i++) {
+        const dfl_cfg_entry *e = &c->e[i];
+        dfl_sha256_update(&h, e->sec, strlen(e->sec) + 1);
+        dfl_sha256_update(&h, e->key, strlen(e->key) + 1);
+        dfl_sha256_update(&h, e->value, strlen(e->value) + 1);
+    }
+    unsigned char d[32];
+    dfl_sha256_final(&h, d);
+    for (int i = 0; i < 32; i++) snprintf(hex + 2 * i, 3, "%02x", d[i]);
 }

@@ -68,7 +68,8 @@ static dfl_status first_unused(const dfl_cfg *c, const char *sec, const char *wh
 
 dfl_status dfl_cfg_check_used(const dfl_cfg *c, dfl_err *err)
 {
-    return first_unused(c, NULL, "unknown key (not used by this study)", err);
+    dfl_status st = first_unused(c, NULL, "unknown key (not used by this study)", err);
+    return st == DFL_OK ? dfl_cfgi_stop_if_validating(c, err) : st;
 }
 
 dfl_status dfl_cfg_check_used_in(const dfl_cfg *c, const char *sec, dfl_err *err)

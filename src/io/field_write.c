@@ -4,9 +4,11 @@
 #include "io/field_write.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "io/exr.h"
+#include "io/meta_attrs.h"
 #include "io/vtk.h"
 
 static double grad_norm(const double *g, int gdim)
@@ -57,6 +59,30 @@ done:
     return st;
 }
 
+/* Where the image lies: its domain, spacing and, for a volume, which
+ * section it is (a viewer shows only pixels). */
+static dfl_status section_attrs(const char *path, const dfl_field_samples *s, int c, int a0, int a1,
+                                size_t k0, dfl_err *err)
+{
+    static const char axis[] = "xyz";
+    char lo[128], hi[128], sp[128], sec[256];
+    snprintf(lo, sizeof lo, "%.17g %.17g", s->origin[a0], s->origin[a1]);
+    snprintf(hi, sizeof hi, "%.17g %.17g", s->origin[a0] + (s->dims[a0] - 1) * s->spacing[a0],
+             s->origin[a1] + (s->dims[a1] - 1) * s->spacing[a1]);
+    snprintf(sp, sizeof sp, "%.17g %.17g", s->spacing[a0], s->spacing[a1]);
+    if (s->dims[c] > 1)
+        snprintf(sec, sizeof sec, "middle slice of a volume: %c = %.17g (node %zu of %d); "
+                                  "image x = %c, image y = %c (row 0 at the largest)",
+                 axis[c], s->origin[c] + (double)k0 * s->spacing[c], k0, s->dims[c], axis[a0],
+                 axis[a1]);
+    else
+        snprintf(sec, sizeof sec, "whole lattice at %c = %.17g; image x = %c, image y = %c (row 0 "
+                                  "at the largest)", axis[c], s->origin[c], axis[a0], axis[a1]);
+    const char *names[] = {"dflab_domain_lo", "dflab_domain_hi", "dflab_spacing", "dflab_section"};
+    const char *values[] = {lo, hi, sp, sec};
+    return dfl_exr_add_attrs(path, 4, names, values, err);
+}
+
 dfl_status dfl_field_write_exr(const char *path, const dfl_field_samples *s, int half,
                                dfl_err *err)
 {
@@ -93,6 +119,7 @@ dfl_status dfl_field_write_exr(const char *path, const dfl_field_samples *s, int
     if (fg) ch[nch++] = (dfl_exr_channel){"grad_norm", fg};
     if (fe) ch[nch++] = (dfl_exr_channel){"error", fe};
     st = dfl_exr_write(path, w, h, ch, nch, half, err);
+    if (st == DFL_OK) st = section_attrs(path, s, c, a0, a1, k0, err);
 done:
     free(fv), free(fg), free(fe);
     return st;

@@ -1,38 +1,36 @@
-/* The manifest is JSON written by hand: a few flat fields and two arrays,
- * not worth a dependency. */
+/* The manifest is JSON written by hand: an ordered list of (key, JSON
+ * text) fields, not worth a dependency.  dflab reads back only what it
+ * wrote itself (point records, for merging), so the two finders below look
+ * for the fixed `"key": value` spelling of this writer. */
 #include "io/manifest.h"
 
+#include <ceres/version.h>
 #include <dirent.h>
+#include <openexr.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <zlib.h>
 
+#include "core/sha256.h"
 #include "io/atomic.h"
 
 #include "dfl_version.h"
 
-typedef struct kv {
-    char *k, *v;
-    double t;
-} kv;
+#ifndef DFL_INIH_VERSION
+#define DFL_INIH_VERSION "unknown"
+#endif
+
+typedef struct field {
+    char *key, *json;
+} field;
 
 struct dfl_manifest {
-    char *config, *study;
-    kv *steps;
-    size_t nsteps;
-    kv *notes;
-    size_t nnotes;
+    field *f;
+    size_t n;
 };
-
-static char *dup(const char *s)
-{
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d) memcpy(d, s, n);
-    return d;
-}
 
 double dfl_wall_seconds(void)
 {
@@ -41,69 +39,151 @@ double dfl_wall_seconds(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-dfl_manifest *dfl_manifest_new(const char *config_path, const char *study)
-{
-    dfl_manifest *m = calloc(1, sizeof *m);
-    if (!m) return NULL;
-    m->config = dup(config_path);
-    m->study = dup(study);
-    if (!m->config || !m->study) {
-        dfl_manifest_free(m);
-        return NULL;
-    }
-    return m;
-}
+dfl_manifest *dfl_manifest_new(void) { return calloc(1, sizeof(dfl_manifest)); }
 
 void dfl_manifest_free(dfl_manifest *m)
 {
     if (!m) return;
-    for (size_t i = 0; i < m->nsteps; i++) free(m->steps[i].k);
-    for (size_t i = 0; i < m->nnotes; i++) free(m->notes[i].k), free(m->notes[i].v);
-    free(m->steps);
-    free(m->notes);
-    free(m->config);
-    free(m->study);
+    for (size_t i = 0; i < m->n; i++) free(m->f[i].key), free(m->f[i].json);
+    free(m->f);
     free(m);
 }
 
-dfl_status dfl_manifest_step(dfl_manifest *m, const char *name, double seconds)
+/* Takes ownership of json (NULL: out of memory). */
+static dfl_status put_owned(dfl_manifest *m, const char *key, char *json)
 {
-    kv *s = realloc(m->steps, (m->nsteps + 1) * sizeof *s);
-    if (!s) return DFL_E_NOMEM;
-    m->steps = s;
-    s[m->nsteps].k = dup(name);
-    s[m->nsteps].v = NULL;
-    s[m->nsteps].t = seconds;
-    if (!s[m->nsteps].k) return DFL_E_NOMEM;
-    m->nsteps++;
-    return DFL_OK;
-}
-
-dfl_status dfl_manifest_note(dfl_manifest *m, const char *key, const char *value)
-{
-    kv *s = realloc(m->notes, (m->nnotes + 1) * sizeof *s);
-    if (!s) return DFL_E_NOMEM;
-    m->notes = s;
-    s[m->nnotes].k = dup(key);
-    s[m->nnotes].v = dup(value);
-    if (!s[m->nnotes].k || !s[m->nnotes].v) {
-        free(s[m->nnotes].k), free(s[m->nnotes].v);
+    if (!json) return DFL_E_NOMEM;
+    for (size_t i = 0; i < m->n; i++)
+        if (strcmp(m->f[i].key, key) == 0) {
+            free(m->f[i].json);
+            m->f[i].json = json;
+            return DFL_OK;
+        }
+    field *f = realloc(m->f, (m->n + 1) * sizeof *f);
+    char *k = strdup(key);
+    if (!f || !k) {
+        if (f) m->f = f;
+        free(k), free(json);
         return DFL_E_NOMEM;
     }
-    m->nnotes++;
+    m->f = f;
+    m->f[m->n++] = (field){k, json};
     return DFL_OK;
 }
 
-static void json_str(FILE *fp, const char *s)
+dfl_status dfl_manifest_put_raw(dfl_manifest *m, const char *key, const char *json)
 {
-    fputc('"', fp);
+    return put_owned(m, key, strdup(json));
+}
+
+dfl_status dfl_manifest_put_string(dfl_manifest *m, const char *key, const char *value)
+{
+    return put_owned(m, key, dfl_json_quote(value));
+}
+
+dfl_status dfl_manifest_put_int(dfl_manifest *m, const char *key, long value)
+{
+    char b[32];
+    snprintf(b, sizeof b, "%ld", value);
+    return put_owned(m, key, strdup(b));
+}
+
+dfl_status dfl_manifest_put_double(dfl_manifest *m, const char *key, double value)
+{
+    char b[64];
+    snprintf(b, sizeof b, "%.6f", value);
+    return put_owned(m, key, strdup(b));
+}
+
+dfl_status dfl_manifest_put_strings(dfl_manifest *m, const char *key, size_t n,
+                                    const char *const *values)
+{
+    size_t cap = 3, len = 1;
+    for (size_t i = 0; i < n; i++) cap += 6 * strlen(values[i]) + 4;
+    char *s = malloc(cap);
+    if (!s) return DFL_E_NOMEM;
+    s[0] = '[';
+    for (size_t i = 0; i < n; i++) {
+        char *q = dfl_json_quote(values[i]);
+        if (!q) {
+            free(s);
+            return DFL_E_NOMEM;
+        }
+        len += (size_t)snprintf(s + len, cap - len, "%s%s", i ? ", " : "", q);
+        free(q);
+    }
+    snprintf(s + len, cap - len, "]");
+    return put_owned(m, key, s);
+}
+
+char *dfl_json_quote(const char *s)
+{
+    char *q = malloc(6 * strlen(s) + 3), *o = q;
+    if (!q) return NULL;
+    *o++ = '"';
     for (; *s; s++) {
         unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\') fprintf(fp, "\\%c", c);
-        else if (c < 0x20) fprintf(fp, "\\u%04x", c);
-        else fputc(c, fp);
+        if (c == '"' || c == '\\') *o++ = '\\', *o++ = (char)c;
+        else if (c < 0x20) o += sprintf(o, "\\u%04x", c);
+        else *o++ = (char)c;
     }
-    fputc('"', fp);
+    *o++ = '"';
+    *o = '\0';
+    return q;
+}
+
+static const char *find_key(const char *json, const char *key)
+{
+    size_t kl = strlen(key);
+    for (const char *p = strstr(json, key); p; p = strstr(p + 1, key))
+        if (p > json && p[-1] == '"' && p[kl] == '"' && strncmp(p + kl + 1, ": ", 2) == 0)
+            return p + kl + 3;
+    return NULL;
+}
+
+int dfl_json_find_string(const char *json, const char *key, char *buf, size_t size)
+{
+    if (size) buf[0] = '\0';
+    const char *v = find_key(json, key);
+    if (!v || *v != '"') return 0;
+    size_t k = 0;
+    for (v++; *v && *v != '"' && k + 1 < size; v++) {
+        if (*v == '\\' && v[1]) {
+            v++;
+            if (*v == 'u') {
+                buf[k++] = (char)strtol((char[]){v[1], v[2], v[3], v[4], 0}, NULL, 16);
+                v += 4;
+                continue;
+            }
+        }
+        buf[k++] = *v;
+    }
+    if (size) buf[k] = '\0';
+    return 1;
+}
+
+int dfl_json_find_number(const char *json, const char *key, double *out)
+{
+    const char *v = find_key(json, key);
+    if (!v) return 0;
+    char *end;
+    double d = strtod(v, &end);
+    if (end == v) return 0;
+    *out = d;
+    return 1;
+}
+
+const char *dfl_manifest_libraries(char *buf, size_t size)
+{
+    int maj = 0, min = 0, patch = 0;
+    const char *extra = "";
+    exr_get_library_version(&maj, &min, &patch, &extra);
+    snprintf(buf, size,
+             "{\"dflab\": \"%s\", \"inih\": \"%s\", \"ceres\": \"%d.%d.%d\", "
+             "\"openexr\": \"%d.%d.%d%s\", \"zlib\": \"%s\"}",
+             DFL_VERSION, DFL_INIH_VERSION, CERES_VERSION_MAJOR, CERES_VERSION_MINOR,
+             CERES_VERSION_REVISION, maj, min, patch, extra ? extra : "", zlibVersion());
+    return buf;
 }
 
 static int cmp_str(const void *a, const void *b)
@@ -111,73 +191,68 @@ static int cmp_str(const void *a, const void *b)
     return strcmp(*(char *const *)a, *(char *const *)b);
 }
 
-dfl_status dfl_manifest_write(const dfl_manifest *m, const char *dir, dfl_err *err)
+/* Sorted names of the regular files of dir (not manifest.json, not
+ * temporaries); *n of them, NULL when none or out of memory. */
+static char **list_files(const char *dir, size_t *n)
 {
-    char path[4096];
-    snprintf(path, sizeof path, "%s/manifest.json", dir);
-    /* collect the files first (sorted, for stable manifests) */
+    *n = 0;
     DIR *d = opendir(dir);
-    if (!d) return dfl_err_set(err, DFL_E_IO, "%s: cannot list directory", dir);
+    if (!d) return NULL;
     char **names = NULL;
-    size_t nn = 0;
     struct dirent *de;
     while ((de = readdir(d))) {
         if (de->d_name[0] == '.' || strcmp(de->d_name, "manifest.json") == 0) continue;
         if (strstr(de->d_name, ".tmp.")) continue;
-        char **nw = realloc(names, (nn + 1) * sizeof *nw);
+        char p[8192];
+        struct stat sb;
+        snprintf(p, sizeof p, "%s/%s", dir, de->d_name);
+        if (stat(p, &sb) != 0 || !S_ISREG(sb.st_mode)) continue;
+        char **nw = realloc(names, (*n + 1) * sizeof *nw);
         if (!nw) break;
         names = nw;
-        names[nn] = dup(de->d_name);
-        if (names[nn]) nn++;
+        if ((names[*n] = strdup(de->d_name))) (*n)++;
     }
     closedir(d);
-    qsort(names, nn, sizeof *names, cmp_str);
+    if (names) qsort(names, *n, sizeof *names, cmp_str);
+    return names;
+}
 
+dfl_status dfl_manifest_write(const dfl_manifest *m, const char *path, const char *files_dir,
+                              dfl_err *err)
+{
+    size_t nn;
+    char **names = list_files(files_dir, &nn);
     dfl_atomic_file af;
     dfl_status st = dfl_atomic_open(path, &af, err);
-    if (st != DFL_OK) {
-        for (size_t i = 0; i < nn; i++) free(names[i]);
-        free(names);
-        return st;
-    }
     FILE *fp = af.fp;
-    char date[64];
-    time_t now = time(NULL);
-    struct tm tmv;
-    gmtime_r(&now, &tmv);
-    strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", &tmv);
-    fprintf(fp, "{\n  \"tool\": \"dflab\",\n  \"version\": \"%s\",\n  \"git_revision\": ", DFL_VERSION);
-    json_str(fp, DFL_GIT_REV);
-    fprintf(fp, ",\n  \"date\": \"%s\",\n  \"config\": ", date);
-    json_str(fp, m->config);
-    fprintf(fp, ",\n  \"study\": ");
-    json_str(fp, m->study);
-    for (size_t i = 0; i < m->nnotes; i++) {
-        fprintf(fp, ",\n  ");
-        json_str(fp, m->notes[i].k);
-        fprintf(fp, ": ");
-        json_str(fp, m->notes[i].v);
+    if (st == DFL_OK) {
+        fputs("{", fp);
+        for (size_t i = 0; i < m->n; i++) {
+            char *k = dfl_json_quote(m->f[i].key);
+            fprintf(fp, "%s\n  %s: %s", i ? "," : "", k ? k : "\"?\"", m->f[i].json);
+            free(k);
+        }
+        fprintf(fp, "%s\n  \"files\": [", m->n ? "," : "");
     }
-    fprintf(fp, ",\n  \"steps\": [");
-    double total = 0;
-    for (size_t i = 0; i < m->nsteps; i++) {
-        fprintf(fp, "%s\n    {\"name\": ", i ? "," : "");
-        json_str(fp, m->steps[i].k);
-        fprintf(fp, ", \"wall_seconds\": %.6f}", m->steps[i].t);
-        total += m->steps[i].t;
-    }
-    fprintf(fp, "\n  ],\n  \"total_wall_seconds\": %.6f,\n  \"files\": [", total);
     for (size_t i = 0; i < nn; i++) {
-        char fpth[8192];
-        snprintf(fpth, sizeof fpth, "%s/%s", dir, names[i]);
+        char fpth[8192], hex[65];
+        snprintf(fpth, sizeof fpth, "%s/%s", files_dir, names[i]);
         struct stat sb;
         long long size = stat(fpth, &sb) == 0 ? (long long)sb.st_size : -1;
-        fprintf(fp, "%s\n    {\"name\": ", i ? "," : "");
-        json_str(fp, names[i]);
-        fprintf(fp, ", \"bytes\": %lld}", size);
+        if (st == DFL_OK) st = dfl_sha256_file(fpth, hex, err);
+        if (st == DFL_OK) {
+            char *q = dfl_json_quote(names[i]);
+            fprintf(fp, "%s\n    {\"name\": %s, \"bytes\": %lld, \"sha256\": \"%s\"}", i ? "," : "",
+                    q ? q : "\"?\"", size, hex);
+            free(q);
+        }
         free(names[i]);
     }
     free(names);
+    if (st != DFL_OK) {
+        dfl_atomic_abort(&af);
+        return st;
+    }
     fprintf(fp, "\n  ]\n}\n");
     return dfl_atomic_commit(&af, err);
 }

@@ -1,8 +1,18 @@
-/* Run manifests: what produced a results directory.
+/* Run manifests: what produced a results directory, as one JSON object.
  *
- * manifest.json records the dflab version, the git revision it was built
- * from (when known), the UTC date, the command line, the wall time of each
- * step and every file in the directory with its size in bytes.
+ * Function index
+ *   dfl_manifest_new, _free            lifetime
+ *   dfl_manifest_put_string/_int/_double/_strings/_raw   fields, in order
+ *   dfl_manifest_write                 the object plus "files" (name, bytes, sha256)
+ *   dfl_manifest_libraries             JSON object of the linked libraries' versions
+ *   dfl_json_quote                     a C string as a JSON string literal
+ *   dfl_json_find_string, _number      a top-level field of JSON dflab wrote
+ *   dfl_wall_seconds                   monotonic clock
+ *
+ * A manifest holds each key once (json.load keeps the last of duplicates,
+ * so a repeated key would lose data): putting a key again replaces it.
+ * Fields keep the order they were first put.  Every setter returns DFL_OK
+ * or DFL_E_NOMEM.
  */
 #ifndef DFL_IO_MANIFEST_H
 #define DFL_IO_MANIFEST_H
@@ -15,15 +25,39 @@
 
 typedef struct dfl_manifest dfl_manifest;
 
-dfl_manifest *dfl_manifest_new(const char *config_path, const char *study);
+/* NULL when out of memory. */
+dfl_manifest *dfl_manifest_new(void);
 void dfl_manifest_free(dfl_manifest *m);
-/* Records a finished step and its wall time in seconds. */
-dfl_status dfl_manifest_step(dfl_manifest *m, const char *name, double seconds);
-/* Records an extra key (e.g. the command line). */
-dfl_status dfl_manifest_note(dfl_manifest *m, const char *key, const char *value);
-/* Writes <dir>/manifest.json listing every regular file in dir (including
- * the manifest itself, whose size is that of the final file). */
-dfl_status dfl_manifest_write(const dfl_manifest *m, const char *dir, dfl_err *err);
+dfl_status dfl_manifest_put_string(dfl_manifest *m, const char *key, const char *value);
+dfl_status dfl_manifest_put_int(dfl_manifest *m, const char *key, long value);
+/* Printed as %.6f (wall times). */
+dfl_status dfl_manifest_put_double(dfl_manifest *m, const char *key, double value);
+/* A JSON array of n strings. */
+dfl_status dfl_manifest_put_strings(dfl_manifest *m, const char *key, size_t n,
+                                    const char *const *values);
+/* json must already be valid JSON text (an object, array, number...). */
+dfl_status dfl_manifest_put_raw(dfl_manifest *m, const char *key, const char *json);
+
+/* Writes the fields and then "files": every regular file of files_dir
+ * (sorted by name; manifest.json and temporary *.tmp.* files left out) with
+ * its size in bytes and sha256, to path through a temporary file renamed on
+ * success.  DFL_E_IO naming the file on failure. */
+dfl_status dfl_manifest_write(const dfl_manifest *m, const char *path, const char *files_dir,
+                              dfl_err *err);
+
+/* {"dflab": ..., "inih": ..., "ceres": ..., "openexr": ..., "zlib": ...} into
+ * buf: compile-time versions for inih and Ceres, the loaded library's own
+ * for OpenEXR and zlib.  Returns buf. */
+const char *dfl_manifest_libraries(char *buf, size_t size);
+
+/* s as a quoted JSON string (escapes ", \ and control characters), malloc'ed
+ * (caller frees); NULL when out of memory. */
+char *dfl_json_quote(const char *s);
+/* The value of the first `"key": "..."` in json (unescaped) into buf;
+ * returns 0 when absent (buf is "" then). */
+int dfl_json_find_string(const char *json, const char *key, char *buf, size_t size);
+/* The value of the first `"key": <number>`; returns 0 when absent. */
+int dfl_json_find_number(const char *json, const char *key, double *out);
 
 /* Monotonic wall clock in seconds. */
 double dfl_wall_seconds(void);

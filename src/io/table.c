@@ -1,12 +1,15 @@
-/* Cells are stored as text: every value is formatted once when set (%.17g
- * for doubles), which keeps the table simple and the CSV exact. */
+/* Cells are stored as text: every value is formatted once when set (the
+ * shortest decimal that reads back to the same double), which keeps the
+ * table simple and the CSV exact. */
 #include "io/table.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "io/atomic.h"
+#include "io/dirs.h"
 
 struct dfl_table {
     char **cols;
@@ -133,11 +136,44 @@ dfl_status dfl_table_row(dfl_table *t, dfl_err *err)
     return DFL_OK;
 }
 
+static int round_trips(double v, int prec, char *buf, size_t size)
+{
+    snprintf(buf, size, "%.*g", prec, v);
+    return strtod(buf, NULL) == v;
+}
+
+/* %.17g always reads back; fewer digits usually do.  Reading back is
+ * monotone in the precision (a correctly rounded longer decimal is never
+ * farther from v), so a bisection over 1..17 finds the fewest digits. */
+const char *dfl_table_format_double(double v, char *buf, size_t size)
+{
+    if (!isfinite(v) || v == 0.0) {
+        snprintf(buf, size, "%.17g", v); /* nan, inf, 0, -0 as before */
+        return buf;
+    }
+    int lo = 1, hi = 17;
+    while (lo < hi) {
+        const int mid = (lo + hi) / 2;
+        if (round_trips(v, mid, buf, size)) hi = mid;
+        else lo = mid + 1;
+    }
+    snprintf(buf, size, "%.*g", lo, v);
+    /* %g writes 10 as 1e+01 at one digit; with exponent X below 17 the plain
+     * form needs X + 1 digits, and the shorter text wins (10, not 1e+01). */
+    const char *e = strchr(buf, 'e');
+    const int x = e ? atoi(e + 1) : -1;
+    if (x >= lo && x < 17) {
+        char plain[64];
+        snprintf(plain, sizeof plain, "%.*g", x + 1, v);
+        if (strlen(plain) < strlen(buf) && strlen(plain) < size) strcpy(buf, plain);
+    }
+    return buf;
+}
+
 dfl_status dfl_table_set_double(dfl_table *t, const char *col, double v, dfl_err *err)
 {
     char buf[64];
-    snprintf(buf, sizeof buf, "%.17g", v);
-    return set_text(t, col, buf, err);
+    return set_text(t, col, dfl_table_format_double(v, buf, sizeof buf), err);
 }
 
 dfl_status dfl_table_set_int(dfl_table *t, const char *col, long v, dfl_err *err)
@@ -150,6 +186,11 @@ dfl_status dfl_table_set_int(dfl_table *t, const char *col, long v, dfl_err *err
 dfl_status dfl_table_set_string(dfl_table *t, const char *col, const char *v, dfl_err *err)
 {
     return set_text(t, col, v, err);
+}
+
+dfl_status dfl_table_add_col(dfl_table *t, const char *col, dfl_err *err)
+{
+    return col_index(t, col, 1) < 0 ? no_memory(err, col) : DFL_OK;
 }
 
 size_t dfl_table_rows(const dfl_table *t) { return t->nrows; }
@@ -200,4 +241,78 @@ dfl_status dfl_table_write_csv(const dfl_table *t, const char *path, dfl_err *er
         fputc('\n', af.fp);
     }
     return dfl_atomic_commit(&af, err);
+}
+
+/* Leading columns for a CSV file someone else wrote (a study's profile
+ * table): the runner gives every CSV of a sweep point its `point` and
+ * swept-key columns without the study doing anything.  Records are split
+ * at newlines outside quotes (RFC 4180), so quoted cells may hold any
+ * text. */
+/* Length of the record starting at s (up to, not including, its '\n'). */
+static size_t record_len(const char *s, const char *end)
+{
+    int q = 0;
+    const char *p = s;
+    for (; p < end; p++) {
+        if (*p == '"') q = !q;
+        else if (*p == '\n' && !q) break;
+    }
+    return (size_t)(p - s);
+}
+
+/* Whether the header record h (length n) has a cell exactly equal to col
+ * (header cells dflab writes are plain names). */
+static int has_col(const char *h, size_t n, const char *col)
+{
+    size_t cl = strlen(col);
+    for (size_t i = 0; i <= n;) {
+        size_t j = i;
+        while (j < n && h[j] != ',') j++;
+        size_t e = j;
+        if (e > i && h[e - 1] == '\r') e--;
+        if (e - i == cl && strncmp(h + i, col, cl) == 0) return 1;
+        i = j + 1;
+    }
+    return 0;
+}
+
+dfl_status dfl_table_csv_prepend(const char *path, size_t n, const char *const *cols,
+                                 const char *const *values, dfl_err *err)
+{
+    size_t len;
+    char *text = dfl_file_read_all(path, &len);
+    if (!text) return dfl_err_set(err, DFL_E_IO, "%s: cannot read", path);
+    const char *end = text + len;
+    if (len == 0) {
+        free(text);
+        return DFL_OK;
+    }
+    const size_t hl = record_len(text, end);
+    int *keep = calloc(n ? n : 1, sizeof *keep);
+    if (!keep) {
+        free(text);
+        return dfl_err_set(err, DFL_E_NOMEM, "%s: out of memory", path);
+    }
+    size_t nkeep = 0;
+    for (size_t k = 0; k < n; k++) nkeep += keep[k] = !has_col(text, hl, cols[k]);
+    dfl_status st = DFL_OK;
+    if (nkeep > 0) {
+        dfl_atomic_file af;
+        st = dfl_atomic_open(path, &af, err);
+        for (const char *s = text; st == DFL_OK && s < end;) {
+            const size_t rl = record_len(s, end);
+            for (size_t k = 0; k < n; k++)
+                if (keep[k]) {
+                    put_cell(af.fp, s == text ? cols[k] : values[k]);
+                    fputc(',', af.fp);
+                }
+            fwrite(s, 1, rl, af.fp);
+            s += rl;
+            if (s < end) fputc(*s++, af.fp); /* the newline */
+        }
+        if (st == DFL_OK) st = dfl_atomic_commit(&af, err);
+    }
+    free(keep);
+    free(text);
+    return st;
 }

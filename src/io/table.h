@@ -4,7 +4,8 @@
  * sets named cells, and the runner writes the table once the whole study
  * has succeeded.  Prefix cells (the swept keys of the current sweep point)
  * are copied into every new row, so each row is traceable to its config.
- * Doubles print with %.17g; absent cells print empty.
+ * Doubles print in the shortest form that reads back to the same double
+ * (0.1, not 0.10000000000000001); absent cells print empty.
  */
 #ifndef DFL_IO_TABLE_H
 #define DFL_IO_TABLE_H
@@ -20,8 +21,11 @@ typedef struct dfl_table dfl_table;
  *   dfl_table_prefix_clear, _prefix_string  cells copied into each new row
  *   dfl_table_row                           starts a row
  *   dfl_table_set_double, _int, _string     cells of the current row
+ *   dfl_table_add_col                       a column ahead of any cell
  *   dfl_table_rows, _cols, _col_name, _get  reading back
  *   dfl_table_write_csv                     the CSV file
+ *   dfl_table_format_double                 the text a double cell gets
+ *   dfl_table_csv_prepend                   leading columns for a CSV file
  *
  * Failure behaviour of the setters (prefix_string, row, set_*): they return
  * DFL_OK, or DFL_E_NOMEM ("table: out of memory ...") or DFL_E_INTERNAL
@@ -43,11 +47,16 @@ dfl_status dfl_table_prefix_string(dfl_table *t, const char *col, const char *va
 /* Starts a new row (with the prefix cells). */
 dfl_status dfl_table_row(dfl_table *t, dfl_err *err);
 /* Sets a cell of the current row (replacing an earlier value of the same
- * column); creates the column on first use.  Doubles print with %.17g,
+ * column); creates the column on first use.  Doubles print as
+ * dfl_table_format_double gives them,
  * integers with %ld, strings as given (quoted in the CSV when needed). */
 dfl_status dfl_table_set_double(dfl_table *t, const char *col, double v, dfl_err *err);
 dfl_status dfl_table_set_int(dfl_table *t, const char *col, long v, dfl_err *err);
 dfl_status dfl_table_set_string(dfl_table *t, const char *col, const char *v, dfl_err *err);
+
+/* Creates column col (at the end) unless it exists; no row needed (for
+ * rebuilding a table from its CSV with the same column order). */
+dfl_status dfl_table_add_col(dfl_table *t, const char *col, dfl_err *err);
 
 size_t dfl_table_rows(const dfl_table *t);
 size_t dfl_table_cols(const dfl_table *t);
@@ -55,7 +64,21 @@ const char *dfl_table_col_name(const dfl_table *t, size_t j);
 /* Cell text of row i, column col ("" when absent, NULL for unknown col). */
 const char *dfl_table_get(const dfl_table *t, size_t i, const char *col);
 
+/* The shortest %.Ng text (N in 1..17) that strtod reads back to exactly v
+ * (on equal length the fewer digits: 10 rather than 1e+01, 1e+300);
+ * NaN, infinities and zeros print as %.17g does ("nan", "inf", "0", "-0").
+ * buf needs 32 bytes; returns buf. */
+const char *dfl_table_format_double(double v, char *buf, size_t size);
+
 /* Writes the CSV through a temporary file renamed on success. */
 dfl_status dfl_table_write_csv(const dfl_table *t, const char *path, dfl_err *err);
+
+/* Rewrites the CSV file at path (through a temporary file) with n leading
+ * columns: cols[k] in the header, values[k] in every other record, each
+ * quoted when needed; a column the header already has is left out (so a
+ * second call changes nothing), an empty file stays empty.  Records are
+ * split at newlines outside quotes.  DFL_E_IO naming path on failure. */
+dfl_status dfl_table_csv_prepend(const char *path, size_t n, const char *const *cols,
+                                 const char *const *values, dfl_err *err);
 
 #endif

@@ -1,0 +1,430 @@
+/* The merge: points -> the files a one-process run writes.  A one-process
+ * run merges too, so "byte-identical to a one-process run" holds by
+ * construction for the tables; the checks here make sure the points being
+ * merged belong together. */
+#include <dirent.h>
+#include <errno.h>
+#include <libgen.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "harness/sweep.h"
+#include "io/atomic.h"
+#include "io/dirs.h"
+#include "io/manifest.h"
+#include "io/table.h"
+
+#include "dfl_version.h"
+
+typedef struct pt_rec {
+    char *json;        /* point.json */
+    char dir[8192];
+    long index, np;
+    long named; /* the folder's number */
+    char study[256], sweep[80], binary[80], config[4096];
+    double wall;
+} pt_rec;
+
+/* "ptNNN" -> NNN, else -1 (stage folders and other names). */
+static long point_name(const char *name)
+{
+    if (strncmp(name, "pt", 2) != 0 || !name[2]) return -1;
+    for (const char *c = name + 2; *c; c++)
+        if (*c < '0' || *c > '9') return -1;
+    return strtol(name + 2, NULL, 10);
+}
+
+static dfl_status load_rec(const char *dir, pt_rec *r, dfl_err *err)
+{
+    char path[8300];
+    snprintf(r->dir, sizeof r->dir, "%s", dir);
+    snprintf(path, sizeof path, "%s/point.json", dir);
+    r->json = dfl_file_read_all(path, NULL);
+    double idx, np;
+    if (!r->json || !dfl_json_find_number(r->json, "index", &idx) ||
+        !dfl_json_find_number(r->json, "npoints", &np) ||
+        !dfl_json_find_string(r->json, "study", r->study, sizeof r->study) ||
+        !dfl_json_find_string(r->json, "sweep_sha256", r->sweep, sizeof r->sweep) ||
+        !dfl_json_find_string(r->json, "binary_sha256", r->binary, sizeof r->binary))
+        return dfl_err_set(err, DFL_E_INPUT, "%s: not a dflab sweep point (no readable point.json)",
+                           dir);
+    dfl_json_find_string(r->json, "config", r->config, sizeof r->config);
+    r->wall = 0;
+    dfl_json_find_number(r->json, "wall_seconds", &r->wall);
+    r->index = (long)idx;
+    r->np = (long)np;
+    return DFL_OK;
+}
+
+static void free_recs(pt_rec *r, size_t n)
+{
+    for (size_t i = 0; r && i < n; i++) free(r[i].json);
+    free(r);
+}
+
+static int by_name(const void *a, const void *b)
+{
+    const long x = ((const pt_rec *)a)->named, y = ((const pt_rec *)b)->named;
+    return (x > y) - (x < y);
+}
+
+/* Whether r belongs to the sweep `expect` (or, without one, to ref). */
+static const char *foreign(const pt_rec *r, const pt_rec *ref, const dfl_sweep *expect)
+{
+    if (expect) {
+        if (strcmp(r->sweep, expect->sweep_sha) != 0) return "another config";
+        if (strcmp(r->binary, expect->binary_sha) != 0) return "another dflab binary";
+        if (r->np != (long)expect->np) return "a sweep of another size";
+        return NULL;
+    }
+    if (strcmp(r->study, ref->study) != 0) return "another study";
+    if (strcmp(r->sweep, ref->sweep) != 0) return "another config";
+    if (strcmp(r->binary, ref->binary) != 0) return "another dflab binary";
+    if (r->np != ref->np) return "a sweep of another size";
+    return NULL;
+}
+
+/* The committed points of dir/points in index order, checked: complete,
+ * each index once, all from one sweep (expect's, when given: other points
+ * are then stale and left out). */
+static dfl_status collect(const char *dir, const dfl_sweep *expect, pt_rec **out, size_t *nout,
+                          dfl_err *err)
+{
+    char pdir[4200];
+    snprintf(pdir, sizeof pdir, "%s.points", dir);
+    DIR *d = opendir(pdir);
+    if (!d)
+        return dfl_err_set(err, DFL_E_INPUT, "%s: no sweep points to merge (run `dflab run CONFIG "
+                                             "--point K --out %s` first)", pdir, dir);
+    pt_rec *all = NULL;
+    size_t n = 0;
+    dfl_status st = DFL_OK;
+    struct dirent *de;
+    while ((de = readdir(d)) && st == DFL_OK) {
+        if (point_name(de->d_name) < 0) continue;
+        pt_rec *a = realloc(all, (n + 1) * sizeof *a);
+        if (!a) {
+            st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+            break;
+        }
+        all = a;
+        memset(&all[n], 0, sizeof all[n]);
+        char sub[8192];
+        snprintf(sub, sizeof sub, "%s/%s", pdir, de->d_name);
+        st = load_rec(sub, &all[n], err);
+        all[n++].named = point_name(de->d_name);
+    }
+    closedir(d);
+    if (n > 1) qsort(all, n, sizeof *all, by_name);
+    size_t np = expect ? expect->np : (n ? (size_t)all[0].np : 0);
+    pt_rec *ord = st == DFL_OK ? calloc(np ? np : 1, sizeof *ord) : NULL;
+    if (st == DFL_OK && !ord) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    if (st == DFL_OK && n == 0)
+        st = dfl_err_set(err, DFL_E_INPUT, "%s: no sweep points to merge", pdir);
+    for (size_t i = 0; i < n && st == DFL_OK; i++) {
+        const char *why = foreign(&all[i], &all[0], expect);
+        if (why && expect) continue; /* stale: the swap removes it */
+        if (why)
+            st = dfl_err_set(err, DFL_E_INPUT, "%s: a point of %s than %s (merge only the points "
+                                               "of one sweep)", all[i].dir, why, all[0].dir);
+        else if (all[i].index != all[i].named)
+            st = dfl_err_set(err, DFL_E_INPUT, "%s: holds point %ld (a copied or renamed folder: "
+                                               "each point must be merged once)", all[i].dir,
+                             all[i].index);
+        else if (all[i].index < 0 || (size_t)all[i].index >= np)
+            st = dfl_err_set(err, DFL_E_INPUT, "%s: point %ld outside the sweep's 0..%zu",
+                             all[i].dir, all[i].index, np - 1);
+        else if (ord[all[i].index].json)
+            st = dfl_err_set(err, DFL_E_INPUT, "%s: duplicate of point %ld (%s)", all[i].dir,
+                             all[i].index, ord[all[i].index].dir);
+        else {
+            ord[all[i].index] = all[i];
+            all[i].json = NULL;
+        }
+    }
+    if (st == DFL_OK) {
+        char miss[512] = "";
+        size_t nm = 0, ml = 0;
+        for (size_t k = 0; k < np; k++)
+            if (!ord[k].json && nm++ < 12 && ml < sizeof miss)
+                ml += (size_t)snprintf(miss + ml, sizeof miss - ml, "%s%zu", ml ? ", " : "", k);
+        if (nm)
+            st = dfl_err_set(err, DFL_E_INPUT, "%s: %zu of %zu sweep points missing: %s%s (run them "
+                                               "with `dflab run CONFIG --point K`)", pdir, nm, np,
+                             miss, nm > 12 ? ", ..." : "");
+    }
+    free_recs(all, n);
+    if (st != DFL_OK) {
+        free_recs(ord, np);
+        return st;
+    }
+    *out = ord;
+    *nout = np;
+    return DFL_OK;
+}
+
+/* ---- CSV back into a table (the writer's own format, RFC 4180) -------- */
+
+/* Next cell of the record at *p into a malloc'ed string; *eol set when the
+ * record ends after it. */
+static char *next_cell(const char **p, int *eol)
+{
+    const char *s = *p;
+    size_t cap = 64, n = 0;
+    char *c = malloc(cap);
+    if (!c) return NULL;
+    int q = 0;
+    if (*s == '"') q = 1, s++;
+    for (;; s++) {
+        if (n + 2 > cap) {
+            char *b = realloc(c, cap *= 2);
+            if (!b) return free(c), NULL;
+            c = b;
+        }
+        if (q) {
+            if (*s == '\0') break;
+            if (*s == '"' && s[1] == '"') c[n++] = '"', s++;
+            else if (*s == '"') q = 0;
+            else c[n++] = *s;
+            continue;
+        }
+        if (*s == ',' || *s == '\n' || *s == '\0') break;
+        c[n++] = *s;
+    }
+    c[n] = '\0';
+    *eol = *s != ',';
+    *p = *s ? s + 1 : s;
+    return c;
+}
+
+static dfl_status append_csv(dfl_table *t, const char *path, dfl_err *err)
+{
+    char *text = dfl_file_read_all(path, NULL);
+    if (!text) return dfl_err_set(err, DFL_E_INPUT, "%s: missing (an incomplete point?)", path);
+    const char *p = text;
+    char **cols = NULL;
+    size_t nc = 0;
+    dfl_status st = DFL_OK;
+    int eol = 0;
+    while (*p && *p != '\n' && !eol && st == DFL_OK) {
+        char *c = next_cell(&p, &eol);
+        char **nw = c ? realloc(cols, (nc + 1) * sizeof *nw) : NULL;
+        if (!nw) {
+            free(c);
+            st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+            break;
+        }
+        cols = nw;
+        cols[nc++] = c;
+        st = dfl_table_add_col(t, c, err);
+    }
+    if (*p == '\n') p++;
+    while (*p && st == DFL_OK) {
+        st = dfl_table_row(t, err);
+        for (size_t j = 0; st == DFL_OK; j++) {
+            char *c = next_cell(&p, &eol);
+            if (!c) {
+                st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+                break;
+            }
+            if (c[0] && j < nc) st = dfl_table_set_string(t, cols[j], c, err);
+            free(c);
+            if (eol) break;
+        }
+    }
+    for (size_t j = 0; j < nc; j++) free(cols[j]);
+    free(cols);
+    free(text);
+    return st;
+}
+
+/* ---- assembling ------------------------------------------------------- */
+
+static int is_point_meta(const char *name, const char *table)
+{
+    return strcmp(name, "point.json") == 0 || strcmp(name, "config.ini") == 0 ||
+           strcmp(name, table) == 0;
+}
+
+static dfl_status link_files(const pt_rec *r, const char *stage, const char *table, dfl_err *err)
+{
+    DIR *d = opendir(r->dir);
+    if (!d) return dfl_err_set(err, DFL_E_IO, "%s: cannot list: %s", r->dir, strerror(errno));
+    dfl_status st = DFL_OK;
+    struct dirent *de;
+    while ((de = readdir(d)) && st == DFL_OK) {
+        if (de->d_name[0] == '.' || is_point_meta(de->d_name, table)) continue;
+        char a[8600], b[8192];
+        snprintf(a, sizeof a, "%s/%s", r->dir, de->d_name);
+        snprintf(b, sizeof b, "%s/%s", stage, de->d_name);
+        if (access(b, F_OK) == 0)
+            st = dfl_err_set(err, DFL_E_INTERNAL, "%s: written by two sweep points (the study "
+                                                  "must name per-point files with its tag)", a);
+        else
+            st = dfl_dir_link_or_copy(a, b, err);
+    }
+    closedir(d);
+    return st;
+}
+
+static dfl_status write_manifest(const pt_rec *r, size_t n, const char *stage,
+                                 const char *cmdline, dfl_err *err)
+{
+    dfl_manifest *m = dfl_manifest_new();
+    if (!m) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    char host[256] = "", date[64], libs[512];
+    gethostname(host, sizeof host - 1);
+    time_t now = time(NULL);
+    struct tm tmv;
+    gmtime_r(&now, &tmv);
+    strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", &tmv);
+    dfl_manifest_put_string(m, "tool", "dflab");
+    dfl_manifest_put_string(m, "version", DFL_VERSION);
+    dfl_manifest_put_string(m, "git_revision", DFL_GIT_REV);
+    dfl_manifest_put_string(m, "date", date);
+    dfl_manifest_put_string(m, "config", r[0].config);
+    dfl_manifest_put_string(m, "study", r[0].study);
+    /* the overrides, sweep and binary are the points' (all equal) */
+    const char *ov = strstr(r[0].json, "\n  \"overrides\": ");
+    if (ov) {
+        ov += strlen("\n  \"overrides\": ");
+        size_t len = strcspn(ov, "\n");
+        if (len && ov[len - 1] == ',') len--;
+        char *raw = strndup(ov, len);
+        if (raw) dfl_manifest_put_raw(m, "overrides", raw);
+        free(raw);
+    }
+    dfl_manifest_put_string(m, "sweep_sha256", r[0].sweep);
+    dfl_manifest_put_string(m, "binary_sha256", r[0].binary);
+    dfl_manifest_put_int(m, "npoints", (long)n);
+    /* the command that assembled the folder: the run itself, or merge */
+    dfl_manifest_put_string(m, "command_line", cmdline ? cmdline : "");
+    double threads = 0;
+    if (dfl_json_find_number(r[0].json, "threads", &threads))
+        dfl_manifest_put_int(m, "threads", (long)threads);
+    dfl_manifest_put_string(m, "host", host);
+    dfl_manifest_put_raw(m, "libraries", dfl_manifest_libraries(libs, sizeof libs));
+    double total = 0;
+    size_t cap = 8;
+    for (size_t k = 0; k < n; k++) total += r[k].wall, cap += strlen(r[k].json) + 4;
+    char *pts = malloc(cap);
+    if (pts) {
+        size_t len = (size_t)snprintf(pts, cap, "[");
+        for (size_t k = 0; k < n; k++) {
+            size_t jl = strlen(r[k].json);
+            while (jl && (r[k].json[jl - 1] == '\n')) jl--;
+            len += (size_t)snprintf(pts + len, cap - len, "%s%.*s", k ? ", " : "", (int)jl,
+                                    r[k].json);
+        }
+        snprintf(pts + len, cap - len, "]");
+        dfl_manifest_put_raw(m, "points", pts);
+        free(pts);
+    }
+    dfl_manifest_put_double(m, "total_wall_seconds", total);
+    char path[8192];
+    snprintf(path, sizeof path, "%s/manifest.json", stage);
+    dfl_status st = dfl_manifest_write(m, path, stage, err);
+    dfl_manifest_free(m);
+    return st;
+}
+
+static void clean_in(const char *dir, const char *prefix)
+{
+    DIR *d = opendir(dir);
+    if (!d) return;
+    const size_t pl = strlen(prefix);
+    struct dirent *de;
+    while ((de = readdir(d))) {
+        if (strncmp(de->d_name, prefix, pl) != 0) continue;
+        if (!dfl_dir_owner_dead(de->d_name, "stage") && !dfl_dir_owner_dead(de->d_name, "old"))
+            continue;
+        char p[8192];
+        snprintf(p, sizeof p, "%s/%s", dir, de->d_name);
+        dfl_dir_remove_tree(p, NULL);
+    }
+    closedir(d);
+}
+
+void dfl_sweep_clean_stale(const char *outdir)
+{
+    char parent[4096], base[4096], prefix[4200], pdir[4200];
+    snprintf(parent, sizeof parent, "%s", outdir);
+    snprintf(base, sizeof base, "%s", outdir);
+    snprintf(prefix, sizeof prefix, "%s.", basename(base));
+    clean_in(dirname(parent), prefix);
+    snprintf(pdir, sizeof pdir, "%s.points", outdir);
+    clean_in(pdir, "pt");
+}
+
+/* Removes the committed points of pdir that the merge did not take (an
+ * earlier sweep's), so the folder holds one sweep. */
+static void drop_stale(const char *pdir, const pt_rec *r, size_t n)
+{
+    DIR *d = opendir(pdir);
+    if (!d) return;
+    struct dirent *de;
+    while ((de = readdir(d))) {
+        const long k = point_name(de->d_name);
+        if (k < 0) continue;
+        char p[8192];
+        snprintf(p, sizeof p, "%s/%s", pdir, de->d_name);
+        if ((size_t)k < n && strcmp(r[k].dir, p) == 0) continue;
+        dfl_dir_remove_tree(p, NULL);
+    }
+    closedir(d);
+}
+
+dfl_status dfl_merge_into(const char *dir, const dfl_sweep *expect, int quiet,
+                          const char *cmdline, dfl_err *err)
+{
+    pt_rec *r = NULL;
+    size_t n = 0;
+    dfl_status st = collect(dir, expect, &r, &n, err);
+    if (st != DFL_OK) return st;
+    char stage[4400], table[600], path[9000], pdir[4600];
+    dfl_dir_owned_name(dir, "stage", stage, sizeof stage);
+    snprintf(table, sizeof table, "%s.csv", r[0].study);
+    dfl_table *t = dfl_table_new();
+    if (!t) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    if (st == DFL_OK) st = dfl_mkdir_p(stage, err);
+    for (size_t k = 0; k < n && st == DFL_OK; k++) {
+        snprintf(path, sizeof path, "%s/%s", r[k].dir, table);
+        st = append_csv(t, path, err);
+        if (st == DFL_OK) st = link_files(&r[k], stage, table, err);
+    }
+    snprintf(path, sizeof path, "%s/%s", stage, table);
+    if (st == DFL_OK) st = dfl_table_write_csv(t, path, err);
+    dfl_table_free(t);
+    char a[8300];
+    snprintf(a, sizeof a, "%s/config.ini", r[0].dir);
+    snprintf(path, sizeof path, "%s/config.ini", stage);
+    if (st == DFL_OK) st = dfl_dir_link_or_copy(a, path, err);
+    if (st == DFL_OK) st = write_manifest(r, n, stage, cmdline, err);
+    if (st == DFL_OK) st = dfl_dir_replace(stage, dir, err);
+    if (st != DFL_OK) {
+        dfl_dir_remove_tree(stage, NULL);
+    } else if (expect) {
+        snprintf(pdir, sizeof pdir, "%s.points", dir);
+        drop_stale(pdir, r, n);
+    } else if (!quiet) {
+        fprintf(stderr, "dflab: merged %zu point%s into %s/\n", n, n == 1 ? "" : "s", dir);
+    }
+    free_recs(r, n);
+    return st;
+}
+
+dfl_status dfl_merge(const char *dir, int quiet, const char *cmdline, dfl_err *err)
+{
+    char d[4096];
+    snprintf(d, sizeof d, "%s", dir);
+    size_t l = strlen(d);
+    while (l > 1 && d[l - 1] == '/') d[--l] = '\0';
+    dfl_status st = dfl_dir_check_replaceable(d, "manifest.json", "merge", err);
+    if (st != DFL_OK) return st;
+    dfl_sweep_clean_stale(d);
+    return dfl_merge_into(d, NULL, quiet, cmdline, err);
+}

@@ -1,0 +1,129 @@
+/* Bad input to the sweep commands (run --point, plan, merge, --out): exit
+ * status 2, one error line naming what and where, nothing left behind in
+ * the case directory. */
+#include <criterion/criterion.h>
+#include <criterion/parameterized.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "util/e2e_util.h"
+
+#define SWEEP "[study]\nname = smoke\n[shape]\nkind = circle\ncenter = 0.5 0.5\nradius = 0.3\n" \
+              "[field]\nkind = exact\n[grid]\nn = 8, 12, 16\n"
+
+/* args: after "dflab", a printf format whose %1$s is the case directory */
+typedef struct sweep_case {
+    const char *name, *args, *want1, *want2;
+} sweep_case;
+
+static const sweep_case cases[] = {
+    {"point out of range", "run %1$s/s.ini --point 3 --out %1$s/o", "--point 3", "3 sweep points (0..2)"},
+    {"point not a number", "run %1$s/s.ini --point x --out %1$s/o", "--point x", "index"},
+    {"negative point", "run %1$s/s.ini --point -1 --out %1$s/o", "--point -1", "index"},
+    {"bad point value", "run %1$s/s.ini --set grid.n=8,1 --point 0 --out %1$s/o", "sweep point 1", "grid.n"},
+    {"plan empty sweep item", "plan %1$s/s.ini --set grid.n=8,", "grid.n", "empty item"},
+    {"plan bad value", "plan %1$s/s.ini --set grid.n=8,16,0", "sweep point 2", "[2, 4096]"},
+    {"plan bad emit", "plan %1$s/s.ini --emit cron", "--emit cron", "slurm or parallel"},
+    {"plan bad -j", "plan %1$s/s.ini --emit slurm -j 0", "-j 0", "[1, 100000]"},
+    {"plan commands and emit", "plan %1$s/s.ini --commands --emit slurm", "--commands", "exclude"},
+    {"out under a file", "run %1$s/s.ini --out %1$s/s.ini/o", "--out", "not a directory"},
+    {"out unwritable", "run %1$s/s.ini --out /proc/dflab-nope/o", "--out /proc/dflab-nope/o", "not writable"},
+    {"merge nothing", "merge %1$s/o", "o.points", "no sweep points"},
+    {"out is not a results folder", "run %1$s/s.ini --out %1$s", "not a dflab results folder", "--out"},
+    {"merge no dir", "merge", "missing DIR", "merge"},
+};
+
+#define NCASES (sizeof cases / sizeof cases[0])
+static int case_index[NCASES];
+
+ParameterizedTestParameters(sweep_input, table)
+{
+    for (size_t i = 0; i < NCASES; i++) case_index[i] = (int)i;
+    return cr_make_param_array(int, case_index, NCASES);
+}
+
+ParameterizedTest(const int *ci, sweep_input, table)
+{
+    const sweep_case *c = &cases[*ci];
+    char dir[256], path[512], args[2048];
+    e2e_tmpdir(dir, sizeof dir);
+    e2e_write(dir, "s.ini", SWEEP, path, sizeof path);
+    snprintf(args, sizeof args, c->args, dir); /* every %1$s is the case directory */
+    const int rc = e2e_dflab(dir, args);
+    char *msg = e2e_err_text(dir);
+    cr_assert_not_null(msg);
+    cr_expect_eq(rc, 2, "[%s] exit status %d: %s", c->name, rc, msg);
+    cr_expect(strstr(msg, c->want1) != NULL, "[%s] lacks '%s': %s", c->name, c->want1, msg);
+    cr_expect(strstr(msg, c->want2) != NULL, "[%s] lacks '%s': %s", c->name, c->want2, msg);
+    const char *e = strstr(msg, "dflab: error: ");
+    cr_expect(e == msg && strchr(e, '\n') && strchr(e, '\n')[1] == '\0', "[%s] not one line: %s",
+              c->name, msg);
+    /* s.ini, out.txt, err.txt and nothing else (no o/, o.points/, stages) */
+    cr_expect_eq(e2e_count_entries(dir), 3, "[%s] files left behind in %s", c->name, dir);
+    free(msg);
+    cr_expect_eq(e2e_rmtree(dir), 0);
+}
+
+/* plan: the points in order (last axis fastest), the commands, the engines' jobs. */
+Test(sweep_plan, points_commands_and_jobs)
+{
+    char dir[256], path[512], args[1024];
+    e2e_tmpdir(dir, sizeof dir);
+    e2e_write(dir, "s.ini", SWEEP, path, sizeof path);
+    snprintf(args, sizeof args, "plan %s/s.ini --set shape.radius=0.2,0.3", dir);
+    cr_assert_eq(e2e_dflab(dir, args), 0);
+    snprintf(path, sizeof path, "%s/out.txt", dir);
+    char *out = e2e_slurp(path);
+    cr_assert_not_null(out);
+    const char *nl = strchr(out, '\n');
+    cr_assert_not_null(nl);
+    cr_expect_str_eq(nl + 1, "0\tshape.radius=0.2 grid.n=8\n1\tshape.radius=0.2 grid.n=12\n"
+                             "2\tshape.radius=0.2 grid.n=16\n3\tshape.radius=0.3 grid.n=8\n"
+                             "4\tshape.radius=0.3 grid.n=12\n5\tshape.radius=0.3 grid.n=16\n");
+    free(out);
+    snprintf(args, sizeof args, "plan %s/s.ini --commands --out %s/o", dir, dir);
+    cr_assert_eq(e2e_dflab(dir, args), 0);
+    out = e2e_slurp(path);
+    size_t lines = 0;
+    for (const char *s = out; *s; s++) lines += *s == '\n';
+    cr_expect_eq(lines, 4, "%s", out);
+    cr_expect(strstr(out, " --point 2\n") && strstr(out, " merge "), "%s", out);
+    free(out);
+    snprintf(args, sizeof args, "plan %s/s.ini --emit slurm -j 2 --out %s/o", dir, dir);
+    cr_assert_eq(e2e_dflab(dir, args), 0);
+    out = e2e_slurp(path);
+    cr_expect(strstr(out, "\n#SBATCH --array=0-2%2\n") != NULL, "%s", out);
+    cr_expect(strstr(out, "point_%a.log") && strstr(out, "--dependency=afterok:"), "%s", out);
+    cr_expect(strstr(out, "--point \"$SLURM_ARRAY_TASK_ID\"") != NULL, "%s", out);
+    free(out);
+    snprintf(args, sizeof args, "plan %s/s.ini --emit parallel --out %s/o", dir, dir);
+    cr_assert_eq(e2e_dflab(dir, args), 0);
+    out = e2e_slurp(path);
+    cr_expect(strstr(out, "--joblog") && strstr(out, "--resume-failed") &&
+                  strstr(out, "::: $(seq 0 2) && "),
+              "%s", out);
+    free(out);
+    cr_expect_eq(e2e_count_entries(dir), 3, "plan wrote files");
+    cr_expect_eq(e2e_rmtree(dir), 0);
+}
+
+/* --set runs get their own folder, named from the overrides (Hydra-style). */
+Test(sweep_plan, set_runs_go_to_their_own_folder)
+{
+    char dir[256], path[512], args[1024];
+    e2e_tmpdir(dir, sizeof dir);
+    e2e_write(dir, "s.ini", SWEEP, path, sizeof path);
+    snprintf(args, sizeof args, "plan %s/s.ini --set grid.n=8 --set 'shape.radius=0.2'", dir);
+    cr_assert_eq(e2e_dflab(dir, args), 0);
+    snprintf(path, sizeof path, "%s/out.txt", dir);
+    char *out = e2e_slurp(path);
+    cr_expect(strstr(out, "output results/runs/s/grid.n=8,shape.radius=0.2\n") != NULL, "%s", out);
+    free(out);
+    snprintf(args, sizeof args, "plan %s/s.ini", dir);
+    cr_assert_eq(e2e_dflab(dir, args), 0);
+    out = e2e_slurp(path);
+    cr_expect(strstr(out, "output results/s\n") != NULL, "%s", out);
+    free(out);
+    cr_expect_eq(e2e_rmtree(dir), 0);
+}
