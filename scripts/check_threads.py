@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Thread-count determinism: runs configs with `--threads 1`, `--threads 2`
 and with OMP_NUM_THREADS=1 (no --threads) and compares every output file
-byte for byte; in manifest.json only the wall times, the date and the
-thread count may differ.
+byte for byte; in manifest.json only the wall times, the date, the
+thread count and the command line may differ.
 
     check_threads.py DFLAB [--quick] [--keep DIR] [CONFIG.ini ...]
 
@@ -19,7 +19,7 @@ import tempfile
 
 # configs that run in ~1 s each (results_base wall times), for --quick
 QUICK = ["bs04_hetero", "bs04_normalization", "bs04_polygonization", "smoke", "smoke3d"]
-VOLATILE = {"date", "wall_seconds", "total_wall_seconds", "threads", "omp_threads"}
+VOLATILE = {"date", "wall_seconds", "total_wall_seconds", "threads", "omp_threads", "command_line"}
 
 
 def strip(o):

@@ -28,7 +28,7 @@ static const sweep_case cases[] = {
     {"plan bad -j", "plan %1$s/s.ini --emit slurm -j 0", "-j 0", "[1, 100000]"},
     {"plan commands and emit", "plan %1$s/s.ini --commands --emit slurm", "--commands", "exclude"},
     {"out under a file", "run %1$s/s.ini --out %1$s/s.ini/o", "--out", "not a directory"},
-    {"out unwritable", "run %1$s/s.ini --out /proc/dflab-nope/o", "--out /proc/dflab-nope/o", "not writable"},
+    {"out unwritable", "run %1$s/s.ini --out /proc/dflab-nope/o", "--out /proc/dflab-nope/o", "cannot create directories"},
     {"merge nothing", "merge %1$s/o", "o.points", "no sweep points"},
     {"out is not a results folder", "run %1$s/s.ini --out %1$s", "not a dflab results folder", "--out"},
     {"merge no dir", "merge", "missing DIR", "merge"},
