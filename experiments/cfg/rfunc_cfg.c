@@ -73,6 +73,11 @@ static dfl_status read_spec(const dfl_cfg *cfg, const char *sec, dfl_rfunc_field
     if ((st = dfl_cfg_int_opt(cfg, sec, "p", 2, 1, DFL_RFUNC_P_MAX, &p, err))) return st;
     s->p = (int)p;
     if ((st = dfl_rfunc_trim_from_cfg(cfg, sec, &s->trim, err))) return st;
+    int corr;
+    if ((st = dfl_cfg_enum_opt(cfg, sec, "correction", dfl_rfunc_correction_names,
+                               DFL_RFUNC_CORRECTION_COUNT, DFL_RFUNC_CORR_GUARDED, &corr, err)))
+        return st;
+    s->corr = (dfl_rfunc_correction)corr;
     const bool has_v = dfl_cfg_has(cfg, sec, "vertices"), has_c = dfl_cfg_has(cfg, sec, "curve");
     if (has_v == has_c) {
         char w[600];
@@ -104,8 +109,16 @@ dfl_status dfl_rfunc_field_from_spec(const dfl_cfg *cfg, const char *sec,
 {
     dfl_status st = dfl_rfunc_join_check(spec->join, spec->p, err);
     if (st != DFL_OK) return dfl_cfg_err_at(cfg, sec, "p", st, err);
-    st = dfl_rfield_polyline(spec->dim, spec->v, spec->n, spec->closed, spec->join, spec->p,
-                             spec->trim, out, err);
+    dfl_rfield *r = NULL;
+    st = dfl_rfield_new(spec->dim, spec->join, spec->p, &r, err);
+    if (st != DFL_OK) return dfl_cfg_err_at(cfg, sec, "p", st, err);
+    dfl_rfield_set_correction(r, spec->corr);
+    st = dfl_rfield_add_polyline(r, spec->v, spec->n, spec->closed, spec->trim, err);
+    if (st != DFL_OK) {
+        dfl_rfield_free(r);
+        return dfl_cfg_err_at(cfg, sec, spec->curve ? "curve" : "vertices", st, err);
+    }
+    st = dfl_rfield_finish(&r, out, err);
     if (st != DFL_OK) return dfl_cfg_err_at(cfg, sec, spec->curve ? "curve" : "vertices", st, err);
     return DFL_OK;
 }

@@ -26,6 +26,13 @@
  *   join     = requiv | rconj | requiv_corrected     default requiv
  *   p        = integer 1..64       default 2; rconj needs p >= 2
  *   trim     = disk | disk_smooth | strip | strip_smooth   default disk
+ *   correction = guarded | eq20    default guarded; the corrected join's
+ *              form (rfunc/join.h): dflab's guard, or bs04's eq. 20
+ *              literally (NaN where its radicand <= 0); ignored by the
+ *              other joins
+ * Domain (rfunc/domain.h): coordinates beyond 1e100 and degenerate
+ * polylines (tiny segments, A-B-A backtracks, collinear closed ones) are
+ * rejected at key vertices (or curve) naming the vertex or segment.
  * The accepted join and trim names are the lists of rfunc/join.h and
  * rfunc/segment.h.  The field is unsigned (bs04's approximate distance to
  * the set), 0 on the polyline.  Errors: DFL_E_INPUT naming file:line,
@@ -51,6 +58,7 @@ typedef struct dfl_rfunc_field_spec {
     dfl_rfunc_join join;
     int p;               /* 1..DFL_RFUNC_P_MAX; not yet checked against join */
     dfl_rfunc_trim trim;
+    dfl_rfunc_correction corr; /* key correction (corrected join only) */
     int dim;             /* 2 or 3 */
     bool closed;         /* the polyline closes (key closed, or a closed curve) */
     double *v;           /* n*dim vertices of the joined polyline (owned); a

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "cfg/field_cfg.h"
+#include "rfunc/rfield.h"
 #include "io/config.h"
 
 enum { C_X, C_Y, C_Z, C_DX, C_DY, C_DZ, C_N };
@@ -167,6 +168,12 @@ dfl_status dfl_probe(const dfl_probe_opts *o, FILE *out, dfl_err *err)
         const double *row = p.v + 6 * i;
         double x[3] = {row[0], row[1], row[2]}, g[3] = {0, 0, 0};
         double *r = res + i * (size_t)w;
+        /* rfunc fields state a domain of validity (rfunc/domain.h) */
+        st = dfl_rfield_check_point(&f, x, K > 0, err);
+        if (st != DFL_OK) {
+            dfl_err_prefix(err, "%s: point %zu", o->points, i + 1);
+            goto done;
+        }
         double val = dfl_field_eval1(&f, x, g);
         r[0] = x[0], r[1] = x[1], r[2] = dim == 3 ? x[2] : 0.0;
         r[3] = val, r[4] = g[0], r[5] = g[1], r[6] = dim == 3 ? g[2] : 0.0;
