@@ -23,14 +23,23 @@
  *   disk_smooth | strip | strip_smooth), p, sector_nr (40), sector_nt (21),
  *   sector_rmax (0.5, relative to L), band (0.1 L), vertex_radius (0.25 L);
  *   [grid] n, lo, hi (2D); [output] vti, exr, compress, half.
+ * Three joins per point: eq. 6 (correction "none"), dflab's guarded eq. 20
+ * (correction "guarded") and bs04's eq. 20 as printed ("eq20", NaN where
+ * its radicand <= 0; NaN nodes and samples are counted, not measured).
+ * Extra keys: case_theta (80 degrees), case_r (0.5 L), onset_rmax (10 L).
+ * Extra columns: correction, sector_undefined, undefined_count and
+ *   undefined_share (grid), onset_radius (eq20: first NaN on the hatched
+ *   bisector, bisected, / L) and onset_radius_theory (disk parts: the
+ *   closed form of rfunc/join.h), reflex_linf (max |u - d| off the convex
+ *   sector), case_u and case_d (u / r and d / r at case_theta, case_r).
  * Rows: one per join (requiv, requiv_corrected): alpha, p, parts, join,
  *   sector_points, sector_gdef_max / _min, sector_gdef_theory (exact
  *   parts), sector_gdef_at_rmin (max over the innermost ring, r = rmax L /
  *   nr), sector_value_relerr_max (|u - q| / q), sector_part_gdef_max (max
  *   ||grad h_i| - 1| in the sector), band_ and vertex_ count, gdef_max,
  *   gdef_mean, linf.  Files: requiv<tag>.vti
- * /.exr and corrected<tag>.vti/.exr (value, gradient, grad_norm, error =
- * u - d, reference = d).
+ * /.exr, corrected<tag>.vti/.exr and eq20<tag>.vti/.exr (value, gradient,
+ * grad_norm, error = u - d, reference = d).
  */
 #include <math.h>
 #include <stdio.h>
