@@ -11,7 +11,20 @@
  *   dfl_rfunc_trim_from_cfg      key trim
  *   dfl_rfunc_tri_opts_from_cfg  keys tri_trim, a, k [, smooth]
  *
- * Keys of a `kind = rfunc` section (the caller has read `kind`):
+ * Keys of a `kind = rfunc` section (the caller has read `kind`).  Parts, at
+ * least one kind, all of one dimension, joined in this order (the order
+ * matters for rconj only): region, polyline (vertices or curve),
+ * triangles, surface, points.
+ *   region   = x0 y0; x1 y1; ...   a convex polygon region (2D, >= 3
+ *              vertices; rfunc/region.h), 0 on the whole region
+ *   triangles = x y z; x y z; x y z; ...   3D triangles, three vertices each
+ *   surface  = <section>           a bspline_surface or bezier_surface
+ *              section, triangulated with Hausdorff bound eps (key eps;
+ *              max_tris caps it, default 200000): bs04's triangulated
+ *              surfaces; not with curve (both would read eps)
+ *   tri_trim, a, k, smooth         the triangles' trims (with triangles or
+ *              surface; dfl_rfunc_tri_opts_from_cfg)
+ *   points   = x y[ z]; ...        point parts (rfunc/region.h)
  *   vertices = x0 y0; x1 y1; ...   a 2D polyline, or x y z; ... (3D space
  *              polyline; the dimension is the number of values of the
  *              first vertex), at least 2 vertices (3 when closed), no two
@@ -64,13 +77,24 @@ typedef struct dfl_rfunc_field_spec {
     double *v;           /* n*dim vertices of the joined polyline (owned); a
                             closed one does not repeat its first vertex */
     size_t n;
-    const char *curve;   /* the curve section, or NULL for vertices (points
+    const char *curve;   /* the curve section, or NULL for vertices or no
+                            polyline (n = 0) (points
                             into the config: valid while it lives) */
     double eps;          /* with curve: the polygonization bound; else 0 */
     dfl_bspline bspline; /* with curve: the curve (owned; zeroed otherwise) */
     dfl_polyline pl;     /* with curve: its polygonization as
                             dfl_polygonize_curve returned it (parameters t,
                             bound; a closed curve repeats its first point) */
+    double *region;      /* 2*nregion region vertices (owned), or NULL */
+    size_t nregion;
+    double *points;      /* npoints*dim point parts (owned), or NULL */
+    size_t npoints;
+    double *tris;        /* 9*ntris triangle corners (owned; inline
+                            triangles, then the surface's), or NULL */
+    size_t ntris;
+    dfl_rfunc_tri_opts tri; /* with triangles or surface */
+    const char *surface; /* the surface section, or NULL */
+    double mesh_bound;   /* with surface: the triangulation's certified bound */
 } dfl_rfunc_field_spec;
 
 /* Reads [sec] (the keys above) into *out, polygonizing the curve when one
