@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "cfg/curve_cfg.h"
+#include "cfg/field_cfg.h"
 #include "geom/surface.h"
 #include "rfunc/rfield.h"
 
@@ -225,6 +226,18 @@ dfl_status dfl_rfunc_spec_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_rfun
     if (st != DFL_OK) dfl_rfunc_spec_free(&s); /* zeroes it */
     *out = s;
     return st;
+}
+
+dfl_status dfl_rfunc_spec_from_kind_cfg(const dfl_cfg *cfg, const char *sec, const char *who,
+                                        dfl_rfunc_field_spec *out, dfl_err *err)
+{
+    const dfl_field_kind *kind;
+    dfl_status st = dfl_field_kind_from_cfg(cfg, sec, &kind, err);
+    if (st) return st;
+    if (kind->build != dfl_rfunc_field_from_cfg)
+        return dfl_cfg_reject(cfg, sec, "kind", err, "%s needs kind = rfunc, got '%s'", who,
+                              kind->name);
+    return dfl_rfunc_spec_from_cfg(cfg, sec, out, err);
 }
 
 dfl_status dfl_rfunc_field_from_spec(const dfl_cfg *cfg, const char *sec,

@@ -3,6 +3,7 @@
  * of the join, trim and triangle-trim keys that studies share.
  *
  *   dfl_rfunc_spec_from_cfg      [sec] -> dfl_rfunc_field_spec (parsed, owned)
+ *   dfl_rfunc_spec_from_kind_cfg the same after checking kind = rfunc
  *   dfl_rfunc_field_from_spec    spec -> dfl_field (rfunc/rfield.h)
  *   dfl_rfunc_field_from_cfg     both: the field-kind factory (field_cfg.h)
  *   dfl_rfunc_spec_free
@@ -104,6 +105,11 @@ typedef struct dfl_rfunc_field_spec {
  * *out is zeroed and owns nothing. */
 dfl_status dfl_rfunc_spec_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_rfunc_field_spec *out,
                                    dfl_err *err);
+
+/* [sec] kind must be rfunc (else DFL_E_INPUT at key kind naming who, the
+ * study that needs it), then dfl_rfunc_spec_from_cfg. */
+dfl_status dfl_rfunc_spec_from_kind_cfg(const dfl_cfg *cfg, const char *sec, const char *who,
+                                        dfl_rfunc_field_spec *out, dfl_err *err);
 
 /* The field of spec (read from [sec] of cfg, which names the key in
  * errors): DFL_E_INPUT for a (join, p) pair rfunc/join.h rejects (at key p)
