@@ -103,8 +103,7 @@ static dfl_status surface_tris(const dfl_cfg *cfg, const char *sec, dfl_rfunc_fi
             memcpy(t + (s->ntris + i) * 9 + 3 * c, M.verts + 3 * M.tris[3 * i + c],
                    3 * sizeof *t);
     s->ntris += M.ntris;
-    s->mesh_bound = M.bound;
-    dfl_trimesh_free(&M);
+    s->mesh = M;
     return DFL_OK;
 }
 
@@ -287,6 +286,7 @@ void dfl_rfunc_spec_free(dfl_rfunc_field_spec *spec)
     free(spec->region);
     free(spec->points);
     free(spec->tris);
+    if (spec->mesh.verts || spec->mesh.tris) dfl_trimesh_free(&spec->mesh);
     dfl_bspline_free(&spec->bspline);
     dfl_polyline_free(&spec->pl);
     memset(spec, 0, sizeof *spec);

@@ -95,7 +95,8 @@ typedef struct dfl_rfunc_field_spec {
     size_t ntris;
     dfl_rfunc_tri_opts tri; /* with triangles or surface */
     const char *surface; /* the surface section, or NULL */
-    double mesh_bound;   /* with surface: the triangulation's certified bound */
+    dfl_trimesh mesh;    /* with surface: its triangulation (owned; zeroed
+                            otherwise); bound = the certified bound */
 } dfl_rfunc_field_spec;
 
 /* Reads [sec] (the keys above) into *out, polygonizing the curve when one
