@@ -10,6 +10,7 @@
 #include "cfg/curve_cfg.h"
 #include "cfg/field_cfg.h"
 #include "geom/surface.h"
+#include "rfunc/normalize.h"
 #include "rfunc/rfield.h"
 
 /* The curve named by [sec] curve, polygonized to [sec] eps, into the spec:
@@ -358,4 +359,35 @@ dfl_status dfl_rfunc_tri_opts_from_cfg(const dfl_cfg *cfg, const char *sec, bool
     if (smooth_key) o.smooth = smooth;
     *out = o;
     return DFL_OK;
+}
+
+dfl_status dfl_rfunc_normalized_keys(const dfl_cfg *cfg, const char *sec, const char **implicit,
+                                     double *a, double *b, long *m, dfl_err *err)
+{
+    static const char *const kinds[] = {"ellipse"};
+    int kind;
+    dfl_status st;
+    if ((st = dfl_cfg_string(cfg, sec, "implicit", implicit, err))) return st;
+    if (!dfl_cfg_has_section(cfg, *implicit))
+        return dfl_cfg_reject(cfg, sec, "implicit", err, "no section [%s]", *implicit);
+    if ((st = dfl_cfg_enum(cfg, *implicit, "kind", kinds, 1, &kind, err))) return st;
+    if ((st = dfl_cfg_double(cfg, *implicit, "a", 1e-6, 1e6, a, err))) return st;
+    if ((st = dfl_cfg_double(cfg, *implicit, "b", 1e-6, 1e6, b, err))) return st;
+    return dfl_cfg_int(cfg, sec, "m", 1, 6, m, err);
+}
+
+dfl_status dfl_rfunc_normalized_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *out,
+                                         dfl_err *err)
+{
+    const char *imp;
+    double a, b;
+    long m;
+    dfl_rfunc_poly poly;
+    dfl_status st = dfl_rfunc_normalized_keys(cfg, sec, &imp, &a, &b, &m, err);
+    if (st) return st;
+    if ((st = dfl_rfunc_poly_ellipse(a, b, &poly, err)))
+        return dfl_cfg_err_at(cfg, sec, "implicit", st, err);
+    st = dfl_rfunc_normalized_field(&poly, (int)m, out, err);
+    dfl_rfunc_poly_free(&poly);
+    return st;
 }

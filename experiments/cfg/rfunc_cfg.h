@@ -6,6 +6,8 @@
  *   dfl_rfunc_spec_from_kind_cfg the same after checking kind = rfunc
  *   dfl_rfunc_field_from_spec    spec -> dfl_field (rfunc/rfield.h)
  *   dfl_rfunc_field_from_cfg     both: the field-kind factory (field_cfg.h)
+ *   dfl_rfunc_normalized_from_cfg  the `kind = normalized` factory (appendix A)
+ *   dfl_rfunc_normalized_keys    its keys
  *   dfl_rfunc_spec_free
  *   dfl_rfunc_join_from_cfg      key join
  *   dfl_rfunc_join_p_from_cfg    keys join and p, checked together
@@ -127,6 +129,19 @@ void dfl_rfunc_spec_free(dfl_rfunc_field_spec *spec);
  * dfl_rfunc_field_from_spec.  *out is untouched on failure. */
 dfl_status dfl_rfunc_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *out,
                                     dfl_err *err);
+
+/* The `kind = normalized` factory (field_cfg.h): bs04 appendix A's
+ * recursive normalization (rfunc/normalize.h) of an implicit function,
+ * keys implicit = <section> (kind = ellipse with semi-axes a, b > 0: f =
+ * x^2/a^2 + y^2/b^2 - 1) and m = order 1..6.  Errors name file:line and
+ * key; *out is untouched on failure. */
+dfl_status dfl_rfunc_normalized_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *out,
+                                         dfl_err *err);
+
+/* The keys of a kind = normalized section: the implicit section's name,
+ * its semi-axes and m (read and checked as the factory reads them). */
+dfl_status dfl_rfunc_normalized_keys(const dfl_cfg *cfg, const char *sec, const char **implicit,
+                                     double *a, double *b, long *m, dfl_err *err);
 
 /* [sec] join (one of dfl_rfunc_join_names; default requiv). */
 dfl_status dfl_rfunc_join_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_rfunc_join *join,
