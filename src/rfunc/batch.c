@@ -36,6 +36,7 @@
 
 #include "rfunc/join.h"
 #include "rfunc/rfield.h"
+#include "rfunc/segment.h"
 
 #define LANES 8
 /* Points per inner call when the caller wants no gradient (stack scratch). */
@@ -43,15 +44,25 @@
 
 struct dfl_rfunc_batch {
     int p;
+    int dim;            /* 2 or 3 */
+    int strip;          /* 1: strip (slab) trims, 0: disk (sphere) trims; eq. 4 */
     size_t n;           /* segments */
     double *ax, *ay;    /* start points a */
     double *bx, *by;    /* end points b */
-    double *nx, *ny;    /* unit normals n = (b_y - a_y, -(b_x - a_x)) / d (eq. 2) */
+    double *nx, *ny;    /* unit normals n = (b_y - a_y, -(b_x - a_x)) / d (eq. 2);
+                           3D: the first normal n1 (rfunc/segment.c) */
     double *hid;        /* 1 / (2 d) */
     double *hid2;       /* 1 / (2 d^2) */
-    double *mem;        /* one allocation for the eight arrays */
+    double *az, *bz;    /* 3D: z of a and b */
+    double *nz;         /* 3D: z of n1 */
+    double *mx, *my, *mz; /* 3D: the second normal n2 */
+    double *ex, *ey, *ez; /* unit direction (b - a) / d (strip trims, 3D) */
+    double *mem;        /* one allocation for the arrays */
     dfl_field ref;      /* the library's field of the same polyline */
 };
+
+/* Arrays of a batch: the 2D disk kernel's eight, then the others. */
+#define NARR 17
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
     !defined(DFL_NO_CLONES)
@@ -130,6 +141,152 @@ DFL_INLINE void seg_term(double x, double y, const dfl_rfunc_batch *b, size_t k,
     *Vy += q * gy;                                       /* 1, 1 */
 }
 
+/* The power part shared by the kernels below: adds h^-p to *S and returns
+ * h^-(p+2) (the factor of h grad h in V). */
+DFL_INLINE double pow_term(double h2, int p, double *S)
+{
+    double r2, w;
+    if (p & 1) {
+        const double r = rsqrt_newton(h2);
+        r2 = r * r;
+        w = p == 1 ? r : r * ipow_sq(r2, p / 2);
+    } else {
+        r2 = 1.0 / h2;
+        w = ipow_sq(r2, p / 2);
+    }
+    *S += w;
+    return w * r2;
+}
+
+/* The strip trim of eq. 4 (rfunc/segment.h): p1 = (x - a).e, p2 = (b - x).e,
+ * t = 2 p1 p2 / (p1 + p2 + r), r = |(p1, p2)| (rfunc/trim.h's conjunction
+ * without cancellation; p1 + p2 = d > 0), grad t = (p2 - p1)/r e, so with
+ * mt = max(-t, 0): h grad h = f grad f - mt (p2 - p1)/r e.  Returns mt and
+ * the factor k = mt (p2 - p1)/r of -e. */
+DFL_INLINE double strip_mt(double p1, double p2, double *k)
+{
+    const double r2 = p1 * p1 + p2 * p2;
+    const double rr = rsqrt_newton(r2);
+    const double t = 2.0 * p1 * p2 / (p1 + p2 + r2 * rr);
+    const double mt = 0.5 * (fabs(t) - t);
+    *k = mt * (p2 - p1) * rr;
+    return mt;
+}
+
+/* 2D segment with the strip trim. */
+DFL_INLINE void seg_term_strip2(double x, double y, const dfl_rfunc_batch *b, size_t k, int p,
+                                double *S, double *Vx, double *Vy)
+{
+    const double wx = x - b->ax[k], wy = y - b->ay[k];
+    const double vx = x - b->bx[k], vy = y - b->by[k];
+    const double f = wx * b->nx[k] + wy * b->ny[k];
+    const double p1 = wx * b->ex[k] + wy * b->ey[k], p2 = -(vx * b->ex[k] + vy * b->ey[k]);
+    double kk;
+    const double mt = strip_mt(p1, p2, &kk);
+    const double q = pow_term(f * f + mt * mt, p, S);
+    *Vx += q * (f * b->nx[k] - kk * b->ex[k]);
+    *Vy += q * (f * b->ny[k] - kk * b->ey[k]);
+}
+
+/* 3D segment (space curves): f^2 = s1^2 + s2^2 with the two normals, the
+ * sphere (strip = 0) or slab (strip = 1) trim. */
+DFL_INLINE void seg_term3(double x, double y, double z, const dfl_rfunc_batch *b, size_t k,
+                          int p, int strip, double *S, double *Vx, double *Vy, double *Vz)
+{
+    const double wx = x - b->ax[k], wy = y - b->ay[k], wz = z - b->az[k];
+    const double vx = x - b->bx[k], vy = y - b->by[k], vz = z - b->bz[k];
+    const double s1 = wx * b->nx[k] + wy * b->ny[k] + wz * b->nz[k];
+    const double s2 = wx * b->mx[k] + wy * b->my[k] + wz * b->mz[k];
+    double gx = s1 * b->nx[k] + s2 * b->mx[k], gy = s1 * b->ny[k] + s2 * b->my[k],
+           gz = s1 * b->nz[k] + s2 * b->mz[k];
+    double mt;
+    if (strip) {
+        const double p1 = wx * b->ex[k] + wy * b->ey[k] + wz * b->ez[k];
+        const double p2 = -(vx * b->ex[k] + vy * b->ey[k] + vz * b->ez[k]);
+        double kk;
+        mt = strip_mt(p1, p2, &kk);
+        gx -= kk * b->ex[k];
+        gy -= kk * b->ey[k];
+        gz -= kk * b->ez[k];
+    } else {
+        const double m2 = wx * vx + wy * vy + wz * vz;
+        const double mp = m2 + fabs(m2);
+        mt = mp * b->hid[k];
+        const double mi = mp * b->hid2[k];
+        gx += mi * (wx + vx);
+        gy += mi * (wy + vy);
+        gz += mi * (wz + vz);
+    }
+    const double q = pow_term(s1 * s1 + s2 * s2 + mt * mt, p, S);
+    *Vx += q * gx;
+    *Vy += q * gy;
+    *Vz += q * gz;
+}
+
+/* The strip and 3D kernels' sums: 1 + dim doubles per point (S, V). */
+DFL_INLINE void sums_gen_p(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out,
+                           const int p, const int dim, const int strip)
+{
+    const size_t n = b->n, w = (size_t)dim + 1;
+    for (size_t i0 = 0; i0 < m; i0 += LANES) {
+        const size_t c = m - i0 < LANES ? m - i0 : LANES;
+        double X[LANES], Y[LANES], Z[LANES] = {0}, S[LANES] = {0}, Vx[LANES] = {0},
+                                   Vy[LANES] = {0}, Vz[LANES] = {0};
+        for (size_t l = 0; l < LANES; l++) {
+            const size_t i = i0 + (l < c ? l : c - 1);
+            X[l] = pts[(size_t)dim * i];
+            Y[l] = pts[(size_t)dim * i + 1];
+            if (dim == 3) Z[l] = pts[3 * i + 2];
+        }
+        for (size_t k = 0; k < n; k++) {
+            if (dim == 2) {
+#pragma omp simd
+                for (int l = 0; l < LANES; l++)
+                    seg_term_strip2(X[l], Y[l], b, k, p, &S[l], &Vx[l], &Vy[l]);
+            } else {
+#pragma omp simd
+                for (int l = 0; l < LANES; l++)
+                    seg_term3(X[l], Y[l], Z[l], b, k, p, strip, &S[l], &Vx[l], &Vy[l], &Vz[l]);
+            }
+        }
+        for (size_t l = 0; l < c; l++) {
+            out[w * (i0 + l)] = S[l];
+            out[w * (i0 + l) + 1] = Vx[l];
+            out[w * (i0 + l) + 2] = Vy[l];
+            if (dim == 3) out[w * (i0 + l) + 3] = Vz[l];
+        }
+    }
+}
+
+#define DFL_GEN_CASES(dim, strip)                                  \
+    switch (b->p) {                                                \
+    case 1: sums_gen_p(b, m, pts, out, 1, dim, strip); break;      \
+    case 2: sums_gen_p(b, m, pts, out, 2, dim, strip); break;      \
+    case 3: sums_gen_p(b, m, pts, out, 3, dim, strip); break;      \
+    case 4: sums_gen_p(b, m, pts, out, 4, dim, strip); break;      \
+    case 7: sums_gen_p(b, m, pts, out, 7, dim, strip); break;      \
+    case 12: sums_gen_p(b, m, pts, out, 12, dim, strip); break;    \
+    default: sums_gen_p(b, m, pts, out, b->p, dim, strip); break;  \
+    }
+
+DFL_CLONES
+static void sums_strip2(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+{
+    DFL_GEN_CASES(2, 1)
+}
+
+DFL_CLONES
+static void sums_disk3(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+{
+    DFL_GEN_CASES(3, 0)
+}
+
+DFL_CLONES
+static void sums_strip3(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+{
+    DFL_GEN_CASES(3, 1)
+}
+
 /* Sums S and V (3 doubles per point) for m points. */
 DFL_INLINE void sums_p(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out,
                        const int p)
@@ -158,7 +315,7 @@ DFL_INLINE void sums_p(const dfl_rfunc_batch *b, size_t m, const double *pts, do
 }
 
 DFL_CLONES
-static void sums(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+static void sums_disk2(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {
     switch (b->p) {
     case 1: sums_p(b, m, pts, out, 1); break;
@@ -174,6 +331,19 @@ static void sums(const dfl_rfunc_batch *b, size_t m, const double *pts, double *
     }
 }
 
+/* 1 + dim sums per point: the kernel of the batch's dimension and trim. */
+static void sums(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+{
+    if (b->dim == 3) {
+        if (b->strip) sums_strip3(b, m, pts, out);
+        else sums_disk3(b, m, pts, out);
+    } else if (b->strip) {
+        sums_strip2(b, m, pts, out);
+    } else {
+        sums_disk2(b, m, pts, out);
+    }
+}
+
 int dfl_rfunc_batch_simd_width(void)
 {
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
@@ -186,17 +356,21 @@ int dfl_rfunc_batch_simd_width(void)
     return 2;
 }
 
-/* u and grad u from the sums, or 0 when they are not trustworthy. */
-static int accept(int p, const double *s, double *u, double *g)
+/* u and grad u (dim entries) from the sums, or 0 when they are not
+ * trustworthy. */
+static int accept(int p, int dim, const double *s, double *u, double *g)
 {
     const double S = s[0];
-    if (!(S >= 1e-280 && S <= 1e280) || !isfinite(s[1]) || !isfinite(s[2])) return 0;
+    if (!(S >= 1e-280 && S <= 1e280)) return 0;
+    for (int j = 1; j <= dim; j++)
+        if (!isfinite(s[j])) return 0;
     const double w = p == 1 ? 1.0 / S : p == 2 ? 1.0 / sqrt(S) : pow(S, -1.0 / p);
     const double wp1 = dfl_rfunc_ipow(w, p + 1);
     if (!(wp1 >= 1e-290) || !isfinite(wp1)) return 0;
-    g[0] = wp1 * s[1];
-    g[1] = wp1 * s[2];
-    if (!isfinite(g[0]) || !isfinite(g[1])) return 0;
+    for (int j = 0; j < dim; j++) {
+        g[j] = wp1 * s[1 + j];
+        if (!isfinite(g[j])) return 0;
+    }
     *u = w;
     return 1;
 }
@@ -204,39 +378,41 @@ static int accept(int p, const double *s, double *u, double *g)
 static void eval_block(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
                        double *grad)
 {
-    double s[3 * SCRATCH];
+    double s[4 * SCRATCH];
+    const size_t dim = (size_t)b->dim;
     assert(m <= SCRATCH);
     sums(b, m, pts, s);
     for (size_t i = 0; i < m; i++) {
-        double u, g[2];
-        if (!accept(b->p, s + 3 * i, &u, g)) u = dfl_field_eval1(&b->ref, pts + 2 * i, g);
+        double u, g[3];
+        if (!accept(b->p, b->dim, s + (dim + 1) * i, &u, g))
+            u = dfl_field_eval1(&b->ref, pts + dim * i, g);
         val[i] = u;
-        if (grad) {
-            grad[2 * i] = g[0];
-            grad[2 * i + 1] = g[1];
-        }
+        if (grad)
+            for (size_t j = 0; j < dim; j++) grad[dim * i + j] = g[j];
     }
 }
 
 void dfl_rfunc_batch_eval(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
                           double *grad)
 {
+    const size_t dim = (size_t)b->dim;
     for (size_t i = 0; i < m; i += SCRATCH) {
         const size_t c = m - i < SCRATCH ? m - i : SCRATCH;
-        eval_block(b, c, pts + 2 * i, val + i, grad ? grad + 2 * i : NULL);
+        eval_block(b, c, pts + dim * i, val + i, grad ? grad + dim * i : NULL);
     }
 }
 
 size_t dfl_rfunc_batch_fallbacks(const dfl_rfunc_batch *b, size_t m, const double *pts)
 {
-    double s[3 * SCRATCH];
+    double s[4 * SCRATCH];
+    const size_t dim = (size_t)b->dim;
     size_t cnt = 0;
     for (size_t i = 0; i < m; i += SCRATCH) {
         const size_t c = m - i < SCRATCH ? m - i : SCRATCH;
-        sums(b, c, pts + 2 * i, s);
+        sums(b, c, pts + dim * i, s);
         for (size_t j = 0; j < c; j++) {
-            double u, g[2];
-            cnt += !accept(b->p, s + 3 * j, &u, g);
+            double u, g[3];
+            cnt += !accept(b->p, b->dim, s + (dim + 1) * j, &u, g);
         }
     }
     return cnt;
@@ -247,14 +423,24 @@ size_t dfl_rfunc_batch_fallbacks(const dfl_rfunc_batch *b, size_t m, const doubl
 dfl_status dfl_rfunc_batch_new(const double *v, size_t n, bool closed, int p,
                                dfl_rfunc_batch **out, dfl_err *err)
 {
+    return dfl_rfunc_batch_new_opts(2, v, n, closed, p, DFL_RFUNC_TRIM_DISK, out, err);
+}
+
+dfl_status dfl_rfunc_batch_new_opts(int dim, const double *v, size_t n, bool closed, int p,
+                                    dfl_rfunc_trim trim, dfl_rfunc_batch **out, dfl_err *err)
+{
     dfl_field ref = {0};
+    if (trim != DFL_RFUNC_TRIM_DISK && trim != DFL_RFUNC_TRIM_STRIP)
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "batch: trim '%s' has no batched kernel (disk and strip only)",
+                           dfl_rfunc_trim_name(trim));
     /* The library validates everything (counts, p, degenerate segments). */
-    dfl_status st = dfl_rfield_polyline_opts(2, v, n, closed, DFL_RFUNC_REQUIV, p,
-                                             DFL_RFUNC_TRIM_DISK, false, &ref, err);
+    dfl_status st = dfl_rfield_polyline_opts(dim, v, n, closed, DFL_RFUNC_REQUIV, p, trim, false,
+                                             &ref, err);
     if (st != DFL_OK) return st;
     dfl_rfunc_batch *b = calloc(1, sizeof *b);
     const size_t ns = closed ? n : n - 1;
-    double *mem = malloc(8 * ns * sizeof *mem);
+    double *mem = malloc(NARR * ns * sizeof *mem);
     if (!b || !mem) {
         free(b);
         free(mem);
@@ -262,10 +448,39 @@ dfl_status dfl_rfunc_batch_new(const double *v, size_t n, bool closed, int p,
         return dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu segments", ns);
     }
     b->p = p;
+    b->dim = dim;
+    b->strip = trim == DFL_RFUNC_TRIM_STRIP;
     b->n = ns;
     b->mem = mem;
-    double **arr[8] = {&b->ax, &b->ay, &b->bx, &b->by, &b->nx, &b->ny, &b->hid, &b->hid2};
-    for (int j = 0; j < 8; j++) *arr[j] = mem + (size_t)j * ns;
+    double **arr[NARR] = {&b->ax, &b->ay, &b->bx, &b->by, &b->nx, &b->ny, &b->hid, &b->hid2,
+                          &b->az, &b->bz, &b->nz, &b->mx, &b->my, &b->mz,
+                          &b->ex, &b->ey, &b->ez};
+    for (int j = 0; j < NARR; j++) *arr[j] = mem + (size_t)j * ns;
+    if (dim == 3 || b->strip) {
+        /* the library's own segment frames (rfunc/segment.c): the same n1,
+         * n2, e as the per-point path */
+        for (size_t k = 0; k < ns; k++) {
+            dfl_rfunc_seg sg;
+            const double *a = v + (size_t)dim * k, *e = v + (size_t)dim * ((k + 1) % n);
+            st = dfl_rfunc_seg_init(dim, a, e, trim, &sg, err);
+            if (st != DFL_OK) {
+                dfl_field_destroy(&ref);
+                free(mem);
+                free(b);
+                return st;
+            }
+            b->ax[k] = sg.a[0], b->ay[k] = sg.a[1], b->az[k] = sg.a[2];
+            b->bx[k] = sg.b[0], b->by[k] = sg.b[1], b->bz[k] = sg.b[2];
+            b->nx[k] = sg.n1[0], b->ny[k] = sg.n1[1], b->nz[k] = sg.n1[2];
+            b->mx[k] = sg.n2[0], b->my[k] = sg.n2[1], b->mz[k] = sg.n2[2];
+            b->ex[k] = sg.e[0], b->ey[k] = sg.e[1], b->ez[k] = sg.e[2];
+            b->hid[k] = 0.5 / sg.d;
+            b->hid2[k] = 0.5 / (sg.d * sg.d);
+        }
+        b->ref = ref;
+        *out = b;
+        return DFL_OK;
+    }
     for (size_t k = 0; k < ns; k++) {
         const double *a = v + 2 * k, *e = v + 2 * ((k + 1) % n);
         /* d and the normal exactly as rfunc/segment.c computes them (not
@@ -325,7 +540,7 @@ dfl_status dfl_rfunc_batch_field(const double *v, size_t n, bool closed, int p, 
     dfl_rfunc_batch *b;
     dfl_status st = dfl_rfunc_batch_new(v, n, closed, p, &b, err);
     if (st != DFL_OK) return st;
-    out->dim = 2;
+    out->dim = b->dim;
     out->ops = &batch_ops;
     out->ctx = b;
     return DFL_OK;

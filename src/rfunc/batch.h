@@ -1,6 +1,14 @@
-/* A fast, vectorized evaluator for the commonest bs04 field: a 2D polyline
- * of segments with the disk trim of eq. 4, joined by R-equivalence of
- * order p (eq. 6), value and gradient.  It computes the same function as
+/* A fast, vectorized evaluator for the commonest bs04 fields: a 2D or 3D
+ * polyline of segments with the disk or strip trim of eq. 4, joined by
+ * R-equivalence of order p (eq. 6), value and gradient.  The 2D disk
+ * kernel is described below; the strip kernel computes the trim as
+ * rfunc/segment.h does (t = 2 p1 p2 / (p1 + p2 + |(p1, p2)|), one
+ * reciprocal square root by Newton steps and one division more), and the
+ * 3D kernels the carrier f^2 = s1^2 + s2^2 with the library's two normals
+ * (dfl_rfunc_batch_new_opts).  Not batched (per-point path): the smooth
+ * trims of eq. 5 (a second root and division per segment), R-conjunction
+ * (a sequential fold with a root per part), the corrected join (vertex
+ * terms and their guards), triangles, points and regions.  It computes the same function as
  * rfunc/rfield.h's dfl_rfield_polyline(2, ..., DFL_RFUNC_REQUIV, p,
  * DFL_RFUNC_TRIM_DISK) (to rounding, ~1e-13 relative) and exists for
  * throughput: `make bench` measures it against a naive scalar loop and
@@ -42,6 +50,7 @@
 
 #include "core/status.h"
 #include "field/field.h"
+#include "rfunc/segment.h"
 
 typedef struct dfl_rfunc_batch dfl_rfunc_batch;
 
@@ -53,14 +62,20 @@ typedef struct dfl_rfunc_batch dfl_rfunc_batch;
  * DFL_E_NOMEM. */
 dfl_status dfl_rfunc_batch_new(const double *v, size_t n, bool closed, int p,
                                dfl_rfunc_batch **out, dfl_err *err);
+/* The same for a polyline of dimension dim (2 or 3; v holds n*dim
+ * coordinates) with the disk or strip trim of eq. 4 (the kernels for the
+ * strip trim and for 3D segments, beside the 2D disk one above).
+ * DFL_E_INPUT as dfl_rfunc_batch_new and for the other trims. */
+dfl_status dfl_rfunc_batch_new_opts(int dim, const double *v, size_t n, bool closed, int p,
+                                    dfl_rfunc_trim trim, dfl_rfunc_batch **out, dfl_err *err);
 void dfl_rfunc_batch_free(dfl_rfunc_batch *b);
 
 size_t dfl_rfunc_batch_segments(const dfl_rfunc_batch *b);
 int dfl_rfunc_batch_order(const dfl_rfunc_batch *b);
 
-/* Fast path: u at m points pts[2i], pts[2i+1] into val[i] and, when grad
- * is not NULL, its gradient into grad[2i], grad[2i+1].  Serial (callers
- * parallelize over points, e.g. dfl_field_sample). */
+/* Fast path: u at m points pts[dim i .. dim i + dim - 1] into val[i] and,
+ * when grad is not NULL, its gradient into grad[dim i ...].  Serial
+ * (callers parallelize over points, e.g. dfl_field_sample). */
 void dfl_rfunc_batch_eval(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
                           double *grad);
 

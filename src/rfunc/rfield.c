@@ -365,33 +365,48 @@ bool dfl_rfield_is_fast(const dfl_field *f)
     return f->ops == &rfield_ops && ((const dfl_rfield *)f->ctx)->batch != NULL;
 }
 
-/* The case rfunc/batch.h computes: 2D, R-equivalence, disk-trimmed
- * segments only, forming a chain (segment k starts exactly where k-1
- * ends).  Then the segments are those of the open polyline a_0, ..., a_{n-1},
- * b_{n-1} (a closed polyline is the open one with b_{n-1} = a_0, and the
- * R-equivalence ignores the vertices), which the batch is built from:
- * NULL (no error) when the field is not eligible. */
+/* The cases rfunc/batch.h computes: R-equivalence of 2D or 3D segments,
+ * all with the same eq. 4 trim (disk or strip), forming a chain (segment k
+ * starts exactly where k-1 ends).  Then the segments are those of the open
+ * polyline a_0, ..., a_{n-1}, b_{n-1} (a closed polyline is the open one
+ * with b_{n-1} = a_0, and the R-equivalence ignores the vertices), which
+ * the batch is built from: NULL (no error) when the field is not eligible,
+ * or when the polyline checks of the batch's reference field reject the
+ * chain (segments added one by one may backtrack). */
 static dfl_status build_batch(const dfl_rfield *f, dfl_rfunc_batch **out, dfl_err *err)
 {
     *out = NULL;
     /* One segment: the join is the identity, which the per-point path
      * keeps exactly (u = h, tests/rfunc/test_segment.c) and the batch only
      * to rounding; there is nothing to vectorize over either. */
-    if (!f->fast || f->dim != 2 || f->join != DFL_RFUNC_REQUIV || f->n < 2) return DFL_OK;
+    if (!f->fast || f->join != DFL_RFUNC_REQUIV || f->n < 2) return DFL_OK;
+    const int dim = f->dim;
+    const dfl_rfunc_trim trim = f->parts[0].u.seg.trim;
+    if (f->parts[0].kind != PART_SEGMENT ||
+        (trim != DFL_RFUNC_TRIM_DISK && trim != DFL_RFUNC_TRIM_STRIP))
+        return DFL_OK;
     for (size_t k = 0; k < f->n; k++) {
         const part *pt = &f->parts[k];
-        if (pt->kind != PART_SEGMENT || pt->u.seg.trim != DFL_RFUNC_TRIM_DISK) return DFL_OK;
+        if (pt->kind != PART_SEGMENT || pt->u.seg.trim != trim) return DFL_OK;
         if (k > 0) {
             const double *e = f->parts[k - 1].u.seg.b, *a = pt->u.seg.a;
-            if (e[0] != a[0] || e[1] != a[1]) return DFL_OK;
+            for (int j = 0; j < dim; j++)
+                if (e[j] != a[j]) return DFL_OK;
         }
     }
-    double *v = malloc(2 * (f->n + 1) * sizeof *v);
+    const size_t d = (size_t)dim;
+    double *v = malloc(d * (f->n + 1) * sizeof *v);
     if (!v) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-    for (size_t k = 0; k < f->n; k++) memcpy(v + 2 * k, f->parts[k].u.seg.a, 2 * sizeof *v);
-    memcpy(v + 2 * f->n, f->parts[f->n - 1].u.seg.b, 2 * sizeof *v);
-    dfl_status st = dfl_rfunc_batch_new(v, f->n + 1, false, f->p, out, err);
+    for (size_t k = 0; k < f->n; k++) memcpy(v + d * k, f->parts[k].u.seg.a, d * sizeof *v);
+    memcpy(v + d * f->n, f->parts[f->n - 1].u.seg.b, d * sizeof *v);
+    dfl_err e2;
+    dfl_status st = dfl_rfunc_batch_new_opts(dim, v, f->n + 1, false, f->p, trim, out, &e2);
     free(v);
+    if (st == DFL_E_INPUT) {
+        *out = NULL;
+        return DFL_OK;
+    }
+    if (st != DFL_OK) *err = e2;
     return st;
 }
 

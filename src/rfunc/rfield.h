@@ -14,9 +14,10 @@
  * everywhere.  eval is serial, allocation-free and thread-safe; jets
  * allocate one array of n part jets per call.
  *
- * Fast path.  A field that is exactly a 2D polyline of at least two
- * segments (its parts are segments, all with the disk trim, each starting
- * where the previous one ends; open or closed) joined by R-equivalence
+ * Fast path.  A field that is exactly a 2D or 3D polyline of at least two
+ * segments (its parts are segments, all with the same eq. 4 trim, disk or
+ * strip, each starting where the previous one ends; open or closed) joined
+ * by R-equivalence
  * evaluates through the vectorized evaluator of rfunc/batch.h (one call
  * per batch of points), which agrees with the per-point
  * accumulator to rounding (1e-12 relative; gradients relative to the sum

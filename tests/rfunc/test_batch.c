@@ -21,6 +21,7 @@
 #include "rfunc/join.h"
 #include "rfunc/segment.h"
 #include "rfunc/batch.h"
+#include "rfunc/rfield.h"
 
 /* A wobbly spiral polyline of n vertices inside [0, 1]^2. */
 static double *spiral(size_t n)
@@ -261,4 +262,111 @@ Test(rfunc_batch, bad_input)
     cr_expect_null(b);
     const int w = dfl_rfunc_batch_simd_width();
     cr_expect(w == 2 || w == 4 || w == 8, "width %d", w);
+}
+
+/* The strip-trim and 3D kernels against a brute-force sum over the
+ * library's segment fields (same tolerance as above), open and closed, at
+ * random points and at points near the polyline (1e-6 off a vertex and off
+ * a segment's interior), with the fast path actually taken (no fallback). */
+static void compare_kind(int dim, dfl_rfunc_trim trim, size_t nv, int closed, int p,
+                         uint64_t seed)
+{
+    double *v2 = spiral(nv), *v = malloc(3 * nv * sizeof *v);
+    const size_t d = (size_t)dim;
+    for (size_t i = 0; i < nv; i++) {
+        v[d * i] = v2[2 * i];
+        v[d * i + 1] = v2[2 * i + 1];
+        if (dim == 3) v[3 * i + 2] = 0.3 * sin(7.0 * (double)i / (double)nv);
+    }
+    free(v2);
+    dfl_rfunc_batch *b;
+    dfl_err err;
+    cr_assert_eq(dfl_rfunc_batch_new_opts(dim, v, nv, closed, p, trim, &b, &err), DFL_OK, "%s",
+                 err.msg);
+    enum { M = 101 };
+    double pts[3 * M], uf[M], gf[3 * M];
+    uint64_t rng = seed;
+    for (int i = 0; i < M; i++)
+        for (size_t j = 0; j < d; j++) pts[d * i + j] = dfl_rng_splitmix(&rng, -0.3, 1.3);
+    /* two points near the polyline */
+    for (size_t j = 0; j < d; j++) {
+        pts[j] = v[d * 3 + j] + 1e-6;
+        pts[d + j] = 0.5 * (v[d * 5 + j] + v[d * 6 + j]) + (j == 0 ? 1e-6 : 0.0);
+    }
+    cr_assert_eq(dfl_rfunc_batch_fallbacks(b, M, pts), 0);
+    dfl_rfunc_batch_eval(b, M, pts, uf, gf);
+    const size_t ns = closed ? nv : nv - 1;
+    for (int i = 0; i < M; i++) {
+        const double *x = pts + d * i;
+        double S = 0, h[128], gh[3 * 128];
+        cr_assert(ns <= 128);
+        for (size_t k = 0; k < ns; k++) {
+            dfl_rfunc_seg seg;
+            cr_assert_eq(dfl_rfunc_seg_init(dim, v + d * k, v + d * ((k + 1) % nv), trim, &seg,
+                                            NULL),
+                         DFL_OK);
+            h[k] = dfl_rfunc_seg_eval(&seg, x, gh + 3 * k);
+            S += pow(h[k], -p);
+        }
+        const double u = pow(S, -1.0 / p);
+        double g[3] = {0, 0, 0}, s = 0;
+        for (size_t k = 0; k < ns; k++) {
+            const double c = pow(u / h[k], p + 1);
+            double n2 = 0;
+            for (size_t j = 0; j < d; j++) g[j] += c * gh[3 * k + j], n2 += gh[3 * k + j] * gh[3 * k + j];
+            s += c * sqrt(n2);
+        }
+        cr_assert(fabs(uf[i] - u) <= 1e-12 * u, "dim %d trim %d p %d point %d: %.17g vs %.17g",
+                  dim, (int)trim, p, i, uf[i], u);
+        for (size_t j = 0; j < d; j++)
+            cr_assert(fabs(gf[d * i + j] - g[j]) <= 1e-12 * s,
+                      "dim %d trim %d p %d point %d grad %zu: %.17g vs %.17g", dim, (int)trim, p,
+                      i, j, gf[d * i + j], g[j]);
+    }
+    dfl_rfunc_batch_free(b);
+    free(v);
+}
+
+Test(rfunc_batch, strip_and_3d_kernels_agree)
+{
+    const int ps[] = {1, 2, 3, 7, 12, 13};
+    for (size_t i = 0; i < sizeof ps / sizeof *ps; i++) {
+        compare_kind(2, DFL_RFUNC_TRIM_STRIP, 41, 0, ps[i], 5 + i);
+        compare_kind(2, DFL_RFUNC_TRIM_STRIP, 30, 1, ps[i], 55 + i);
+        compare_kind(3, DFL_RFUNC_TRIM_DISK, 41, 0, ps[i], 7 + i);
+        compare_kind(3, DFL_RFUNC_TRIM_STRIP, 30, 1, ps[i], 77 + i);
+    }
+}
+
+/* rfield takes the kernels for exactly these fields, and equals its own
+ * per-point path to 1e-12 there. */
+Test(rfunc_batch, rfield_uses_every_eq4_kernel)
+{
+    double *v2 = spiral(20), v3[60];
+    for (int i = 0; i < 20; i++) {
+        v3[3 * i] = v2[2 * i];
+        v3[3 * i + 1] = v2[2 * i + 1];
+        v3[3 * i + 2] = 0.1 * i;
+    }
+    for (int dim = 2; dim <= 3; dim++)
+        for (int t = 0; t < DFL_RFUNC_TRIM_COUNT; t++) {
+            dfl_field ff, fs;
+            const double *v = dim == 2 ? v2 : v3;
+            cr_assert_eq(dfl_rfield_polyline_opts(dim, v, 20, false, DFL_RFUNC_REQUIV, 2,
+                                                  (dfl_rfunc_trim)t, true, &ff, NULL),
+                         DFL_OK);
+            cr_assert_eq(dfl_rfield_polyline_opts(dim, v, 20, false, DFL_RFUNC_REQUIV, 2,
+                                                  (dfl_rfunc_trim)t, false, &fs, NULL),
+                         DFL_OK);
+            const bool eq4 = !dfl_rfunc_trim_smooth((dfl_rfunc_trim)t);
+            cr_expect_eq(dfl_rfield_is_fast(&ff), eq4, "dim %d trim %d", dim, t);
+            cr_expect(!dfl_rfield_is_fast(&fs));
+            const double x[3] = {0.61, 0.37, 0.2};
+            double ga[3], gb[3];
+            const double ua = dfl_field_eval1(&ff, x, ga), ub = dfl_field_eval1(&fs, x, gb);
+            cr_expect(fabs(ua - ub) <= 1e-12 * ub, "dim %d trim %d", dim, t);
+            dfl_field_destroy(&ff);
+            dfl_field_destroy(&fs);
+        }
+    free(v2);
 }
