@@ -46,6 +46,7 @@ struct dfl_rfunc_batch {
     int p;
     int dim;            /* 2 or 3 */
     int strip;          /* 1: strip (slab) trims, 0: disk (sphere) trims; eq. 4 */
+    int points;         /* 1: the parts are points c = (ax, ay[, az]) */
     size_t n;           /* segments */
     double *ax, *ay;    /* start points a */
     double *bx, *by;    /* end points b */
@@ -223,7 +224,18 @@ DFL_INLINE void seg_term3(double x, double y, double z, const dfl_rfunc_batch *b
     *Vz += q * gz;
 }
 
-/* The strip and 3D kernels' sums: 1 + dim doubles per point (S, V). */
+/* A point part: h^2 = |x - c|^2, h grad h = x - c. */
+DFL_INLINE void point_term(double x, double y, double z, const dfl_rfunc_batch *b, size_t k,
+                           int p, int dim, double *S, double *Vx, double *Vy, double *Vz)
+{
+    const double wx = x - b->ax[k], wy = y - b->ay[k], wz = dim == 3 ? z - b->az[k] : 0.0;
+    const double q = pow_term(wx * wx + wy * wy + wz * wz, p, S);
+    *Vx += q * wx;
+    *Vy += q * wy;
+    *Vz += q * wz;
+}
+
+/* The strip, 3D and point kernels' sums: 1 + dim doubles per point (S, V). */
 DFL_INLINE void sums_gen_p(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out,
                            const int p, const int dim, const int strip)
 {
@@ -239,7 +251,11 @@ DFL_INLINE void sums_gen_p(const dfl_rfunc_batch *b, size_t m, const double *pts
             if (dim == 3) Z[l] = pts[3 * i + 2];
         }
         for (size_t k = 0; k < n; k++) {
-            if (dim == 2) {
+            if (strip < 0) {
+#pragma omp simd
+                for (int l = 0; l < LANES; l++)
+                    point_term(X[l], Y[l], Z[l], b, k, p, dim, &S[l], &Vx[l], &Vy[l], &Vz[l]);
+            } else if (dim == 2) {
 #pragma omp simd
                 for (int l = 0; l < LANES; l++)
                     seg_term_strip2(X[l], Y[l], b, k, p, &S[l], &Vx[l], &Vy[l]);
@@ -331,10 +347,25 @@ static void sums_disk2(const dfl_rfunc_batch *b, size_t m, const double *pts, do
     }
 }
 
-/* 1 + dim sums per point: the kernel of the batch's dimension and trim. */
+DFL_CLONES
+static void sums_points2(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+{
+    DFL_GEN_CASES(2, -1)
+}
+
+DFL_CLONES
+static void sums_points3(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+{
+    DFL_GEN_CASES(3, -1)
+}
+
+/* 1 + dim sums per point: the kernel of the batch's parts, dimension and trim. */
 static void sums(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {
-    if (b->dim == 3) {
+    if (b->points) {
+        if (b->dim == 3) sums_points3(b, m, pts, out);
+        else sums_points2(b, m, pts, out);
+    } else if (b->dim == 3) {
         if (b->strip) sums_strip3(b, m, pts, out);
         else sums_disk3(b, m, pts, out);
     } else if (b->strip) {
@@ -498,6 +529,46 @@ dfl_status dfl_rfunc_batch_new_opts(int dim, const double *v, size_t n, bool clo
         b->ny[k] = -(e[0] - a[0]) / d;
         b->hid[k] = 0.5 / d;
         b->hid2[k] = 0.5 / (d * d);
+    }
+    b->ref = ref;
+    *out = b;
+    return DFL_OK;
+}
+
+dfl_status dfl_rfunc_batch_points(int dim, const double *c, size_t n, int p,
+                                  dfl_rfunc_batch **out, dfl_err *err)
+{
+    if (n < 2) return dfl_err_set(err, DFL_E_INPUT, "batch: %zu points (need at least 2)", n);
+    dfl_rfield *r;
+    dfl_status st = dfl_rfield_new(dim, DFL_RFUNC_REQUIV, p, &r, err);
+    if (st != DFL_OK) return st;
+    dfl_rfield_set_fast(r, false);
+    for (size_t i = 0; i < n && st == DFL_OK; i++) st = dfl_rfield_add_point(r, c + (size_t)dim * i, err);
+    dfl_field ref = {0};
+    if (st == DFL_OK) st = dfl_rfield_finish(&r, &ref, err);
+    else dfl_rfield_free(r);
+    if (st != DFL_OK) return st;
+    dfl_rfunc_batch *b = calloc(1, sizeof *b);
+    double *mem = malloc(NARR * n * sizeof *mem);
+    if (!b || !mem) {
+        free(b);
+        free(mem);
+        dfl_field_destroy(&ref);
+        return dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu points", n);
+    }
+    b->p = p;
+    b->dim = dim;
+    b->points = 1;
+    b->n = n;
+    b->mem = mem;
+    double **arr[NARR] = {&b->ax, &b->ay, &b->bx, &b->by, &b->nx, &b->ny, &b->hid, &b->hid2,
+                          &b->az, &b->bz, &b->nz, &b->mx, &b->my, &b->mz,
+                          &b->ex, &b->ey, &b->ez};
+    for (int j = 0; j < NARR; j++) *arr[j] = mem + (size_t)j * n;
+    for (size_t k = 0; k < n; k++) {
+        b->ax[k] = c[(size_t)dim * k];
+        b->ay[k] = c[(size_t)dim * k + 1];
+        b->az[k] = dim == 3 ? c[3 * k + 2] : 0.0;
     }
     b->ref = ref;
     *out = b;

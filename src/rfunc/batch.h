@@ -8,7 +8,8 @@
  * (dfl_rfunc_batch_new_opts).  Not batched (per-point path): the smooth
  * trims of eq. 5 (a second root and division per segment), R-conjunction
  * (a sequential fold with a root per part), the corrected join (vertex
- * terms and their guards), triangles, points and regions.  It computes the same function as
+ * terms and their guards), triangles and regions.  Point parts have a
+ * kernel of their own (dfl_rfunc_batch_points).  It computes the same function as
  * rfunc/rfield.h's dfl_rfield_polyline(2, ..., DFL_RFUNC_REQUIV, p,
  * DFL_RFUNC_TRIM_DISK) (to rounding, ~1e-13 relative) and exists for
  * throughput: `make bench` measures it against a naive scalar loop and
@@ -68,6 +69,11 @@ dfl_status dfl_rfunc_batch_new(const double *v, size_t n, bool closed, int p,
  * DFL_E_INPUT as dfl_rfunc_batch_new and for the other trims. */
 dfl_status dfl_rfunc_batch_new_opts(int dim, const double *v, size_t n, bool closed, int p,
                                     dfl_rfunc_trim trim, dfl_rfunc_batch **out, dfl_err *err);
+/* R-equivalence of n >= 2 point parts c[0..n-1] (dim coordinates each;
+ * rfunc/region.h's h = |x - c|) as a batch.  DFL_E_INPUT for n < 2, bad
+ * dim or p, non-finite or out-of-domain coordinates; DFL_E_NOMEM. */
+dfl_status dfl_rfunc_batch_points(int dim, const double *c, size_t n, int p,
+                                  dfl_rfunc_batch **out, dfl_err *err);
 void dfl_rfunc_batch_free(dfl_rfunc_batch *b);
 
 size_t dfl_rfunc_batch_segments(const dfl_rfunc_batch *b);

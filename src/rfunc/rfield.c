@@ -365,8 +365,8 @@ bool dfl_rfield_is_fast(const dfl_field *f)
     return f->ops == &rfield_ops && ((const dfl_rfield *)f->ctx)->batch != NULL;
 }
 
-/* The cases rfunc/batch.h computes: R-equivalence of 2D or 3D segments,
- * all with the same eq. 4 trim (disk or strip), forming a chain (segment k
+/* The cases rfunc/batch.h computes: R-equivalence of point parts only, or
+ * of 2D or 3D segments, all with the same eq. 4 trim (disk or strip), forming a chain (segment k
  * starts exactly where k-1 ends).  Then the segments are those of the open
  * polyline a_0, ..., a_{n-1}, b_{n-1} (a closed polyline is the open one
  * with b_{n-1} = a_0, and the R-equivalence ignores the vertices), which
@@ -381,6 +381,18 @@ static dfl_status build_batch(const dfl_rfield *f, dfl_rfunc_batch **out, dfl_er
      * to rounding; there is nothing to vectorize over either. */
     if (!f->fast || f->join != DFL_RFUNC_REQUIV || f->n < 2) return DFL_OK;
     const int dim = f->dim;
+    size_t npt = 0;
+    for (size_t k = 0; k < f->n; k++) npt += f->parts[k].kind == PART_POINT;
+    if (npt == f->n) {
+        /* only points: the point kernel */
+        double *c = malloc((size_t)dim * f->n * sizeof *c);
+        if (!c) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+        for (size_t k = 0; k < f->n; k++)
+            memcpy(c + (size_t)dim * k, f->parts[k].u.pt.c, (size_t)dim * sizeof *c);
+        dfl_status st = dfl_rfunc_batch_points(dim, c, f->n, f->p, out, err);
+        free(c);
+        return st;
+    }
     const dfl_rfunc_trim trim = f->parts[0].u.seg.trim;
     if (f->parts[0].kind != PART_SEGMENT ||
         (trim != DFL_RFUNC_TRIM_DISK && trim != DFL_RFUNC_TRIM_STRIP))
