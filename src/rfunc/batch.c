@@ -451,6 +451,32 @@ size_t dfl_rfunc_batch_fallbacks(const dfl_rfunc_batch *b, size_t m, const doubl
 
 /* ---- construction -------------------------------------------------------- */
 
+/* A batch of n parts of order p and dimension dim with its arrays (one
+ * allocation) and the reference field ref (moved in; destroyed on failure). */
+static dfl_status batch_alloc(int dim, int p, size_t n, dfl_field *ref, dfl_rfunc_batch **out,
+                              dfl_err *err)
+{
+    dfl_rfunc_batch *b = calloc(1, sizeof *b);
+    double *mem = malloc(NARR * n * sizeof *mem);
+    if (!b || !mem) {
+        free(b);
+        free(mem);
+        dfl_field_destroy(ref);
+        return dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu parts", n);
+    }
+    b->p = p;
+    b->dim = dim;
+    b->n = n;
+    b->mem = mem;
+    double **arr[NARR] = {&b->ax, &b->ay, &b->bx, &b->by, &b->nx, &b->ny, &b->hid, &b->hid2,
+                          &b->az, &b->bz, &b->nz, &b->mx, &b->my, &b->mz,
+                          &b->ex, &b->ey, &b->ez};
+    for (int j = 0; j < NARR; j++) *arr[j] = mem + (size_t)j * n;
+    b->ref = *ref;
+    *out = b;
+    return DFL_OK;
+}
+
 dfl_status dfl_rfunc_batch_new(const double *v, size_t n, bool closed, int p,
                                dfl_rfunc_batch **out, dfl_err *err)
 {
@@ -469,24 +495,10 @@ dfl_status dfl_rfunc_batch_new_opts(int dim, const double *v, size_t n, bool clo
     dfl_status st = dfl_rfield_polyline_opts(dim, v, n, closed, DFL_RFUNC_REQUIV, p, trim, false,
                                              &ref, err);
     if (st != DFL_OK) return st;
-    dfl_rfunc_batch *b = calloc(1, sizeof *b);
     const size_t ns = closed ? n : n - 1;
-    double *mem = malloc(NARR * ns * sizeof *mem);
-    if (!b || !mem) {
-        free(b);
-        free(mem);
-        dfl_field_destroy(&ref);
-        return dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu segments", ns);
-    }
-    b->p = p;
-    b->dim = dim;
+    dfl_rfunc_batch *b;
+    if ((st = batch_alloc(dim, p, ns, &ref, &b, err)) != DFL_OK) return st;
     b->strip = trim == DFL_RFUNC_TRIM_STRIP;
-    b->n = ns;
-    b->mem = mem;
-    double **arr[NARR] = {&b->ax, &b->ay, &b->bx, &b->by, &b->nx, &b->ny, &b->hid, &b->hid2,
-                          &b->az, &b->bz, &b->nz, &b->mx, &b->my, &b->mz,
-                          &b->ex, &b->ey, &b->ez};
-    for (int j = 0; j < NARR; j++) *arr[j] = mem + (size_t)j * ns;
     if (dim == 3 || b->strip) {
         /* the library's own segment frames (rfunc/segment.c): the same n1,
          * n2, e as the per-point path */
@@ -495,9 +507,7 @@ dfl_status dfl_rfunc_batch_new_opts(int dim, const double *v, size_t n, bool clo
             const double *a = v + (size_t)dim * k, *e = v + (size_t)dim * ((k + 1) % n);
             st = dfl_rfunc_seg_init(dim, a, e, trim, &sg, err);
             if (st != DFL_OK) {
-                dfl_field_destroy(&ref);
-                free(mem);
-                free(b);
+                dfl_rfunc_batch_free(b);
                 return st;
             }
             b->ax[k] = sg.a[0], b->ay[k] = sg.a[1], b->az[k] = sg.a[2];
@@ -508,7 +518,6 @@ dfl_status dfl_rfunc_batch_new_opts(int dim, const double *v, size_t n, bool clo
             b->hid[k] = 0.5 / sg.d;
             b->hid2[k] = 0.5 / (sg.d * sg.d);
         }
-        b->ref = ref;
         *out = b;
         return DFL_OK;
     }
@@ -530,7 +539,6 @@ dfl_status dfl_rfunc_batch_new_opts(int dim, const double *v, size_t n, bool clo
         b->hid[k] = 0.5 / d;
         b->hid2[k] = 0.5 / (d * d);
     }
-    b->ref = ref;
     *out = b;
     return DFL_OK;
 }
@@ -548,29 +556,14 @@ dfl_status dfl_rfunc_batch_points(int dim, const double *c, size_t n, int p,
     if (st == DFL_OK) st = dfl_rfield_finish(&r, &ref, err);
     else dfl_rfield_free(r);
     if (st != DFL_OK) return st;
-    dfl_rfunc_batch *b = calloc(1, sizeof *b);
-    double *mem = malloc(NARR * n * sizeof *mem);
-    if (!b || !mem) {
-        free(b);
-        free(mem);
-        dfl_field_destroy(&ref);
-        return dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu points", n);
-    }
-    b->p = p;
-    b->dim = dim;
+    dfl_rfunc_batch *b;
+    if ((st = batch_alloc(dim, p, n, &ref, &b, err)) != DFL_OK) return st;
     b->points = 1;
-    b->n = n;
-    b->mem = mem;
-    double **arr[NARR] = {&b->ax, &b->ay, &b->bx, &b->by, &b->nx, &b->ny, &b->hid, &b->hid2,
-                          &b->az, &b->bz, &b->nz, &b->mx, &b->my, &b->mz,
-                          &b->ex, &b->ey, &b->ez};
-    for (int j = 0; j < NARR; j++) *arr[j] = mem + (size_t)j * n;
     for (size_t k = 0; k < n; k++) {
         b->ax[k] = c[(size_t)dim * k];
         b->ay[k] = c[(size_t)dim * k + 1];
         b->az[k] = dim == 3 ? c[3 * k + 2] : 0.0;
     }
-    b->ref = ref;
     *out = b;
     return DFL_OK;
 }
