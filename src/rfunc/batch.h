@@ -8,8 +8,8 @@
  * (dfl_rfunc_batch_new_opts).  Not batched (per-point path): the smooth
  * trims of eq. 5 (a second root and division per segment), R-conjunction
  * (a sequential fold with a root per part), the corrected join (vertex
- * terms and their guards), triangles and regions.  Point parts have a
- * kernel of their own (dfl_rfunc_batch_points).  It computes the same function as
+ * terms and their guards) and regions.  Point parts and triangles have
+ * kernels of their own (dfl_rfunc_batch_points, dfl_rfunc_batch_triangles).  It computes the same function as
  * rfunc/rfield.h's dfl_rfield_polyline(2, ..., DFL_RFUNC_REQUIV, p,
  * DFL_RFUNC_TRIM_DISK) (to rounding, ~1e-13 relative) and exists for
  * throughput: `make bench` measures it against a naive scalar loop and
@@ -52,6 +52,7 @@
 #include "core/status.h"
 #include "field/field.h"
 #include "rfunc/segment.h"
+#include "rfunc/tri3d.h"
 
 typedef struct dfl_rfunc_batch dfl_rfunc_batch;
 
@@ -74,6 +75,13 @@ dfl_status dfl_rfunc_batch_new_opts(int dim, const double *v, size_t n, bool clo
  * dim or p, non-finite or out-of-domain coordinates; DFL_E_NOMEM. */
 dfl_status dfl_rfunc_batch_points(int dim, const double *c, size_t n, int p,
                                   dfl_rfunc_batch **out, dfl_err *err);
+/* R-equivalence of n >= 2 triangles t[0..n-1] (rfunc/tri3d.h) with one
+ * eq. 4 trim for all: prism, or conditional with k = 2 and one weight a.
+ * The prism's R0-conjunctions take one reciprocal square root (Newton
+ * steps) and one division each.  DFL_E_INPUT for other options or bad p;
+ * DFL_E_NOMEM. */
+dfl_status dfl_rfunc_batch_triangles(const dfl_rfunc_tri *t, size_t n, int p,
+                                     dfl_rfunc_batch **out, dfl_err *err);
 void dfl_rfunc_batch_free(dfl_rfunc_batch *b);
 
 size_t dfl_rfunc_batch_segments(const dfl_rfunc_batch *b);

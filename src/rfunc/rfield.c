@@ -365,7 +365,8 @@ bool dfl_rfield_is_fast(const dfl_field *f)
     return f->ops == &rfield_ops && ((const dfl_rfield *)f->ctx)->batch != NULL;
 }
 
-/* The cases rfunc/batch.h computes: R-equivalence of point parts only, or
+/* The cases rfunc/batch.h computes: R-equivalence of point parts only, of
+ * triangles only (one eq. 4 trim), or
  * of 2D or 3D segments, all with the same eq. 4 trim (disk or strip), forming a chain (segment k
  * starts exactly where k-1 ends).  Then the segments are those of the open
  * polyline a_0, ..., a_{n-1}, b_{n-1} (a closed polyline is the open one
@@ -381,8 +382,26 @@ static dfl_status build_batch(const dfl_rfield *f, dfl_rfunc_batch **out, dfl_er
      * to rounding; there is nothing to vectorize over either. */
     if (!f->fast || f->join != DFL_RFUNC_REQUIV || f->n < 2) return DFL_OK;
     const int dim = f->dim;
-    size_t npt = 0;
-    for (size_t k = 0; k < f->n; k++) npt += f->parts[k].kind == PART_POINT;
+    size_t npt = 0, ntri = 0;
+    for (size_t k = 0; k < f->n; k++) {
+        npt += f->parts[k].kind == PART_POINT;
+        ntri += f->parts[k].kind == PART_TRIANGLE;
+    }
+    if (ntri == f->n) {
+        /* only triangles: the triangle kernel, when their trims allow */
+        dfl_rfunc_tri *t = malloc(f->n * sizeof *t);
+        if (!t) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+        for (size_t k = 0; k < f->n; k++) t[k] = f->parts[k].u.tri;
+        dfl_err e2;
+        dfl_status st = dfl_rfunc_batch_triangles(t, f->n, f->p, out, &e2);
+        free(t);
+        if (st == DFL_E_INPUT) {
+            *out = NULL;
+            return DFL_OK;
+        }
+        if (st != DFL_OK) *err = e2;
+        return st;
+    }
     if (npt == f->n) {
         /* only points: the point kernel */
         double *c = malloc((size_t)dim * f->n * sizeof *c);

@@ -21,6 +21,7 @@
 #include "rfunc/join.h"
 #include "rfunc/segment.h"
 #include "rfunc/batch.h"
+#include "rfunc/tri3d.h"
 #include "rfunc/rfield.h"
 
 /* A wobbly spiral polyline of n vertices inside [0, 1]^2. */
@@ -410,6 +411,58 @@ Test(rfunc_batch, points_kernel_agrees)
                 for (int j = 0; j < dim; j++)
                     cr_assert(fabs(ga[j] - gb[j]) <= 1e-12 * (1 + s), "dim %d p %d grad %d", dim, p,
                               j);
+            }
+            dfl_field_destroy(&ff);
+            dfl_field_destroy(&fs);
+        }
+}
+
+/* The triangle kernel against the per-point path (1e-12; gradients
+ * against s = sum (u/h_i)^(p+1) |grad h_i|, evaluated from the library's
+ * triangle fields), prism and conditional, with points near the mesh and
+ * on its vertex lines (those fall back). */
+Test(rfunc_batch, triangles_kernel_agrees)
+{
+    uint64_t rng = 99;
+    for (int trim = 0; trim < 2; trim++)
+        for (int p = 1; p <= 12; p += 11) {
+            dfl_rfunc_tri_opts o = dfl_rfunc_tri_defaults();
+            o.trim = (dfl_rfunc_tri_trim)trim;
+            enum { NT = 18 };
+            dfl_rfunc_tri t[NT];
+            dfl_field ff, fs;
+            for (int fast = 0; fast < 2; fast++) {
+                dfl_rfield *r;
+                cr_assert_eq(dfl_rfield_new(3, DFL_RFUNC_REQUIV, p, &r, NULL), DFL_OK);
+                dfl_rfield_set_fast(r, fast);
+                for (int k = 0; k < NT; k++) {
+                    const double x0 = (k % 6) / 6.0, y0 = (k / 6) / 3.0;
+                    const double A[3] = {x0, y0, 0.1 * sin(7 * x0)},
+                                 B[3] = {x0 + 1 / 6.0, y0, 0.1 * sin(7 * x0 + 1)},
+                                 C[3] = {x0, y0 + 1 / 3.0, 0.05};
+                    cr_assert_eq(dfl_rfield_add_triangle(r, A, B, C, &o, NULL), DFL_OK);
+                    cr_assert_eq(dfl_rfunc_tri_init(A, B, C, &o, &t[k], NULL), DFL_OK);
+                }
+                cr_assert_eq(dfl_rfield_finish(&r, fast ? &ff : &fs, NULL), DFL_OK);
+            }
+            cr_assert(dfl_rfield_is_fast(&ff) && !dfl_rfield_is_fast(&fs));
+            for (int i = 0; i < 80; i++) {
+                double x[3];
+                for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(&rng, -0.3, 1.3);
+                if (i == 0) x[0] = t[3].v[1][0], x[1] = t[3].v[1][1], x[2] = 0.7; /* vertex line */
+                if (i == 1) x[0] = 0.3, x[1] = 0.2, x[2] = t[0].v[0][2] + 1e-7;
+                double ga[3], gb[3], s = 0;
+                const double ua = dfl_field_eval1(&ff, x, ga), ub = dfl_field_eval1(&fs, x, gb);
+                cr_assert(fabs(ua - ub) <= 1e-12 * ub, "trim %d p %d point %d: %.17g vs %.17g",
+                          trim, p, i, ua, ub);
+                for (int k = 0; k < NT; k++) {
+                    double g[3];
+                    const double h = dfl_rfunc_tri_eval(&t[k], x, g);
+                    s += pow(ub / h, p + 1) * sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+                }
+                for (int j = 0; j < 3; j++)
+                    cr_assert(fabs(ga[j] - gb[j]) <= 1e-12 * s, "trim %d p %d point %d grad %d: "
+                              "%.17g vs %.17g", trim, p, i, j, ga[j], gb[j]);
             }
             dfl_field_destroy(&ff);
             dfl_field_destroy(&fs);
