@@ -36,6 +36,7 @@
 
 #include "rfunc/join.h"
 #include "rfunc/rfield.h"
+#include "rfunc/region.h"
 #include "rfunc/segment.h"
 #include "rfunc/tri3d.h"
 
@@ -52,6 +53,9 @@ struct dfl_rfunc_batch {
     int cond;           /* triangles: 1 conditional trim (a f^2), 0 prism */
     double ca;          /* triangles: the conditional weight a */
     double *tri;        /* triangles: 24 doubles each: n, then V_i, m_i (i = 0..2) */
+    int regions;        /* 1: the parts are convex regions (2D) */
+    size_t *roff;       /* regions: n + 1 offsets into rv/rm (edges) */
+    double *rv, *rm;    /* regions: edge start points and inward normals, 2 each */
     size_t n;           /* segments */
     double *ax, *ay;    /* start points a */
     double *bx, *by;    /* end points b */
@@ -329,6 +333,55 @@ static void sums_tri(const dfl_rfunc_batch *b, size_t m, const double *pts, doub
     }
 }
 
+/* A convex region of rfunc/region.h: h^2 = sum_i max(-p_i, 0)^2 over its
+ * edges, p_i = (x - V_i).m_i, h grad h = -sum_i max(-p_i, 0) m_i (0 inside,
+ * where the point falls back: h^-p is infinite). */
+DFL_INLINE void region_term(double x, double y, const dfl_rfunc_batch *b, size_t k, int p,
+                            double *S, double *Vx, double *Vy)
+{
+    double h2 = 0.0, gx = 0.0, gy = 0.0;
+    for (size_t e = b->roff[k]; e < b->roff[k + 1]; e++) {
+        const double q = -((x - b->rv[2 * e]) * b->rm[2 * e] + (y - b->rv[2 * e + 1]) * b->rm[2 * e + 1]);
+        const double mq = 0.5 * (q + fabs(q));
+        h2 += mq * mq;
+        gx -= mq * b->rm[2 * e];
+        gy -= mq * b->rm[2 * e + 1];
+    }
+    const double q = pow_term(h2, p, S);
+    *Vx += q * gx;
+    *Vy += q * gy;
+}
+
+DFL_INLINE void sums_reg_p(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out,
+                           const int p)
+{
+    for (size_t i0 = 0; i0 < m; i0 += LANES) {
+        const size_t c = m - i0 < LANES ? m - i0 : LANES;
+        double X[LANES], Y[LANES], S[LANES] = {0}, Vx[LANES] = {0}, Vy[LANES] = {0};
+        for (size_t l = 0; l < LANES; l++) {
+            const size_t i = i0 + (l < c ? l : c - 1);
+            X[l] = pts[2 * i];
+            Y[l] = pts[2 * i + 1];
+        }
+        for (size_t k = 0; k < b->n; k++) {
+#pragma omp simd
+            for (int l = 0; l < LANES; l++) region_term(X[l], Y[l], b, k, p, &S[l], &Vx[l], &Vy[l]);
+        }
+        for (size_t l = 0; l < c; l++) {
+            out[3 * (i0 + l)] = S[l];
+            out[3 * (i0 + l) + 1] = Vx[l];
+            out[3 * (i0 + l) + 2] = Vy[l];
+        }
+    }
+}
+
+DFL_CLONES
+static void sums_reg(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+{
+    if (b->p == 2) sums_reg_p(b, m, pts, out, 2);
+    else sums_reg_p(b, m, pts, out, b->p);
+}
+
 /* The strip, 3D and point kernels' sums: 1 + dim doubles per point (S, V). */
 DFL_INLINE void sums_gen_p(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out,
                            const int p, const int dim, const int strip)
@@ -456,7 +509,9 @@ static void sums_points3(const dfl_rfunc_batch *b, size_t m, const double *pts, 
 /* 1 + dim sums per point: the kernel of the batch's parts, dimension and trim. */
 static void sums(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {
-    if (b->tris) {
+    if (b->regions) {
+        sums_reg(b, m, pts, out);
+    } else if (b->tris) {
         sums_tri(b, m, pts, out);
     } else if (b->points) {
         if (b->dim == 3) sums_points3(b, m, pts, out);
@@ -710,10 +765,55 @@ dfl_status dfl_rfunc_batch_triangles(const dfl_rfunc_tri *t, size_t n, int p,
     return DFL_OK;
 }
 
+dfl_status dfl_rfunc_batch_regions(const dfl_rfunc_region *r, size_t n, int p,
+                                   dfl_rfunc_batch **out, dfl_err *err)
+{
+    if (n < 2) return dfl_err_set(err, DFL_E_INPUT, "batch: %zu regions (need at least 2)", n);
+    dfl_rfield *rf;
+    dfl_status st = dfl_rfield_new(2, DFL_RFUNC_REQUIV, p, &rf, err);
+    if (st != DFL_OK) return st;
+    dfl_rfield_set_fast(rf, false);
+    size_t ne = 0;
+    for (size_t k = 0; k < n && st == DFL_OK; k++) {
+        st = dfl_rfield_add_region(rf, r[k].v, r[k].n, err);
+        ne += r[k].n;
+    }
+    dfl_field ref = {0};
+    if (st == DFL_OK) st = dfl_rfield_finish(&rf, &ref, err);
+    else dfl_rfield_free(rf);
+    if (st != DFL_OK) return st;
+    size_t *off = malloc((n + 1) * sizeof *off);
+    double *ev = malloc(4 * ne * sizeof *ev);
+    dfl_rfunc_batch *b = NULL;
+    if (!off || !ev) {
+        free(off), free(ev);
+        dfl_field_destroy(&ref);
+        return dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu regions", n);
+    }
+    if ((st = batch_alloc(2, p, n, &ref, &b, err)) != DFL_OK) {
+        free(off), free(ev);
+        return st;
+    }
+    b->regions = 1;
+    b->roff = off;
+    b->rv = ev;
+    b->rm = ev + 2 * ne;
+    off[0] = 0;
+    for (size_t k = 0; k < n; k++) {
+        memcpy(b->rv + 2 * off[k], r[k].v, 2 * r[k].n * sizeof *ev);
+        memcpy(b->rm + 2 * off[k], r[k].m, 2 * r[k].n * sizeof *ev);
+        off[k + 1] = off[k] + r[k].n;
+    }
+    *out = b;
+    return DFL_OK;
+}
+
 void dfl_rfunc_batch_free(dfl_rfunc_batch *b)
 {
     if (!b) return;
     free(b->tri);
+    free(b->roff);
+    free(b->rv);
     dfl_field_destroy(&b->ref);
     free(b->mem);
     free(b);

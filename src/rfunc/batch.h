@@ -8,8 +8,9 @@
  * (dfl_rfunc_batch_new_opts).  Not batched (per-point path): the smooth
  * trims of eq. 5 (a second root and division per segment), R-conjunction
  * (a sequential fold with a root per part), the corrected join (vertex
- * terms and their guards) and regions.  Point parts and triangles have
- * kernels of their own (dfl_rfunc_batch_points, dfl_rfunc_batch_triangles).  It computes the same function as
+ * terms and their guards) and mixed part kinds.  Point parts, triangles
+ * and convex regions have kernels of their own (dfl_rfunc_batch_points,
+ * dfl_rfunc_batch_triangles, dfl_rfunc_batch_regions).  It computes the same function as
  * rfunc/rfield.h's dfl_rfield_polyline(2, ..., DFL_RFUNC_REQUIV, p,
  * DFL_RFUNC_TRIM_DISK) (to rounding, ~1e-13 relative) and exists for
  * throughput: `make bench` measures it against a naive scalar loop and
@@ -51,6 +52,7 @@
 
 #include "core/status.h"
 #include "field/field.h"
+#include "rfunc/region.h"
 #include "rfunc/segment.h"
 #include "rfunc/tri3d.h"
 
@@ -82,6 +84,11 @@ dfl_status dfl_rfunc_batch_points(int dim, const double *c, size_t n, int p,
  * DFL_E_NOMEM. */
 dfl_status dfl_rfunc_batch_triangles(const dfl_rfunc_tri *t, size_t n, int p,
                                      dfl_rfunc_batch **out, dfl_err *err);
+/* R-equivalence of n >= 2 convex regions r[0..n-1] (rfunc/region.h; 2D).
+ * Points inside a region fall back (u = 0 there).  DFL_E_INPUT for bad p;
+ * DFL_E_NOMEM. */
+dfl_status dfl_rfunc_batch_regions(const dfl_rfunc_region *r, size_t n, int p,
+                                   dfl_rfunc_batch **out, dfl_err *err);
 void dfl_rfunc_batch_free(dfl_rfunc_batch *b);
 
 size_t dfl_rfunc_batch_segments(const dfl_rfunc_batch *b);

@@ -366,7 +366,7 @@ bool dfl_rfield_is_fast(const dfl_field *f)
 }
 
 /* The cases rfunc/batch.h computes: R-equivalence of point parts only, of
- * triangles only (one eq. 4 trim), or
+ * convex regions only, of triangles only (one eq. 4 trim), or
  * of 2D or 3D segments, all with the same eq. 4 trim (disk or strip), forming a chain (segment k
  * starts exactly where k-1 ends).  Then the segments are those of the open
  * polyline a_0, ..., a_{n-1}, b_{n-1} (a closed polyline is the open one
@@ -382,10 +382,20 @@ static dfl_status build_batch(const dfl_rfield *f, dfl_rfunc_batch **out, dfl_er
      * to rounding; there is nothing to vectorize over either. */
     if (!f->fast || f->join != DFL_RFUNC_REQUIV || f->n < 2) return DFL_OK;
     const int dim = f->dim;
-    size_t npt = 0, ntri = 0;
+    size_t npt = 0, ntri = 0, nreg = 0;
     for (size_t k = 0; k < f->n; k++) {
         npt += f->parts[k].kind == PART_POINT;
         ntri += f->parts[k].kind == PART_TRIANGLE;
+        nreg += f->parts[k].kind == PART_REGION;
+    }
+    if (nreg == f->n) {
+        /* only convex regions: the region kernel */
+        dfl_rfunc_region *rg = malloc(f->n * sizeof *rg);
+        if (!rg) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+        for (size_t k = 0; k < f->n; k++) rg[k] = f->parts[k].u.reg;
+        dfl_status st = dfl_rfunc_batch_regions(rg, f->n, f->p, out, err);
+        free(rg);
+        return st;
     }
     if (ntri == f->n) {
         /* only triangles: the triangle kernel, when their trims allow */

@@ -17,8 +17,8 @@
  * Fast path.  A field that is exactly a 2D or 3D polyline of at least two
  * segments (its parts are segments, all with the same eq. 4 trim, disk or
  * strip, each starting where the previous one ends; open or closed) joined
- * by R-equivalence (or a set of at least two point parts, or of triangles
- * with one eq. 4 trim, joined so)
+ * by R-equivalence (or a set of at least two point parts, of convex
+ * regions, or of triangles with one eq. 4 trim, joined so)
  * evaluates through the vectorized evaluator of rfunc/batch.h (one call
  * per batch of points), which agrees with the per-point
  * accumulator to rounding (1e-12 relative; gradients relative to the sum

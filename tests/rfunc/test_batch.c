@@ -468,3 +468,43 @@ Test(rfunc_batch, triangles_kernel_agrees)
             dfl_field_destroy(&fs);
         }
 }
+
+/* The region kernel against the per-point path (values 1e-12, gradients
+ * 1e-12 (1 + |grad u|): the regions are apart, so few contributions
+ * cancel), with points inside a region (u = 0). */
+Test(rfunc_batch, regions_kernel_agrees)
+{
+    uint64_t rng = 7;
+    for (int p = 1; p <= 12; p += 11) {
+        dfl_field ff, fs;
+        for (int fast = 0; fast < 2; fast++) {
+            dfl_rfield *r;
+            cr_assert_eq(dfl_rfield_new(2, DFL_RFUNC_REQUIV, p, &r, NULL), DFL_OK);
+            dfl_rfield_set_fast(r, fast);
+            for (int i = 0; i < 12; i++) {
+                const double cx = (i % 4 + 0.5) / 4, cy = (i / 4 + 0.5) / 3, h = 0.08;
+                /* a pentagon */
+                double q[10];
+                for (int j = 0; j < 5; j++) {
+                    q[2 * j] = cx + h * cos(2 * acos(-1.0) * j / 5 + i);
+                    q[2 * j + 1] = cy + h * sin(2 * acos(-1.0) * j / 5 + i);
+                }
+                cr_assert_eq(dfl_rfield_add_region(r, q, 5, NULL), DFL_OK);
+            }
+            cr_assert_eq(dfl_rfield_finish(&r, fast ? &ff : &fs, NULL), DFL_OK);
+        }
+        cr_assert(dfl_rfield_is_fast(&ff) && !dfl_rfield_is_fast(&fs));
+        for (int i = 0; i < 100; i++) {
+            double x[2] = {dfl_rng_splitmix(&rng, -0.3, 1.3), dfl_rng_splitmix(&rng, -0.3, 1.3)};
+            if (i == 0) x[0] = 0.125, x[1] = 1.0 / 6; /* inside the first region */
+            double ga[2], gb[2];
+            const double ua = dfl_field_eval1(&ff, x, ga), ub = dfl_field_eval1(&fs, x, gb);
+            if (i == 0) cr_expect_eq(ua, 0.0);
+            cr_assert(fabs(ua - ub) <= 1e-12 * ub, "p %d point %d: %.17g vs %.17g", p, i, ua, ub);
+            for (int j = 0; j < 2; j++)
+                cr_assert(fabs(ga[j] - gb[j]) <= 1e-12 * (1 + fabs(gb[j])), "p %d point %d", p, i);
+        }
+        dfl_field_destroy(&ff);
+        dfl_field_destroy(&fs);
+    }
+}
