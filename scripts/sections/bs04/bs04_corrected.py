@@ -135,7 +135,18 @@ def render(ctx):
                    + ("stays positive on the whole grid and along the bisector up to 10 L for "
                       "α = 90°–180°, so Fig. 14 is reproduced literally there"
                       if ok else "does not stay positive everywhere (see the table)")
-                   + "; at p = 7 and 12 strip trims are undefined beyond the onset in the table.\n\n")
+                   + ". ")
+        st7 = [b for b in und if b[0] == "strip" and b[2] > 2]
+        if st7:
+            bad = sorted({b[1] for b in st7 if b[3] > 0})
+            good = sorted({b[1] for b in st7 if b[3] == 0})
+            md += (f"At p = {', '.join(str(p) for p in sorted({b[2] for b in st7}))} strip trims "
+                   + (f"become undefined beyond the onset in the table at α = "
+                      f"{', '.join(f'{a:g}°' for a in bad)}" if bad else "stay defined")
+                   + (f" and stay defined at α = {', '.join(f'{a:g}°' for a in good)}" if bad and good
+                      else "")
+                   + ".")
+        md += "\n\n"
 
     body = [[part, a, p, _f(e, "band_gdef_max"), _f(c, "band_gdef_max"),
              _f(e, "band_linf"), _f(c, "band_linf"), _f(e, "vertex_gdef_max"),
