@@ -154,16 +154,16 @@ def render(ctx):
             for part, a, p, e, c in _pairs(by, parts, alphas, ps)]
     md += ("**Elsewhere** (grid nodes; *band*: 0 < d ≤ 0.1 L and |x − O| ≥ 0.25 L, near regular "
            "points; *vertex*: |x − O| < 0.25 L outside the hatched sector; d = exact distance to the "
-           f"union; max | |∇u| − 1 | and max |u − d|; eq. 20 columns are {G20}):\n\n")
-    md += dflio.md_table(["parts", "α (°)", "p", "band: eq. 6", "band: eq. 20", "band |u−d|: eq. 6",
-                          "band |u−d|: eq. 20", "vertex: eq. 6", "vertex: eq. 20",
-                          "vertex |u−d|: eq. 6", "vertex |u−d|: eq. 20"], body)
+           "union; max | |∇u| − 1 | and max |u − d|):\n\n")
+    md += dflio.md_table(["parts", "α (°)", "p", "band: eq. 6", f"band: {G20}", "band |u−d|: eq. 6",
+                          f"band |u−d|: {G20}", "vertex: eq. 6", f"vertex: {G20}",
+                          "vertex |u−d|: eq. 6", f"vertex |u−d|: {G20}"], body)
     exb = [b for b in body if b[0] == "exact"]
     never = all(b[4] <= b[3] + 1e-12 for b in exb)
     trb = [b for b in body if b[0] != "exact"]
     md += "\n\n"
     if exb:
-        md += ("With exact parts, eq. 20's defect near regular points is "
+        md += (f"With exact parts, {G20}'s defect (here the same function as {L20}) near regular points is "
                + ("never larger than eq. 6's" if never else "sometimes larger than eq. 6's (see table)")
                + ". ")
     if trb:
