@@ -352,37 +352,8 @@ DFL_INLINE void region_term(double x, double y, const dfl_rfunc_batch *b, size_t
     *Vy += q * gy;
 }
 
-DFL_INLINE void sums_reg_p(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out,
-                           const int p)
-{
-    for (size_t i0 = 0; i0 < m; i0 += LANES) {
-        const size_t c = m - i0 < LANES ? m - i0 : LANES;
-        double X[LANES], Y[LANES], S[LANES] = {0}, Vx[LANES] = {0}, Vy[LANES] = {0};
-        for (size_t l = 0; l < LANES; l++) {
-            const size_t i = i0 + (l < c ? l : c - 1);
-            X[l] = pts[2 * i];
-            Y[l] = pts[2 * i + 1];
-        }
-        for (size_t k = 0; k < b->n; k++) {
-#pragma omp simd
-            for (int l = 0; l < LANES; l++) region_term(X[l], Y[l], b, k, p, &S[l], &Vx[l], &Vy[l]);
-        }
-        for (size_t l = 0; l < c; l++) {
-            out[3 * (i0 + l)] = S[l];
-            out[3 * (i0 + l) + 1] = Vx[l];
-            out[3 * (i0 + l) + 2] = Vy[l];
-        }
-    }
-}
-
-DFL_CLONES
-static void sums_reg(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
-{
-    if (b->p == 2) sums_reg_p(b, m, pts, out, 2);
-    else sums_reg_p(b, m, pts, out, b->p);
-}
-
-/* The strip, 3D and point kernels' sums: 1 + dim doubles per point (S, V). */
+/* The strip, 3D, point (strip = -1) and region (strip = -2) kernels' sums:
+ * 1 + dim doubles per point (S, V). */
 DFL_INLINE void sums_gen_p(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out,
                            const int p, const int dim, const int strip)
 {
@@ -398,7 +369,11 @@ DFL_INLINE void sums_gen_p(const dfl_rfunc_batch *b, size_t m, const double *pts
             if (dim == 3) Z[l] = pts[3 * i + 2];
         }
         for (size_t k = 0; k < n; k++) {
-            if (strip < 0) {
+            if (strip == -2) {
+#pragma omp simd
+                for (int l = 0; l < LANES; l++)
+                    region_term(X[l], Y[l], b, k, p, &S[l], &Vx[l], &Vy[l]);
+            } else if (strip < 0) {
 #pragma omp simd
                 for (int l = 0; l < LANES; l++)
                     point_term(X[l], Y[l], Z[l], b, k, p, dim, &S[l], &Vx[l], &Vy[l], &Vz[l]);
@@ -492,6 +467,12 @@ static void sums_disk2(const dfl_rfunc_batch *b, size_t m, const double *pts, do
     case 12: sums_p(b, m, pts, out, 12); break;
     default: sums_p(b, m, pts, out, b->p); break;
     }
+}
+
+DFL_CLONES
+static void sums_reg(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+{
+    DFL_GEN_CASES(2, -2)
 }
 
 DFL_CLONES
