@@ -23,14 +23,23 @@
  *   disk_smooth | strip | strip_smooth), p, sector_nr (40), sector_nt (21),
  *   sector_rmax (0.5, relative to L), band (0.1 L), vertex_radius (0.25 L);
  *   [grid] n, lo, hi (2D); [output] vti, exr, compress, half.
+ * Three joins per point: eq. 6 (correction "none"), dflab's guarded eq. 20
+ * (correction "guarded") and bs04's eq. 20 as printed ("eq20", NaN where
+ * its radicand <= 0; NaN nodes and samples are counted, not measured).
+ * Extra keys: case_theta (80 degrees), case_r (0.5 L), onset_rmax (10 L).
+ * Extra columns: correction, sector_undefined, undefined_count and
+ *   undefined_share (grid), onset_radius (eq20: first NaN on the hatched
+ *   bisector, bisected, / L) and onset_radius_theory (disk parts: the
+ *   closed form of rfunc/join.h), reflex_linf (max |u - d| off the convex
+ *   sector), case_u and case_d (u / r and d / r at case_theta, case_r).
  * Rows: one per join (requiv, requiv_corrected): alpha, p, parts, join,
  *   sector_points, sector_gdef_max / _min, sector_gdef_theory (exact
  *   parts), sector_gdef_at_rmin (max over the innermost ring, r = rmax L /
  *   nr), sector_value_relerr_max (|u - q| / q), sector_part_gdef_max (max
  *   ||grad h_i| - 1| in the sector), band_ and vertex_ count, gdef_max,
  *   gdef_mean, linf.  Files: requiv<tag>.vti
- * /.exr and corrected<tag>.vti/.exr (value, gradient, grad_norm, error =
- * u - d, reference = d).
+ * /.exr, corrected<tag>.vti/.exr and eq20<tag>.vti/.exr (value, gradient,
+ * grad_norm, error = u - d, reference = d).
  */
 #include <math.h>
 #include <stdio.h>
@@ -42,11 +51,13 @@
 #include "harness/field_out.h"
 #include "cfg/grid_cfg.h"
 #include "bs04/vjoin.h"
+#include "core/vec.h"
 
 typedef struct cj_keys {
     dfl_vjoin vj;
     long p, nr, nt;
     double rmax, band, vradius;
+    double case_theta, case_r, onset_rmax;
     dfl_grid grid;
     dfl_field_write_opts oo;
 } cj_keys;
@@ -64,12 +75,18 @@ static dfl_status read_keys(const dfl_cfg *cfg, cj_keys *k, dfl_err *err)
     if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.1, 1e-9, 100, &k->band, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "vertex_radius", 0.25, 0, 100, &k->vradius, err)))
         return st;
+    if ((st = dfl_cfg_double_opt(cfg, "study", "case_theta", 80, 0, 360, &k->case_theta, err)))
+        return st;
+    if ((st = dfl_cfg_double_opt(cfg, "study", "case_r", 0.5, 1e-9, 100, &k->case_r, err)))
+        return st;
+    if ((st = dfl_cfg_double_opt(cfg, "study", "onset_rmax", 10, 1e-6, 1000, &k->onset_rmax, err)))
+        return st;
     if ((st = dfl_grid_from_cfg(cfg, "grid", 2, &k->grid, err))) return st;
     return dfl_field_out_from_cfg(cfg, &k->oo, err);
 }
 
 typedef struct sector_stats {
-    long count;
+    long count, undefined;
     double gdef_max, gdef_min, gdef_rmin, verr_max, part_gdef_max;
 } sector_stats;
 
@@ -118,6 +135,11 @@ static void measure_sector(const cj_keys *k, const dfl_field *f, size_t m, const
     for (size_t i = 0; i < m; i++) {
         const double *x = pts + 2 * i;
         const double q = hypot(x[0], x[1]);
+        if (isnan(val[i])) {
+            /* eq. 20 undefined (correction = eq20): counted, not measured */
+            ss->undefined++;
+            continue;
+        }
         const double gdef = fabs(hypot(grad[2 * i], grad[2 * i + 1]) - 1.0);
         double h[2], gh[4];
         dfl_vjoin_parts(&k->vj, x, h, gh);
@@ -144,17 +166,37 @@ static void region_add(region_stats *r, double gdef, double err)
 }
 
 /* Grid regions of the header: band (near regular points) and vertex. */
+/* 1 when x lies in the closed convex sector between the segments (the
+ * smaller angle alpha'); the reflex side is its complement. */
+static bool in_convex(const dfl_vjoin *vj, const double *x)
+{
+    const double c1 = vj->e1[0] * x[1] - vj->e1[1] * x[0];
+    const double c2 = vj->e2[0] * x[1] - vj->e2[1] * x[0];
+    return vj->alpha <= DFL_PI ? c1 >= 0.0 && c2 <= 0.0 : c1 <= 0.0 && c2 >= 0.0;
+}
+
+typedef struct grid_extra {
+    long undefined;   /* nodes where u is NaN (eq. 20 undefined) */
+    double reflex_linf; /* max |u - d| over defined nodes off the convex sector */
+} grid_extra;
+
 static void measure_grid(const cj_keys *k, const double *u, const double *gu, const double *d,
-                         region_stats *band, region_stats *vert)
+                         region_stats *band, region_stats *vert, grid_extra *ge)
 {
     memset(band, 0, sizeof *band);
     memset(vert, 0, sizeof *vert);
+    memset(ge, 0, sizeof *ge);
     const size_t m = dfl_grid_size(&k->grid);
     const double L = k->vj.length;
     for (size_t i = 0; i < m; i++) {
         double x[3];
         dfl_grid_node(&k->grid, i, x);
+        if (isnan(u[i])) {
+            ge->undefined++;
+            continue;
+        }
         if (!(d[i] > 0.0)) continue; /* on the set: gradient is a convention */
+        if (!in_convex(&k->vj, x)) ge->reflex_linf = fmax(ge->reflex_linf, fabs(u[i] - d[i]));
         const double gdef = fabs(hypot(gu[2 * i], gu[2 * i + 1]) - 1.0);
         const double rv = hypot(x[0], x[1]);
         if (rv >= k->vradius * L && d[i] <= k->band * L)
@@ -168,17 +210,64 @@ static void measure_grid(const cj_keys *k, const double *u, const double *gu, co
     if (!vert->count) vert->gdef_max = vert->linf = NAN;
 }
 
-static dfl_status put_row(dfl_table *t, const cj_keys *k, dfl_rfunc_join join,
-                          const sector_stats *ss, const region_stats *band,
-                          const region_stats *vert, dfl_err *err)
+/* Onset radius / L of eq. 20's undefined region on the bisector of the
+ * hatched sector: the first of 4000 radii up to onset_rmax L where u is
+ * NaN, refined by bisection (60 steps); NaN when u is defined on the whole
+ * scan.  The closed form (disk trim, rfunc/join.h): h_i = q sqrt(1 + 2 a
+ * rho + rho^2) with a = cos(alpha'/2) on the bisector, radicand 0 at
+ * rho* = sqrt(a^2 + 2^(2/p) - 1) - a. */
+static double onset_measured(const cj_keys *k, const dfl_field *f)
 {
+    double t0, t1;
+    int nrays;
+    dfl_vjoin_hatched_range(&k->vj, &t0, &t1, &nrays);
+    const double t = 0.5 * (t0 + t1), L = k->vj.length;
+    const double c = nrays == 2 ? -k->vj.e1[1] : cos(t), s = nrays == 2 ? k->vj.e1[0] : sin(t);
+    const int n = 4000;
+    double lo = 0.0, hi = NAN;
+    for (int i = 1; i <= n && isnan(hi); i++) {
+        const double r = k->onset_rmax * L * i / n, x[2] = {r * c, r * s};
+        if (isnan(dfl_field_eval1(f, x, NULL))) hi = r;
+        else lo = r;
+    }
+    if (isnan(hi)) return NAN;
+    for (int it = 0; it < 60; it++) {
+        const double r = 0.5 * (lo + hi), x[2] = {r * c, r * s};
+        if (isnan(dfl_field_eval1(f, x, NULL))) hi = r;
+        else lo = r;
+    }
+    return 0.5 * (lo + hi) / L;
+}
+
+static double onset_theory(const cj_keys *k)
+{
+    if (k->vj.parts != 1 + DFL_RFUNC_TRIM_DISK) return NAN;
+    const double ac = fmin(k->vj.alpha, 2.0 * DFL_PI - k->vj.alpha);
+    const double a = cos(0.5 * ac);
+    return sqrt(a * a + pow(2.0, 2.0 / (double)k->p) - 1.0) - a;
+}
+
+typedef struct variant_stats {
+    sector_stats ss;
+    region_stats band, vert;
+    grid_extra ge;
+    double onset, case_u, case_d;
+} variant_stats;
+
+static dfl_status put_row(dfl_table *t, const cj_keys *k, dfl_rfunc_join join,
+                          const char *corr, const variant_stats *vs, dfl_err *err)
+{
+    const sector_stats *ss = &vs->ss;
+    const region_stats *band = &vs->band, *vert = &vs->vert;
     const int p = (int)k->p;
     const double theory = join == DFL_RFUNC_REQUIV ? 1.0 - pow(2.0, -1.0 / p) : 0.0;
+    const bool eq20 = strcmp(corr, "eq20") == 0;
     dfl_status st = dfl_table_row(t, err);
     if (!st) st = dfl_table_set_double(t, "alpha", k->vj.alpha_deg, err);
     if (!st) st = dfl_table_set_int(t, "p", p, err);
     if (!st) st = dfl_table_set_string(t, "parts", dfl_vjoin_part_names[k->vj.parts], err);
     if (!st) st = dfl_table_set_string(t, "join", dfl_rfunc_join_name(join), err);
+    if (!st) st = dfl_table_set_string(t, "correction", corr, err);
     if (!st) st = dfl_table_set_int(t, "sector_points", ss->count, err);
     if (!st) st = dfl_table_set_double(t, "sector_gdef_max", ss->gdef_max, err);
     if (!st) st = dfl_table_set_double(t, "sector_gdef_min", ss->gdef_min, err);
@@ -194,6 +283,15 @@ static dfl_status put_row(dfl_table *t, const cj_keys *k, dfl_rfunc_join join,
     if (!st) st = dfl_table_set_double(t, "vertex_gdef_max", vert->gdef_max, err);
     if (!st) st = dfl_table_set_double(t, "vertex_gdef_mean", vert->gdef_mean, err);
     if (!st) st = dfl_table_set_double(t, "vertex_linf", vert->linf, err);
+    const double m = (double)dfl_grid_size(&k->grid);
+    if (!st) st = dfl_table_set_int(t, "sector_undefined", ss->undefined, err);
+    if (!st) st = dfl_table_set_int(t, "undefined_count", vs->ge.undefined, err);
+    if (!st) st = dfl_table_set_double(t, "undefined_share", (double)vs->ge.undefined / m, err);
+    if (!st) st = dfl_table_set_double(t, "onset_radius", eq20 ? vs->onset : NAN, err);
+    if (!st) st = dfl_table_set_double(t, "onset_radius_theory", eq20 ? onset_theory(k) : NAN, err);
+    if (!st) st = dfl_table_set_double(t, "reflex_linf", vs->ge.reflex_linf, err);
+    if (!st) st = dfl_table_set_double(t, "case_u", vs->case_u, err);
+    if (!st) st = dfl_table_set_double(t, "case_d", vs->case_d, err);
     return st;
 }
 
@@ -225,18 +323,28 @@ static dfl_status cj_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table
         dfl_grid_node(&k.grid, i, x);
         b.ref[i] = dfl_vjoin_dist(&k.vj, x, NULL);
     }
-    static const dfl_rfunc_join joins[2] = {DFL_RFUNC_REQUIV, DFL_RFUNC_REQUIV_CORRECTED};
-    static const char *const stems[2] = {"requiv", "corrected"};
-    for (int j = 0; j < 2 && st == DFL_OK; j++) {
-        st = dfl_vjoin_field(&k.vj, joins[j], (int)k.p, &f, err);
+    /* eq. 6, dflab's guarded eq. 20, bs04's eq. 20 as printed */
+    static const dfl_rfunc_join joins[3] = {DFL_RFUNC_REQUIV, DFL_RFUNC_REQUIV_CORRECTED,
+                                            DFL_RFUNC_REQUIV_CORRECTED};
+    static const dfl_rfunc_correction corrs[3] = {DFL_RFUNC_CORR_GUARDED, DFL_RFUNC_CORR_GUARDED,
+                                                  DFL_RFUNC_CORR_EQ20};
+    static const char *const cnames[3] = {"none", "guarded", "eq20"};
+    static const char *const stems[3] = {"requiv", "corrected", "eq20"};
+    const double th = k.case_theta * (DFL_PI / 180.0), rc = k.case_r * k.vj.length;
+    const double xc[2] = {rc * cos(th), rc * sin(th)};
+    for (int j = 0; j < 3 && st == DFL_OK; j++) {
+        st = dfl_vjoin_field_corr(&k.vj, joins[j], corrs[j], (int)k.p, &f, err);
         if (st != DFL_OK) break;
-        sector_stats ss;
-        region_stats band, vert;
-        measure_sector(&k, &f, nsec, spts, sval, sgrad, &ss);
+        variant_stats vs;
+        memset(&vs, 0, sizeof vs);
+        measure_sector(&k, &f, nsec, spts, sval, sgrad, &vs.ss);
+        vs.onset = j == 2 ? onset_measured(&k, &f) : NAN;
+        vs.case_u = dfl_field_eval1(&f, xc, NULL) / rc;
+        vs.case_d = dfl_vjoin_dist(&k.vj, xc, NULL) / rc;
         st = dfl_field_sample(&f, &k.grid, ctx->threads, b.u, b.gu, err);
         if (st == DFL_OK) {
-            measure_grid(&k, b.u, b.gu, b.ref, &band, &vert);
-            st = put_row(table, &k, joins[j], &ss, &band, &vert, err);
+            measure_grid(&k, b.u, b.gu, b.ref, &vs.band, &vs.vert, &vs.ge);
+            st = put_row(table, &k, joins[j], cnames[j], &vs, err);
         }
         if (st == DFL_OK) st = dfl_field_out_write(ctx, stems[j], &k.grid, b.u, b.gu, b.ref, &k.oo, err);
         dfl_field_destroy(&f);

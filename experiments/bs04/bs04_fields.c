@@ -5,14 +5,16 @@
  * the smooth composition eq. 5), sampled on a grid, with |grad u|
  * statistics and errors against the exact (unsigned) distance to the set.
  *
- * Keys.  [study]:
- *   segment_a = x0 y0; x1 y1     first segment (end points)
- *   segment_b = x0 y0; x1 y1     second segment; when it starts where A
- *                                ends, that point is the shared vertex of
- *                                the corrected join
+ * Keys.  [field] kind = rfunc (cfg/rfunc_cfg.h): the joined field of Fig.
+ * 1(c), so `dflab probe` evaluates it:
+ *   vertices  = x0 y0; x1 y1; x2 y2   the open polyline A = v0-v1, B = v1-v2
+ *                                (v1 is the shared vertex of the corrected join)
  *   join      = requiv | rconj | requiv_corrected   (default requiv)
+ *   correction = guarded | eq20  (corrected join; default guarded)
  *   p         = order (default 2; rconj needs >= 2)
  *   trim      = disk | disk_smooth | strip | strip_smooth   (default disk)
+ * Fields a and b are A's and B's own fields (same trim).
+ * [study]:
  *   band      = 0.1   |grad u| and errors also over the nodes with exact
  *                     distance d <= band (> 0)
  * [grid] n, lo, hi (2D; grid_cfg.h), [output] (field_out.h).
@@ -48,6 +50,7 @@
 #include "geom/segdist.h"
 
 typedef struct fields_keys {
+    dfl_rfunc_field_spec spec; /* [field] (owned) */
     double seg[2][4];   /* a0 a1 b0 b1 per segment */
     dfl_rfunc_join join;
     dfl_rfunc_trim trim;
@@ -61,13 +64,21 @@ static dfl_status read_keys(const dfl_cfg *cfg, fields_keys *k, dfl_err *err)
 {
     dfl_status st;
     memset(k, 0, sizeof *k);
-    static const char *const seg_what = "the 2 end points of a segment";
-    if ((st = dfl_points_n_from_cfg(cfg, "study", "segment_a", 2, 2, k->seg[0], seg_what, err)))
-        return st;
-    if ((st = dfl_points_n_from_cfg(cfg, "study", "segment_b", 2, 2, k->seg[1], seg_what, err)))
-        return st;
-    if ((st = dfl_rfunc_join_p_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
-    if ((st = dfl_rfunc_trim_from_cfg(cfg, "study", &k->trim, err))) return st;
+    if ((st = dfl_rfunc_spec_from_kind_cfg(cfg, "field", "bs04_fields", &k->spec, err))) return st;
+    const dfl_rfunc_field_spec *sp = &k->spec;
+    if (sp->dim != 2 || sp->n != 3 || sp->closed || sp->curve || sp->nregion || sp->npoints ||
+        sp->ntris)
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "%s: [field] of bs04_fields: expected an open 2D polyline of 3"
+                           " vertices (two segments), nothing else",
+                           dfl_cfg_path(cfg));
+    if ((st = dfl_rfunc_join_check(sp->join, sp->p, err)))
+        return dfl_cfg_err_at(cfg, "field", "p", st, err);
+    memcpy(k->seg[0], sp->v, 4 * sizeof *sp->v);
+    memcpy(k->seg[1], sp->v + 2, 4 * sizeof *sp->v);
+    k->join = sp->join;
+    k->p = sp->p;
+    k->trim = sp->trim;
     if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.1, 0.0, 1e300, &k->band, err))) return st;
     if (!(k->band > 0.0))
         return dfl_cfg_reject(cfg, "study", "band", err, "expected band > 0, got %g", k->band);
@@ -200,13 +211,11 @@ static dfl_status fields_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
     memset(f, 0, sizeof f);
     memset(b, 0, sizeof b);
     dfl_status st = read_keys(cfg, &k, err);
-    if (st == DFL_OK) {
-        dfl_cfg_where(cfg, "study", "segment_a", w[0], sizeof w[0]);
-        dfl_cfg_where(cfg, "study", "segment_b", w[1], sizeof w[1]);
-    }
-    /* building validates the geometry (degenerate segments) before any file */
-    for (int i = 0; i < 3 && st == DFL_OK; i++)
-        st = build(&k, i + 1, w[i == 1], &f[i], err);
+    if (st == DFL_OK) dfl_cfg_where(cfg, "field", "vertices", w[0], sizeof w[0]);
+    /* building validates the geometry (degenerate segments) before any
+     * file; the join is [field]'s own field */
+    for (int i = 0; i < 2 && st == DFL_OK; i++) st = build(&k, i + 1, w[0], &f[i], err);
+    if (st == DFL_OK) st = dfl_rfunc_field_from_spec(cfg, "field", &k.spec, &f[2], err);
     if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
     if (st != DFL_OK) goto done;
 
@@ -282,6 +291,7 @@ static dfl_status fields_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
 done:
     for (int i = 0; i < 3; i++) dfl_field_bufs_free(&b[i]);
     for (int i = 0; i < 3; i++) dfl_field_destroy(&f[i]); /* zeroed when not built */
+    dfl_rfunc_spec_free(&k.spec);
     return st;
 }
 

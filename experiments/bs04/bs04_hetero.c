@@ -18,12 +18,14 @@
  * (the other parts add (u/h_j)^(p+1) |grad h_j|, of higher order): the rows
  * report the largest |u/delta - 1| and ||grad u| - 1| over those samples.
  *
- * Keys ([study]):
- *   region  = x y; x y; ...     convex polygon (>= 3 vertices)
- *   segment = x y; x y          end points
- *   point   = x y
+ * Keys.  [field] kind = rfunc (rfunc_cfg.h; the field the figure shows,
+ * so `dflab probe` evaluates it) with exactly these parts:
+ *   region   = x y; x y; ...    convex polygon (>= 3 vertices)
+ *   vertices = x y; x y         the segment's end points
+ *   points   = x y              the point
  *   join, p                     (default requiv, 2)
- *   trim    = disk              the segment's trim
+ *   trim     = disk             the segment's trim
+ * [study]:
  *   band    = 0.05
  *   delta   = 1e-4              normal offset of the boundary samples (> 0)
  *   boundary_samples = 200      per part
@@ -54,7 +56,8 @@
 
 
 typedef struct keys {
-    double *region;
+    dfl_rfunc_field_spec spec; /* [field], owns region */
+    const double *region;
     size_t nreg;
     double seg[4], pt[2];
     dfl_rfunc_join join;
@@ -71,12 +74,23 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 {
     dfl_status st;
     memset(k, 0, sizeof *k);
-    if ((st = dfl_cfg_points(cfg, "study", "region", 2, 3, &k->region, &k->nreg, err))) return st;
-    if ((st = dfl_points_n_from_cfg(cfg, "study", "segment", 2, 2, k->seg, "2 end points", err)))
-        return st;
-    if ((st = dfl_cfg_vec(cfg, "study", "point", 2, k->pt, err))) return st;
-    if ((st = dfl_rfunc_join_p_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
-    if ((st = dfl_rfunc_trim_from_cfg(cfg, "study", &k->trim, err))) return st;
+    if ((st = dfl_rfunc_spec_from_kind_cfg(cfg, "field", "bs04_hetero", &k->spec, err))) return st;
+    const dfl_rfunc_field_spec *sp = &k->spec;
+    if (sp->dim != 2 || sp->nregion < 3 || sp->n != 2 || sp->closed || sp->curve ||
+        sp->npoints != 1 || sp->ntris)
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "%s: [field] of bs04_hetero: expected a region, a segment (vertices"
+                           " = 2 end points) and one point (points), nothing else",
+                           dfl_cfg_path(cfg));
+    if ((st = dfl_rfunc_join_check(sp->join, sp->p, err)))
+        return dfl_cfg_err_at(cfg, "field", "p", st, err);
+    k->region = sp->region;
+    k->nreg = sp->nregion;
+    memcpy(k->seg, sp->v, sizeof k->seg);
+    memcpy(k->pt, sp->points, sizeof k->pt);
+    k->join = sp->join;
+    k->p = sp->p;
+    k->trim = sp->trim;
     if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.05, 0.0, 1e300, &k->band, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "delta", 1e-4, 1e-12, 1.0, &k->delta, err)))
         return st;
@@ -108,17 +122,6 @@ static void probe(const dfl_field *f, const double *x, double delta, bstat *b)
     const double u = dfl_field_eval1(f, x, g);
     b->ratio = fmax(b->ratio, fabs(u / delta - 1.0));
     b->grad = fmax(b->grad, fabs(hypot(g[0], g[1]) - 1.0));
-}
-
-/* The region, the segment and the point, in that order (the join's part
- * order); geometry errors name the key. */
-static dfl_status add_parts(const dfl_cfg *cfg, const keys *k, dfl_rfield *rf, dfl_err *err)
-{
-    dfl_status st = dfl_rfield_add_region(rf, k->region, k->nreg, err);
-    if (st) return dfl_cfg_err_at(cfg, "study", "region", st, err);
-    st = dfl_rfield_add_segment(rf, k->seg, k->seg + 2, k->trim, err);
-    if (st) return dfl_cfg_err_at(cfg, "study", "segment", st, err);
-    return dfl_rfield_add_point(rf, k->pt, err);
 }
 
 /* Samples at offset delta along the outward normals of the parts (see the
@@ -172,16 +175,11 @@ static dfl_status hetero_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
     double *outline = NULL;
     unsigned char *mask = NULL;
     char path[4400];
-    dfl_rfield *rf = NULL;
+    /* the region, the segment and the point, in that order (rfunc_cfg.h) */
     dfl_status st = read_keys(cfg, &k, err);
-    if (!st) st = dfl_rfield_new(2, k.join, k.p, &rf, err);
-    if (!st) st = add_parts(cfg, &k, rf, err);
+    if (!st) st = dfl_rfunc_field_from_spec(cfg, "field", &k.spec, &f, err);
     if (!st) st = dfl_cfg_check_used(cfg, err);
-    if (st) {
-        dfl_rfield_free(rf);
-        goto done;
-    }
-    if ((st = dfl_rfield_finish(&rf, &f, err))) goto done;
+    if (st) goto done;
 
     const size_t m = dfl_grid_size(&k.grid);
     mask = malloc(m);
@@ -255,7 +253,8 @@ static dfl_status hetero_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
 done:
     dfl_field_destroy(&f);
     dfl_field_bufs_free(&b);
-    free(mask), free(outline), free(k.region);
+    free(mask), free(outline);
+    dfl_rfunc_spec_free(&k.spec);
     return st;
 }
 

@@ -6,10 +6,13 @@
  * one CSV row per point.
  *
  * Keys.
- *   [implicit] kind = ellipse, a, b      semi-axes (> 0) along x and y
- *   [study] m      = order, 1..6 (the cost grows like the Taylor degree
+ *   [field] kind = normalized (cfg/rfunc_cfg.h; the figure's field, so
+ *           `dflab probe` evaluates it):
+ *           implicit = implicit   the section of the implicit function
+ *           m      = order, 1..6 (the cost grows like the Taylor degree
  *                    m(m+1)/2 to the power 2 dim, see normalize.h)
- *           points = 64       boundary points p_i = (a cos th, b sin th),
+ *   [implicit] kind = ellipse, a, b      semi-axes (> 0) along x and y
+ *   [study] points = 64       boundary points p_i = (a cos th, b sin th),
  *                             th = 2 pi (i + 1/2) / points; rays along the
  *                             outward normal (slope +1) and inward (-1)
  *           K      = 8        jet order (> m, <= 24)
@@ -56,7 +59,9 @@
 #include "harness/experiment.h"
 #include "field/sample.h"
 #include "harness/field_out.h"
+#include "cfg/field_cfg.h"
 #include "cfg/grid_cfg.h"
+#include "cfg/rfunc_cfg.h"
 #include "field/metrics.h"
 #include "field/normorder.h"
 #include "rfunc/normalize.h"
@@ -75,14 +80,15 @@ typedef struct rec_keys {
 
 static dfl_status read_keys(const dfl_cfg *cfg, rec_keys *k, dfl_err *err)
 {
-    static const char *const kinds[] = {"ellipse"};
-    int kind;
+    const dfl_field_kind *kind;
+    const char *imp;
     dfl_status st;
     memset(k, 0, sizeof *k);
-    if ((st = dfl_cfg_enum(cfg, "implicit", "kind", kinds, 1, &kind, err))) return st;
-    if ((st = dfl_cfg_double(cfg, "implicit", "a", 1e-6, 1e6, &k->a, err))) return st;
-    if ((st = dfl_cfg_double(cfg, "implicit", "b", 1e-6, 1e6, &k->b, err))) return st;
-    if ((st = dfl_cfg_int(cfg, "study", "m", 1, 6, &k->m, err))) return st;
+    if ((st = dfl_field_kind_from_cfg(cfg, "field", &kind, err))) return st;
+    if (kind->build != dfl_rfunc_normalized_from_cfg)
+        return dfl_cfg_reject(cfg, "field", "kind", err,
+                              "bs04_recursive needs kind = normalized, got '%s'", kind->name);
+    if ((st = dfl_rfunc_normalized_keys(cfg, "field", &imp, &k->a, &k->b, &k->m, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "points", 64, 1, 100000, &k->points, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "K", 8, 2, DFL_JET_MAX, &k->K, err))) return st;
     if (k->K <= k->m)
@@ -201,16 +207,12 @@ static dfl_status rec_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
                           dfl_err *err)
 {
     rec_keys k;
-    dfl_rfunc_poly poly;
     dfl_field f = {0};
     dfl_field_bufs b = {0};
-    int have_poly = 0;
-    memset(&poly, 0, sizeof poly);
     dfl_status st = read_keys(cfg, &k, err);
+    /* the figure's field is [field]'s (what `dflab probe` evaluates) */
+    if (st == DFL_OK) st = dfl_rfunc_normalized_from_cfg(cfg, "field", &f, err);
     if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
-    if (st == DFL_OK && (st = dfl_rfunc_poly_ellipse(k.a, k.b, &poly, err)) == DFL_OK)
-        have_poly = 1;
-    if (st == DFL_OK) st = dfl_rfunc_normalized_field(&poly, (int)k.m, &f, err);
     if (st != DFL_OK) goto done;
 
     const int m = (int)k.m, K = (int)k.K;
@@ -293,7 +295,6 @@ done:
     free(k.deltas);
     free(k.bands);
     dfl_field_destroy(&f);
-    if (have_poly) dfl_rfunc_poly_free(&poly);
     return st;
 }
 

@@ -50,6 +50,9 @@
  *   smax = 8, steps = 128, rounds = 6, valid_tol = 1e-6   as bs04_bulging
  *   curve_samples = 16, curve_rounds = 8   the on-curve maximum search
  * [output] as field_out.h.
+ * grad_max_d: the exact distance at the band's largest |grad u| (grad_max);
+ * grad_max_interior and grad_max_interior_d: the same off the grid's
+ * boundary nodes (where the domain, not the field, ends the band).
  * Rows: one per sweep point and delta.  Files: <curve>_u<tag>.vti/.exr (u,
  * reference = exact distance) and <curve>_exact<tag>.vti/.exr at the first
  * sweep point.
@@ -135,6 +138,32 @@ static double curve_bound_factor(const scurve_keys *k, double bound, double seg_
  * joint rays at every j-th vertex, j chosen so that at most max_joints
  * vertices are used (the joints' count grows like eps^-1/2 and every ray
  * costs one field evaluation per part). */
+/* Where the band's largest |grad u| lies: the exact distance at the
+ * overall maximum over the nodes with |d| <= delta (the band of metrics.h),
+ * and the maximum and its d over the interior nodes only (off the grid's
+ * boundary rows and columns, where the domain cuts the field). */
+typedef struct grad_where {
+    double all_d, in_max, in_d;
+} grad_where;
+
+static void grad_extremes(const dfl_grid *g, const double *ug, const double *d, double delta,
+                          grad_where *w)
+{
+    double all = -1.0;
+    w->all_d = w->in_d = NAN;
+    w->in_max = -1.0;
+    const size_t m = dfl_grid_size(g), nx = (size_t)g->n[0], ny = (size_t)g->n[1];
+    for (size_t i = 0; i < m; i++) {
+        if (!(fabs(d[i]) <= delta)) continue;
+        const double gn = hypot(ug[2 * i], ug[2 * i + 1]);
+        if (gn > all) all = gn, w->all_d = d[i];
+        const size_t ix = i % nx, iy = i / nx;
+        if (ix == 0 || iy == 0 || ix + 1 == nx || iy + 1 == ny) continue;
+        if (gn > w->in_max) w->in_max = gn, w->in_d = d[i];
+    }
+    if (w->in_max < 0.0) w->in_max = NAN;
+}
+
 static dfl_status make_rays(const scurve_keys *k, const dfl_polyline *pl, int closed,
                             dfl_rayset *out, dfl_err *err)
 {
@@ -246,6 +275,11 @@ static dfl_status scurve_run_point(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
         if (!st) st = dfl_table_set_double(t, "widening", rs.flat_mean - rs.curved_mean, err);
         if (!st) st = dfl_table_set_string(t, "u_vti", dfl_path_base(upath), err);
         if (!st) st = dfl_table_set_string(t, "exact_vti", dfl_path_base(dpath), err);
+        grad_where gw;
+        grad_extremes(&k.grid, r.ug, r.dv, delta, &gw);
+        if (!st) st = dfl_table_set_double(t, "grad_max_d", gw.all_d, err);
+        if (!st) st = dfl_table_set_double(t, "grad_max_interior", gw.in_max, err);
+        if (!st) st = dfl_table_set_double(t, "grad_max_interior_d", gw.in_d, err);
     }
     if (st == DFL_OK) st = dfl_field_out_write(ctx, ustem, &k.grid, r.uv, r.ug, r.dv, &k.out, err);
     if (st == DFL_OK && ctx->point == 0)

@@ -12,14 +12,16 @@
  * distance functions of two sets differ by at most their Hausdorff
  * distance), and u - d_M is the R-function construction's own error.
  *
- * Keys ([study]):
+ * Keys.  [field] kind = rfunc (cfg/rfunc_cfg.h; the field of Fig. 12, so
+ * `dflab probe` evaluates it) with one part key:
  *   surface  = surface       section with kind = bspline_surface | bezier_surface
  *   eps      = 0.05          triangulation bound (> 0)
- *   join, p                  (cfg/rfunc_cfg.h; default requiv, 2)
+ *   max_tris = 200000        refuse larger triangulations
+ *   join, p                  (default requiv, 2)
  *   tri_trim = conditional   prism | conditional; a = 0.2, k = 2; smooth = false
+ * [study]:
  *   band     = 0.05          metrics also over d_S <= band
  *   slices, slice_n, slice_lo, slice_hi   section planes (cfg/slice_cfg.h)
- *   max_tris = 200000        refuse larger triangulations
  *   compress = true          [output] see field_out.h
  * Rows (one per eps): eps, triangles, vertices, bound, join, p, tri_trim, and
  * per slice k: metrics of u against d_S (suffix _s<k>, _s<k>_band), of u
@@ -47,12 +49,12 @@
 #include "harness/field_out.h"
 
 typedef struct keys {
+    dfl_rfunc_field_spec spec; /* [field] (owned): the triangulation */
     const char *sec, *kind;
     double eps, band;
     dfl_rfunc_join join;
     int p;
     dfl_rfunc_tri_opts o;
-    long max_tris;
     dfl_bs04_space_out so;
 } keys;
 
@@ -60,19 +62,23 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 {
     dfl_status st;
     memset(k, 0, sizeof *k);
-    if ((st = dfl_cfg_string(cfg, "study", "surface", &k->sec, err))) return st;
-    if (!dfl_cfg_has_section(cfg, k->sec))
-        return dfl_cfg_reject(cfg, "study", "surface", err, "no section [%s]", k->sec);
-    if ((st = dfl_cfg_string(cfg, k->sec, "kind", &k->kind, err))) return st;
-    if (strcmp(k->kind, "bspline_surface") != 0 && strcmp(k->kind, "bezier_surface") != 0)
-        return dfl_cfg_reject(cfg, k->sec, "kind", err,
-                              "expected bspline_surface or bezier_surface");
-    if ((st = dfl_cfg_double(cfg, "study", "eps", 1e-9, 1e3, &k->eps, err))) return st;
-    if ((st = dfl_rfunc_join_p_from_cfg(cfg, "study", &k->join, &k->p, err))) return st;
-    if ((st = dfl_rfunc_tri_opts_from_cfg(cfg, "study", true, &k->o, err))) return st;
-    if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.05, 0.0, 1e300, &k->band, err))) return st;
-    if ((st = dfl_cfg_int_opt(cfg, "study", "max_tris", 200000, 1, 10000000, &k->max_tris, err)))
+    if ((st = dfl_rfunc_spec_from_kind_cfg(cfg, "field", "bs04_surface", &k->spec, err)))
         return st;
+    const dfl_rfunc_field_spec *sp = &k->spec;
+    if (!sp->surface || sp->n || sp->nregion || sp->npoints || dfl_cfg_has(cfg, "field", "triangles"))
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "%s: [field] of bs04_surface: expected one surface (surface = a"
+                           " section), nothing else",
+                           dfl_cfg_path(cfg));
+    if ((st = dfl_rfunc_join_check(sp->join, sp->p, err)))
+        return dfl_cfg_err_at(cfg, "field", "p", st, err);
+    k->sec = sp->surface;
+    if ((st = dfl_cfg_string(cfg, k->sec, "kind", &k->kind, err))) return st;
+    k->eps = sp->eps;
+    k->join = sp->join;
+    k->p = sp->p;
+    k->o = sp->tri;
+    if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.05, 0.0, 1e300, &k->band, err))) return st;
     return dfl_bs04_space_out_from_cfg(cfg, true, &k->so, err);
 }
 
@@ -138,11 +144,10 @@ static dfl_status surf_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     dfl_surface_set S = {0};
     dfl_shape sh = {0};
     dfl_field exact = {0}, f = {0};
-    dfl_trimesh M;
-    int haveS = 0, haveM = 0;
+    int haveS = 0;
     char path[4400];
-    memset(&M, 0, sizeof M);
     dfl_status st = read_keys(cfg, &k, err);
+    const dfl_trimesh M = k.spec.mesh;
     if (!st) st = dfl_surface_from_cfg(cfg, k.sec, k.kind, &S, err);
     if (!st) haveS = 1;
     if (!st) st = dfl_param_shape_from_cfg(cfg, k.sec, k.kind, &sh, err);
@@ -150,23 +155,8 @@ static dfl_status surf_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     if (!st) st = dfl_cfg_check_used(cfg, err);
     if (st) goto done;
 
-    if ((st = dfl_polygonize_surface(&S, k.eps, (size_t)k.max_tris, &M, err))) {
-        dfl_cfg_err_at(cfg, "study", "eps", st, err);
-        goto done;
-    }
-    haveM = 1;
-    dfl_rfield *rf;
-    if ((st = dfl_rfield_new(3, k.join, k.p, &rf, err))) goto done;
-    for (size_t t = 0; t < M.ntris && !st; t++) {
-        const size_t *v = M.tris + 3 * t;
-        st = dfl_rfield_add_triangle(rf, M.verts + 3 * v[0], M.verts + 3 * v[1],
-                                     M.verts + 3 * v[2], &k.o, err);
-    }
-    if (st) {
-        dfl_rfield_free(rf);
-        goto done;
-    }
-    if ((st = dfl_rfield_finish(&rf, &f, err))) goto done;
+    /* the field of [field]: its triangles in the triangulation's order */
+    if ((st = dfl_rfunc_field_from_spec(cfg, "field", &k.spec, &f, err))) goto done;
 
     st = dfl_table_row(table, err);
     if (!st) st = dfl_table_set_double(table, "eps", k.eps, err);
@@ -186,8 +176,8 @@ static dfl_status surf_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
 done:
     dfl_field_destroy(&f);
     dfl_field_destroy(&exact);
-    if (haveM) dfl_trimesh_free(&M);
     if (haveS) dfl_surface_set_free(&S);
+    dfl_rfunc_spec_free(&k.spec);
     return st;
 }
 

@@ -29,12 +29,15 @@
  * for k = 2 is of the same order r^2 as p_i^2 near the vertex: no closed
  * form; it is measured.
  *
- * Keys ([study]):
- *   triangle = x y z; x y z; x y z   vertices A, B, C
- *   vertices = 0 1 2                 vertices (0, 1, 2) the spheres are around
- *                                    (default all three)
+ * Keys.  [field] kind = rfunc (rfunc_cfg.h; the field of Fig. 9-10, so
+ * `dflab probe` evaluates it) with one triangle:
+ *   triangles = x y z; x y z; x y z  vertices A, B, C
  *   tri_trim = conditional | prism   trim volume (tri3d.h); a = 0.2, k = 2
  *                                    (eq. 15-16), smooth = false (eq. 4)
+ *   join, p                          (one part: u = h for every join)
+ * [study]:
+ *   vertices = 0 1 2                 vertices (0, 1, 2) the spheres are around
+ *                                    (default all three)
  *   radii    = 1e-2 1e-3             sphere radii (> 0; up to 8; default 1e-2)
  *   samples  = 4000                  Fibonacci points on the sphere (>= 10)
  *   theory_samples = 100000          angles for the closed form
@@ -68,6 +71,7 @@
 #define MAX_RADII 8
 
 typedef struct keys {
+    dfl_rfunc_field_spec spec; /* [field] (owned) */
     double v[9];
     int vertices[3], nvert;
     dfl_rfunc_tri_opts o;
@@ -81,9 +85,15 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
 {
     dfl_status st;
     memset(k, 0, sizeof *k);
-    if ((st = dfl_points_n_from_cfg(cfg, "study", "triangle", 3, 3, k->v, "exactly 3 vertices",
-                                    err)))
+    if ((st = dfl_rfunc_spec_from_kind_cfg(cfg, "field", "bs04_triangle", &k->spec, err)))
         return st;
+    if (k->spec.ntris != 1 || k->spec.surface || k->spec.n || k->spec.npoints)
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "%s: [field] of bs04_triangle: expected one triangle (triangles = 3"
+                           " vertices), nothing else",
+                           dfl_cfg_path(cfg));
+    memcpy(k->v, k->spec.tris, sizeof k->v);
+    k->o = k->spec.tri;
     double *list = NULL;
     size_t nl = 0;
     if (!dfl_cfg_has(cfg, "study", "vertices")) {
@@ -102,10 +112,9 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys *k, dfl_err *err)
         k->vertices[k->nvert++] = vi;
     }
     free(list);
-    if ((st = dfl_rfunc_tri_opts_from_cfg(cfg, "study", true, &k->o, err))) return st;
     dfl_rfunc_tri tri;
     if ((st = dfl_rfunc_tri_init(k->v, k->v + 3, k->v + 6, &k->o, &tri, err))) {
-        dfl_cfg_err_at(cfg, "study", "triangle", st, err);
+        dfl_cfg_err_at(cfg, "field", "triangles", st, err);
         return st;
     }
     nl = 0;
@@ -273,8 +282,9 @@ static dfl_status tri_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
     keys k;
     dfl_field fld = {0};
     dfl_status st = read_keys(cfg, &k, err);
+    if (st == DFL_OK) st = dfl_rfunc_field_from_spec(cfg, "field", &k.spec, &fld, err);
     if (st == DFL_OK) st = dfl_cfg_check_used(cfg, err);
-    if (st != DFL_OK) return st;
+    if (st != DFL_OK) goto done;
     dfl_rfunc_tri tri;
     if ((st = dfl_rfunc_tri_init(k.v, k.v + 3, k.v + 6, &k.o, &tri, err))) return st;
     for (int a = 0; a < k.nvert && !st; a++)
@@ -282,17 +292,11 @@ static dfl_status tri_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
             st = do_sphere(&k, &tri, k.vertices[a], b, ctx, table, err);
     if (st) goto done;
 
-    /* section planes of the triangle's field */
-    dfl_rfield *rf;
-    if ((st = dfl_rfield_new(3, DFL_RFUNC_REQUIV, 1, &rf, err))) goto done;
-    if ((st = dfl_rfield_add_triangle(rf, k.v, k.v + 3, k.v + 6, &k.o, err))) {
-        dfl_rfield_free(rf);
-        goto done;
-    }
-    if ((st = dfl_rfield_finish(&rf, &fld, err))) goto done;
+    /* section planes of the triangle's field ([field]) */
     st = dfl_bs04_write_slices(ctx, &fld, &k.so, "triangle_slice", err);
 done:
     dfl_field_destroy(&fld);
+    dfl_rfunc_spec_free(&k.spec);
     return st;
 }
 

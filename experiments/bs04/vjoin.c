@@ -90,8 +90,24 @@ dfl_status dfl_vjoin_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_vjoin *ou
 dfl_status dfl_vjoin_field(const dfl_vjoin *vj, dfl_rfunc_join join, int p, dfl_field *out,
                            dfl_err *err)
 {
-    if (vj->parts == 0) return dfl_rfunc_exact_polyline_field(2, vj->v, 3, join, p, out, err);
-    return dfl_rfield_polyline(2, vj->v, 3, false, join, p, trim_of(vj->parts), out, err);
+    return dfl_vjoin_field_corr(vj, join, DFL_RFUNC_CORR_GUARDED, p, out, err);
+}
+
+dfl_status dfl_vjoin_field_corr(const dfl_vjoin *vj, dfl_rfunc_join join,
+                                dfl_rfunc_correction corr, int p, dfl_field *out, dfl_err *err)
+{
+    if (vj->parts == 0)
+        return dfl_rfunc_exact_polyline_field_corr(2, vj->v, 3, join, corr, p, out, err);
+    dfl_rfield *r = NULL;
+    dfl_status st = dfl_rfield_new(2, join, p, &r, err);
+    if (st != DFL_OK) return st;
+    dfl_rfield_set_correction(r, corr);
+    st = dfl_rfield_add_polyline(r, vj->v, 3, false, trim_of(vj->parts), err);
+    if (st != DFL_OK) {
+        dfl_rfield_free(r);
+        return st;
+    }
+    return dfl_rfield_finish(&r, out, err);
 }
 
 void dfl_vjoin_parts(const dfl_vjoin *vj, const double *x, double *h, double *g)

@@ -50,6 +50,10 @@ dfl_status dfl_vjoin_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_vjoin *ou
 dfl_status dfl_vjoin_field(const dfl_vjoin *vj, dfl_rfunc_join join, int p, dfl_field *out,
                            dfl_err *err);
 
+/* dfl_vjoin_field with the corrected join's form corr (rfunc/join.h). */
+dfl_status dfl_vjoin_field_corr(const dfl_vjoin *vj, dfl_rfunc_join join,
+                                dfl_rfunc_correction corr, int p, dfl_field *out, dfl_err *err);
+
 /* Both part fields at x: h[0..1] and, when g != NULL, their gradients
  * g[0..1] (part 1) and g[2..3] (part 2). */
 void dfl_vjoin_parts(const dfl_vjoin *vj, const double *x, double *h, double *g);

@@ -24,6 +24,7 @@ static dfl_status exact_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field 
 static const dfl_field_kind kinds[] = {
     {"exact", exact_from_cfg},
     {"rfunc", dfl_rfunc_field_from_cfg},
+    {"normalized", dfl_rfunc_normalized_from_cfg},
     {"proxy", dfl_proxy_field_from_cfg},
 };
 #define NKINDS (sizeof kinds / sizeof kinds[0])

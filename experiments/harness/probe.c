@@ -8,6 +8,7 @@
 
 #include "cfg/field_cfg.h"
 #include "core/domain.h"
+#include "rfunc/rfield.h"
 #include "io/config.h"
 #include "io/points.h"
 
@@ -60,12 +61,14 @@ static dfl_status read_points(const char *path, int dim, int K, dfl_points *p, d
 }
 
 /* A value that is not finite at a point inside the domain is a failure of
- * the method, never a number to print. */
-static dfl_status check_row(const char *path, size_t i, const double *r, int w, dfl_err *err)
+ * the method, never a number to print -- except NaN from a field that
+ * defines NaN as "undefined here" (bs04's eq. 20 literally, nan_ok). */
+static dfl_status check_row(const char *path, size_t i, const double *r, int w, bool nan_ok,
+                            dfl_err *err)
 {
     static const char *const names[7] = {"x", "y", "z", "value", "gx", "gy", "gz"};
     for (int c = 3; c < w; c++)
-        if (!isfinite(r[c])) {
+        if (!isfinite(r[c]) && !(nan_ok && isnan(r[c]))) {
             char nm[16];
             if (c < 7) snprintf(nm, sizeof nm, "%s", names[c]);
             else snprintf(nm, sizeof nm, "d%d", c - 6);
@@ -116,6 +119,12 @@ dfl_status dfl_probe(const dfl_probe_opts *o, FILE *out, dfl_err *err)
         const double *row = p.v + 6 * i;
         double x[3] = {row[0], row[1], row[2]}, g[3] = {0, 0, 0};
         double *r = res + i * (size_t)w;
+        /* rfunc fields state a domain of validity (rfunc/domain.h) */
+        st = dfl_rfield_check_point(&f, x, K > 0, err);
+        if (st != DFL_OK) {
+            dfl_err_prefix(err, "%s: point %zu", o->points, i + 1);
+            goto done;
+        }
         double val = dfl_field_eval1(&f, x, g);
         r[0] = x[0], r[1] = x[1], r[2] = dim == 3 ? x[2] : 0.0;
         r[3] = val, r[4] = g[0], r[5] = g[1], r[6] = dim == 3 ? g[2] : 0.0;
@@ -129,7 +138,8 @@ dfl_status dfl_probe(const dfl_probe_opts *o, FILE *out, dfl_err *err)
             }
             for (int k = 1; k <= K; k++) r[6 + k] = dfl_jet_deriv(&j, k);
         }
-        if ((st = check_row(o->points, i, r, w, err)) != DFL_OK) goto done;
+        if ((st = check_row(o->points, i, r, w, dfl_rfield_nan_is_undefined(&f), err)) != DFL_OK)
+            goto done;
     }
     fprintf(out, "x,y,z,value,gx,gy,gz");
     for (int k = 1; k <= K; k++) fprintf(out, ",d%d", k);

@@ -1,6 +1,16 @@
-/* A fast, vectorized evaluator for the commonest bs04 field: a 2D polyline
- * of segments with the disk trim of eq. 4, joined by R-equivalence of
- * order p (eq. 6), value and gradient.  It computes the same function as
+/* A fast, vectorized evaluator for the commonest bs04 fields: a 2D or 3D
+ * polyline of segments with the disk or strip trim of eq. 4, joined by
+ * R-equivalence of order p (eq. 6), value and gradient.  The 2D disk
+ * kernel is described below; the strip kernel computes the trim as
+ * rfunc/segment.h does (t = 2 p1 p2 / (p1 + p2 + |(p1, p2)|), one
+ * reciprocal square root by Newton steps and one division more), and the
+ * 3D kernels the carrier f^2 = s1^2 + s2^2 with the library's two normals
+ * (dfl_rfunc_batch_new_opts).  Not batched (per-point path): the smooth
+ * trims of eq. 5 (a second root and division per segment), R-conjunction
+ * (a sequential fold with a root per part), the corrected join (vertex
+ * terms and their guards) and mixed part kinds.  Point parts, triangles
+ * and convex regions have kernels of their own (dfl_rfunc_batch_points,
+ * dfl_rfunc_batch_triangles, dfl_rfunc_batch_regions).  It computes the same function as
  * rfunc/rfield.h's dfl_rfield_polyline(2, ..., DFL_RFUNC_REQUIV, p,
  * DFL_RFUNC_TRIM_DISK) (to rounding, ~1e-13 relative) and exists for
  * throughput: `make bench` measures it against a naive scalar loop and
@@ -42,6 +52,9 @@
 
 #include "core/status.h"
 #include "field/field.h"
+#include "rfunc/region.h"
+#include "rfunc/segment.h"
+#include "rfunc/tri3d.h"
 
 typedef struct dfl_rfunc_batch dfl_rfunc_batch;
 
@@ -53,14 +66,37 @@ typedef struct dfl_rfunc_batch dfl_rfunc_batch;
  * DFL_E_NOMEM. */
 dfl_status dfl_rfunc_batch_new(const double *v, size_t n, bool closed, int p,
                                dfl_rfunc_batch **out, dfl_err *err);
+/* The same for a polyline of dimension dim (2 or 3; v holds n*dim
+ * coordinates) with the disk or strip trim of eq. 4 (the kernels for the
+ * strip trim and for 3D segments, beside the 2D disk one above).
+ * DFL_E_INPUT as dfl_rfunc_batch_new and for the other trims. */
+dfl_status dfl_rfunc_batch_new_opts(int dim, const double *v, size_t n, bool closed, int p,
+                                    dfl_rfunc_trim trim, dfl_rfunc_batch **out, dfl_err *err);
+/* R-equivalence of n >= 2 point parts c[0..n-1] (dim coordinates each;
+ * rfunc/region.h's h = |x - c|) as a batch.  DFL_E_INPUT for n < 2, bad
+ * dim or p, non-finite or out-of-domain coordinates; DFL_E_NOMEM. */
+dfl_status dfl_rfunc_batch_points(int dim, const double *c, size_t n, int p,
+                                  dfl_rfunc_batch **out, dfl_err *err);
+/* R-equivalence of n >= 2 triangles t[0..n-1] (rfunc/tri3d.h) with one
+ * eq. 4 trim for all: prism, or conditional with k = 2 and one weight a.
+ * The prism's R0-conjunctions take one reciprocal square root (Newton
+ * steps) and one division each.  DFL_E_INPUT for other options or bad p;
+ * DFL_E_NOMEM. */
+dfl_status dfl_rfunc_batch_triangles(const dfl_rfunc_tri *t, size_t n, int p,
+                                     dfl_rfunc_batch **out, dfl_err *err);
+/* R-equivalence of n >= 2 convex regions r[0..n-1] (rfunc/region.h; 2D).
+ * Points inside a region fall back (u = 0 there).  DFL_E_INPUT for bad p;
+ * DFL_E_NOMEM. */
+dfl_status dfl_rfunc_batch_regions(const dfl_rfunc_region *r, size_t n, int p,
+                                   dfl_rfunc_batch **out, dfl_err *err);
 void dfl_rfunc_batch_free(dfl_rfunc_batch *b);
 
 size_t dfl_rfunc_batch_segments(const dfl_rfunc_batch *b);
 int dfl_rfunc_batch_order(const dfl_rfunc_batch *b);
 
-/* Fast path: u at m points pts[2i], pts[2i+1] into val[i] and, when grad
- * is not NULL, its gradient into grad[2i], grad[2i+1].  Serial (callers
- * parallelize over points, e.g. dfl_field_sample). */
+/* Fast path: u at m points pts[dim i .. dim i + dim - 1] into val[i] and,
+ * when grad is not NULL, its gradient into grad[dim i ...].  Serial
+ * (callers parallelize over points, e.g. dfl_field_sample). */
 void dfl_rfunc_batch_eval(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
                           double *grad);
 

@@ -10,6 +10,7 @@
 typedef struct spoly {
     int dim, p;
     dfl_rfunc_join join;
+    dfl_rfunc_correction corr;
     size_t n;       /* vertices */
     double *v;      /* n * dim */
 } spoly;
@@ -24,6 +25,7 @@ static void spoly_eval(const void *ctx, size_t m, const double *pts, double *val
         dfl_rfunc_acc acc;
         double hprev = 0.0, gprev[3] = {0, 0, 0};
         dfl_rfunc_acc_begin(&acc, s->join, s->p, dim, want);
+        if (corrected) dfl_rfunc_acc_set_correction(&acc, s->corr);
         for (size_t k = 0; k + 1 < s->n && !dfl_rfunc_acc_is_zero(&acc); k++) {
             const double *a = s->v + k * (size_t)dim;
             double g[3] = {0, 0, 0};
@@ -35,8 +37,12 @@ static void spoly_eval(const void *ctx, size_t m, const double *pts, double *val
                 for (int j = 0; j < dim; j++) w[j] = x[j] - a[j];
                 const double q = dfl_hypot_vec(dim, w);
                 for (int j = 0; j < dim; j++) gq[j] = q > 0.0 ? w[j] / q : 0.0;
-                const double qt = dfl_rfunc_guard(dim, q, gq, hprev, gprev, h, g, gt);
-                dfl_rfunc_acc_add_q(&acc, qt, gt);
+                if (s->corr == DFL_RFUNC_CORR_EQ20) {
+                    dfl_rfunc_acc_add_q(&acc, q, gq);
+                } else {
+                    const double qt = dfl_rfunc_guard(dim, q, gq, hprev, gprev, h, g, gt);
+                    dfl_rfunc_acc_add_q(&acc, qt, gt);
+                }
             }
             hprev = h;
             memcpy(gprev, g, sizeof g);
@@ -58,6 +64,14 @@ static const dfl_field_ops spoly_ops = {"exact_polyline", spoly_eval, NULL, spol
 dfl_status dfl_rfunc_exact_polyline_field(int dim, const double *v, size_t n,
                                           dfl_rfunc_join join, int p, dfl_field *out,
                                           dfl_err *err)
+{
+    return dfl_rfunc_exact_polyline_field_corr(dim, v, n, join, DFL_RFUNC_CORR_GUARDED, p, out,
+                                               err);
+}
+
+dfl_status dfl_rfunc_exact_polyline_field_corr(int dim, const double *v, size_t n,
+                                               dfl_rfunc_join join, dfl_rfunc_correction corr,
+                                               int p, dfl_field *out, dfl_err *err)
 {
     if (dim != 2 && dim != 3)
         return dfl_err_set(err, DFL_E_INPUT, "segment polyline: dimension %d (expected 2 or 3)",
@@ -86,6 +100,7 @@ dfl_status dfl_rfunc_exact_polyline_field(int dim, const double *v, size_t n,
     s->dim = dim;
     s->p = p;
     s->join = join;
+    s->corr = corr;
     s->n = n;
     s->v = cv;
     out->dim = dim;

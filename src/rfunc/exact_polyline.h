@@ -34,5 +34,10 @@
 dfl_status dfl_rfunc_exact_polyline_field(int dim, const double *v, size_t n,
                                           dfl_rfunc_join join, int p, dfl_field *out,
                                           dfl_err *err);
+/* The same with the corrected join's form corr (rfunc/join.h): eq20 takes
+ * the raw q_v and is NaN where its radicand <= 0. */
+dfl_status dfl_rfunc_exact_polyline_field_corr(int dim, const double *v, size_t n,
+                                               dfl_rfunc_join join, dfl_rfunc_correction corr,
+                                               int p, dfl_field *out, dfl_err *err);
 
 #endif

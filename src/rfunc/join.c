@@ -8,6 +8,9 @@
 
 DFL_NAMES_DEFINE(dfl_rfunc_join, DFL_RFUNC_JOIN_LIST, DFL_RFUNC_JOIN_COUNT, dfl_rfunc_join_names,
                  dfl_rfunc_join_name, dfl_rfunc_join_parse, "join")
+DFL_NAMES_DEFINE(dfl_rfunc_correction, DFL_RFUNC_CORRECTION_LIST, DFL_RFUNC_CORRECTION_COUNT,
+                 dfl_rfunc_correction_names, dfl_rfunc_correction_name,
+                 dfl_rfunc_correction_parse, "correction")
 
 dfl_status dfl_rfunc_join_check(dfl_rfunc_join join, int p, dfl_err *err)
 {
@@ -110,6 +113,12 @@ void dfl_rfunc_acc_begin(dfl_rfunc_acc *acc, dfl_rfunc_join join, int p, int dim
     acc->grad = grad;
 }
 
+void dfl_rfunc_acc_set_correction(dfl_rfunc_acc *acc, dfl_rfunc_correction corr)
+{
+    assert(acc->nh == 0);
+    acc->corr = corr;
+}
+
 int dfl_rfunc_acc_is_zero(const dfl_rfunc_acc *acc) { return acc->zero; }
 
 /* Brings the running sums to the smaller scale mnew < m. */
@@ -199,6 +208,22 @@ double dfl_rfunc_acc_end(const dfl_rfunc_acc *acc, double *gu)
         return acc->u;
     }
     const int p = acc->p;
+    if (acc->join == DFL_RFUNC_REQUIV_CORRECTED && acc->corr == DFL_RFUNC_CORR_EQ20) {
+        /* bs04's formula as printed: undefined (NaN) where the radicand is
+         * not positive, including q_v = 0 off the parts (q^-p = inf). */
+        const double S = acc->S - acc->Sq;
+        if (acc->qzero || !(S > 0.0)) {
+            if (gu && acc->grad)
+                for (int j = 0; j < dim; j++) gu[j] = NAN;
+            return NAN;
+        }
+        const double w = inv_root(S, p);
+        if (gu && acc->grad) {
+            const double wp1 = dfl_rfunc_ipow(w, p + 1);
+            for (int j = 0; j < dim; j++) gu[j] = wp1 * (acc->V[j] - acc->Vq[j]);
+        }
+        return acc->m * w;
+    }
     if (acc->join == DFL_RFUNC_REQUIV_CORRECTED) {
         const double S = acc->S - acc->Sq;
         const double floor = dfl_rfunc_ipow(acc->m / (2.0 * acc->hmin), p);
@@ -258,14 +283,17 @@ void dfl_rfunc_guard_jet(const dfl_jet *q, const dfl_jet *hi, const dfl_jet *hj,
     *out = *m;
 }
 
-/* acc += sign * (x / c)^(-p).  A non-dominant term (lower valuation) whose
- * leading coefficient would underflow is dropped: its contribution is
- * below e^-700 relative at every order. */
+/* acc += sign * (x / c)^(-p).  A term whose leading coefficient would
+ * underflow is dropped: a non-dominant one (lower valuation) contributes
+ * below e^-700 relative at every order, and so does a dominant one (same
+ * valuation) with ratio^-p < e^-700 beside the term of ratio 1 (a far
+ * part next to a near one, e.g. far along a ray at large coordinates). */
 static dfl_status add_inv_pow(dfl_jet *acc, const dfl_jet *x, double c, int vmax, int p,
                               double sign, dfl_err *err)
 {
     const double ratio = x->c[0] / c;
-    if (x->v < vmax && p * log(ratio) > 700.0) return DFL_OK;
+    (void)vmax;
+    if (p * log(ratio) > 700.0) return DFL_OK;
     dfl_jet t;
     dfl_status st;
     dfl_jet_scale(x, 1.0 / c, &t);
@@ -293,6 +321,12 @@ static dfl_status rconj2_jet(const dfl_jet *a, const dfl_jet *b, int p, dfl_jet 
     dfl_jet x, w;
     dfl_status st;
     if ((st = dfl_jet_div(lo, hi, &x, err)) != DFL_OK) return st;
+    if (p * log(fabs(x.c[0])) < -700.0) {
+        /* (lo/hi)^p underflows: the bracket is below e^-700 relative to lo
+         * at every order, a ^ b = lo (a far part beside a near one). */
+        *out = *lo;
+        return DFL_OK;
+    }
     if ((st = dfl_jet_powi(&x, p, &x, err)) != DFL_OK) return st;
     dfl_jet_add_const(&x, 1.0, &x);
     if ((st = dfl_jet_pow(&x, 1.0 / p, &w, err)) != DFL_OK) return st;
@@ -305,6 +339,26 @@ static dfl_status rconj2_jet(const dfl_jet *a, const dfl_jet *b, int p, dfl_jet 
 
 dfl_status dfl_rfunc_join_jet(dfl_rfunc_join join, int p, size_t n, const dfl_jet *h,
                               size_t nq, const dfl_jet *q, dfl_jet *out, dfl_err *err)
+{
+    return dfl_rfunc_join_jet_corr(join, DFL_RFUNC_CORR_GUARDED, p, n, h, nq, q, out, err);
+}
+
+/* The undefined value of eq. 20 as a jet: NaN coefficients to the parts'
+ * absolute precision. */
+static void nan_jet(const dfl_jet *h, dfl_jet *out)
+{
+    int P = h->v + h->n;
+    if (P < 1) P = 1;
+    if (P > DFL_JET_MAX + 1) P = DFL_JET_MAX + 1;
+    memset(out, 0, sizeof *out);
+    out->v = 0;
+    out->n = P;
+    for (int k = 0; k < P; k++) out->c[k] = NAN;
+}
+
+dfl_status dfl_rfunc_join_jet_corr(dfl_rfunc_join join, dfl_rfunc_correction corr, int p,
+                                   size_t n, const dfl_jet *h, size_t nq, const dfl_jet *q,
+                                   dfl_jet *out, dfl_err *err)
 {
     dfl_status st = dfl_rfunc_join_check(join, p, err);
     if (st != DFL_OK) return st;
@@ -337,7 +391,13 @@ dfl_status dfl_rfunc_join_jet(dfl_rfunc_join join, int p, size_t n, const dfl_je
             if (pass == 0 && x->v > vmax) vmax = x->v;
             if (pass == 1 && x->v == vmax && x->c[0] < c) c = x->c[0];
         }
-    assert(isfinite(c) && c > 0.0);
+    /* Non-finite leading coefficients come from coordinates beyond the
+     * fields' domain (rfield.h); the callers reject those, this is the
+     * last line of defence (a status, not an abort). */
+    if (!(isfinite(c) && c > 0.0))
+        return dfl_err_set(err, DFL_E_NUMERIC,
+                           "join jet: part coefficients are not finite (coordinates too large)");
+    const int eq20 = join == DFL_RFUNC_REQUIV_CORRECTED && corr == DFL_RFUNC_CORR_EQ20;
     dfl_jet S;
     dfl_rfunc_jet_zero(&S);
     for (size_t i = 0; i < n; i++)
@@ -346,6 +406,13 @@ dfl_status dfl_rfunc_join_jet(dfl_rfunc_join join, int p, size_t n, const dfl_je
         for (size_t i = 0; i < nq; i++)
             if (!q[i].zero && (st = add_inv_pow(&S, &q[i], c, vmax, p, -1.0, err)) != DFL_OK)
                 return st;
+        if (eq20) {
+            if (qzero || S.zero || !(S.c[0] > 0.0)) {
+                nan_jet(&h[0], out);
+                return DFL_OK;
+            }
+            goto root;
+        }
         /* Floor (2 h_min)^(-p), compared with S as s -> 0+. */
         const dfl_jet *hmin = &h[0];
         for (size_t i = 1; i < n; i++)
@@ -355,7 +422,8 @@ dfl_status dfl_rfunc_join_jet(dfl_rfunc_join join, int p, size_t n, const dfl_je
         if ((st = dfl_jet_powi(&fl, -p, &fl, err)) != DFL_OK) return st;
         if (qzero || jet_cmp(&S, &fl) <= 0) S = fl;
     }
-    if (S.zero || S.c[0] <= 0.0)
+root:
+    if (S.zero || !(S.c[0] > 0.0))
         return dfl_err_set(err, DFL_E_NUMERIC, "R-equivalence jet: sum of h^-p is not positive");
     if ((st = dfl_jet_pow(&S, -1.0 / p, out, err)) != DFL_OK) return st;
     dfl_jet_scale(out, c, out);

@@ -41,6 +41,30 @@
  * differentiable where h_i = q_v, which only happens where trimming errors
  * occur; in the hatched sector itself trimmed fields give qt = max(h_i, h_j)
  * and u = min(h_i, h_j), so |grad u| = 1 + O(q/d) instead of exactly 1.
+ * This guarded form is dflab's regularisation, not bs04's formula: with
+ * disk-trimmed parts it is active at most grid nodes and reduces to
+ * min(h_i, h_j) in the hatched sector.
+ *
+ * Correction (dfl_rfunc_correction, config key `correction`): GUARDED is
+ * the form above (the default); EQ20 is bs04's eq. 20 literally, with the
+ * raw q_v and no floor:
+ *     S = sum_i h_i^(-p) - sum_v q_v^(-p),  u = S^(-1/p) where S > 0,
+ *     u = NaN (and gradient NaN) where S <= 0 (eq. 20 is undefined there).
+ * With exact distances S >= h_min^(-p) > 0 wherever the reflex-side
+ * argument holds; with trimmed parts S turns negative in the hatched
+ * sector beyond a radius r*: for the disk trim h = q sqrt(1 + 2 a rho +
+ * rho^2) there (rho = q/L, a = -(x.e)/q), and on the sector's bisector
+ * (a = cos(alpha'/2), alpha' = min(alpha, 2 pi - alpha) the convex angle)
+ * S = 0 at  r* = L (sqrt(cos^2(alpha'/2) + 2^(2/p) - 1) - cos(alpha'/2)),
+ * the smallest onset radius in the sector (Jensen: g(a) = (1 + 2 a rho +
+ * rho^2)^(-p/2) is convex and decreasing, a_1 + a_2 is largest on the
+ * bisector).
+ *
+ * Domain of validity.  Values are computed in the scaled form above (every
+ * ratio <= 1), so any finite non-negative h, q give a finite u (no
+ * overflow or underflow of h^(-p) however large or small h is); jets scale
+ * by the smallest dominant leading coefficient and fail with DFL_E_NUMERIC
+ * (never an abort) when a coefficient is not finite.
  * Jets: exact along rays with the valuation rules of core/jet.h; a part
  * whose jet is zero (the ray runs inside the part) makes u zero.
  */
@@ -58,12 +82,32 @@
 #define DFL_RFUNC_JOIN_LIST(X)                                      \
     X(DFL_RFUNC_REQUIV, "requiv", "eq. 6")                          \
     X(DFL_RFUNC_RCONJ, "rconj", "eq. 7, left fold")                 \
-    X(DFL_RFUNC_REQUIV_CORRECTED, "requiv_corrected", "eq. 20, guard and floor above")
+    X(DFL_RFUNC_REQUIV_CORRECTED, "requiv_corrected", "eq. 20, guarded or literal (correction)")
 
 typedef enum dfl_rfunc_join { DFL_RFUNC_JOIN_LIST(DFL_NAMES_CODE) } dfl_rfunc_join;
 
 /* Number of joins. */
 enum { DFL_RFUNC_JOIN_COUNT = 0 DFL_RFUNC_JOIN_LIST(DFL_NAMES_ONE) };
+
+/* The corrected join's two forms (header): X(code, name, note). */
+#define DFL_RFUNC_CORRECTION_LIST(X)                                        \
+    X(DFL_RFUNC_CORR_GUARDED, "guarded", "dflab's guard qt = max(q, h_i, h_j) and floor") \
+    X(DFL_RFUNC_CORR_EQ20, "eq20", "bs04 eq. 20 literally, NaN where the radicand <= 0")
+
+typedef enum dfl_rfunc_correction {
+    DFL_RFUNC_CORRECTION_LIST(DFL_NAMES_CODE)
+} dfl_rfunc_correction;
+
+enum { DFL_RFUNC_CORRECTION_COUNT = 0 DFL_RFUNC_CORRECTION_LIST(DFL_NAMES_ONE) };
+
+/* Config names indexed by code. */
+extern const char *const dfl_rfunc_correction_names[DFL_RFUNC_CORRECTION_COUNT];
+
+/* Config name of a correction ("guarded", "eq20"); "?" outside the list. */
+const char *dfl_rfunc_correction_name(dfl_rfunc_correction c);
+
+/* The correction named name into *out; DFL_E_INPUT otherwise (*out untouched). */
+dfl_status dfl_rfunc_correction_parse(const char *name, dfl_rfunc_correction *out, dfl_err *err);
 
 /* Config names indexed by code (for dfl_cfg_enum-style readers: names,
  * DFL_RFUNC_JOIN_COUNT). */
@@ -115,13 +159,17 @@ typedef struct dfl_rfunc_acc {
     double V[3], Vq[3];  /* sum (m/h)^(p+1) grad h, same for q */
     double hmin, ghmin[3];
     double u, gu[3];     /* R-conjunction fold state */
+    dfl_rfunc_correction corr; /* corrected join: guarded (default) or eq20 */
 } dfl_rfunc_acc;
 
 /* grad != 0: gradients are accumulated (then every add needs one). */
 void dfl_rfunc_acc_begin(dfl_rfunc_acc *acc, dfl_rfunc_join join, int p, int dim, int grad);
 void dfl_rfunc_acc_add(dfl_rfunc_acc *acc, double h, const double *gh);
-/* Corrected join only: the guarded distance qt >= 0 of a shared vertex
- * (dfl_rfunc_guard). */
+/* Corrected join only, right after dfl_rfunc_acc_begin: which form
+ * dfl_rfunc_acc_end computes (guarded by default; see the header). */
+void dfl_rfunc_acc_set_correction(dfl_rfunc_acc *acc, dfl_rfunc_correction corr);
+/* Corrected join only: the distance q >= 0 of a shared vertex, guarded
+ * (dfl_rfunc_guard) for DFL_RFUNC_CORR_GUARDED, raw for DFL_RFUNC_CORR_EQ20. */
 void dfl_rfunc_acc_add_q(dfl_rfunc_acc *acc, double q, const double *gq);
 
 /* The corrected join's guard qt = max(q, hi, hj) of a vertex with adjacent
@@ -134,7 +182,8 @@ void dfl_rfunc_guard_jet(const dfl_jet *q, const dfl_jet *hi, const dfl_jet *hj,
 /* 1 when u is already known to be 0 (remaining parts can be skipped). */
 int dfl_rfunc_acc_is_zero(const dfl_rfunc_acc *acc);
 /* u (and gradient into gu when accumulated; gu may be NULL).  Needs at
- * least one part.  u = 0 and gradient 0 on the zero set. */
+ * least one part.  u = 0 and gradient 0 on the zero set; NaN (value and
+ * gradient) where eq. 20 (DFL_RFUNC_CORR_EQ20) is undefined. */
 double dfl_rfunc_acc_end(const dfl_rfunc_acc *acc, double *gu);
 
 /* Jet of the join from the parts' jets h[0..n-1] (n >= 1) and, for the
@@ -143,5 +192,13 @@ double dfl_rfunc_acc_end(const dfl_rfunc_acc *acc, double *gu);
  * part within ~1e-25 of another one). */
 dfl_status dfl_rfunc_join_jet(dfl_rfunc_join join, int p, size_t n, const dfl_jet *h,
                               size_t nq, const dfl_jet *q, dfl_jet *out, dfl_err *err);
+/* The same for the corrected join's form corr (ignored by the other
+ * joins): with DFL_RFUNC_CORR_EQ20, q are the raw vertex distances' jets,
+ * and where the radicand's jet is not positive as s -> 0+ (eq. 20 is
+ * undefined on the ray's start) *out is a jet of NaN coefficients
+ * (valuation 0, n = K + 1 from the parts) and DFL_OK is returned. */
+dfl_status dfl_rfunc_join_jet_corr(dfl_rfunc_join join, dfl_rfunc_correction corr, int p,
+                                   size_t n, const dfl_jet *h, size_t nq, const dfl_jet *q,
+                                   dfl_jet *out, dfl_err *err);
 
 #endif

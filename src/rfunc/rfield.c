@@ -2,11 +2,13 @@
 
 #include <assert.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/hypot.h"
 #include "rfunc/batch.h"
+#include "rfunc/domain.h"
 #include "rfunc/region.h"
 #include "rfunc/trim.h"
 
@@ -39,6 +41,8 @@ struct dfl_rfield {
     vertex *verts;  /* sorted by hi at finish */
     size_t nv, vcap;
     size_t *vstart; /* n + 1 offsets into verts by hi (after finish) */
+    dfl_rfunc_correction corr; /* corrected join: guarded (default) or eq20 */
+    double span;           /* max |coordinate| of the parts (domain.h) */
     bool fast;             /* builder option: use the batch evaluator if eligible */
     dfl_rfunc_batch *batch; /* eval's fast path (after finish), or NULL */
 };
@@ -75,6 +79,21 @@ size_t dfl_rfield_count(const dfl_rfield *r) { return r->n; }
 
 void dfl_rfield_set_fast(dfl_rfield *r, bool on) { r->fast = on; }
 
+void dfl_rfield_set_correction(dfl_rfield *r, dfl_rfunc_correction corr) { r->corr = corr; }
+
+/* The part's coordinates against the domain (domain.h); the span grows. */
+static dfl_status take_coords(dfl_rfield *r, const double *x, size_t npts, const char *what,
+                              dfl_err *err)
+{
+    for (size_t i = 0; i < npts; i++) {
+        const double *xi = x + i * (size_t)r->dim;
+        dfl_status st = dfl_rfunc_domain_coords(r->dim, xi, what, err);
+        if (st != DFL_OK) return st;
+        for (int j = 0; j < r->dim; j++) r->span = fmax(r->span, fabs(xi[j]));
+    }
+    return DFL_OK;
+}
+
 /* arr (n elements of size bytes, room for *cap) with room for one more:
  * doubled capacity (16 at first) when full.  NULL when out of memory (arr
  * and *cap unchanged). */
@@ -102,7 +121,9 @@ dfl_status dfl_rfield_add_segment(dfl_rfield *r, const double *a, const double *
     part pt;
     memset(&pt, 0, sizeof pt);
     pt.kind = PART_SEGMENT;
-    dfl_status st = dfl_rfunc_seg_init(r->dim, a, b, trim, &pt.u.seg, err);
+    dfl_status st = take_coords(r, a, 1, "segment end point", err);
+    if (st == DFL_OK) st = take_coords(r, b, 1, "segment end point", err);
+    if (st == DFL_OK) st = dfl_rfunc_seg_init(r->dim, a, b, trim, &pt.u.seg, err);
     if (st != DFL_OK) return st;
     return push(r, &pt, err);
 }
@@ -115,7 +136,10 @@ dfl_status dfl_rfield_add_triangle(dfl_rfield *r, const double *A, const double 
     part pt;
     memset(&pt, 0, sizeof pt);
     pt.kind = PART_TRIANGLE;
-    dfl_status st = dfl_rfunc_tri_init(A, B, C, o, &pt.u.tri, err);
+    dfl_status st = take_coords(r, A, 1, "triangle corner", err);
+    if (st == DFL_OK) st = take_coords(r, B, 1, "triangle corner", err);
+    if (st == DFL_OK) st = take_coords(r, C, 1, "triangle corner", err);
+    if (st == DFL_OK) st = dfl_rfunc_tri_init(A, B, C, o, &pt.u.tri, err);
     if (st != DFL_OK) return st;
     return push(r, &pt, err);
 }
@@ -125,7 +149,8 @@ dfl_status dfl_rfield_add_point(dfl_rfield *r, const double *c, dfl_err *err)
     part pt;
     memset(&pt, 0, sizeof pt);
     pt.kind = PART_POINT;
-    dfl_status st = dfl_rfunc_point_init(r->dim, c, &pt.u.pt, err);
+    dfl_status st = take_coords(r, c, 1, "point part", err);
+    if (st == DFL_OK) st = dfl_rfunc_point_init(r->dim, c, &pt.u.pt, err);
     if (st != DFL_OK) return st;
     return push(r, &pt, err);
 }
@@ -137,7 +162,9 @@ dfl_status dfl_rfield_add_region(dfl_rfield *r, const double *v, size_t n, dfl_e
     part pt;
     memset(&pt, 0, sizeof pt);
     pt.kind = PART_REGION;
-    dfl_status st = dfl_rfunc_region_init(v, n, &pt.u.reg, err);
+    dfl_status st = take_coords(r, v, n, "region vertex", err);
+    if (st != DFL_OK) return st;
+    st = dfl_rfunc_region_init(v, n, &pt.u.reg, err);
     if (st != DFL_OK) return st;
     st = push(r, &pt, err);
     if (st != DFL_OK) dfl_rfunc_region_free(&pt.u.reg);
@@ -210,6 +237,7 @@ static void rfield_eval(const void *ctx, size_t m, const double *pts, double *va
     }
     const int dim = r->dim, want = grad != NULL;
     const int corrected = r->join == DFL_RFUNC_REQUIV_CORRECTED;
+    const int eq20 = corrected && r->corr == DFL_RFUNC_CORR_EQ20;
     for (size_t i = 0; i < m; i++) {
         const double *x = pts + i * (size_t)dim;
         dfl_rfunc_acc acc;
@@ -217,6 +245,7 @@ static void rfield_eval(const void *ctx, size_t m, const double *pts, double *va
         double h = 0, hprev = 0, hfirst = 0;
         double g[3] = {0, 0, 0}, gprev[3] = {0, 0, 0}, gfirst[3] = {0, 0, 0};
         dfl_rfunc_acc_begin(&acc, r->join, r->p, dim, want);
+        if (eq20) dfl_rfunc_acc_set_correction(&acc, DFL_RFUNC_CORR_EQ20);
         for (size_t k = 0; k < r->n && !dfl_rfunc_acc_is_zero(&acc); k++) {
             if (k > 0) {
                 hprev = h;
@@ -232,6 +261,12 @@ static void rfield_eval(const void *ctx, size_t m, const double *pts, double *va
             for (size_t iv = r->vstart[k]; iv < r->vstart[k + 1]; iv++) {
                 const vertex *v = &r->verts[iv];
                 double gq[3], glo[3], gt[3];
+                if (eq20) {
+                    /* bs04's q_v as printed: no guard */
+                    const double q = vertex_q(dim, v, x, want ? gq : NULL);
+                    dfl_rfunc_acc_add_q(&acc, q, want ? gq : NULL);
+                    continue;
+                }
                 double hlo;
                 const double *gl = glo;
                 if (v->lo + 1 == k) {
@@ -252,11 +287,45 @@ static void rfield_eval(const void *ctx, size_t m, const double *pts, double *va
     }
 }
 
+static dfl_status domain_check(const dfl_rfield *r, const double *x, bool jet, dfl_err *err)
+{
+    dfl_status st = dfl_rfunc_domain_point(r->dim, x, jet, err);
+    if (st == DFL_OK && jet && r->span > DFL_RFUNC_JET_COORD_MAX)
+        st = dfl_err_set(err, DFL_E_INPUT,
+                         "the field's parts reach |x| = %.17g, beyond the domain of exact"
+                         " derivatives (jets) |x| <= %g",
+                         r->span, DFL_RFUNC_JET_COORD_MAX);
+    return st;
+}
+
+/* A jet direction must be finite and non-zero: u(x + s dir) with dir = 0
+ * is a constant, not a derivative anyone asked for. */
+static dfl_status dir_check(int dim, const double *dir, dfl_err *err)
+{
+    double n = 0.0;
+    for (int j = 0; j < dim; j++) {
+        if (!isfinite(dir[j]))
+            return dfl_err_set(err, DFL_E_INPUT, "jet direction: component %d is not finite",
+                               j + 1);
+        n = fmax(n, fabs(dir[j]));
+    }
+    if (!(n > 0.0)) return dfl_err_set(err, DFL_E_INPUT, "jet direction is zero");
+    if (n > DFL_RFUNC_JET_COORD_MAX || n < 1.0 / DFL_RFUNC_JET_COORD_MAX)
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "jet direction of size %g outside [%g, %g] (scale it)", n,
+                           1.0 / DFL_RFUNC_JET_COORD_MAX, DFL_RFUNC_JET_COORD_MAX);
+    return DFL_OK;
+}
+
 static dfl_status rfield_jet(const void *ctx, const double *x, const double *dir, int K,
                              dfl_jet *out, dfl_err *err)
 {
     const dfl_rfield *r = ctx;
+    dfl_status st0 = domain_check(r, x, true, err);
+    if (st0 == DFL_OK) st0 = dir_check(r->dim, dir, err);
+    if (st0 != DFL_OK) return st0;
     const size_t nq = r->join == DFL_RFUNC_REQUIV_CORRECTED ? r->nv : 0;
+    const int eq20 = nq > 0 && r->corr == DFL_RFUNC_CORR_EQ20;
     dfl_jet *jets = malloc((r->n + nq) * sizeof *jets);
     if (!jets) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
     dfl_status st = DFL_OK;
@@ -268,50 +337,122 @@ static dfl_status rfield_jet(const void *ctx, const double *x, const double *dir
         dfl_jet q;
         st = dfl_rfunc_point_init(r->dim, v->x, &pt, err);
         if (st == DFL_OK) st = dfl_rfunc_point_jet(&pt, x, dir, K, &q, err);
-        if (st == DFL_OK) dfl_rfunc_guard_jet(&q, &jets[v->lo], &jets[v->hi], &jets[r->n + k]);
+        if (st == DFL_OK) {
+            if (eq20) jets[r->n + k] = q;
+            else dfl_rfunc_guard_jet(&q, &jets[v->lo], &jets[v->hi], &jets[r->n + k]);
+        }
     }
     if (st == DFL_OK)
-        st = dfl_rfunc_join_jet(r->join, r->p, r->n, jets, nq, jets + r->n, out, err);
+        st = dfl_rfunc_join_jet_corr(r->join, r->corr, r->p, r->n, jets, nq, jets + r->n, out,
+                                     err);
     free(jets);
     return st;
 }
 
 static void rfield_destroy(void *ctx) { dfl_rfield_free(ctx); }
 
+
 static const dfl_field_ops rfield_ops = {"rfunc", rfield_eval, rfield_jet, rfield_destroy};
+
+dfl_status dfl_rfield_check_point(const dfl_field *f, const double *x, bool jet, dfl_err *err)
+{
+    if (f->ops != &rfield_ops) return DFL_OK;
+    return domain_check(f->ctx, x, jet, err);
+}
+
+bool dfl_rfield_nan_is_undefined(const dfl_field *f)
+{
+    return f->ops == &rfield_ops && ((const dfl_rfield *)f->ctx)->corr == DFL_RFUNC_CORR_EQ20;
+}
 
 bool dfl_rfield_is_fast(const dfl_field *f)
 {
     return f->ops == &rfield_ops && ((const dfl_rfield *)f->ctx)->batch != NULL;
 }
 
-/* The case rfunc/batch.h computes: 2D, R-equivalence, disk-trimmed
- * segments only, forming a chain (segment k starts exactly where k-1
- * ends).  Then the segments are those of the open polyline a_0, ..., a_{n-1},
- * b_{n-1} (a closed polyline is the open one with b_{n-1} = a_0, and the
- * R-equivalence ignores the vertices), which the batch is built from:
- * NULL (no error) when the field is not eligible. */
+/* The cases rfunc/batch.h computes: R-equivalence of point parts only, of
+ * convex regions only, of triangles only (one eq. 4 trim), or
+ * of 2D or 3D segments, all with the same eq. 4 trim (disk or strip), forming a chain (segment k
+ * starts exactly where k-1 ends).  Then the segments are those of the open
+ * polyline a_0, ..., a_{n-1}, b_{n-1} (a closed polyline is the open one
+ * with b_{n-1} = a_0, and the R-equivalence ignores the vertices), which
+ * the batch is built from: NULL (no error) when the field is not eligible,
+ * or when the polyline checks of the batch's reference field reject the
+ * chain (segments added one by one may backtrack). */
 static dfl_status build_batch(const dfl_rfield *f, dfl_rfunc_batch **out, dfl_err *err)
 {
     *out = NULL;
     /* One segment: the join is the identity, which the per-point path
      * keeps exactly (u = h, tests/rfunc/test_segment.c) and the batch only
      * to rounding; there is nothing to vectorize over either. */
-    if (!f->fast || f->dim != 2 || f->join != DFL_RFUNC_REQUIV || f->n < 2) return DFL_OK;
+    if (!f->fast || f->join != DFL_RFUNC_REQUIV || f->n < 2) return DFL_OK;
+    const int dim = f->dim;
+    size_t npt = 0, ntri = 0, nreg = 0;
+    for (size_t k = 0; k < f->n; k++) {
+        npt += f->parts[k].kind == PART_POINT;
+        ntri += f->parts[k].kind == PART_TRIANGLE;
+        nreg += f->parts[k].kind == PART_REGION;
+    }
+    if (nreg == f->n) {
+        /* only convex regions: the region kernel */
+        dfl_rfunc_region *rg = malloc(f->n * sizeof *rg);
+        if (!rg) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+        for (size_t k = 0; k < f->n; k++) rg[k] = f->parts[k].u.reg;
+        dfl_status st = dfl_rfunc_batch_regions(rg, f->n, f->p, out, err);
+        free(rg);
+        return st;
+    }
+    if (ntri == f->n) {
+        /* only triangles: the triangle kernel, when their trims allow */
+        dfl_rfunc_tri *t = malloc(f->n * sizeof *t);
+        if (!t) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+        for (size_t k = 0; k < f->n; k++) t[k] = f->parts[k].u.tri;
+        dfl_err e2;
+        dfl_status st = dfl_rfunc_batch_triangles(t, f->n, f->p, out, &e2);
+        free(t);
+        if (st == DFL_E_INPUT) {
+            *out = NULL;
+            return DFL_OK;
+        }
+        if (st != DFL_OK) *err = e2;
+        return st;
+    }
+    if (npt == f->n) {
+        /* only points: the point kernel */
+        double *c = malloc((size_t)dim * f->n * sizeof *c);
+        if (!c) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+        for (size_t k = 0; k < f->n; k++)
+            memcpy(c + (size_t)dim * k, f->parts[k].u.pt.c, (size_t)dim * sizeof *c);
+        dfl_status st = dfl_rfunc_batch_points(dim, c, f->n, f->p, out, err);
+        free(c);
+        return st;
+    }
+    const dfl_rfunc_trim trim = f->parts[0].u.seg.trim;
+    if (f->parts[0].kind != PART_SEGMENT ||
+        (trim != DFL_RFUNC_TRIM_DISK && trim != DFL_RFUNC_TRIM_STRIP))
+        return DFL_OK;
     for (size_t k = 0; k < f->n; k++) {
         const part *pt = &f->parts[k];
-        if (pt->kind != PART_SEGMENT || pt->u.seg.trim != DFL_RFUNC_TRIM_DISK) return DFL_OK;
+        if (pt->kind != PART_SEGMENT || pt->u.seg.trim != trim) return DFL_OK;
         if (k > 0) {
             const double *e = f->parts[k - 1].u.seg.b, *a = pt->u.seg.a;
-            if (e[0] != a[0] || e[1] != a[1]) return DFL_OK;
+            for (int j = 0; j < dim; j++)
+                if (e[j] != a[j]) return DFL_OK;
         }
     }
-    double *v = malloc(2 * (f->n + 1) * sizeof *v);
+    const size_t d = (size_t)dim;
+    double *v = malloc(d * (f->n + 1) * sizeof *v);
     if (!v) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-    for (size_t k = 0; k < f->n; k++) memcpy(v + 2 * k, f->parts[k].u.seg.a, 2 * sizeof *v);
-    memcpy(v + 2 * f->n, f->parts[f->n - 1].u.seg.b, 2 * sizeof *v);
-    dfl_status st = dfl_rfunc_batch_new(v, f->n + 1, false, f->p, out, err);
+    for (size_t k = 0; k < f->n; k++) memcpy(v + d * k, f->parts[k].u.seg.a, d * sizeof *v);
+    memcpy(v + d * f->n, f->parts[f->n - 1].u.seg.b, d * sizeof *v);
+    dfl_err e2;
+    dfl_status st = dfl_rfunc_batch_new_opts(dim, v, f->n + 1, false, f->p, trim, out, &e2);
     free(v);
+    if (st == DFL_E_INPUT) {
+        *out = NULL;
+        return DFL_OK;
+    }
+    if (st != DFL_OK) *err = e2;
     return st;
 }
 
@@ -364,18 +505,90 @@ dfl_status dfl_rfield_polyline(int dim, const double *v, size_t n, bool closed,
     return dfl_rfield_polyline_opts(dim, v, n, closed, join, p, trim, true, out, err);
 }
 
-dfl_status dfl_rfield_polyline_opts(int dim, const double *v, size_t n, bool closed,
-                                    dfl_rfunc_join join, int p, dfl_rfunc_trim trim, bool fast,
-                                    dfl_field *out, dfl_err *err)
+/* Size of the polyline: the diagonal of its bounding box. */
+static double poly_extent(int dim, const double *v, size_t n)
 {
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, w[3] = {0, 0, 0};
+    for (size_t i = 0; i < n; i++)
+        for (int j = 0; j < dim; j++) {
+            const double x = v[i * (size_t)dim + j];
+            lo[j] = i ? fmin(lo[j], x) : x;
+            hi[j] = i ? fmax(hi[j], x) : x;
+        }
+    for (int j = 0; j < dim; j++) w[j] = hi[j] - lo[j];
+    return dfl_hypot_vec(dim, w);
+}
+
+/* |a x b| and a . b of two dim-vectors. */
+static void cross_dot(int dim, const double *a, const double *b, double *cr, double *dt)
+{
+    double c[3] = {0, 0, 0};
+    if (dim == 2) c[0] = a[0] * b[1] - a[1] * b[0];
+    else {
+        c[0] = a[1] * b[2] - a[2] * b[1];
+        c[1] = a[2] * b[0] - a[0] * b[2];
+        c[2] = a[0] * b[1] - a[1] * b[0];
+    }
+    *cr = dfl_hypot_vec(3, c);
+    *dt = 0.0;
+    for (int j = 0; j < dim; j++) *dt += a[j] * b[j];
+}
+
+/* The degenerate polylines dflab rejects (header): segments shorter than
+ * DFL_RFIELD_POLY_TOL of the polyline's size and A-B-A backtracks; a
+ * closed polyline with no area (collinear vertices) turns back at its
+ * extreme vertices, so the second test catches it. */
+static dfl_status poly_check(int dim, const double *v, size_t n, bool closed, dfl_err *err)
+{
+    const double ext = poly_extent(dim, v, n);
+    const size_t nseg = closed ? n : n - 1;
+    double e[3][3];
+    for (size_t i = 0; i < nseg; i++) {
+        const double *a = v + i * (size_t)dim, *b = v + ((i + 1) % n) * (size_t)dim;
+        double w[3] = {0, 0, 0};
+        for (int j = 0; j < dim; j++) w[j] = b[j] - a[j];
+        const double len = dfl_hypot_vec(dim, w);
+        if (!(len > DFL_RFIELD_POLY_TOL * ext))
+            return dfl_err_set(err, DFL_E_INPUT,
+                               "degenerate polyline: segment %zu (vertices %zu and %zu) has length %.3g,"
+                               " below %g of the polyline's size %.3g",
+                               i + 1, i + 1, (i + 1) % n + 1, len, DFL_RFIELD_POLY_TOL, ext);
+    }
+    for (size_t i = closed ? 0 : 1; i < (closed ? n : n - 1); i++) {
+        const double *a = v + ((i + n - 1) % n) * (size_t)dim, *b = v + i * (size_t)dim,
+                     *c = v + ((i + 1) % n) * (size_t)dim;
+        for (int j = 0; j < dim; j++) {
+            e[0][j] = b[j] - a[j];
+            e[1][j] = c[j] - b[j];
+        }
+        double cr, dt;
+        cross_dot(dim, e[0], e[1], &cr, &dt);
+        const double l0 = dfl_hypot_vec(dim, e[0]), l1 = dfl_hypot_vec(dim, e[1]);
+        if (dt < 0.0 && cr <= DFL_RFIELD_POLY_TOL * l0 * l1)
+            return dfl_err_set(err, DFL_E_INPUT,
+                               "degenerate polyline: at vertex %zu it turns back on itself"
+                               " (segments %zu and %zu overlap)",
+                               i + 1, i == 0 ? n : i, i + 1);
+    }
+    return DFL_OK;
+}
+
+dfl_status dfl_rfield_add_polyline(dfl_rfield *r, const double *v, size_t n, bool closed,
+                                   dfl_rfunc_trim trim, dfl_err *err)
+{
+    const int dim = r->dim;
     if (n < (closed ? 3u : 2u))
         return dfl_err_set(err, DFL_E_INPUT, "polyline: %zu vertices (need at least %d%s)", n,
                            closed ? 3 : 2, closed ? " when closed" : "");
-    dfl_rfield *r = NULL;
-    dfl_status st = dfl_rfield_new(dim, join, p, &r, err);
+    dfl_status st = DFL_OK;
+    for (size_t i = 0; i < n && st == DFL_OK; i++) {
+        char what[48];
+        snprintf(what, sizeof what, "polyline vertex %zu", i + 1);
+        st = take_coords(r, v + i * (size_t)dim, 1, what, err);
+    }
+    if (st == DFL_OK) st = poly_check(dim, v, n, closed, err);
     if (st != DFL_OK) return st;
-    dfl_rfield_set_fast(r, fast);
-    const size_t nseg = closed ? n : n - 1;
+    const size_t base = r->n, nseg = closed ? n : n - 1;
     for (size_t i = 0; i < nseg && st == DFL_OK; i++) {
         st = dfl_rfield_add_segment(r, v + i * (size_t)dim, v + ((i + 1) % n) * (size_t)dim, trim,
                                     err);
@@ -386,7 +599,20 @@ dfl_status dfl_rfield_polyline_opts(int dim, const double *v, size_t n, bool clo
     /* Vertex i joins segments i-1 and i (vertex 0 of a closed polyline:
      * the closing segment n-1 and segment 0). */
     for (size_t i = closed ? 0 : 1; i < (closed ? n : n - 1) && st == DFL_OK; i++)
-        st = dfl_rfield_add_vertex(r, v + i * (size_t)dim, i == 0 ? n - 1 : i - 1, i, err);
+        st = dfl_rfield_add_vertex(r, v + i * (size_t)dim, base + (i == 0 ? n - 1 : i - 1),
+                                   base + i, err);
+    return st;
+}
+
+dfl_status dfl_rfield_polyline_opts(int dim, const double *v, size_t n, bool closed,
+                                    dfl_rfunc_join join, int p, dfl_rfunc_trim trim, bool fast,
+                                    dfl_field *out, dfl_err *err)
+{
+    dfl_rfield *r = NULL;
+    dfl_status st = dfl_rfield_new(dim, join, p, &r, err);
+    if (st != DFL_OK) return st;
+    dfl_rfield_set_fast(r, fast);
+    st = dfl_rfield_add_polyline(r, v, n, closed, trim, err);
     if (st != DFL_OK) {
         dfl_rfield_free(r);
         return st;

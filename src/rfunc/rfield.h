@@ -14,14 +14,21 @@
  * everywhere.  eval is serial, allocation-free and thread-safe; jets
  * allocate one array of n part jets per call.
  *
- * Fast path.  A field that is exactly a 2D polyline of at least two
- * segments (its parts are segments, all with the disk trim, each starting
- * where the previous one ends; open or closed) joined by R-equivalence
+ * Fast path.  A field that is exactly a 2D or 3D polyline of at least two
+ * segments (its parts are segments, all with the same eq. 4 trim, disk or
+ * strip, each starting where the previous one ends; open or closed) joined
+ * by R-equivalence (or a set of at least two point parts, of convex
+ * regions, or of triangles with one eq. 4 trim, joined so)
  * evaluates through the vectorized evaluator of rfunc/batch.h (one call
  * per batch of points), which agrees with the per-point
  * accumulator to rounding (1e-12 relative; gradients relative to the sum
  * of absolute contributions) and falls back to it where its unscaled sums
  * are not trustworthy.  Jets and every other field use the per-point code.
+ *
+ * Domain of validity (rfunc/domain.h): parts are rejected (DFL_E_INPUT)
+ * beyond |coordinate| 1e100; values and gradients are finite and correct
+ * for points within it (except eq. 20's own NaN); jets need |x| <= 1e30
+ * and a finite non-zero direction, and fail with DFL_E_INPUT otherwise.
  *
  * Ownership: the builder (dfl_rfield_new) collects parts; dfl_rfield_finish
  * moves everything into the field (freed by dfl_field_destroy) and frees the
@@ -60,10 +67,43 @@ dfl_status dfl_rfield_add_region(dfl_rfield *r, const double *v, size_t n, dfl_e
 dfl_status dfl_rfield_add_vertex(dfl_rfield *r, const double *v, size_t i, size_t j,
                                  dfl_err *err);
 
+/* Relative tolerance of the degenerate-polyline tests (dfl_rfield_add_polyline). */
+#define DFL_RFIELD_POLY_TOL 1e-12
+
+/* The polyline v[0..n-1] (n*dim coordinates; closed adds the segment
+ * v[n-1] -> v[0]) as segments with trim plus its shared vertices (the
+ * interior ones, or all when closed), appended to the parts.  DFL_E_INPUT
+ * for n < 2 (n < 3 when closed), coordinates outside the domain
+ * (domain.h), a segment shorter than DFL_RFIELD_POLY_TOL times the
+ * polyline's bounding-box diagonal (repeated vertices included), an A-B-A
+ * backtrack (consecutive segments antiparallel within the tolerance; this
+ * includes every closed polyline with collinear vertices, i.e. no area,
+ * at its extreme vertices); the message
+ * names the vertex or segment (1-based).  Parts added before a failure
+ * stay in the builder (free it). */
+dfl_status dfl_rfield_add_polyline(dfl_rfield *r, const double *v, size_t n, bool closed,
+                                   dfl_rfunc_trim trim, dfl_err *err);
+
 /* Switches the fast path (see above) on (the default) or off for the field
  * this builder finishes into; off forces the per-point accumulator (tests,
  * the benchmark's baseline, and rfunc/batch.h's own reference field). */
 void dfl_rfield_set_fast(dfl_rfield *r, bool on);
+
+/* Corrected join only: dflab's guarded form (the default) or bs04's eq.
+ * 20 literally (NaN where its radicand <= 0); join.h.  Ignored by the
+ * other joins. */
+void dfl_rfield_set_correction(dfl_rfield *r, dfl_rfunc_correction corr);
+
+/* DFL_OK when x lies in the domain of validity of f's values (jet false)
+ * or exact derivatives (jet true) -- rfunc/domain.h: |x_j| <= 1e100, and
+ * for jets |x_j| <= 1e30 with the parts inside that bound too; DFL_E_INPUT
+ * naming the point otherwise.  DFL_OK for any field that is not an rfield. */
+dfl_status dfl_rfield_check_point(const dfl_field *f, const double *x, bool jet, dfl_err *err);
+
+/* True when f is an rfield whose NaN values mean "undefined here" rather
+ * than a failure: the corrected join with correction = eq20, which is NaN
+ * exactly where bs04's radicand is <= 0.  False for every other field. */
+bool dfl_rfield_nan_is_undefined(const dfl_field *f);
 
 /* Whether f is an rfield whose eval runs the fast path (false for any
  * other field). */
@@ -79,8 +119,8 @@ dfl_status dfl_rfield_finish(dfl_rfield **r, dfl_field *out, dfl_err *err);
 
 /* The polyline v[0..n-1] (n*dim coordinates; closed adds the segment
  * v[n-1] -> v[0]) as a field; the shared vertices are the interior ones
- * (open) or all (closed).  DFL_E_INPUT for n < 2 (n < 3 when closed),
- * repeated consecutive vertices, bad p. */
+ * (open) or all (closed).  DFL_E_INPUT for what dfl_rfield_add_polyline
+ * rejects and a bad p. */
 dfl_status dfl_rfield_polyline(int dim, const double *v, size_t n, bool closed,
                                dfl_rfunc_join join, int p, dfl_rfunc_trim trim, dfl_field *out,
                                dfl_err *err);

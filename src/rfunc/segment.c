@@ -6,6 +6,7 @@
 
 #include "core/hypot.h"
 #include "core/vec.h"
+#include "rfunc/domain.h"
 #include "rfunc/trim.h"
 
 static double amax(int dim, const double *u)
@@ -54,6 +55,11 @@ dfl_status dfl_rfunc_seg_init(int dim, const double *a, const double *b, dfl_rfu
     if (!(s.d > 1e-12 * size) || s.d == 0.0)
         return dfl_err_set(err, DFL_E_INPUT,
                            "degenerate segment: end points coincide (length %g)", s.d);
+    if (!(s.d >= DFL_RFUNC_LEN_MIN))
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "segment of length %g, below the rfunc fields' smallest length %g"
+                           " (rfunc/domain.h)",
+                           s.d, DFL_RFUNC_LEN_MIN);
     for (int j = 0; j < dim; j++) s.e[j] = ab[j] / s.d;
     if (dim == 2) {
         /* eq. 2: f = (x - a) . (y2 - y1, -(x2 - x1)) / d */

@@ -47,7 +47,15 @@ double dfl_rfunc_compose(int dim, int smooth, double fa, const double *hgF, doub
         h = dfl_hypot2(fa, m);
         if (gh) {
             /* h grad h = f grad f + m grad m, grad m = -grad t where t < 0. */
+            /* Near the domain's edge (rfunc/domain.h: |t| up to 4e300)
+             * t grad t overflows; divide first there (elsewhere the plain
+             * form, whose rounding the studies' numbers were made with). */
+            const int big = fabs(t) > 1e150;
             for (int j = 0; j < dim; j++) {
+                if (big) {
+                    gh[j] = hgF[j] / h + (t < 0.0 ? (t / h) * gt[j] : 0.0);
+                    continue;
+                }
                 double num = hgF[j] + (t < 0.0 ? t * gt[j] : 0.0);
                 gh[j] = h > 0.0 ? num / h : 0.0;
             }
@@ -57,7 +65,8 @@ double dfl_rfunc_compose(int dim, int smooth, double fa, const double *hgF, doub
     /* g = sqrt(t^2 + F^2) - t, written without cancellation for t > 0. */
     const double F = fa * fa;
     const double r = dfl_hypot2(t, F);
-    const double g = t > 0.0 ? F * F / (r + t) : r - t;
+    /* F * F overflows beyond F ~ 1e154 (the domain's edge): F (F / (r + t)) there. */
+    const double g = t > 0.0 ? (F > 1e150 ? F * (F / (r + t)) : F * F / (r + t)) : r - t;
     h = dfl_hypot2(fa, 0.5 * g);
     if (gh) {
         /* grad g = (t grad t + F grad F) / r - grad t = (-g grad t + F grad F) / r

@@ -29,6 +29,7 @@
 #include "field/sample.h"
 #include "rfunc/batch.h"
 #include "rfunc/rfield.h"
+#include "rfunc/tri3d.h"
 
 #define NSEG 1500
 
@@ -98,9 +99,10 @@ static double *grid_points(const dfl_grid *g)
     return pts;
 }
 
-/* Runs the numpy script; returns its rate (NAN if it failed) and checks its
- * values at a few nodes of its n x n grid against the fast path. */
-static double numpy_rate(const dfl_rfunc_batch *b, int p, int n)
+/* Runs the numpy script for kind (disk2, strip2, disk3, strip3); returns
+ * its rate (NAN if it failed) and checks its values at a few nodes of its
+ * n x n grid (z = 0 in 3D) against the field f. */
+static double numpy_rate_kind(const dfl_field *f, const char *kind, int p, int n)
 {
     const char *py = getenv("DFL_PYTHON");
     if (!py || !*py) py = "/usr/bin/python3";
@@ -109,9 +111,9 @@ static double numpy_rate(const dfl_rfunc_batch *b, int p, int n)
     int fd = mkstemp(tmp);
     if (fd < 0) return NAN;
     snprintf(cmd, sizeof cmd,
-             "%s scripts/bench_rfunc_numpy.py --p %d --segments %d --grid %d --reps 3 "
+             "%s scripts/bench_rfunc_numpy.py --kind %s --p %d --segments %d --grid %d --reps 3 "
              "--check %zu %zu %zu %zu > %s 2>&1",
-             py, p, NSEG, n, chk[0], chk[1], chk[2], chk[3], tmp);
+             py, kind, p, NSEG, n, chk[0], chk[1], chk[2], chk[3], tmp);
     const int rc = system(cmd);
     FILE *fp = fopen(tmp, "r");
     double rate = NAN;
@@ -123,9 +125,9 @@ static double numpy_rate(const dfl_rfunc_batch *b, int p, int n)
         double u, gx, gy;
         if (sscanf(line, "rate: %lf", &rate) == 1) continue;
         if (sscanf(line, "check %zu %lf %lf %lf", &i, &u, &gx, &gy) == 4) {
-            double x[2], uf, gf[2];
+            double x[3] = {0, 0, 0}, gf[3];
             dfl_grid_node(&g, i, x);
-            dfl_rfunc_batch_eval(b, 1, x, &uf, gf);
+            const double uf = dfl_field_eval1(f, x, gf);
             const double gn = hypot(gf[0], gf[1]);
             if (!(fabs(u - uf) <= 1e-12 * uf && fabs(gx - gf[0]) <= 1e-10 * gn &&
                   fabs(gy - gf[1]) <= 1e-10 * gn)) {
@@ -236,7 +238,7 @@ static void bench_order(int p, const cpu_info *cpu)
     snprintf(name, sizeof name, "bs04.rfunc.p%d.segment_evals.library_rfield_per_point", p);
     bench_report(name, slowrate, "segment-evals/s");
 
-    const double np = numpy_rate(b, p, 96);
+    const double np = numpy_rate_kind(&fast, "disk2", p, 96);
     snprintf(name, sizeof name, "bs04.rfunc.p%d.segment_evals.numpy", p);
     bench_report(name, np, "segment-evals/s");
     snprintf(name, sizeof name, "bs04.rfunc.p%d.segment_evals.vs_numpy", p);
@@ -273,6 +275,224 @@ static void bench_order(int p, const cpu_info *cpu)
     dfl_field_destroy(&fast);
 }
 
+/* ---- every field kind ---------------------------------------------------
+ * Part-evaluations per second (value + gradient, p = 2) of each kind's
+ * field through the grid sampler (all threads): the batched kernel where
+ * the kind has one, beside the per-point path (the same field built with
+ * the fast path off) and, for the segment kinds, the numpy peer. */
+
+typedef struct kind_job {
+    const dfl_field *f;
+    const double *pts;
+    size_t m;
+    double *v, *g;
+} kind_job;
+
+static void run_points(void *a)
+{
+    kind_job *j = a;
+    /* chunks of 256 points, in parallel: what the samplers do */
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < j->m; i += 256) {
+        const size_t c = j->m - i < 256 ? j->m - i : 256;
+        const int d = j->f->dim;
+        j->f->ops->eval(j->f->ctx, c, j->pts + (size_t)d * i, j->v + i, j->g + (size_t)d * i);
+    }
+}
+
+/* Points on [0, 1]^2 (z = 0 in 3D): an n x n grid. */
+static double *kind_points(int dim, int n)
+{
+    double *pts = calloc((size_t)n * (size_t)n * (size_t)dim, sizeof *pts);
+    if (!pts) abort();
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            const size_t k = (size_t)j * (size_t)n + (size_t)i;
+            pts[(size_t)dim * k] = i / (n - 1.0);
+            pts[(size_t)dim * k + 1] = j / (n - 1.0);
+        }
+    return pts;
+}
+
+/* Rate of f at n x n points: parts x points / best time. */
+static double kind_rate(const dfl_field *f, size_t parts, int n, int reps)
+{
+    kind_job j = {f, kind_points(f->dim, n), (size_t)n * (size_t)n, NULL, NULL};
+    j.v = malloc(j.m * sizeof *j.v);
+    j.g = malloc(j.m * (size_t)f->dim * sizeof *j.g);
+    const double r = (double)j.m * (double)parts / bench_best(reps, run_points, &j);
+    free((void *)j.pts), free(j.v), free(j.g);
+    return r;
+}
+
+typedef dfl_status (*kind_build)(bool fast, dfl_field *out, dfl_err *err);
+
+static double *kind_curve(int dim)
+{
+    static double v[3 * NSEG];
+    double v2[2 * NSEG];
+    polyline(v2);
+    for (int i = 0; i < NSEG; i++) {
+        v[dim * i] = v2[2 * i];
+        v[dim * i + 1] = v2[2 * i + 1];
+        if (dim == 3) v[3 * i + 2] = 0.05 * sin(3.0 * 2.0 * DFL_PI * i / NSEG);
+    }
+    return v;
+}
+
+static dfl_status polyline_kind(int dim, dfl_rfunc_join join, dfl_rfunc_trim trim, bool fast,
+                                dfl_field *out, dfl_err *err)
+{
+    return dfl_rfield_polyline_opts(dim, kind_curve(dim), NSEG, true, join, 2, trim, fast, out,
+                                    err);
+}
+
+static dfl_status k_strip2(bool fast, dfl_field *o, dfl_err *e)
+{
+    return polyline_kind(2, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_STRIP, fast, o, e);
+}
+static dfl_status k_disk3(bool fast, dfl_field *o, dfl_err *e)
+{
+    return polyline_kind(3, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_DISK, fast, o, e);
+}
+static dfl_status k_strip3(bool fast, dfl_field *o, dfl_err *e)
+{
+    return polyline_kind(3, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_STRIP, fast, o, e);
+}
+static dfl_status k_smooth2(bool fast, dfl_field *o, dfl_err *e)
+{
+    return polyline_kind(2, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_DISK_SMOOTH, fast, o, e);
+}
+static dfl_status k_rconj2(bool fast, dfl_field *o, dfl_err *e)
+{
+    return polyline_kind(2, DFL_RFUNC_RCONJ, DFL_RFUNC_TRIM_DISK, fast, o, e);
+}
+static dfl_status k_corrected2(bool fast, dfl_field *o, dfl_err *e)
+{
+    return polyline_kind(2, DFL_RFUNC_REQUIV_CORRECTED, DFL_RFUNC_TRIM_DISK, fast, o, e);
+}
+
+/* Finishes the builder r into out when st is DFL_OK, else frees it. */
+static dfl_status finish_kind(dfl_rfield *r, dfl_status st, dfl_field *out, dfl_err *err)
+{
+    if (st) {
+        dfl_rfield_free(r);
+        return st;
+    }
+    return dfl_rfield_finish(&r, out, err);
+}
+
+#define NTRI 500
+/* NTRI triangles: a strip of a wavy surface over [0, 1]^2 (z = 0.3 + ...). */
+static dfl_status tris_kind(dfl_rfunc_tri_trim trim, bool fast, dfl_field *out, dfl_err *err)
+{
+    dfl_rfield *r;
+    dfl_status st = dfl_rfield_new(3, DFL_RFUNC_REQUIV, 2, &r, err);
+    if (st) return st;
+    dfl_rfield_set_fast(r, fast);
+    dfl_rfunc_tri_opts o = dfl_rfunc_tri_defaults();
+    o.trim = trim;
+    for (int t = 0; t < NTRI && !st; t++) {
+        const int i = (t / 2) % 25, j = (t / 2) / 25;
+        const double x0 = i / 25.0, y0 = j / 10.0, hx = 1 / 25.0, hy = 0.1;
+#define ZW(x, y) (0.3 + 0.05 * sin(6 * (x)) * cos(4 * (y)))
+        const double A[3] = {x0, y0, ZW(x0, y0)}, B[3] = {x0 + hx, y0, ZW(x0 + hx, y0)},
+                     C[3] = {x0, y0 + hy, ZW(x0, y0 + hy)},
+                     D[3] = {x0 + hx, y0 + hy, ZW(x0 + hx, y0 + hy)};
+#undef ZW
+        st = t % 2 ? dfl_rfield_add_triangle(r, B, D, C, &o, err)
+                   : dfl_rfield_add_triangle(r, A, B, C, &o, err);
+    }
+    return finish_kind(r, st, out, err);
+}
+static dfl_status k_tri_prism(bool fast, dfl_field *o, dfl_err *e)
+{
+    return tris_kind(DFL_RFUNC_TRI_PRISM, fast, o, e);
+}
+static dfl_status k_tri_cond(bool fast, dfl_field *o, dfl_err *e)
+{
+    return tris_kind(DFL_RFUNC_TRI_CONDITIONAL, fast, o, e);
+}
+static dfl_status k_points(bool fast, dfl_field *out, dfl_err *err)
+{
+    dfl_rfield *r;
+    dfl_status st = dfl_rfield_new(2, DFL_RFUNC_REQUIV, 2, &r, err);
+    if (st) return st;
+    dfl_rfield_set_fast(r, fast);
+    const double *v = kind_curve(2);
+    for (int i = 0; i < NSEG && !st; i++) st = dfl_rfield_add_point(r, v + 2 * i, err);
+    return finish_kind(r, st, out, err);
+}
+#define NREG 100
+static dfl_status k_regions(bool fast, dfl_field *out, dfl_err *err)
+{
+    dfl_rfield *r;
+    dfl_status st = dfl_rfield_new(2, DFL_RFUNC_REQUIV, 2, &r, err);
+    if (st) return st;
+    dfl_rfield_set_fast(r, fast);
+    for (int i = 0; i < NREG && !st; i++) {
+        const double cx = (i % 10 + 0.5) / 10, cy = (i / 10 + 0.5) / 10, h = 0.03;
+        const double q[8] = {cx - h, cy - h, cx + h, cy - h, cx + h, cy + h, cx - h, cy + h};
+        st = dfl_rfield_add_region(r, q, 4, err);
+    }
+    return finish_kind(r, st, out, err);
+}
+
+typedef struct kind_row {
+    const char *name, *numpy;
+    kind_build build;
+    size_t parts;
+    const char *why; /* why it stays on the per-point path (NULL: batched) */
+} kind_row;
+
+static void bench_kinds(void)
+{
+    static const kind_row rows[] = {
+        {"strip2", "strip2", k_strip2, NSEG, NULL},
+        {"disk3", "disk3", k_disk3, NSEG, NULL},
+        {"strip3", "strip3", k_strip3, NSEG, NULL},
+        {"disk_smooth2", NULL, k_smooth2, NSEG, "eq. 5: a second root and division per part"},
+        {"rconj2", NULL, k_rconj2, NSEG, "sequential fold, (1 + r^p)^(1/p) per part"},
+        {"corrected2", NULL, k_corrected2, NSEG, "vertex terms with guards per part"},
+        {"triangles_prism", NULL, k_tri_prism, NTRI, NULL},
+        {"triangles_conditional", NULL, k_tri_cond, NTRI, NULL},
+        {"points", NULL, k_points, NSEG, NULL},
+        {"regions", NULL, k_regions, NREG, NULL},
+    };
+    for (size_t i = 0; i < sizeof rows / sizeof rows[0]; i++) {
+        const kind_row *k = &rows[i];
+        dfl_field fast, slow;
+        dfl_err err;
+        if (k->build(true, &fast, &err) || k->build(false, &slow, &err)) {
+            fprintf(stderr, "bench_rfunc: kind %s: %s\n", k->name, err.msg);
+            abort();
+        }
+        char name[160];
+        const int n = k->why ? 48 : 160;
+        const double rf = kind_rate(&fast, k->parts, n, 3);
+        const double rs = k->why ? rf : kind_rate(&slow, k->parts, 48, 3);
+        snprintf(name, sizeof name, "bs04.rfunc.kind.%s.p2.part_evals", k->name);
+        bench_report(name, rf, k->why ? "part-evals/s (per-point path)" : "part-evals/s (batched)");
+        snprintf(name, sizeof name, "bs04.rfunc.kind.%s.p2.per_point", k->name);
+        bench_report(name, rs, "part-evals/s");
+        if (!k->why) {
+            snprintf(name, sizeof name, "bs04.rfunc.kind.%s.p2.vs_per_point", k->name);
+            bench_report(name, rf / rs, "x");
+        } else {
+            printf("# %s stays on the per-point path: %s\n", k->name, k->why);
+        }
+        if (k->numpy) {
+            const double np = numpy_rate_kind(&fast, k->numpy, 2, 96);
+            snprintf(name, sizeof name, "bs04.rfunc.kind.%s.p2.numpy", k->name);
+            bench_report(name, np, "part-evals/s");
+            snprintf(name, sizeof name, "bs04.rfunc.kind.%s.p2.vs_numpy", k->name);
+            bench_report(name, rf / np, "x");
+        }
+        dfl_field_destroy(&fast);
+        dfl_field_destroy(&slow);
+    }
+}
+
 void bench_rfunc(void)
 {
     const cpu_info cpu = read_cpu();
@@ -285,6 +505,7 @@ void bench_rfunc(void)
            cpu.amd_zen4 ? 4 : width);
     bench_order(2, &cpu);
     bench_order(7, &cpu);
+    bench_kinds();
     printf("# Gap to peak.  The kernel is bound by its multiplications: the two FMA/multiply\n"
            "# pipes take one multiply per lane per cycle each, the additions run on two other\n"
            "# pipes, so muls / (2 x lanes) cycles per segment evaluation is its floor (compare\n"

@@ -21,6 +21,8 @@
 #include "rfunc/join.h"
 #include "rfunc/segment.h"
 #include "rfunc/batch.h"
+#include "rfunc/tri3d.h"
+#include "rfunc/rfield.h"
 
 /* A wobbly spiral polyline of n vertices inside [0, 1]^2. */
 static double *spiral(size_t n)
@@ -261,4 +263,248 @@ Test(rfunc_batch, bad_input)
     cr_expect_null(b);
     const int w = dfl_rfunc_batch_simd_width();
     cr_expect(w == 2 || w == 4 || w == 8, "width %d", w);
+}
+
+/* The strip-trim and 3D kernels against a brute-force sum over the
+ * library's segment fields (same tolerance as above), open and closed, at
+ * random points and at points near the polyline (1e-6 off a vertex and off
+ * a segment's interior), with the fast path actually taken (no fallback). */
+static void compare_kind(int dim, dfl_rfunc_trim trim, size_t nv, int closed, int p,
+                         uint64_t seed)
+{
+    double *v2 = spiral(nv), *v = malloc(3 * nv * sizeof *v);
+    const size_t d = (size_t)dim;
+    for (size_t i = 0; i < nv; i++) {
+        v[d * i] = v2[2 * i];
+        v[d * i + 1] = v2[2 * i + 1];
+        if (dim == 3) v[3 * i + 2] = 0.3 * sin(7.0 * (double)i / (double)nv);
+    }
+    free(v2);
+    dfl_rfunc_batch *b;
+    dfl_err err;
+    cr_assert_eq(dfl_rfunc_batch_new_opts(dim, v, nv, closed, p, trim, &b, &err), DFL_OK, "%s",
+                 err.msg);
+    enum { M = 101 };
+    double pts[3 * M], uf[M], gf[3 * M];
+    uint64_t rng = seed;
+    for (int i = 0; i < M; i++)
+        for (size_t j = 0; j < d; j++) pts[d * i + j] = dfl_rng_splitmix(&rng, -0.3, 1.3);
+    /* two points near the polyline */
+    for (size_t j = 0; j < d; j++) {
+        pts[j] = v[d * 3 + j] + 1e-6;
+        pts[d + j] = 0.5 * (v[d * 5 + j] + v[d * 6 + j]) + (j == 0 ? 1e-6 : 0.0);
+    }
+    cr_assert_eq(dfl_rfunc_batch_fallbacks(b, M, pts), 0);
+    dfl_rfunc_batch_eval(b, M, pts, uf, gf);
+    const size_t ns = closed ? nv : nv - 1;
+    for (int i = 0; i < M; i++) {
+        const double *x = pts + d * i;
+        double S = 0, h[128], gh[3 * 128];
+        cr_assert(ns <= 128);
+        for (size_t k = 0; k < ns; k++) {
+            dfl_rfunc_seg seg;
+            cr_assert_eq(dfl_rfunc_seg_init(dim, v + d * k, v + d * ((k + 1) % nv), trim, &seg,
+                                            NULL),
+                         DFL_OK);
+            h[k] = dfl_rfunc_seg_eval(&seg, x, gh + 3 * k);
+            S += pow(h[k], -p);
+        }
+        const double u = pow(S, -1.0 / p);
+        double g[3] = {0, 0, 0}, s = 0;
+        for (size_t k = 0; k < ns; k++) {
+            const double c = pow(u / h[k], p + 1);
+            double n2 = 0;
+            for (size_t j = 0; j < d; j++) g[j] += c * gh[3 * k + j], n2 += gh[3 * k + j] * gh[3 * k + j];
+            s += c * sqrt(n2);
+        }
+        cr_assert(fabs(uf[i] - u) <= 1e-12 * u, "dim %d trim %d p %d point %d: %.17g vs %.17g",
+                  dim, (int)trim, p, i, uf[i], u);
+        for (size_t j = 0; j < d; j++)
+            cr_assert(fabs(gf[d * i + j] - g[j]) <= 1e-12 * s,
+                      "dim %d trim %d p %d point %d grad %zu: %.17g vs %.17g", dim, (int)trim, p,
+                      i, j, gf[d * i + j], g[j]);
+    }
+    dfl_rfunc_batch_free(b);
+    free(v);
+}
+
+Test(rfunc_batch, strip_and_3d_kernels_agree)
+{
+    const int ps[] = {1, 2, 3, 7, 12, 13};
+    for (size_t i = 0; i < sizeof ps / sizeof *ps; i++) {
+        compare_kind(2, DFL_RFUNC_TRIM_STRIP, 41, 0, ps[i], 5 + i);
+        compare_kind(2, DFL_RFUNC_TRIM_STRIP, 30, 1, ps[i], 55 + i);
+        compare_kind(3, DFL_RFUNC_TRIM_DISK, 41, 0, ps[i], 7 + i);
+        compare_kind(3, DFL_RFUNC_TRIM_STRIP, 30, 1, ps[i], 77 + i);
+    }
+}
+
+/* rfield takes the kernels for exactly these fields, and equals its own
+ * per-point path to 1e-12 there. */
+Test(rfunc_batch, rfield_uses_every_eq4_kernel)
+{
+    double *v2 = spiral(20), v3[60];
+    for (int i = 0; i < 20; i++) {
+        v3[3 * i] = v2[2 * i];
+        v3[3 * i + 1] = v2[2 * i + 1];
+        v3[3 * i + 2] = 0.1 * i;
+    }
+    for (int dim = 2; dim <= 3; dim++)
+        for (int t = 0; t < DFL_RFUNC_TRIM_COUNT; t++) {
+            dfl_field ff, fs;
+            const double *v = dim == 2 ? v2 : v3;
+            cr_assert_eq(dfl_rfield_polyline_opts(dim, v, 20, false, DFL_RFUNC_REQUIV, 2,
+                                                  (dfl_rfunc_trim)t, true, &ff, NULL),
+                         DFL_OK);
+            cr_assert_eq(dfl_rfield_polyline_opts(dim, v, 20, false, DFL_RFUNC_REQUIV, 2,
+                                                  (dfl_rfunc_trim)t, false, &fs, NULL),
+                         DFL_OK);
+            const bool eq4 = !dfl_rfunc_trim_smooth((dfl_rfunc_trim)t);
+            cr_expect_eq(dfl_rfield_is_fast(&ff), eq4, "dim %d trim %d", dim, t);
+            cr_expect(!dfl_rfield_is_fast(&fs));
+            const double x[3] = {0.61, 0.37, 0.2};
+            double ga[3], gb[3];
+            const double ua = dfl_field_eval1(&ff, x, ga), ub = dfl_field_eval1(&fs, x, gb);
+            cr_expect(fabs(ua - ub) <= 1e-12 * ub, "dim %d trim %d", dim, t);
+            dfl_field_destroy(&ff);
+            dfl_field_destroy(&fs);
+        }
+    free(v2);
+}
+
+/* The point kernel: rfield's batched points field against its per-point
+ * path (1e-12; gradients against the sum of absolute contributions, which
+ * here is bounded by |grad u| + the cancelling parts: use 1e-12 (1 + s)
+ * with s = sum (u/h_i)^(p+1)), 2D and 3D, at random points and on a part. */
+Test(rfunc_batch, points_kernel_agrees)
+{
+    uint64_t rng = 4242;
+    for (int dim = 2; dim <= 3; dim++)
+        for (int p = 1; p <= 13; p += 3) {
+            double c[3 * 37];
+            for (int i = 0; i < 3 * 37; i++) c[i] = dfl_rng_splitmix(&rng, 0, 1);
+            dfl_field ff, fs;
+            dfl_rfield *r;
+            for (int fast = 0; fast < 2; fast++) {
+                cr_assert_eq(dfl_rfield_new(dim, DFL_RFUNC_REQUIV, p, &r, NULL), DFL_OK);
+                dfl_rfield_set_fast(r, fast);
+                for (int i = 0; i < 37; i++)
+                    cr_assert_eq(dfl_rfield_add_point(r, c + dim * i, NULL), DFL_OK);
+                cr_assert_eq(dfl_rfield_finish(&r, fast ? &ff : &fs, NULL), DFL_OK);
+            }
+            cr_assert(dfl_rfield_is_fast(&ff) && !dfl_rfield_is_fast(&fs));
+            for (int i = 0; i < 60; i++) {
+                double x[3];
+                for (int j = 0; j < dim; j++) x[j] = dfl_rng_splitmix(&rng, -0.5, 1.5);
+                if (i == 0)
+                    for (int j = 0; j < dim; j++) x[j] = c[j]; /* on a part: u = 0 */
+                double ga[3], gb[3];
+                const double ua = dfl_field_eval1(&ff, x, ga), ub = dfl_field_eval1(&fs, x, gb);
+                cr_assert(fabs(ua - ub) <= 1e-12 * ub, "dim %d p %d: %.17g vs %.17g", dim, p, ua,
+                          ub);
+                double s = 0;
+                for (int k = 0; k < 37 && ub > 0; k++) {
+                    double w2 = 0;
+                    for (int j = 0; j < dim; j++) w2 += (x[j] - c[dim * k + j]) * (x[j] - c[dim * k + j]);
+                    s += pow(ub / sqrt(w2), p + 1);
+                }
+                for (int j = 0; j < dim; j++)
+                    cr_assert(fabs(ga[j] - gb[j]) <= 1e-12 * (1 + s), "dim %d p %d grad %d", dim, p,
+                              j);
+            }
+            dfl_field_destroy(&ff);
+            dfl_field_destroy(&fs);
+        }
+}
+
+/* The triangle kernel against the per-point path (1e-12; gradients
+ * against s = sum (u/h_i)^(p+1) |grad h_i|, evaluated from the library's
+ * triangle fields), prism and conditional, with points near the mesh and
+ * on its vertex lines (those fall back). */
+Test(rfunc_batch, triangles_kernel_agrees)
+{
+    uint64_t rng = 99;
+    for (int trim = 0; trim < 2; trim++)
+        for (int p = 1; p <= 12; p += 11) {
+            dfl_rfunc_tri_opts o = dfl_rfunc_tri_defaults();
+            o.trim = (dfl_rfunc_tri_trim)trim;
+            enum { NT = 18 };
+            dfl_rfunc_tri t[NT];
+            dfl_field ff, fs;
+            for (int fast = 0; fast < 2; fast++) {
+                dfl_rfield *r;
+                cr_assert_eq(dfl_rfield_new(3, DFL_RFUNC_REQUIV, p, &r, NULL), DFL_OK);
+                dfl_rfield_set_fast(r, fast);
+                for (int k = 0; k < NT; k++) {
+                    const double x0 = (k % 6) / 6.0, y0 = (k / 6) / 3.0;
+                    const double A[3] = {x0, y0, 0.1 * sin(7 * x0)},
+                                 B[3] = {x0 + 1 / 6.0, y0, 0.1 * sin(7 * x0 + 1)},
+                                 C[3] = {x0, y0 + 1 / 3.0, 0.05};
+                    cr_assert_eq(dfl_rfield_add_triangle(r, A, B, C, &o, NULL), DFL_OK);
+                    cr_assert_eq(dfl_rfunc_tri_init(A, B, C, &o, &t[k], NULL), DFL_OK);
+                }
+                cr_assert_eq(dfl_rfield_finish(&r, fast ? &ff : &fs, NULL), DFL_OK);
+            }
+            cr_assert(dfl_rfield_is_fast(&ff) && !dfl_rfield_is_fast(&fs));
+            for (int i = 0; i < 80; i++) {
+                double x[3];
+                for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(&rng, -0.3, 1.3);
+                if (i == 0) x[0] = t[3].v[1][0], x[1] = t[3].v[1][1], x[2] = 0.7; /* vertex line */
+                if (i == 1) x[0] = 0.3, x[1] = 0.2, x[2] = t[0].v[0][2] + 1e-7;
+                double ga[3], gb[3], s = 0;
+                const double ua = dfl_field_eval1(&ff, x, ga), ub = dfl_field_eval1(&fs, x, gb);
+                cr_assert(fabs(ua - ub) <= 1e-12 * ub, "trim %d p %d point %d: %.17g vs %.17g",
+                          trim, p, i, ua, ub);
+                for (int k = 0; k < NT; k++) {
+                    double g[3];
+                    const double h = dfl_rfunc_tri_eval(&t[k], x, g);
+                    s += pow(ub / h, p + 1) * sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+                }
+                for (int j = 0; j < 3; j++)
+                    cr_assert(fabs(ga[j] - gb[j]) <= 1e-12 * s, "trim %d p %d point %d grad %d: "
+                              "%.17g vs %.17g", trim, p, i, j, ga[j], gb[j]);
+            }
+            dfl_field_destroy(&ff);
+            dfl_field_destroy(&fs);
+        }
+}
+
+/* The region kernel against the per-point path (values 1e-12, gradients
+ * 1e-12 (1 + |grad u|): the regions are apart, so few contributions
+ * cancel), with points inside a region (u = 0). */
+Test(rfunc_batch, regions_kernel_agrees)
+{
+    uint64_t rng = 7;
+    for (int p = 1; p <= 12; p += 11) {
+        dfl_field ff, fs;
+        for (int fast = 0; fast < 2; fast++) {
+            dfl_rfield *r;
+            cr_assert_eq(dfl_rfield_new(2, DFL_RFUNC_REQUIV, p, &r, NULL), DFL_OK);
+            dfl_rfield_set_fast(r, fast);
+            for (int i = 0; i < 12; i++) {
+                const double cx = (i % 4 + 0.5) / 4, cy = (i / 4 + 0.5) / 3, h = 0.08;
+                /* a pentagon */
+                double q[10];
+                for (int j = 0; j < 5; j++) {
+                    q[2 * j] = cx + h * cos(2 * acos(-1.0) * j / 5 + i);
+                    q[2 * j + 1] = cy + h * sin(2 * acos(-1.0) * j / 5 + i);
+                }
+                cr_assert_eq(dfl_rfield_add_region(r, q, 5, NULL), DFL_OK);
+            }
+            cr_assert_eq(dfl_rfield_finish(&r, fast ? &ff : &fs, NULL), DFL_OK);
+        }
+        cr_assert(dfl_rfield_is_fast(&ff) && !dfl_rfield_is_fast(&fs));
+        for (int i = 0; i < 100; i++) {
+            double x[2] = {dfl_rng_splitmix(&rng, -0.3, 1.3), dfl_rng_splitmix(&rng, -0.3, 1.3)};
+            if (i == 0) x[0] = 0.125, x[1] = 1.0 / 6; /* inside the first region */
+            double ga[2], gb[2];
+            const double ua = dfl_field_eval1(&ff, x, ga), ub = dfl_field_eval1(&fs, x, gb);
+            if (i == 0) cr_expect_eq(ua, 0.0);
+            cr_assert(fabs(ua - ub) <= 1e-12 * ub, "p %d point %d: %.17g vs %.17g", p, i, ua, ub);
+            for (int j = 0; j < 2; j++)
+                cr_assert(fabs(ga[j] - gb[j]) <= 1e-12 * (1 + fabs(gb[j])), "p %d point %d", p, i);
+        }
+        dfl_field_destroy(&ff);
+        dfl_field_destroy(&fs);
+    }
 }

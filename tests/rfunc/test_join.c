@@ -405,3 +405,76 @@ Test(rfunc_join, corrected_join_floor)
     cr_assert(n_eq20 > 1900 && n_floor == 0, "%d %d", n_eq20, n_floor);
     dfl_field_destroy(&f);
 }
+
+/* correction = eq20: bs04's eq. 20 computed literally (unscaled, long
+ * double) on random parts and vertex distances, NaN exactly where its
+ * radicand is <= 0, the gradient sum_i (u/h_i)^(p+1) g_i - sum_v (u/q_v)^(p+1)
+ * g_v; and its jet is a NaN jet where the radicand's leading term is not
+ * positive. */
+Test(rfunc_join, eq20_literal_and_nan_where_undefined)
+{
+    uint64_t st = 2024;
+    int nans = 0, defined = 0;
+    for (int it = 0; it < 4000; it++) {
+        const int p = 1 + it % 12;
+        double h[3], q[2], gh[3][2], gq[2][2];
+        for (int i = 0; i < 3; i++) {
+            h[i] = tu_uniform(&st, 0.05, 2.0);
+            gh[i][0] = tu_uniform(&st, -1, 1), gh[i][1] = tu_uniform(&st, -1, 1);
+        }
+        for (int i = 0; i < 2; i++) {
+            q[i] = tu_uniform(&st, 0.3, 3.0);
+            gq[i][0] = tu_uniform(&st, -1, 1), gq[i][1] = tu_uniform(&st, -1, 1);
+        }
+        long double R = 0.0L;
+        for (int i = 0; i < 3; i++) R += powl(h[i], -p);
+        for (int i = 0; i < 2; i++) R -= powl(q[i], -p);
+        dfl_rfunc_acc acc;
+        dfl_rfunc_acc_begin(&acc, DFL_RFUNC_REQUIV_CORRECTED, p, 2, 1);
+        dfl_rfunc_acc_set_correction(&acc, DFL_RFUNC_CORR_EQ20);
+        for (int i = 0; i < 3; i++) dfl_rfunc_acc_add(&acc, h[i], gh[i]);
+        for (int i = 0; i < 2; i++) dfl_rfunc_acc_add_q(&acc, q[i], gq[i]);
+        double g[2];
+        const double u = dfl_rfunc_acc_end(&acc, g);
+        if (fabsl(R) < 1e-9L * powl(h[0], -p)) continue; /* too close to call */
+        if (R <= 0.0L) {
+            cr_expect(isnan(u) && isnan(g[0]) && isnan(g[1]), "p %d R %Lg: u %g", p, R, u);
+            nans++;
+            continue;
+        }
+        defined++;
+        const long double ue = powl(R, -1.0L / p);
+        cr_expect(fabsl(u - ue) <= 1e-11L * ue, "p %d: %.17g vs %.17Lg", p, u, ue);
+        for (int j = 0; j < 2; j++) {
+            long double ge = 0.0L, sc = 0.0L;
+            for (int i = 0; i < 3; i++) {
+                const long double w = powl(ue / h[i], p + 1) * gh[i][j];
+                ge += w, sc += fabsl(w);
+            }
+            for (int i = 0; i < 2; i++) {
+                const long double w = powl(ue / q[i], p + 1) * gq[i][j];
+                ge -= w, sc += fabsl(w);
+            }
+            cr_expect(fabsl(g[j] - ge) <= 1e-11L * sc, "p %d grad %d: %.17g vs %.17Lg", p, j,
+                      g[j], ge);
+        }
+    }
+    cr_expect(nans > 100 && defined > 100, "nans %d defined %d", nans, defined);
+
+    /* jets: constant parts h = 1, 1 and q = 0.5 (radicand 2 - 4 < 0) */
+    dfl_jet hj[2], qj[1], out;
+    dfl_jet_const(1.0, 4, &hj[0]);
+    dfl_jet_const(1.0, 4, &hj[1]);
+    dfl_jet_const(0.5, 4, &qj[0]);
+    cr_assert_eq(dfl_rfunc_join_jet_corr(DFL_RFUNC_REQUIV_CORRECTED, DFL_RFUNC_CORR_EQ20, 2, 2,
+                                         hj, 1, qj, &out, NULL),
+                 DFL_OK);
+    cr_expect(isnan(dfl_jet_deriv(&out, 0)) && isnan(dfl_jet_deriv(&out, 3)));
+    /* q = 2: radicand 2 - 1/4, u = (7/4)^(-1/2) */
+    dfl_jet_const(2.0, 4, &qj[0]);
+    cr_assert_eq(dfl_rfunc_join_jet_corr(DFL_RFUNC_REQUIV_CORRECTED, DFL_RFUNC_CORR_EQ20, 2, 2,
+                                         hj, 1, qj, &out, NULL),
+                 DFL_OK);
+    cr_expect(fabs(dfl_jet_deriv(&out, 0) - 1.0 / sqrt(1.75)) < 1e-15);
+    cr_expect_eq(dfl_jet_deriv(&out, 1), 0.0);
+}

@@ -219,7 +219,8 @@ Test(rfield_fast, sampler_uses_it)
     dfl_field_destroy(&slow);
 }
 
-/* Only the exact case takes the fast path. */
+/* Only the batched cases take the fast path: R-equivalence of eq. 4
+ * (disk or strip) segment chains, 2D or 3D, of two or more segments. */
 Test(rfield_fast, eligibility)
 {
     double v[2 * 12];
@@ -237,9 +238,11 @@ Test(rfield_fast, eligibility)
         {2, v, 12, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_DISK, true},
         {2, v, 12, DFL_RFUNC_RCONJ, DFL_RFUNC_TRIM_DISK, false},
         {2, v, 12, DFL_RFUNC_REQUIV_CORRECTED, DFL_RFUNC_TRIM_DISK, false},
-        {2, v, 12, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_STRIP, false},
+        {2, v, 12, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_STRIP, true},
         {2, v, 12, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_DISK_SMOOTH, false},
-        {3, v3, 3, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_DISK, false},
+        {3, v3, 3, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_DISK, true},
+        {3, v3, 3, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_STRIP, true},
+        {3, v3, 3, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_STRIP_SMOOTH, false},
         {2, v, 3, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_DISK, true},
         {2, v, 2, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_DISK, false}, /* one segment: u = h exactly */
     };

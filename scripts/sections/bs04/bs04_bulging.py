@@ -29,8 +29,11 @@ _f = dflio.cell_nan
 def _disk_joint(p, delta):
     """Joint bulge of two collinear unit segments with disk trims: on the
     joint's normal h = y sqrt(1 + y^2) for both parts, u = 2^(-1/p) h."""
-    y2 = (math.sqrt(1 + 4 * 4 ** (1 / p) * delta * delta) - 1) / 2
-    return math.sqrt(y2) / delta - 1
+    # y^2 (1 + y^2) = 4^(1/p) delta^2 solved without the cancellation of
+    # (sqrt(1 + 4 c delta^2) - 1) / 2 at small delta: y^2 / delta^2 =
+    # 2 c / (sqrt(1 + 4 c delta^2) + 1), c = 4^(1/p)
+    c = 4 ** (1 / p)
+    return math.sqrt(2 * c / (math.sqrt(1 + 4 * c * delta * delta) + 1)) - 1
 
 
 def _isolines(ctx, rows, case, levels, stem, title, xlim=None, ylim=None):

@@ -143,8 +143,8 @@ def _segments(ctx):
         import configparser
         cp = configparser.ConfigParser(inline_comment_prefixes=("#",))
         cp.read(cfg)
-        for key, nm in (("segment_a", "a"), ("segment_b", "b")):
-            segs[nm] = [list(map(float, q.split())) for q in cp["study"][key].split(";")]
+        v = [list(map(float, q.split())) for q in cp["field"]["vertices"].split(";")]
+        segs = {"a": v[0:2], "b": v[1:3]}
     except Exception:  # a swept segment: no single geometry
         return None
     return segs

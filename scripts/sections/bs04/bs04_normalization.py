@@ -41,7 +41,8 @@ def render(ctx):
           f"order **{ref.get('requiv_order', {}).get('value', 'p')}**, R-conjunction through "
           f"**{ref.get('rconj_order', {}).get('value', 'p-1')}**. Each cell below is the measured "
           "order (minimum over the interior rays of the 'W' polyline) / the theory; the smooth "
-          "trim (eq. 5) caps the theory at 6. "
+          "trim (eq. 5) caps the theory at 6. Join requiv_corrected is dflab's guarded eq. 20 "
+          "(correction = guarded), not bs04's formula as printed (see the corrected-join section). "
           f"**{len(ok) - len(mism)} of {len(ok)} rows match the theory**"
           + (f"; mismatches: {', '.join(r[jk] + ' p=' + r[pk] + ' ' + r[tk] for r in mism)}"
              if mism else "") + ".\n\n")
@@ -80,7 +81,7 @@ def render(ctx):
     # first non-zero coefficient
     md += ("First non-zero Taylor coefficient a_k = d_k/k! along the normal at the ray of the "
            "minimum (k = order + 1), beside its prediction from the part values at that point "
-           "(R-equivalence: −C/p, C = Σ_(j≠i) h_j^(−p); corrected: C minus the guarded vertex "
+           "(R-equivalence: −C/p, C = Σ_(j≠i) h_j^(−p); dflab's guarded eq. 20: C minus the guarded vertex "
            "terms; R-conjunction: −B/p, B = u_(i−1)^(1−p) + Σ_(j>i) h_j^(1−p); eq. 5: "
            "+1/(32 t0²) at k = 7), and the largest relative difference over all 40 rays:\n\n")
     header = ["join", "trim", "p", "k", "d_k measured", "a_k measured", "a_k predicted",
@@ -95,8 +96,9 @@ def render(ctx):
     md += ("**End points and joining points** (normalization is expected to fail there; "
            "bs04 Sec. 1.2, 2.3). Joining points, along the outer bisector: the two adjacent "
            "fields both grow like s, so d1 = 2^(−1/p) (R-equivalence), 2 − 2^(1/p) "
-           "(R-conjunction), 1 (corrected, eq. 20: the guard removes one of the two terms) — "
-           "but even the corrected join is normalized to order 1 only, since the trimmed fields "
+           "(R-conjunction), 1 (dflab's guarded eq. 20, join = requiv_corrected with correction = "
+           "guarded: the guard removes one of the two terms) — "
+           "but even this corrected join is normalized to order 1 only, since the trimmed fields "
            "are not exact distances beyond their end points (h = s + (w·e/d) s² + … for the disk). "
            "Free ends: d1 = 1 in every outward direction (bs04 Sec. 2.1: normalized at the end "
            "points in Rvachev's generalized sense), but only to order 1; along the segment's "
@@ -114,7 +116,7 @@ def render(ctx):
             for j, p, t, r in _ran(by, [(j, p, t) for j in joins for p in ps for t in trims],
                                    (1, 2, 7, 12))]
     md += dflio.md_table(header, body) + "\n\n"
-    md += ("The corrected join can exceed the plain theory along an end's normal: where every "
+    md += ("dflab's guarded eq. 20 can exceed the plain theory along an end's normal: where every "
            "vertex guard max(q_v, h_i, h_j) picks a part's field (the trimmed fields exceed the "
            "vertex distance there), the sums telescope and u = h_i along that ray; "
            "end_normal_order_theory accounts for it per ray.\n\n")

@@ -38,7 +38,9 @@ def render(ctx):
         ys = [math.log(paper[e]) for e in pe]
         mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
         pfit = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
-    md += "Fitted exponent of segments ∝ ε^k: " + ", ".join(f"{c}: k = {fits[c]:.3f}" for c in curves)
+    md += (f"Fitted exponent of segments ∝ ε^k (least squares of log segments on log ε over the "
+           f"study's fit_eps; the config sweeps the same {len(eps)} ε, so every fitted count is in "
+           "the table): " + ", ".join(f"{c}: k = {fits[c]:.3f}" for c in curves))
     if pfit is not None:
         md += f"; bs04's S counts: k = {pfit:.3f}; theory for a smooth curve: k = −0.5"
     md += (". The counts differ from the paper's by a constant factor (our curves are shorter "

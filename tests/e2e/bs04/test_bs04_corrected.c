@@ -9,6 +9,13 @@
  *   - trimmed parts (disk): h_i >= q in the sector (t = y.e - |y|^2/d with
  *     y.e <= 0 only adds to h^2), the library's guard subtracts max(h1, h2)^-p
  *     and u = min(h1, h2): the defect is the parts' own, no more;
+ *   - bs04's eq. 20 as printed (correction = eq20): with exact parts the
+ *     same sector numbers as the guarded form and defined everywhere; with
+ *     disk parts undefined beyond r* = L (sqrt(cos^2(alpha'/2) + 2^(2/p) -
+ *     1) - cos(alpha'/2)) on the hatched bisector (rfunc/join.h);
+ *   - alpha = 60, theta = 80, r = L/2, exact parts, p = 2: both closest
+ *     points interior, h1 = r sin 80, h2 = r sin 20, q = r, so eq. 20 gives
+ *     u = r (sin^-2 80 + sin^-2 20 - 1)^(-1/2) < d = r sin 20;
  *   - the .vti images through VTK's reader agree with the same closed forms. */
 #include <criterion/criterion.h>
 #include <math.h>
@@ -24,16 +31,17 @@ Test(e2e_bs04_corrected, sector_defects_and_images, .timeout = 60)
 {
     char dir[256], out[512], csv[700], path[800];
     e2e_tmpdir(dir, sizeof dir);
-    /* points: alpha x p x parts (last fastest); rows: requiv, corrected */
+    /* points: alpha x p x parts (last fastest); rows: requiv, guarded, eq20 */
     e2e_run_table(CFG,
                   "--set 'study.alpha=90, 180' --set 'study.p=2, 7'"
                   " --set 'study.parts=exact, disk' --set grid.n=41 --set study.sector_nr=10"
                   " --set study.sector_nt=5",
-                  "bs04_corrected", 16, out, sizeof out, csv, sizeof csv);
+                  "bs04_corrected", 24, out, sizeof out, csv, sizeof csv);
     for (int pt = 0; pt < 8; pt++) {
         const double alpha = pt < 4 ? 90 : 180;
         const int p = (pt / 2) % 2 ? 7 : 2, exact = pt % 2 == 0;
-        const long rr = 2 * pt, rc_ = 2 * pt + 1;
+        const long rr = 3 * pt, rc_ = 3 * pt + 1, rl = 3 * pt + 2;
+        cr_assert(strcmp(e2e_csv_cell(csv, rl, "correction"), "eq20") == 0);
         cr_assert_eq(e2e_csv_get(csv, rr, "alpha"), alpha);
         cr_assert_eq((int)e2e_csv_get(csv, rr, "p"), p);
         /* alpha = 90: 5 directions x 10 radii; 180: 2 rays x 10 radii */
@@ -57,7 +65,16 @@ Test(e2e_bs04_corrected, sector_defects_and_images, .timeout = 60)
                 /* the plain join is not the distance near O */
                 cr_expect(e2e_csv_get(csv, rr, "vertex_gdef_max") > 0.5 * def, "pt %d", pt);
             }
+            cr_expect_eq(e2e_csv_get(csv, rl, "undefined_count"), 0.0, "pt %d", pt);
+            cr_expect(fabs(e2e_csv_get(csv, rl, "sector_gdef_max") -
+                           e2e_csv_get(csv, rc_, "sector_gdef_max")) < 1e-12, "pt %d", pt);
         } else {
+            const double a = alpha == 90 ? sqrt(0.5) : 0.0;
+            const double rs = sqrt(a * a + pow(2.0, 2.0 / p) - 1.0) - a;
+            cr_expect_float_eq(e2e_csv_get(csv, rl, "onset_radius"), rs, 1e-9, "pt %d", pt);
+            cr_expect_float_eq(e2e_csv_get(csv, rl, "onset_radius_theory"), rs, 1e-15);
+            cr_expect(e2e_csv_get(csv, rl, "undefined_count") > 0, "pt %d", pt);
+            cr_expect_eq(e2e_csv_get(csv, rc_, "undefined_count"), 0.0, "pt %d", pt);
             const double pg = e2e_csv_get(csv, rc_, "sector_part_gdef_max");
             cr_expect(e2e_csv_get(csv, rc_, "sector_gdef_max") <= pg + 1e-12, "pt %d", pt);
             /* Disk trim behind its end point O (y = x - O, e into the
@@ -111,13 +128,30 @@ Test(e2e_bs04_corrected, sector_defects_and_images, .timeout = 60)
     cr_expect_float_eq(gmin[0], 1 - sqrt(0.5), 1e-6);
     cr_expect(verr[0] > 0.25);
     cr_expect(gmax[1] < 1e-9 && verr[1] < 1e-12, "corrected image: %g %g", gmax[1], verr[1]);
+    static const char *const stems[3] = {"requiv", "corrected", "eq20"};
     for (int pt = 0; pt < 8; pt++)
-        for (int j = 0; j < 2; j++) {
-            snprintf(path, sizeof path, "%s/%s_pt%03d.exr", out, j ? "corrected" : "requiv", pt);
+        for (int j = 0; j < 3; j++) {
+            snprintf(path, sizeof path, "%s/%s_pt%03d.exr", out, stems[j], pt);
             FILE *fp = fopen(path, "rb");
             cr_expect_not_null(fp, "%s", path);
             if (fp) fclose(fp);
         }
+}
+
+Test(e2e_bs04_corrected, eq20_below_90_degrees, .timeout = 60)
+{
+    char out[512], csv[700];
+    e2e_run_table(CFG,
+                  "--set study.alpha=60 --set study.p=2 --set study.parts=exact --set grid.n=21"
+                  " --set study.sector_nr=4 --set study.sector_nt=3",
+                  "bs04_corrected", 3, out, sizeof out, csv, sizeof csv);
+    const double s80 = sin(80 * acos(-1.0) / 180), s20 = sin(20 * acos(-1.0) / 180);
+    const double u = 1.0 / sqrt(1.0 / (s80 * s80) + 1.0 / (s20 * s20) - 1.0);
+    cr_expect_float_eq(e2e_csv_get(csv, 2, "case_u"), u, 1e-13);
+    cr_expect_float_eq(e2e_csv_get(csv, 2, "case_d"), s20, 1e-13);
+    cr_expect(fabs(u - 0.34140) < 5e-6 && fabs(s20 - 0.34202) < 5e-6);
+    /* the reflex side is no longer exact below 90 degrees */
+    cr_expect(e2e_csv_get(csv, 2, "reflex_linf") > 1e-3);
 }
 
 Test(e2e_bs04_corrected, bad_input_exits_2_without_files)
@@ -129,6 +163,7 @@ Test(e2e_bs04_corrected, bad_input_exits_2_without_files)
         {"--set study.length=0", "study.length"},
         {"--set grid.n=1", "grid.n"},
         {"--set study.colour=red", "study.colour"},
+        {"--set study.onset_rmax=0", "study.onset_rmax"},
     };
     e2e_expect_bad_runs(CFG, "--set study.alpha=90 --set study.p=2 --set study.parts=exact", sets,
                         sizeof sets / sizeof sets[0]);

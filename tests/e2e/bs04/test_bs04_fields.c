@@ -83,15 +83,16 @@ Test(e2e_bs04_fields, values_gradients_and_theory_columns, .timeout = 60)
     cf_seg s[2];
     double *pts, lo[2], hi[2];
     size_t n;
-    const char *keys[2] = {"segment_a", "segment_b"};
+    /* [field] vertices v0 v1 v2: A = v0-v1, B = v1-v2 */
+    cr_assert_eq(dfl_cfg_points(cfg, "field", "vertices", 2, 3, &pts, &n, &err), DFL_OK);
+    cr_assert_eq(n, 3u);
     for (int i = 0; i < 2; i++) {
-        cr_assert_eq(dfl_cfg_points(cfg, "study", keys[i], 2, 2, &pts, &n, &err), DFL_OK);
-        memcpy(s[i].a, pts, 2 * sizeof(double));
-        memcpy(s[i].b, pts + 2, 2 * sizeof(double));
-        free(pts);
+        memcpy(s[i].a, pts + 2 * i, 2 * sizeof(double));
+        memcpy(s[i].b, pts + 2 * i + 2, 2 * sizeof(double));
     }
+    free(pts);
     long p;
-    cr_assert_eq(dfl_cfg_int(cfg, "study", "p", 1, 64, &p, &err), DFL_OK);
+    cr_assert_eq(dfl_cfg_int(cfg, "field", "p", 1, 64, &p, &err), DFL_OK);
     cr_assert_eq(dfl_cfg_vec(cfg, "grid", "lo", 2, lo, &err), DFL_OK);
     cr_assert_eq(dfl_cfg_vec(cfg, "grid", "hi", 2, hi, &err), DFL_OK);
     dfl_cfg_free(cfg);
@@ -160,12 +161,12 @@ Test(e2e_bs04_fields, values_gradients_and_theory_columns, .timeout = 60)
 Test(e2e_bs04_fields, bad_input_exits_2_without_files)
 {
     static const char *const sets[][2] = {
-        {"--set 'study.segment_a=0 0; 0 0'", "study.segment_a"},
-        {"--set 'study.segment_b=0 0; 1 1; 2 2'", "study.segment_b"},
-        {"--set study.join=rconj --set study.p=1", "study.p"},
+        {"--set 'field.vertices=0 0; 0 0; 1 1'", "field.vertices"},
+        {"--set 'field.vertices=0 0; 1 1; 2 0; 3 3'", "[field] of bs04_fields"},
+        {"--set field.join=rconj --set field.p=1", "field.p"},
         {"--set study.band=0", "study.band"},
         {"--set grid.n=1", "grid.n"},
-        {"--set study.trim=square", "study.trim"},
+        {"--set field.trim=square", "field.trim"},
     };
     e2e_expect_bad_runs(CFG, NULL, sets, sizeof sets / sizeof sets[0]);
 }

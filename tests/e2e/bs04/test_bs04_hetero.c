@@ -42,9 +42,9 @@ Test(e2e_bs04_hetero, metrics_and_boundary_normalization, .timeout = 60)
     double *reg, *seg, pt[2];
     size_t nr, ns;
     cr_assert_eq(dfl_cfg_load(CFG, &cfg, &err), DFL_OK, "%s", err.msg);
-    cr_assert_eq(dfl_cfg_points(cfg, "study", "region", 2, 3, &reg, &nr, &err), DFL_OK);
-    cr_assert_eq(dfl_cfg_points(cfg, "study", "segment", 2, 2, &seg, &ns, &err), DFL_OK);
-    cr_assert_eq(dfl_cfg_vec(cfg, "study", "point", 2, pt, &err), DFL_OK);
+    cr_assert_eq(dfl_cfg_points(cfg, "field", "region", 2, 3, &reg, &nr, &err), DFL_OK);
+    cr_assert_eq(dfl_cfg_points(cfg, "field", "vertices", 2, 2, &seg, &ns, &err), DFL_OK);
+    cr_assert_eq(dfl_cfg_vec(cfg, "field", "points", 2, pt, &err), DFL_OK);
     dfl_cfg_free(cfg);
     cr_assert(nr == 4 && ns == 2 && !memcmp(reg, SQ, sizeof SQ) && !memcmp(seg, SEG, sizeof SEG) &&
               !memcmp(pt, PT, sizeof PT));
@@ -121,7 +121,11 @@ Test(e2e_bs04_hetero, metrics_and_boundary_normalization, .timeout = 60)
 
 Test(e2e_bs04_hetero, bad_input)
 {
-    e2e_expect_bad_config("[study]\nname = bs04_hetero\nregion = 0 0; 1 1; 0 1; 1 0\n"
-                          "segment = 2 2; 3 3\npoint = 5 5\n[grid]\nn = 5\n",
-                          "[study] region", NULL);
+    e2e_expect_bad_config("[study]\nname = bs04_hetero\n[field]\nkind = rfunc\n"
+                          "region = 0 0; 1 1; 0 1; 1 0\nvertices = 2 2; 3 3\npoints = 5 5\n"
+                          "[grid]\nn = 5\n",
+                          "[field] region", NULL);
+    e2e_expect_bad_config("[study]\nname = bs04_hetero\n[field]\nkind = rfunc\n"
+                          "region = 0 0; 1 0; 1 1\nvertices = 2 2; 3 3\n[grid]\nn = 5\n",
+                          "[field] of bs04_hetero", NULL);
 }

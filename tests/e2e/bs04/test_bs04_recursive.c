@@ -50,7 +50,7 @@ Test(e2e_bs04_recursive, orders_slopes_and_fields, .timeout = 60)
     const double A = 1.0, B = 0.5, LO = -1.3, HI = 1.3;
     char extra[256];
     snprintf(extra, sizeof extra,
-             "--set grid.n=%d --set 'study.m=1, 2, 3, 4' --set implicit.b=%g --set study.points=16",
+             "--set grid.n=%d --set 'field.m=1, 2, 3, 4' --set implicit.b=%g --set study.points=16",
              N, B);
     e2e_run_table(CFG, extra, "bs04_recursive", 4, out, sizeof out, csv, sizeof csv);
     for (long r = 0; r < 4; r++) {
@@ -114,8 +114,8 @@ Test(e2e_bs04_recursive, orders_slopes_and_fields, .timeout = 60)
 Test(e2e_bs04_recursive, bad_input_exits_2_without_files)
 {
     static const char *const sets[][2] = {
-        {"--set study.m=7", "study.m"},
-        {"--set study.K=3 --set study.m=3", "study.K"},
+        {"--set field.m=7", "field.m"},
+        {"--set study.K=3 --set field.m=3", "study.K"},
         {"--set 'study.deltas=0.01 0.005'", "study.deltas"},
         {"--set 'study.deltas=0.01 0.3'", "study.deltas"},
         {"--set 'study.bands=0.1 0'", "study.bands"},

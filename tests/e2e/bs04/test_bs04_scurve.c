@@ -78,6 +78,14 @@ Test(e2e_bs04_scurve, curve_bound_bands_and_offsets, .timeout = 120)
         cr_expect_float_eq(e2e_csv_get(path, (size_t)r, "u_curve_bound"), C * pl.bound, 1e-14);
         cr_expect(um <= C * pl.bound, "row %ld: max |u| on the curve %g > %g", r, um, C * pl.bound);
         cr_expect(um > 0);
+        /* the interior maximum is one of the band's values (the norm rounded as
+         * metrics.h does, or within 1 ulp); both lie in the band */
+        const double dl = e2e_csv_get(path, (size_t)r, "delta");
+        const double gm = e2e_csv_get(path, (size_t)r, "grad_max");
+        const double gi = e2e_csv_get(path, (size_t)r, "grad_max_interior");
+        cr_expect(gi <= gm * (1 + 1e-15) && gi > 0, "row %ld: interior %g, all %g", r, gi, gm);
+        cr_expect(fabs(e2e_csv_get(path, (size_t)r, "grad_max_d")) <= dl);
+        cr_expect(fabs(e2e_csv_get(path, (size_t)r, "grad_max_interior_d")) <= dl);
         if (req) cr_expect(um >= 0.9 * dev / sqrt(N), "row %ld: %g < %g", r, um, 0.9 * dev / sqrt(N));
         const double delta = e2e_csv_get(path, (size_t)r, "delta");
         long cnt = 0;

@@ -21,7 +21,7 @@
 Test(e2e_bs04_surface, coarse_mesh_metrics, .timeout = 60)
 {
     char out[512], csv[700];
-    e2e_run_table(CFG, "--set study.eps=0.5 --set study.p=2 --set study.slice_n=12",
+    e2e_run_table(CFG, "--set field.eps=0.5 --set field.p=2 --set study.slice_n=12",
                   "bs04_surface", 1, out, sizeof out, csv, sizeof csv);
     dfl_cfg *cfg;
     dfl_err err;
@@ -97,7 +97,10 @@ Test(e2e_bs04_surface, coarse_mesh_metrics, .timeout = 60)
 
 Test(e2e_bs04_surface, bad_input)
 {
-    e2e_expect_bad_config("[study]\nname = bs04_surface\nsurface = nowhere\neps = 0.1\n"
-                          "slices = y 0.5\n",
-                          "[study] surface", "no section [nowhere]");
+    e2e_expect_bad_config("[study]\nname = bs04_surface\nslices = y 0.5\n[field]\nkind = rfunc\n"
+                          "surface = nowhere\neps = 0.1\n",
+                          "[field] surface", "no section [nowhere]");
+    e2e_expect_bad_config("[study]\nname = bs04_surface\nslices = y 0.5\n[field]\nkind = rfunc\n"
+                          "vertices = 0 0 0; 1 0 0\n",
+                          "[field] of bs04_surface", NULL);
 }

@@ -41,7 +41,7 @@ Test(e2e_bs04_triangle, vertex_gradient_vs_theory, .timeout = 60)
     double *v;
     size_t n;
     cr_assert_eq(dfl_cfg_load(CFG, &cfg, &err), DFL_OK, "%s", err.msg);
-    cr_assert_eq(dfl_cfg_points(cfg, "study", "triangle", 3, 3, &v, &n, &err), DFL_OK, "%s",
+    cr_assert_eq(dfl_cfg_points(cfg, "field", "triangles", 3, 3, &v, &n, &err), DFL_OK, "%s",
                  err.msg);
     dfl_cfg_free(cfg);
     const double *A = v, *B = v + 3, *C = v + 6;
@@ -139,10 +139,13 @@ Test(e2e_bs04_triangle, vertex_gradient_vs_theory, .timeout = 60)
 
 Test(e2e_bs04_triangle, bad_input)
 {
-    e2e_expect_bad_config("[study]\nname = bs04_triangle\ntriangle = 0 0 0; 1 0 0; 2 0 0\n"
-                          "slices = z 0.1\n",
-                          "[study] triangle", "degenerate");
-    e2e_expect_bad_config("[study]\nname = bs04_triangle\ntriangle = 0 0 0; 1 0 0; 0 1 0\n"
-                          "slices = z 0.1\nvertices = 0 3\n",
+    e2e_expect_bad_config("[study]\nname = bs04_triangle\nslices = z 0.1\n[field]\nkind = rfunc\n"
+                          "triangles = 0 0 0; 1 0 0; 2 0 0\n",
+                          "[field] triangles", "degenerate");
+    e2e_expect_bad_config("[study]\nname = bs04_triangle\nslices = z 0.1\nvertices = 0 3\n"
+                          "[field]\nkind = rfunc\ntriangles = 0 0 0; 1 0 0; 0 1 0\n",
                           "[study] vertices", NULL);
+    e2e_expect_bad_config("[study]\nname = bs04_triangle\nslices = z 0.1\n[field]\nkind = rfunc\n"
+                          "triangles = 0 0 0; 1 0 0; 0 1 0; 0 0 1; 1 0 1; 0 1 1\n",
+                          "[field] of bs04_triangle", NULL);
 }

@@ -18,6 +18,8 @@ Test(field_cfg, table_rows)
     cr_expect_str_eq(kinds[0].name, "exact");
     cr_expect_str_eq(kinds[1].name, "rfunc");
     cr_expect_eq(kinds[1].build, dfl_rfunc_field_from_cfg);
+    cr_expect_str_eq(kinds[2].name, "normalized");
+    cr_expect_eq(kinds[2].build, dfl_rfunc_normalized_from_cfg);
     for (size_t i = 0; i < n; i++) {
         char text[64];
         snprintf(text, sizeof text, "[field]\nkind = %s\n", kinds[i].name);
