@@ -1,0 +1,38 @@
+/* [field] + [shape] -> the proxy input (src/proxy/input.h) of issue 9.
+ *
+ * Keys of the field section (the rest of it, order, res, filter, ... is the
+ * proxy grid's, experiments/cfg/proxy_cfg.c):
+ *   input     = parametric | sdf | implicit     (default sdf)
+ *   curvature = analytic | fit                  (default analytic; sdf only)
+ *   footpoint = paper | robust                  (default robust; implicit only)
+ *   fit_grid  = g, 3..15                        (default 5; curvature = fit)
+ *   fit_spacing = h > 0                         (default 0.01; curvature = fit)
+ *   param_grid  = n, 4..512: parameter-grid starts per patch and direction
+ *                 (default 16; parametric)
+ * Every key is read whatever the input, so none is reported unused.
+ *
+ * Representations a [shape] kind offers (`input` picks one):
+ *   sphere    sdf, parametric (longitude/latitude), implicit (|q|^2 - r^2)
+ *   torus     sdf, parametric, implicit (the quartic)
+ *   cone      sdf (capped frustum), parametric (its lateral surface, open)
+ *   cylinder, plane, box, csg: sdf
+ *   bezier_surface, bspline_surface: parametric (key `random_seed` on a
+ *             bezier_surface builds a random patch instead of `control`,
+ *             see proxy/input_param.h)
+ *   implicit  implicit
+ * An input the shape lacks: DFL_E_INPUT (exit 2) naming the field
+ * section's `input` key, the shape kind and what it offers.
+ */
+#ifndef DFL_EXPERIMENTS_PROXY_INPUT_CFG_H
+#define DFL_EXPERIMENTS_PROXY_INPUT_CFG_H
+
+#include "core/status.h"
+#include "io/config.h"
+#include "proxy/input.h"
+
+/* Builds the input into *out (release with dfl_proxy_input_free); *out is
+ * untouched on failure. */
+dfl_status dfl_proxy_input_from_cfg(const dfl_cfg *cfg, const char *field_sec,
+                                    const char *shape_sec, dfl_proxy_input *out, dfl_err *err);
+
+#endif

@@ -1,0 +1,89 @@
+/* Decoding filters (hvb25 Sec. 6): the distance at any point from a proxy
+ * grid, by the nearest cell's proxy, or a trilinear or Hermite blend of the
+ * 8 neighbouring cells' proxies.
+ *
+ * Function index
+ *   DFL_PROXY_FILTER_LIST         nearest | trilinear | hermite
+ *   dfl_proxy_filter_name/parse
+ *   dfl_proxy_filter_opts         filter, clip radius, signed output
+ *   dfl_proxy_filter_opts_default the paper's settings for a filter
+ *   dfl_proxy_filter_check        options usable with a grid?
+ *   dfl_proxy_proxy_dist          one proxy's (clipped) distance and gradient
+ *   dfl_proxy_filter_eval         a batch of points: values and gradients
+ *
+ * The sphere constraint ("clip", radius rho > 0; the paper's Fig. 10):
+ * each proxy surface is cut to its part inside the ball B(p, rho) around
+ * its footpoint, and its distance is taken as
+ *     D(x) = sgn(phi) max(|phi(x)|, |x - p| - rho)
+ * (phi: the proxy's exact signed distance, decode.h).  D equals the exact
+ * distance to the cut patch wherever the nearest point of the uncut proxy
+ * lies in the ball (then |x - p| - rho <= |phi|), and is a 1-Lipschitz lower
+ * bound of it elsewhere (the distance to the ball), so it never invents a
+ * surface far from the footpoint and sphere tracing stays safe.  Where
+ * the max picks the ball term the gradient is sgn(phi) (x - p)/|x - p|.
+ * rho = 0 means no clip.  Defaults: nearest clips at one cell size
+ * (max_j h_j; the paper's "in practice" choice), trilinear and Hermite do
+ * not clip (their 8 neighbours' footpoints lie up to ~2 sqrt(3) h from x,
+ * so a one-cell clip would cut the surface itself).
+ *
+ * Filters (x_c: cell centres; outside the centres' hull the weights clamp
+ * to the border layer, the proxies still evaluate at x):
+ *   nearest    D of the cell containing x (the nearest centre; x outside
+ *              the box takes the nearest border cell).
+ *   trilinear  sum_c w_c D_c(x) over the 8 centres around x, tensor weights
+ *              (1 - t, t) per axis, t = (x - x_c0) / h.
+ *   hermite    the same with the weights (1 - h(t), h(t)), h = h3(t) =
+ *              3t^2 - 2t^3 for order 1 and h5(t) = 10t^3 - 15t^4 + 6t^5 for
+ *              order 2 grids: h' (and h'' for h5) vanish at t = 0, 1, so at
+ *              a cell centre value, gradient (and Hessian) are the centre
+ *              proxy's, i.e. those of the surface's distance there.
+ * Gradients are exact derivatives of the value (sum w grad D + D grad w).
+ * Unsigned output (the paper's) is |value| with its gradient sgn(value)
+ * grad; signed output needs a grid whose input has an inside (negative
+ * inside).  The result at a NaN (failed) proxy is NaN.
+ */
+#ifndef DFL_PROXY_FILTER_H
+#define DFL_PROXY_FILTER_H
+
+#include <stddef.h>
+
+#include "core/names.h"
+#include "proxy/proxy.h"
+
+#define DFL_PROXY_FILTER_LIST(X)                                       \
+    X(DFL_PROXY_NEAREST, "nearest", "the containing cell's proxy")     \
+    X(DFL_PROXY_TRILINEAR, "trilinear", "8 proxies, linear weights")   \
+    X(DFL_PROXY_HERMITE, "hermite", "8 proxies, h3 / h5 weights")
+typedef enum dfl_proxy_filter { DFL_PROXY_FILTER_LIST(DFL_NAMES_CODE) } dfl_proxy_filter;
+enum { DFL_PROXY_FILTER_COUNT = 0 DFL_PROXY_FILTER_LIST(DFL_NAMES_ONE) };
+extern const char *const dfl_proxy_filter_names[DFL_PROXY_FILTER_COUNT];
+const char *dfl_proxy_filter_name(dfl_proxy_filter f);
+dfl_status dfl_proxy_filter_parse(const char *s, dfl_proxy_filter *out, dfl_err *err);
+
+typedef struct dfl_proxy_filter_opts {
+    dfl_proxy_filter filter;
+    double clip;     /* clip radius rho (length); 0: none */
+    int is_signed;   /* 1: signed output, 0: unsigned (|D|) */
+} dfl_proxy_filter_opts;
+
+/* filter f with its default clip for grid g (see above), unsigned. */
+void dfl_proxy_filter_opts_default(dfl_proxy_filter f, const dfl_proxy_grid *g,
+                                   dfl_proxy_filter_opts *o);
+
+/* DFL_E_INPUT when o->filter is unknown, o->clip < 0 or not finite, or
+ * o->is_signed with a grid whose input has no inside. */
+dfl_status dfl_proxy_filter_check(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o,
+                                  dfl_err *err);
+
+/* D (signed as above, before the unsigned fold) of cell c's proxy at x,
+ * gradient into grad when not NULL. */
+double dfl_proxy_proxy_dist(const dfl_proxy_grid *g, size_t c, double clip, const double x[3],
+                            double *grad);
+
+/* val[i] (and grad[3i..3i+2] when grad is not NULL) at x[3i..3i+2], i < m.
+ * Serial, allocation-free, thread-safe for a shared grid (callers
+ * parallelise over chunks of points).  o must pass dfl_proxy_filter_check. */
+void dfl_proxy_filter_eval(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t m,
+                           const double *x, double *val, double *grad);
+
+#endif

@@ -1,0 +1,139 @@
+/* SDF proxy input: the paper's footpoint x - f grad f and curvature from the
+ * SDF's Hessian (Goldman) or from the cubic fit (proxy/curvfit.h). */
+#include "proxy/input_sdf.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/jet.h"
+#include "core/vec.h"
+#include "proxy/curvfit.h"
+
+#define CHUNK 64
+
+typedef struct sdf_ctx {
+    dfl_shape shape;
+    dfl_proxy_curv_method curv;
+    dfl_curvfit *fit;   /* curv == FIT only */
+} sdf_ctx;
+
+static void nan_curv(dfl_curvature *c)
+{
+    c->k1 = c->k2 = c->K = c->H = NAN;
+    for (int j = 0; j < 3; j++) c->e1[j] = c->e2[j] = c->n[j] = NAN;
+}
+
+/* Hessian of the SDF at p from six order-2 jets: H_ii = D2_{e_i},
+ * H_ik = (D2_{e_i+e_k} - H_ii - H_kk) / 2 (the polarization of
+ * geom/shape.h's dfl_jets_polarize without its third-order part, which the
+ * curvature does not need). */
+static dfl_status sdf_hessian(const dfl_shape *s, const double p[3], double H[9])
+{
+    dfl_jet j;
+    for (int i = 0; i < 3; i++) {
+        double e[3] = {0, 0, 0};
+        e[i] = 1.0;
+        if (s->ops->jet(s->impl, p, e, 2, &j, NULL) != DFL_OK) return DFL_E_NUMERIC;
+        H[4 * i] = dfl_jet_deriv(&j, 2);
+    }
+    for (int i = 0; i < 3; i++)
+        for (int k = i + 1; k < 3; k++) {
+            double e[3] = {0, 0, 0};
+            e[i] = e[k] = 1.0;
+            if (s->ops->jet(s->impl, p, e, 2, &j, NULL) != DFL_OK) return DFL_E_NUMERIC;
+            H[3 * i + k] = H[3 * k + i] = 0.5 * (dfl_jet_deriv(&j, 2) - H[4 * i] - H[4 * k]);
+        }
+    return DFL_OK;
+}
+
+static void point_curvature(const sdf_ctx *c, dfl_surfpoint *o)
+{
+    if (c->curv == DFL_PROXY_CURV_FIT) {
+        if (dfl_curvfit_sdf(c->fit, &c->shape, o->p, o->n, &o->curv) != DFL_OK) {
+            nan_curv(&o->curv);
+            o->certified = 0;
+        }
+        return;
+    }
+    double H[9];
+    if (!c->shape.ops->jet || sdf_hessian(&c->shape, o->p, H) != DFL_OK ||
+        dfl_curvature_implicit(o->n, H, &o->curv, NULL) != DFL_OK) {
+        nan_curv(&o->curv);
+        o->certified = 0;
+    }
+}
+
+static dfl_status sdf_query(const void *vctx, size_t m, const double *x, int need_curv,
+                            dfl_surfpoint *out, dfl_err *err)
+{
+    (void)err;
+    const sdf_ctx *c = vctx;
+    double val[CHUNK], grad[3 * CHUNK];
+    for (size_t i0 = 0; i0 < m; i0 += CHUNK) {
+        size_t nb = m - i0 < CHUNK ? m - i0 : CHUNK;
+        c->shape.ops->eval(c->shape.impl, nb, x + 3 * i0, val, grad);
+        for (size_t k = 0; k < nb; k++) {
+            const double *xi = x + 3 * (i0 + k), *g = grad + 3 * k;
+            dfl_surfpoint *o = out + i0 + k;
+            double f = val[k], gn = sqrt(dfl_vec3_dot(g, g));
+            for (int j = 0; j < 3; j++) {
+                o->p[j] = xi[j] - f * g[j];
+                o->n[j] = g[j] / gn;
+            }
+            o->d = f;
+            o->certified = isfinite(f) && isfinite(gn) && fabs(gn - 1.0) <= 1e-6;
+            if (need_curv) point_curvature(c, o);
+            else nan_curv(&o->curv);
+        }
+    }
+    return DFL_OK;
+}
+
+static void sdf_destroy(void *vctx)
+{
+    sdf_ctx *c = vctx;
+    dfl_shape_free(&c->shape);
+    free(c->fit);
+    free(c);
+}
+
+dfl_status dfl_proxy_input_sdf(dfl_shape *shape, dfl_proxy_curv_method curv,
+                               const dfl_curvfit_opts *fit, dfl_proxy_input *out, dfl_err *err)
+{
+    dfl_status st = DFL_OK;
+    sdf_ctx *c = NULL;
+    if (!shape || !shape->ops || shape->dim != 3) {
+        st = dfl_err_set(err, DFL_E_INPUT, "sdf input: need a 3D shape");
+        goto fail;
+    }
+    if (curv == DFL_PROXY_CURV_FIT && !fit) {
+        st = dfl_err_set(err, DFL_E_INPUT, "sdf input: curvature = fit needs fit options");
+        goto fail;
+    }
+    if (!(c = calloc(1, sizeof *c))) {
+        st = dfl_err_set(err, DFL_E_NOMEM, "sdf input: out of memory");
+        goto fail;
+    }
+    c->curv = curv;
+    if (curv == DFL_PROXY_CURV_FIT) {
+        if (!(c->fit = malloc(sizeof *c->fit))) {
+            st = dfl_err_set(err, DFL_E_NOMEM, "sdf input: out of memory");
+            goto fail;
+        }
+        if ((st = dfl_curvfit_init(fit->g, fit->spacing, c->fit, err)) != DFL_OK) goto fail;
+    }
+    c->shape = *shape;
+    memset(shape, 0, sizeof *shape);
+    out->name = "sdf";
+    out->query = sdf_query;
+    out->destroy = sdf_destroy;
+    out->ctx = c;
+    out->has_inside = 1;
+    return DFL_OK;
+fail:
+    if (c) free(c->fit);
+    free(c);
+    dfl_shape_free(shape);
+    return st;
+}

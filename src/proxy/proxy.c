@@ -1,0 +1,226 @@
+/* The builder keeps the input's work in batches (one query per chunk of
+ * cells) and the per-cell work to encoding and rounding, so that an SDF
+ * input's order-1 grid costs little more than the SDF evaluations. */
+#include "proxy/proxy.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/rng.h"
+#include "core/vec.h"
+
+#define CHUNK 256
+
+void dfl_proxy_build_opts_default(dfl_proxy_build_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->order = 1;
+    o->res = 16;
+    for (int j = 0; j < 3; j++) {
+        o->lo[j] = -1.0;
+        o->hi[j] = 1.0;
+    }
+    o->storage = DFL_PROXY_DOUBLE;
+    o->position = DFL_PROXY_DISPLACEMENT;
+}
+
+static dfl_status check_opts(const dfl_proxy_build_opts *o, dfl_err *err)
+{
+    if (!o) return dfl_err_set(err, DFL_E_INPUT, "proxy grid: no options");
+    if (o->order != 1 && o->order != 2)
+        return dfl_err_set(err, DFL_E_INPUT, "proxy grid: order %d (expected 1 or 2)", o->order);
+    if (o->res < 1 || o->res > 2048)
+        return dfl_err_set(err, DFL_E_INPUT, "proxy grid: res %d (expected 1..2048)", o->res);
+    for (int j = 0; j < 3; j++)
+        if (!(o->lo[j] < o->hi[j]) || !isfinite(o->lo[j]) || !isfinite(o->hi[j]))
+            return dfl_err_set(err, DFL_E_INPUT, "proxy grid: lo[%d] = %g must be < hi[%d] = %g",
+                               j, o->lo[j], j, o->hi[j]);
+    if (!(o->noise >= 0) || !isfinite(o->noise))
+        return dfl_err_set(err, DFL_E_INPUT, "proxy grid: noise %g (expected >= 0)", o->noise);
+    if ((unsigned)o->storage >= DFL_PROXY_STORAGE_COUNT ||
+        (unsigned)o->position >= DFL_PROXY_POSITION_COUNT)
+        return dfl_err_set(err, DFL_E_INPUT, "proxy grid: bad storage or position");
+    return DFL_OK;
+}
+
+dfl_status dfl_proxy_grid_alloc(const dfl_proxy_build_opts *o, int has_inside, int with_side,
+                                dfl_proxy_grid *g, dfl_err *err)
+{
+    memset(g, 0, sizeof *g);
+    dfl_status st = check_opts(o, err);
+    if (st) return st;
+    g->order = o->order;
+    g->res = o->res;
+    g->nscalar = DFL_PROXY_NSCALAR(o->order);
+    for (int j = 0; j < 3; j++) {
+        g->lo[j] = o->lo[j];
+        g->hi[j] = o->hi[j];
+        g->h[j] = (o->hi[j] - o->lo[j]) / o->res;
+    }
+    g->storage = o->storage;
+    g->position = o->position;
+    g->has_inside = has_inside;
+    g->ncells = (size_t)o->res * (size_t)o->res * (size_t)o->res;
+    g->data = calloc(g->ncells * (size_t)g->nscalar, dfl_proxy_storage_size(o->storage));
+    if (with_side) {
+        g->side = malloc(g->ncells);
+        if (g->side) memset(g->side, 1, g->ncells);
+    }
+    if (!g->data || (with_side && !g->side)) {
+        dfl_proxy_grid_free(g);
+        return dfl_err_set(err, DFL_E_NOMEM, "proxy grid: out of memory (%zu cells)",
+                           (size_t)o->res * o->res * o->res);
+    }
+    return DFL_OK;
+}
+
+void dfl_proxy_grid_free(dfl_proxy_grid *g)
+{
+    if (!g) return;
+    free(g->data);
+    free(g->side);
+    memset(g, 0, sizeof *g);
+}
+
+static double moved_delta(const dfl_proxy_grid *g)
+{
+    const double e = g->storage == DFL_PROXY_DOUBLE  ? 0x1p-40
+                     : g->storage == DFL_PROXY_FLOAT ? 0x1p-20
+                                                     : 0x1p-10;
+    return e * dfl_proxy_cell_size(g);
+}
+
+/* Uniform on the unit sphere (Archimedes: z uniform, angle uniform). */
+static void noise_dir(uint64_t seed, size_t c, double w[3])
+{
+    uint64_t s = seed + (uint64_t)c * 0xD1B54A32D192ED03ull;
+    const double z = dfl_rng_splitmix(&s, -1.0, 1.0);
+    const double a = dfl_rng_splitmix(&s, 0.0, 2.0 * DFL_PI);
+    const double r = sqrt(1.0 - z * z);
+    w[0] = r * cos(a);
+    w[1] = r * sin(a);
+    w[2] = z;
+}
+
+static int finite_answer(int order, const dfl_surfpoint *sp)
+{
+    int ok = isfinite(sp->p[0]) && isfinite(sp->p[1]) && isfinite(sp->p[2]) &&
+             isfinite(sp->n[0]) && isfinite(sp->n[1]) && isfinite(sp->n[2]) && isfinite(sp->d);
+    if (order == 2) {
+        const dfl_curvature *c = &sp->curv;
+        ok = ok && isfinite(c->k1) && isfinite(c->k2) && isfinite(c->e1[0]) &&
+             isfinite(c->e1[1]) && isfinite(c->e1[2]) && isfinite(c->e2[0]) &&
+             isfinite(c->e2[1]) && isfinite(c->e2[2]);
+    }
+    return ok;
+}
+
+/* Encodes and stores cell c from its answer; updates the chunk's counts. */
+static void store_cell(dfl_proxy_grid *g, const dfl_proxy_build_opts *o, size_t c,
+                       const double xc[3], const dfl_surfpoint *sp, double delta,
+                       dfl_proxy_stats *cnt)
+{
+    double s[DFL_PROXY_NSCALAR_MAX];
+    const int ns = g->nscalar;
+    void *base = (char *)g->data + c * (size_t)ns * dfl_proxy_storage_size(g->storage);
+    if (!sp->certified) cnt->uncertified++;
+    if (!finite_answer(g->order, sp)) {
+        cnt->failed++;
+        for (int q = 0; q < ns; q++) dfl_proxy_store_put(g->storage, base, (size_t)q, NAN);
+        return;
+    }
+    double w[3];
+    if (o->noise > 0) {
+        noise_dir(o->seed, c, w);
+        for (int j = 0; j < 3; j++) w[j] *= o->noise;
+    }
+    int side;
+    cnt->moved += (size_t)dfl_proxy_encode(g->order, xc, sp, o->noise > 0 ? w : NULL, delta, s,
+                                           &side);
+    if (g->position == DFL_PROXY_DISPLACEMENT)
+        for (int j = 0; j < 3; j++) s[j] -= xc[j];
+    for (int q = 0; q < ns; q++) dfl_proxy_store_put(g->storage, base, (size_t)q, s[q]);
+    if (g->side) g->side[c] = (signed char)side;
+}
+
+dfl_status dfl_proxy_grid_build(const dfl_proxy_input *in, const dfl_proxy_build_opts *o,
+                                dfl_proxy_grid *out, dfl_err *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!in || !in->query) return dfl_err_set(err, DFL_E_INPUT, "proxy grid: no input");
+    dfl_proxy_grid g;
+    const int with_side = o && o->order == 1 && in->has_inside;
+    dfl_status st = dfl_proxy_grid_alloc(o, in->has_inside, with_side, &g, err);
+    if (st) return st;
+    const size_t nchunk = (g.ncells + CHUNK - 1) / CHUNK;
+    const double delta = moved_delta(&g);
+    const int need_curv = g.order == 2;
+    dfl_status first_st = DFL_OK;
+    size_t first_bad = nchunk;
+    dfl_err first_err;
+    dfl_err_clear(&first_err);
+    dfl_proxy_stats tot = {0, 0, 0};
+    dfl_proxy_stats *per = calloc(nchunk, sizeof *per);
+    if (!per) {
+        dfl_proxy_grid_free(&g);
+        return dfl_err_set(err, DFL_E_NOMEM, "proxy grid: out of memory");
+    }
+    int nomem = 0;
+#pragma omp parallel
+    {
+        double *x = malloc(3 * CHUNK * sizeof *x);
+        dfl_surfpoint *sp = malloc(CHUNK * sizeof *sp);
+        if (!x || !sp) {
+#pragma omp atomic write
+            nomem = 1;
+        }
+#pragma omp for schedule(static)
+        for (size_t k = 0; k < nchunk; k++) {
+            if (!x || !sp) continue;
+            const size_t c0 = k * CHUNK;
+            const size_t m = c0 + CHUNK <= g.ncells ? CHUNK : g.ncells - c0;
+            for (size_t i = 0; i < m; i++) dfl_proxy_cell_centre(&g, c0 + i, x + 3 * i);
+            dfl_err e;
+            dfl_status s2 = dfl_proxy_input_query(in, m, x, need_curv, sp, &e);
+            if (s2 != DFL_OK) {
+#pragma omp critical(dfl_proxy_build_err)
+                if (k < first_bad) {
+                    first_bad = k;
+                    first_st = s2;
+                    first_err = e;
+                }
+                continue;
+            }
+            for (size_t i = 0; i < m; i++)
+                store_cell(&g, o, c0 + i, x + 3 * i, &sp[i], delta, &per[k]);
+        }
+        free(x);
+        free(sp);
+    }
+    if (nomem) first_st = dfl_err_set(&first_err, DFL_E_NOMEM, "proxy grid: out of memory");
+    for (size_t k = 0; k < nchunk; k++) {
+        tot.uncertified += per[k].uncertified;
+        tot.failed += per[k].failed;
+        tot.moved += per[k].moved;
+    }
+    free(per);
+    if (first_st != DFL_OK) {
+        dfl_proxy_grid_free(&g);
+        if (err) *err = first_err;
+        return first_st;
+    }
+    g.stats = tot;
+    *out = g;
+    return DFL_OK;
+}
+
+void dfl_proxy_cell_decode(const dfl_proxy_grid *g, size_t c, dfl_proxy_geom *out)
+{
+    double s[DFL_PROXY_NSCALAR_MAX], xc[3];
+    const int ns = g->nscalar;
+    const size_t base = c * (size_t)ns;
+    for (int q = 0; q < ns; q++) s[q] = dfl_proxy_store_get(g->storage, g->data, base + (size_t)q);
+    dfl_proxy_cell_centre(g, c, xc);
+    dfl_proxy_decode(g->order, g->position, xc, s, g->side ? g->side[c] : 1, out);
+}

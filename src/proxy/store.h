@@ -1,0 +1,91 @@
+/* Proxy storage: the scalar type every stored proxy scalar has, and what
+ * the footpoint's three scalars mean.
+ *
+ * Function index
+ *   DFL_PROXY_STORAGE_LIST      double | float | half (X-macro, core/names.h)
+ *   DFL_PROXY_POSITION_LIST     displacement | absolute
+ *   dfl_proxy_storage_name/parse, dfl_proxy_position_name/parse
+ *   dfl_proxy_storage_size      bytes per stored scalar (8, 4, 2)
+ *   dfl_proxy_store_put         round a double to the storage type, store it
+ *   dfl_proxy_store_get         load a stored scalar as double (exact)
+ *
+ * Rounding: float is the C conversion (round to nearest even); half goes
+ * double -> float -> half (Imath's imath_float_to_half, round to nearest
+ * even), so a value within half a float ulp of a half tie may round
+ * differently from a direct double -> half rounding; |v| >= 65520 becomes
+ * +-inf.  Loading is exact for all three types.  No allocation, no state.
+ *
+ * Position (the footpoint's 3 scalars): `displacement` stores p - x_c (x_c
+ * the cell centre; the paper's order-1 encoding), `absolute` stores p.  In
+ * double both decode to the same p up to one rounding of the sum; in half
+ * the displacement keeps its relative precision near the surface, where
+ * the absolute footpoint loses the normal direction p - x_c (see proxy.h).
+ */
+#ifndef DFL_PROXY_STORE_H
+#define DFL_PROXY_STORE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <Imath/half.h>
+
+#include "core/names.h"
+#include "core/status.h"
+
+#define DFL_PROXY_STORAGE_LIST(X)                                  \
+    X(DFL_PROXY_DOUBLE, "double", "IEEE binary64, 8 bytes")        \
+    X(DFL_PROXY_FLOAT, "float", "IEEE binary32, 4 bytes")          \
+    X(DFL_PROXY_HALF, "half", "IEEE binary16 (Imath), 2 bytes")
+typedef enum dfl_proxy_storage { DFL_PROXY_STORAGE_LIST(DFL_NAMES_CODE) } dfl_proxy_storage;
+enum { DFL_PROXY_STORAGE_COUNT = 0 DFL_PROXY_STORAGE_LIST(DFL_NAMES_ONE) };
+extern const char *const dfl_proxy_storage_names[DFL_PROXY_STORAGE_COUNT];
+const char *dfl_proxy_storage_name(dfl_proxy_storage s);
+dfl_status dfl_proxy_storage_parse(const char *s, dfl_proxy_storage *out, dfl_err *err);
+
+#define DFL_PROXY_POSITION_LIST(X)                                         \
+    X(DFL_PROXY_DISPLACEMENT, "displacement", "p - cell centre")           \
+    X(DFL_PROXY_ABSOLUTE, "absolute", "the footpoint p itself")
+typedef enum dfl_proxy_position { DFL_PROXY_POSITION_LIST(DFL_NAMES_CODE) } dfl_proxy_position;
+enum { DFL_PROXY_POSITION_COUNT = 0 DFL_PROXY_POSITION_LIST(DFL_NAMES_ONE) };
+extern const char *const dfl_proxy_position_names[DFL_PROXY_POSITION_COUNT];
+const char *dfl_proxy_position_name(dfl_proxy_position s);
+dfl_status dfl_proxy_position_parse(const char *s, dfl_proxy_position *out, dfl_err *err);
+
+/* 8, 4 or 2. */
+static inline size_t dfl_proxy_storage_size(dfl_proxy_storage s)
+{
+    return s == DFL_PROXY_DOUBLE ? 8 : s == DFL_PROXY_FLOAT ? 4 : 2;
+}
+
+/* Stores v rounded to s at base[i] (base points to an array of s's type). */
+static inline void dfl_proxy_store_put(dfl_proxy_storage s, void *base, size_t i, double v)
+{
+    switch (s) {
+    case DFL_PROXY_DOUBLE: ((double *)base)[i] = v; break;
+    case DFL_PROXY_FLOAT: ((float *)base)[i] = (float)v; break;
+    default: ((uint16_t *)base)[i] = imath_float_to_half((float)v); break;
+    }
+}
+
+/* base[i] as double (exact). */
+static inline double dfl_proxy_store_get(dfl_proxy_storage s, const void *base, size_t i)
+{
+    switch (s) {
+    case DFL_PROXY_DOUBLE: return ((const double *)base)[i];
+    case DFL_PROXY_FLOAT: return ((const float *)base)[i];
+    default: return imath_half_to_float(((const uint16_t *)base)[i]);
+    }
+}
+
+/* The value dfl_proxy_store_put then dfl_proxy_store_get give back. */
+static inline double dfl_proxy_store_round(dfl_proxy_storage s, double v)
+{
+    switch (s) {
+    case DFL_PROXY_DOUBLE: return v;
+    case DFL_PROXY_FLOAT: return (float)v;
+    default: return imath_half_to_float(imath_float_to_half((float)v));
+    }
+}
+
+#endif

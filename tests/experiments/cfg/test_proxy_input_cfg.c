@@ -1,0 +1,73 @@
+/* [field] input keys -> proxy inputs: each representation a shape offers
+ * builds, one it lacks exits 2 (DFL_E_INPUT) naming the key. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <string.h>
+
+#include "cfg_util.h"
+#include "cfg/proxy_input_cfg.h"
+
+static dfl_status build(const char *text, dfl_proxy_input *in, dfl_err *err)
+{
+    dfl_cfg *cfg = tu_cfg("t.ini", text);
+    dfl_status st = dfl_proxy_input_from_cfg(cfg, "field", "shape", in, err);
+    if (st == DFL_OK) cr_assert_eq(dfl_cfg_check_used(cfg, err), DFL_OK, "%s", err->msg);
+    dfl_cfg_free(cfg);
+    return st;
+}
+
+Test(proxy_input_cfg, sdf_sphere_default_keys)
+{
+    dfl_proxy_input in;
+    dfl_err err;
+    cr_assert_eq(build("[field]\n[shape]\nkind = sphere\ncenter = 0 0 0\n"
+                       "radius = 0.5\n",
+                       &in, &err),
+                 DFL_OK, "%s", err.msg);
+    cr_assert_str_eq(in.name, "sdf");
+    double x[3] = {0.9, 0, 0};
+    dfl_surfpoint o;
+    cr_assert_eq(dfl_proxy_input_query(&in, 1, x, 1, &o, NULL), DFL_OK);
+    cr_assert(fabs(o.d - 0.4) < 1e-15 && fabs(o.curv.k1 - 2) < 1e-9);
+    dfl_proxy_input_free(&in);
+}
+
+Test(proxy_input_cfg, sdf_fit_keys)
+{
+    dfl_proxy_input in;
+    dfl_err err;
+    cr_assert_eq(build("[field]\ninput = sdf\ncurvature = fit\nfit_grid = 7\nfit_spacing = 0.005\n"
+                       "footpoint = paper\nparam_grid = 8\n"
+                       "[shape]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\n",
+                       &in, &err),
+                 DFL_OK, "%s", err.msg);
+    double x[3] = {0.3, 0.4, 0.5};
+    dfl_surfpoint o;
+    cr_assert_eq(dfl_proxy_input_query(&in, 1, x, 1, &o, NULL), DFL_OK);
+    /* the fit's quartic aliasing, ~ (3 h)^2 / r^3 = 1.8e-3 (proxy/curvfit.h) */
+    cr_assert(fabs(o.curv.k1 - 2) < 2e-3 && fabs(o.curv.k2 - 2) < 2e-3, "%g %g", o.curv.k1,
+              o.curv.k2);
+    dfl_proxy_input_free(&in);
+}
+
+static void expect_reject(const char *text, const char *key, const char *what)
+{
+    dfl_proxy_input in = {0};
+    dfl_err err;
+    cr_assert_eq(build(text, &in, &err), DFL_E_INPUT, "%s", text);
+    cr_assert(strstr(err.msg, "t.ini") && strstr(err.msg, key), "%s", err.msg);
+    if (what) cr_assert(strstr(err.msg, what), "%s", err.msg);
+    cr_assert_null(in.ctx);
+}
+
+Test(proxy_input_cfg, bad_keys_name_the_key)
+{
+    expect_reject("[field]\ninput = implicit\n[shape]\nkind = box\ncenter = 0 0 0\nhalf = 1 1 1\n",
+                  "input", "offers: sdf");
+    expect_reject("[field]\ninput = sdf\n[shape]\nkind = bezier_surface\n", "input", "no sdf");
+    expect_reject("[field]\ninput = mesh\n[shape]\nkind = sphere\n", "input", NULL);
+    expect_reject("[field]\ncurvature = fit\nfit_spacing = 0\n[shape]\nkind = sphere\n",
+                  "fit_spacing", NULL);
+    expect_reject("[field]\nfit_grid = 2\n[shape]\nkind = sphere\n", "fit_grid", NULL);
+    expect_reject("[field]\nfootpoint = fast\n[shape]\nkind = sphere\n", "footpoint", NULL);
+}

@@ -1,0 +1,107 @@
+/* Cubic curvature fit (proxy/curvfit.h).
+ * - A cubic graph is reproduced exactly (the fit's space contains it).
+ * - On a sphere and at a torus' equators the height function over the
+ *   tangent plane is known in closed form and its cubic Taylor part is the
+ *   quadratic one (the graphs are even in both tangent coordinates), so the
+ *   fit's error is P times the remainder r_k = h(x_k) - T2(x_k) exactly: the
+ *   tolerance is the derived bound |dA| <= sum_k |P_0k| |r_k| (likewise B,
+ *   C), pushed to the eigenvalues by Weyl's inequality with the Frobenius
+ *   norm, plus 1e-10 for the projections' rounding. */
+#include <criterion/criterion.h>
+#include <math.h>
+
+#include "core/vec.h"
+#include "proxy/curvfit.h"
+
+Test(curvfit, reproduces_a_cubic)
+{
+    dfl_curvfit F;
+    cr_assert_eq(dfl_curvfit_init(5, 0.1, &F, NULL), DFL_OK);
+    const double c[7] = {0.3, -0.2, 1.1, 0.05, -0.4, 0.7, 0.2};
+    double z[DFL_CURVFIT_MAX_G * DFL_CURVFIT_MAX_G], got[7];
+    for (int k = 0; k < F.npts; k++) {
+        double x = F.xy[2 * k], y = F.xy[2 * k + 1];
+        z[k] = c[0] * x * x / 2 + c[1] * x * y + c[2] * y * y / 2 + c[3] * x * x * x +
+               c[4] * x * x * y + c[5] * x * y * y + c[6] * y * y * y;
+    }
+    dfl_curvfit_coeffs(&F, z, got);
+    for (int a = 0; a < 7; a++) cr_assert(fabs(got[a] - c[a]) < 1e-10, "coef %d: %g", a, got[a]);
+    dfl_err err;
+    cr_assert_eq(dfl_curvfit_init(2, 0.1, &F, &err), DFL_E_INPUT);
+    cr_assert_eq(dfl_curvfit_init(5, 0, &F, &err), DFL_E_INPUT);
+}
+
+/* The derived tolerance for the remainders rem[k]. */
+static double tolerance(const dfl_curvfit *F, const double *rem)
+{
+    double b[3] = {0, 0, 0};
+    for (int a = 0; a < 3; a++)
+        for (int k = 0; k < F->npts; k++) b[a] += fabs(F->pinv[a][k]) * fabs(rem[k]);
+    return sqrt(b[0] * b[0] + 2 * b[1] * b[1] + b[2] * b[2]) + 1e-10;
+}
+
+Test(curvfit, sphere_within_the_truncation_bound)
+{
+    const double c[3] = {0, 0, 0}, r = 0.5;
+    dfl_shape s;
+    cr_assert_eq(dfl_shape_sphere(c, r, &s, NULL), DFL_OK);
+    const int gs[3] = {3, 5, 9};
+    const double hs[3] = {0.02, 0.01, 0.004};
+    for (int t = 0; t < 3; t++) {
+        dfl_curvfit F;
+        cr_assert_eq(dfl_curvfit_init(gs[t], hs[t], &F, NULL), DFL_OK);
+        double rem[DFL_CURVFIT_MAX_G * DFL_CURVFIT_MAX_G];
+        for (int k = 0; k < F.npts; k++) {
+            double rho2 = F.xy[2 * k] * F.xy[2 * k] + F.xy[2 * k + 1] * F.xy[2 * k + 1];
+            rem[k] = -(r - sqrt(r * r - rho2)) + rho2 / (2 * r);
+        }
+        double tol = tolerance(&F, rem);
+        cr_assert(tol < 1e-2);
+        const double n[3] = {0.48, -0.6, 0.64}; /* unit */
+        double p[3] = {r * n[0], r * n[1], r * n[2]};
+        dfl_curvature cv;
+        cr_assert_eq(dfl_curvfit_sdf(&F, &s, p, n, &cv), DFL_OK);
+        cr_assert(fabs(cv.k1 - 1 / r) <= tol && fabs(cv.k2 - 1 / r) <= tol,
+                  "g %d: %g %g, tol %g", gs[t], cv.k1, cv.k2, tol);
+        /* and the error is the aliasing itself, not noise: P rem predicts it */
+        double A = 0;
+        for (int k = 0; k < F.npts; k++) A += F.pinv[0][k] * rem[k];
+        cr_assert(fabs(cv.k2 - (1 / r - A)) < 1e-9, "%g vs %g", cv.k2, 1 / r - A);
+    }
+    dfl_shape_free(&s);
+}
+
+Test(curvfit, torus_equators_within_the_truncation_bound)
+{
+    const double c[3] = {0, 0, 0}, ax[3] = {0, 0, 1}, R = 0.6, r = 0.25;
+    dfl_shape s;
+    cr_assert_eq(dfl_shape_torus(c, ax, R, r, &s, NULL), DFL_OK);
+    dfl_curvfit F;
+    cr_assert_eq(dfl_curvfit_init(5, 0.01, &F, NULL), DFL_OK);
+    for (int side = 0; side < 2; side++) {
+        /* outer (side 0): p = (R + r, 0, 0), n = +x, kappa = 1/(R+r), 1/r;
+         * inner: p = (R - r, 0, 0), n = -x, kappa = -1/(R-r), 1/r */
+        double sg = side ? -1.0 : 1.0, x0 = R + sg * r;
+        double p[3] = {x0, 0, 0}, n[3] = {sg, 0, 0}, b1[3], b2[3];
+        dfl_vec3_tangent_basis(n, b1, b2);
+        double ky = sg / (R + sg * r), kz = 1 / r;
+        double rem[DFL_CURVFIT_MAX_G * DFL_CURVFIT_MAX_G];
+        for (int k = 0; k < F.npts; k++) {
+            double y = F.xy[2 * k] * b1[1] + F.xy[2 * k + 1] * b2[1];
+            double z = F.xy[2 * k] * b1[2] + F.xy[2 * k + 1] * b2[2];
+            double rho = R + sg * sqrt(r * r - z * z), xs = sqrt(rho * rho - y * y);
+            double h = sg * (xs - x0);
+            rem[k] = h - (-ky * y * y / 2 - kz * z * z / 2);
+        }
+        double tol = tolerance(&F, rem);
+        cr_assert(tol < 2e-2 * kz, "tol %g", tol); /* a bound with content */
+        dfl_curvature cv;
+        cr_assert_eq(dfl_curvfit_sdf(&F, &s, p, n, &cv), DFL_OK);
+        double lo = fmin(ky, kz), hi = fmax(ky, kz);
+        cr_assert(fabs(cv.k1 - lo) <= tol && fabs(cv.k2 - hi) <= tol, "side %d: %g %g vs %g %g tol %g",
+                  side, cv.k1, cv.k2, lo, hi, tol);
+        /* the principal direction of 1/r is the z axis */
+        cr_assert(fabs(fabs(cv.e2[2]) - 1) < 1e-6);
+    }
+    dfl_shape_free(&s);
+}

@@ -1,0 +1,190 @@
+/* Decoding filters: the sphere constraint as documented, Hermite blending
+ * reproduces value and gradient at cell centres, gradients are the
+ * derivatives of the values, exact proxies blend to the exact field. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <string.h>
+
+#include "core/rng.h"
+#include "core/vec.h"
+#include "proxy/analytic_inputs.h"
+#include "proxy/filter.h"
+
+static const ta_shape torus = {TA_TORUS, {0.05, -0.02, 0.03}, {0, 0.6, 0.8}, 0.6, 0.25};
+static const ta_shape sphere = {TA_SPHERE, {0.02, -0.03, 0.01}, {0, 0, 1}, 0.5, 0};
+
+static void build(const ta_shape *s, int order, int res, dfl_proxy_storage st, dfl_proxy_grid *g)
+{
+    dfl_proxy_input in;
+    ta_input(s, &in);
+    dfl_proxy_build_opts o;
+    dfl_proxy_build_opts_default(&o);
+    o.order = order;
+    o.res = res;
+    o.storage = st;
+    cr_assert_eq(dfl_proxy_grid_build(&in, &o, g, NULL), DFL_OK);
+}
+
+Test(proxy_filter, names_and_check)
+{
+    dfl_proxy_filter f;
+    cr_expect_eq(dfl_proxy_filter_parse("hermite", &f, NULL), DFL_OK);
+    cr_expect_eq(f, DFL_PROXY_HERMITE);
+    dfl_err err;
+    cr_expect_eq(dfl_proxy_filter_parse("cubic", &f, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "nearest|trilinear|hermite") != NULL, "%s", err.msg);
+    dfl_proxy_grid g;
+    build(&sphere, 1, 4, DFL_PROXY_DOUBLE, &g);
+    dfl_proxy_filter_opts o;
+    dfl_proxy_filter_opts_default(DFL_PROXY_NEAREST, &g, &o);
+    cr_expect_float_eq(o.clip, 0.5, 1e-15);
+    o.is_signed = 1;
+    cr_expect_eq(dfl_proxy_filter_check(&g, &o, NULL), DFL_OK);
+    g.has_inside = 0;
+    cr_expect_eq(dfl_proxy_filter_check(&g, &o, &err), DFL_E_INPUT);
+    o.is_signed = 0;
+    o.clip = -1;
+    cr_expect_eq(dfl_proxy_filter_check(&g, &o, &err), DFL_E_INPUT);
+    dfl_proxy_filter_opts_default(DFL_PROXY_HERMITE, &g, &o);
+    cr_expect_eq(o.clip, 0.0);
+    dfl_proxy_grid_free(&g);
+}
+
+/* D = sgn(phi) max(|phi|, |x - p| - rho), by hand on a sphere grid. */
+Test(proxy_filter, clip_definition)
+{
+    dfl_proxy_grid g;
+    build(&sphere, 2, 8, DFL_PROXY_DOUBLE, &g);
+    uint64_t seed = 1;
+    for (int k = 0; k < 500; k++) {
+        double x[3];
+        for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(&seed, -1, 1);
+        const size_t c = (size_t)(dfl_rng_splitmix(&seed, 0, 512));
+        dfl_proxy_geom pg;
+        dfl_proxy_cell_decode(&g, c, &pg);
+        const double phi = dfl_proxy_geom_eval(&pg, 2, x, NULL);
+        double v[3] = {x[0] - pg.p[0], x[1] - pg.p[1], x[2] - pg.p[2]};
+        const double ball = dfl_vec3_norm(v) - 0.25;
+        const double want = (phi < 0 ? -1 : 1) * fmax(fabs(phi), ball);
+        cr_expect_eq(dfl_proxy_proxy_dist(&g, c, 0.25, x, NULL), want);
+        cr_expect_eq(dfl_proxy_proxy_dist(&g, c, 0, x, NULL), phi);
+    }
+    dfl_proxy_grid_free(&g);
+}
+
+static double eval1(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, const double x[3],
+                    double *gr)
+{
+    double v;
+    dfl_proxy_filter_eval(g, o, 1, x, &v, gr);
+    return v;
+}
+
+/* At every cell centre the Hermite blend's value and gradient are the
+ * centre proxy's, i.e. the torus's distance and its gradient (orders 1
+ * and 2, signed and unsigned). */
+Test(proxy_filter, hermite_reproduces_centres)
+{
+    for (int order = 1; order <= 2; order++) {
+        dfl_proxy_grid g;
+        build(&torus, order, 10, DFL_PROXY_DOUBLE, &g);
+        for (int sg = 0; sg < 2; sg++) {
+            dfl_proxy_filter_opts o;
+            dfl_proxy_filter_opts_default(DFL_PROXY_HERMITE, &g, &o);
+            o.is_signed = sg;
+            for (size_t c = 0; c < g.ncells; c++) {
+                double xc[3], gr[3];
+                dfl_proxy_cell_centre(&g, c, xc);
+                dfl_surfpoint sp;
+                ta_answer(&torus, xc, &sp);
+                const double v = eval1(&g, &o, xc, gr);
+                const double s = sg || sp.d >= 0 ? 1 : -1;
+                cr_expect_float_eq(v, s * sp.d, 1e-13, "order %d cell %zu", order, c);
+                for (int j = 0; j < 3; j++)
+                    cr_expect_float_eq(gr[j], s * sp.n[j], 1e-12, "order %d cell %zu", order, c);
+            }
+        }
+        dfl_proxy_grid_free(&g);
+    }
+}
+
+/* Gradients of every filter are the derivatives of its values (central
+ * differences away from cell borders and kinks). */
+Test(proxy_filter, gradients_match_differences)
+{
+    dfl_proxy_grid g;
+    build(&torus, 2, 12, DFL_PROXY_FLOAT, &g);
+    uint64_t seed = 9;
+    for (int f = 0; f < DFL_PROXY_FILTER_COUNT; f++) {
+        dfl_proxy_filter_opts o;
+        dfl_proxy_filter_opts_default((dfl_proxy_filter)f, &g, &o);
+        o.is_signed = 1;
+        int n = 0;
+        while (n < 200) {
+            double x[3], gr[3];
+            for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(&seed, -1.1, 1.1);
+            const double v = eval1(&g, &o, x, gr);
+            int ok = 1;
+            double fd[3];
+            for (int j = 0; j < 3 && ok; j++) {
+                double a[3] = {x[0], x[1], x[2]}, b[3] = {x[0], x[1], x[2]};
+                a[j] += 1e-7;
+                b[j] -= 1e-7;
+                const double va = eval1(&g, &o, a, NULL), vb = eval1(&g, &o, b, NULL);
+                fd[j] = (va - vb) / 2e-7;
+                /* skip points where a kink (cell border, clip switch) lies in between */
+                ok = fabs(va - 2 * v + vb) < 1e-11;
+            }
+            if (!ok) continue;
+            n++;
+            for (int j = 0; j < 3; j++)
+                cr_expect_float_eq(gr[j], fd[j], 1e-6, "%s at %g %g %g", dfl_proxy_filter_name(f),
+                                   x[0], x[1], x[2]);
+        }
+    }
+    dfl_proxy_grid_free(&g);
+}
+
+/* Order-2 sphere proxies are the sphere: all three filters give the exact
+ * distance near the surface (nearest unclipped within the clip). */
+Test(proxy_filter, exact_proxies_blend_exactly)
+{
+    dfl_proxy_grid g;
+    build(&sphere, 2, 16, DFL_PROXY_DOUBLE, &g);
+    uint64_t seed = 2;
+    for (int f = 0; f < DFL_PROXY_FILTER_COUNT; f++) {
+        dfl_proxy_filter_opts o;
+        dfl_proxy_filter_opts_default((dfl_proxy_filter)f, &g, &o);
+        for (int k = 0; k < 300; k++) {
+            double x[3];
+            do {
+                for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(&seed, -0.8, 0.8);
+            } while (fabs(ta_sdf(&sphere, x)) > 0.1);
+            cr_expect_lt(fabs(eval1(&g, &o, x, NULL) - fabs(ta_sdf(&sphere, x))), 1e-10, "%s",
+                         dfl_proxy_filter_name(f));
+        }
+    }
+    dfl_proxy_grid_free(&g);
+}
+
+/* Batches give what single points give (no state across points). */
+Test(proxy_filter, batch_equals_single)
+{
+    dfl_proxy_grid g;
+    build(&torus, 2, 8, DFL_PROXY_HALF, &g);
+    double x[3 * 64], v[64], gr[3 * 64];
+    uint64_t seed = 4;
+    for (int i = 0; i < 3 * 64; i++) x[i] = dfl_rng_splitmix(&seed, -1.2, 1.2);
+    for (int f = 0; f < DFL_PROXY_FILTER_COUNT; f++) {
+        dfl_proxy_filter_opts o;
+        dfl_proxy_filter_opts_default((dfl_proxy_filter)f, &g, &o);
+        dfl_proxy_filter_eval(&g, &o, 64, x, v, gr);
+        for (int i = 0; i < 64; i++) {
+            double g1[3];
+            cr_expect_eq(eval1(&g, &o, x + 3 * i, g1), v[i]);
+            cr_expect_eq(eval1(&g, &o, x + 3 * i, NULL), v[i]);
+            for (int j = 0; j < 3; j++) cr_expect_eq(g1[j], gr[3 * i + j]);
+        }
+    }
+    dfl_proxy_grid_free(&g);
+}

@@ -1,0 +1,124 @@
+/* SDF proxy input: footpoints x - f grad f and analytic curvatures against
+ * closed forms (sphere: kappa = +1/r both; cylinder: 0 and 1/r; plane: 0;
+ * torus: 1/r across the tube and cos(th) / (R + r cos(th)) along it, th the
+ * tube angle of the footpoint, outward normal). */
+#include <criterion/criterion.h>
+#include <math.h>
+
+#include "core/rng.h"
+#include "core/vec.h"
+#include "proxy/input_sdf.h"
+
+static dfl_proxy_input make(dfl_shape *s, dfl_proxy_curv_method cm)
+{
+    dfl_proxy_input in;
+    dfl_err err;
+    dfl_curvfit_opts fit = {5, 0.01};
+    cr_assert_eq(dfl_proxy_input_sdf(s, cm, &fit, &in, &err), DFL_OK, "%s", err.msg);
+    cr_assert_null(s->impl);
+    return in;
+}
+
+static void random_points(uint64_t seed, size_t m, double lo, double hi, double *x)
+{
+    for (size_t i = 0; i < 3 * m; i++) x[i] = dfl_rng_splitmix(&seed, lo, hi);
+}
+
+Test(input_sdf, sphere_footpoints_and_curvature)
+{
+    const double c[3] = {0.1, -0.05, 0.02}, r = 0.5;
+    dfl_shape s;
+    cr_assert_eq(dfl_shape_sphere(c, r, &s, NULL), DFL_OK);
+    dfl_proxy_input in = make(&s, DFL_PROXY_CURV_ANALYTIC);
+    enum { M = 200 };
+    double x[3 * M];
+    dfl_surfpoint o[M];
+    random_points(7, M, -1, 1, x);
+    cr_assert_eq(dfl_proxy_input_query(&in, M, x, 1, o, NULL), DFL_OK);
+    cr_assert_eq(in.has_inside, 1);
+    for (int i = 0; i < M; i++) {
+        double q[3] = {x[3 * i] - c[0], x[3 * i + 1] - c[1], x[3 * i + 2] - c[2]};
+        double l = dfl_vec3_norm(q);
+        cr_assert(o[i].certified);
+        cr_assert(fabs(o[i].d - (l - r)) < 1e-14);
+        for (int j = 0; j < 3; j++) {
+            cr_assert(fabs(o[i].p[j] - (c[j] + r * q[j] / l)) < 1e-14);
+            cr_assert(fabs(o[i].n[j] - q[j] / l) < 1e-14);
+            cr_assert(fabs(x[3 * i + j] - (o[i].p[j] + o[i].d * o[i].n[j])) < 1e-14);
+        }
+        cr_assert(fabs(o[i].curv.k1 - 1 / r) < 1e-9 && fabs(o[i].curv.k2 - 1 / r) < 1e-9,
+                  "k = %g %g", o[i].curv.k1, o[i].curv.k2);
+    }
+    /* order 1: curvature skipped, NAN */
+    cr_assert_eq(dfl_proxy_input_query(&in, 1, x, 0, o, NULL), DFL_OK);
+    cr_assert(isnan(o[0].curv.k1));
+    dfl_proxy_input_free(&in);
+    dfl_proxy_input_free(&in);
+}
+
+Test(input_sdf, torus_curvature_closed_form)
+{
+    const double c[3] = {0, 0, 0}, ax[3] = {0, 0, 1}, R = 0.6, r = 0.25;
+    dfl_shape s;
+    cr_assert_eq(dfl_shape_torus(c, ax, R, r, &s, NULL), DFL_OK);
+    dfl_proxy_input in = make(&s, DFL_PROXY_CURV_ANALYTIC);
+    uint64_t seed = 11;
+    for (int i = 0; i < 200; i++) {
+        /* x = centre-circle point + (r + t) (cos th e_rho + sin th e_z) */
+        double ph = dfl_rng_splitmix(&seed, 0, 2 * DFL_PI);
+        double th = dfl_rng_splitmix(&seed, 0, 2 * DFL_PI);
+        double t = dfl_rng_splitmix(&seed, -0.2, 0.3);
+        double rho = R + (r + t) * cos(th);
+        double x[3] = {rho * cos(ph), rho * sin(ph), (r + t) * sin(th)};
+        dfl_surfpoint o;
+        cr_assert_eq(dfl_proxy_input_query(&in, 1, x, 1, &o, NULL), DFL_OK);
+        cr_assert(fabs(o.d - t) < 1e-13);
+        double kt = 1 / r, kr = cos(th) / (R + r * cos(th));
+        double lo = fmin(kt, kr), hi = fmax(kt, kr);
+        cr_assert(fabs(o.curv.k1 - lo) < 1e-9 && fabs(o.curv.k2 - hi) < 1e-9,
+                  "th %g: k = %g %g, want %g %g", th, o.curv.k1, o.curv.k2, lo, hi);
+        /* the tube direction (kappa = 1/r) lies in the meridian plane */
+        const double *et = kt < kr ? o.curv.e1 : o.curv.e2;
+        double eph[3] = {-sin(ph), cos(ph), 0};
+        cr_assert(fabs(dfl_vec3_dot(et, eph)) < 1e-8);
+    }
+    dfl_proxy_input_free(&in);
+}
+
+Test(input_sdf, cylinder_and_plane)
+{
+    const double p[3] = {0.1, 0.2, 0}, ax[3] = {1, 1, 0}, r = 0.3, nrm[3] = {0, 0, 2};
+    dfl_shape s;
+    cr_assert_eq(dfl_shape_cylinder(p, ax, r, &s, NULL), DFL_OK);
+    dfl_proxy_input in = make(&s, DFL_PROXY_CURV_ANALYTIC);
+    double x[3 * 50];
+    dfl_surfpoint o[50];
+    random_points(3, 50, -1, 1, x);
+    cr_assert_eq(dfl_proxy_input_query(&in, 50, x, 1, o, NULL), DFL_OK);
+    for (int i = 0; i < 50; i++) {
+        cr_assert(fabs(o[i].curv.k1) < 1e-9 && fabs(o[i].curv.k2 - 1 / r) < 1e-9);
+        /* zero-curvature direction = the axis */
+        cr_assert(fabs(fabs(o[i].curv.e1[0] + o[i].curv.e1[1]) / sqrt(2) - 1) < 1e-9);
+    }
+    dfl_proxy_input_free(&in);
+    cr_assert_eq(dfl_shape_plane(3, p, nrm, &s, NULL), DFL_OK);
+    in = make(&s, DFL_PROXY_CURV_ANALYTIC);
+    cr_assert_eq(dfl_proxy_input_query(&in, 50, x, 1, o, NULL), DFL_OK);
+    for (int i = 0; i < 50; i++) {
+        cr_assert(fabs(o[i].curv.k1) < 1e-12 && fabs(o[i].curv.k2) < 1e-12);
+        cr_assert(fabs(o[i].p[2]) < 1e-15 && fabs(o[i].d - x[3 * i + 2]) < 1e-15);
+    }
+    dfl_proxy_input_free(&in);
+}
+
+Test(input_sdf, rejects_2d_shapes)
+{
+    const double c[2] = {0, 0};
+    dfl_shape s;
+    cr_assert_eq(dfl_shape_circle(c, 1, &s, NULL), DFL_OK);
+    dfl_proxy_input in = {0};
+    dfl_err err;
+    cr_assert_eq(dfl_proxy_input_sdf(&s, DFL_PROXY_CURV_ANALYTIC, NULL, &in, &err), DFL_E_INPUT);
+    cr_assert_null(s.impl);
+    cr_assert_eq(dfl_proxy_input_query(&in, 0, NULL, 0, NULL, &err), DFL_E_INPUT);
+}
