@@ -9,6 +9,8 @@
 
 #include "harness/experiment.h"
 
+extern const dfl_study dfl_study_hvb25_accuracy;
+
 /* NULL-terminated. */
 extern const dfl_study *const dfl_hvb25_studies[];
 

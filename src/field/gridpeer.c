@@ -23,6 +23,7 @@ static const int kind_scalars[DFL_GRIDPEER_KIND_COUNT] = {DFL_GRIDPEER_KIND_LIST
  * is the half's exact value, so decoding equals decoding from the halves
  * (what is stored decides the error; the byte count is reported apart). */
 typedef struct gridpeer {
+    dfl_gridpeer_opts opts;  /* as built (threads as given) */
     dfl_gridpeer_kind kind;
     int n, stride;
     double lo[3], h[3];
@@ -188,6 +189,7 @@ dfl_status dfl_gridpeer_new(const dfl_shape *shape, const dfl_gridpeer_opts *o, 
     if (st != DFL_OK) return st;
     gridpeer *g = calloc(1, sizeof *g);
     if (!g) return dfl_err_set(err, DFL_E_NOMEM, "grid peer: out of memory");
+    g->opts = *o;
     g->kind = o->kind;
     g->n = o->n;
     g->stride = kind_scalars[o->kind];
@@ -223,4 +225,11 @@ dfl_status dfl_gridpeer_new(const dfl_shape *shape, const dfl_gridpeer_opts *o, 
     out->ops = &gridpeer_ops;
     out->ctx = g;
     return DFL_OK;
+}
+
+int dfl_gridpeer_field_info(const dfl_field *f, dfl_gridpeer_opts *out)
+{
+    if (!f || f->ops != &gridpeer_ops) return 0;
+    *out = ((const gridpeer *)f->ctx)->opts;
+    return 1;
 }

@@ -7,6 +7,7 @@
  *   dfl_gridpeer_storage    float64 | float16
  *   dfl_gridpeer_new        build one as a dfl_field
  *   dfl_gridpeer_scalars    the number of stored scalars
+ *   dfl_gridpeer_field_info kind, storage, n of a grid peer field
  *   dfl_gridpeer_kind_name, _parse; dfl_gridpeer_storage_name, _parse
  *
  * Grid: N cells per axis over the box [lo, hi]; cell (i, j, k) has centre
@@ -87,5 +88,9 @@ dfl_status dfl_gridpeer_new(const dfl_shape *shape, const dfl_gridpeer_opts *o, 
 
 /* n^3 times the kind's scalars per cell. */
 size_t dfl_gridpeer_scalars(dfl_gridpeer_kind kind, int n);
+
+/* The options f was built with into *out; 0 (out untouched) when f is not
+ * a grid peer field, else 1. */
+int dfl_gridpeer_field_info(const dfl_field *f, dfl_gridpeer_opts *out);
 
 #endif

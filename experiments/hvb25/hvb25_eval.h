@@ -1,0 +1,69 @@
+/* hvb25 accuracy engine: a field (a proxy grid under one or several
+ * decoding filters, a grid peer, any dfl_field) against a reference SDF on
+ * a node grid (the paper's 217^3), in z slabs so that memory stays at a few
+ * slabs whatever the grid.
+ *
+ * Per decoding it accumulates, over the whole grid, over the band
+ * |d| <= band and over the points off the medial region (below), the
+ * metrics of field/metrics.h (L1 = mean |e|, MSE = the paper's "L2", RMS,
+ * Linf), combined slab after slab in slab order (count-weighted means, so
+ * the result does not depend on the thread count), and the worst point.
+ *
+ * Error: e = u - ref where ref = d (the reference's signed distance) for
+ * signed decodings and |d| for unsigned ones (the paper's output).
+ * Non-finite u (a failed proxy stores NaN) is counted and left out.
+ *
+ * Medial region: a point x whose exact footpoint p(x) = x - d grad d lies
+ * farther than `medial` cell sizes from the exact footpoint of the centre
+ * of the cell holding x: there the cell's proxy describes another part of
+ * the surface (x and its cell centre lie on two sides of the medial axis /
+ * cut locus).  Needs a cell grid (proxy or grid peer); without one no
+ * point is medial.
+ */
+#ifndef DFL_EXPERIMENTS_HVB25_EVAL_H
+#define DFL_EXPERIMENTS_HVB25_EVAL_H
+
+#include <stddef.h>
+
+#include "field/field.h"
+#include "field/metrics.h"
+#include "field/sample.h"
+#include "geom/shape.h"
+#include "proxy/filter.h"
+
+#define HVB25_MAX_DECODINGS 4
+
+typedef struct hvb25_cells {
+    int n;                 /* cells per axis; 0: no cell grid */
+    double lo[3], h[3];
+} hvb25_cells;
+
+typedef struct hvb25_acc_result {
+    dfl_metrics all, band, off;     /* whole grid, band, off the medial region */
+    size_t nonfinite, medial;       /* points left out (u not finite); medial points */
+    double worst[3], worst_d, worst_err, worst_jump;  /* argmax |e| (first in grid order) */
+    double eval_seconds;            /* decoding time over the whole grid */
+} hvb25_acc_result;
+
+typedef struct hvb25_acc_spec {
+    const dfl_field *field;         /* decoded as is when ndec == 0 */
+    const dfl_proxy_grid *grid;     /* the proxy grid of field, or NULL */
+    int ndec;                       /* proxy decodings to run instead (grid != NULL) */
+    dfl_proxy_filter_opts dec[HVB25_MAX_DECODINGS];
+    int field_signed;               /* signedness when ndec == 0 */
+    hvb25_cells cells;
+    const dfl_shape *ref;           /* reference SDF (3D) */
+    dfl_grid eval;                  /* 3D node grid */
+    double band, medial;            /* band half-width; medial threshold in cell sizes */
+    int threads;
+} hvb25_acc_spec;
+
+/* Runs every decoding (max(ndec, 1) results into res[]).  DFL_E_NOMEM;
+ * DFL_E_NUMERIC when the reference is not finite somewhere. */
+dfl_status hvb25_acc_run(const hvb25_acc_spec *s, hvb25_acc_result *res, dfl_err *err);
+
+/* Sets the result's cells with column suffix sfx "" in the table's current
+ * row: metrics (all, _band, _off), nonfinite, medial, worst_*, eval_*. */
+dfl_status hvb25_acc_put(dfl_table *t, const hvb25_acc_result *r, size_t npoints, dfl_err *err);
+
+#endif
