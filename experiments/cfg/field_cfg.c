@@ -1,5 +1,6 @@
 #include "cfg/field_cfg.h"
 
+#include "cfg/proxy_cfg.h"
 #include "cfg/gridpeer_cfg.h"
 #include "cfg/rfunc_cfg.h"
 #include "cfg/shape_cfg.h"
@@ -24,6 +25,7 @@ static dfl_status exact_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field 
 static const dfl_field_kind kinds[] = {
     {"exact", exact_from_cfg},
     {"rfunc", dfl_rfunc_field_from_cfg},
+    {"proxy", dfl_proxy_field_from_cfg},
     {"gridpeer", dfl_gridpeer_field_from_cfg},
 };
 #define NKINDS (sizeof kinds / sizeof kinds[0])

@@ -14,7 +14,7 @@ Test(field_cfg, table_rows)
 {
     size_t n;
     const dfl_field_kind *kinds = dfl_field_kinds(&n);
-    cr_assert_eq(n, 2);
+    cr_assert_geq(n, 2); /* other modules add rows (tests/experiments/cfg/test_<kind>_cfg.c check theirs) */
     cr_expect_str_eq(kinds[0].name, "exact");
     cr_expect_str_eq(kinds[1].name, "rfunc");
     cr_expect_eq(kinds[1].build, dfl_rfunc_field_from_cfg);

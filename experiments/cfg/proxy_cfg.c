@@ -1,0 +1,112 @@
+#include "cfg/proxy_cfg.h"
+
+#include <string.h>
+
+#include "cfg/proxy_input_cfg.h"
+#include "proxy/proxy_field.h"
+
+/* lo / hi: one number for every axis, or three. */
+static dfl_status read_box_end(const dfl_cfg *cfg, const char *sec, const char *key, double def,
+                               double out[3], dfl_err *err)
+{
+    const char *s;
+    dfl_status st = dfl_cfg_string_opt(cfg, sec, key, NULL, &s, err);
+    if (st) return st;
+    if (!s) {
+        out[0] = out[1] = out[2] = def;
+        return DFL_OK;
+    }
+    if (dfl_cfg_point_dim(s) == 1) {
+        st = dfl_cfg_double(cfg, sec, key, -1e300, 1e300, &out[0], err);
+        out[1] = out[2] = out[0];
+        return st;
+    }
+    return dfl_cfg_vec(cfg, sec, key, 3, out, err);
+}
+
+dfl_status dfl_proxy_cfg_read(const dfl_cfg *cfg, const char *sec, dfl_proxy_cfg *out,
+                              dfl_err *err)
+{
+    dfl_proxy_cfg c;
+    memset(&c, 0, sizeof c);
+    dfl_proxy_build_opts_default(&c.build);
+    long order, res, seed;
+    int filt, sto, pos;
+    bool sg;
+    dfl_status st;
+    if ((st = dfl_cfg_int_opt(cfg, sec, "order", 1, 1, 2, &order, err))) return st;
+    if ((st = dfl_cfg_int_opt(cfg, sec, "res", 16, 1, 2048, &res, err))) return st;
+    if ((st = read_box_end(cfg, sec, "lo", -1.0, c.build.lo, err))) return st;
+    if ((st = read_box_end(cfg, sec, "hi", 1.0, c.build.hi, err))) return st;
+    for (int j = 0; j < 3; j++)
+        if (!(c.build.lo[j] < c.build.hi[j]))
+            return dfl_cfg_reject(cfg, sec, dfl_cfg_has(cfg, sec, "hi") ? "hi" : "lo", err,
+                                  "expected lo < hi on every axis (axis %d: %g >= %g)", j,
+                                  c.build.lo[j], c.build.hi[j]);
+    if ((st = dfl_cfg_enum_opt(cfg, sec, "filter", dfl_proxy_filter_names,
+                               DFL_PROXY_FILTER_COUNT, DFL_PROXY_NEAREST, &filt, err)))
+        return st;
+    if ((st = dfl_cfg_enum_opt(cfg, sec, "storage", dfl_proxy_storage_names,
+                               DFL_PROXY_STORAGE_COUNT, DFL_PROXY_DOUBLE, &sto, err)))
+        return st;
+    if ((st = dfl_cfg_enum_opt(cfg, sec, "position", dfl_proxy_position_names,
+                               DFL_PROXY_POSITION_COUNT, DFL_PROXY_DISPLACEMENT, &pos, err)))
+        return st;
+    if (dfl_cfg_has(cfg, sec, "clip_radius")) {
+        if ((st = dfl_cfg_double(cfg, sec, "clip_radius", -1e300, 1e300, &c.clip_cells, err)))
+            return st;
+        if (!(c.clip_cells > 0))
+            return dfl_cfg_reject(cfg, sec, "clip_radius", err,
+                                  "expected a radius > 0 (in cell sizes), got %g", c.clip_cells);
+    }
+    if ((st = dfl_cfg_bool_opt(cfg, sec, "signed", false, &sg, err))) return st;
+    if ((st = dfl_cfg_double_opt(cfg, sec, "noise", 0.0, 0.0, 1e300, &c.build.noise, err)))
+        return st;
+    if ((st = dfl_cfg_int_opt(cfg, sec, "seed", 1, 0, 0x7fffffffL, &seed, err))) return st;
+    c.build.order = (int)order;
+    c.build.res = (int)res;
+    c.build.storage = (dfl_proxy_storage)sto;
+    c.build.position = (dfl_proxy_position)pos;
+    c.build.seed = (uint64_t)seed;
+    c.filter = (dfl_proxy_filter)filt;
+    c.is_signed = sg;
+    *out = c;
+    return DFL_OK;
+}
+
+dfl_status dfl_proxy_grid_from_cfg(const dfl_cfg *cfg, const char *sec, const char *shape_sec,
+                                   dfl_proxy_grid *grid, dfl_proxy_filter_opts *fo,
+                                   dfl_err *err)
+{
+    memset(grid, 0, sizeof *grid);
+    dfl_proxy_cfg c;
+    dfl_status st = dfl_proxy_cfg_read(cfg, sec, &c, err);
+    if (st) return st;
+    dfl_proxy_input in;
+    if ((st = dfl_proxy_input_from_cfg(cfg, sec, shape_sec, &in, err))) return st;
+    if (c.is_signed && !in.has_inside) {
+        dfl_proxy_input_free(&in);
+        return dfl_cfg_reject(cfg, sec, "signed", err,
+                              "the %s input of this shape has no inside (use signed = false)",
+                              in.name ? in.name : "?");
+    }
+    st = dfl_proxy_grid_build(&in, &c.build, grid, err);
+    dfl_proxy_input_free(&in);
+    if (st) return st;
+    dfl_proxy_filter_opts_default(c.filter, grid, fo);
+    if (c.clip_cells > 0) fo->clip = c.clip_cells * dfl_proxy_cell_size(grid);
+    fo->is_signed = c.is_signed;
+    return DFL_OK;
+}
+
+dfl_status dfl_proxy_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *out,
+                                    dfl_err *err)
+{
+    dfl_proxy_grid g;
+    dfl_proxy_filter_opts fo;
+    dfl_status st = dfl_proxy_grid_from_cfg(cfg, sec, "shape", &g, &fo, err);
+    if (st) return st;
+    st = dfl_proxy_field_new(&g, &fo, out, err);
+    if (st) dfl_proxy_grid_free(&g);
+    return st;
+}

@@ -1,0 +1,126 @@
+/* [field] kind = proxy: the keys build the grid the library calls build,
+ * bad keys are rejected naming the key. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <string.h>
+
+#include "cfg/field_cfg.h"
+#include "cfg/proxy_cfg.h"
+#include "cfg/shape_cfg.h"
+#include "cfg_util.h"
+#include "proxy/input_sdf.h"
+#include "proxy/proxy_field.h"
+
+static const char *const sphere =
+    "[shape]\nkind = sphere\ncenter = 0.01 0.02 -0.03\nradius = 0.5\n";
+
+static dfl_cfg *with_field(const char *field)
+{
+    char text[1024];
+    snprintf(text, sizeof text, "[field]\nkind = proxy\n%s%s", field, sphere);
+    return tu_cfg("p.ini", text);
+}
+
+Test(proxy_cfg, row_in_field_table)
+{
+    size_t n;
+    const dfl_field_kind *k = dfl_field_kinds(&n);
+    int found = 0;
+    for (size_t i = 0; i < n; i++)
+        if (strcmp(k[i].name, "proxy") == 0) found = k[i].build == dfl_proxy_field_from_cfg;
+    cr_expect(found);
+}
+
+Test(proxy_cfg, defaults_and_keys)
+{
+    dfl_cfg *cfg = with_field("");
+    dfl_proxy_cfg c;
+    cr_assert_eq(dfl_proxy_cfg_read(cfg, "field", &c, NULL), DFL_OK);
+    cr_expect_eq(c.build.order, 1);
+    cr_expect_eq(c.build.res, 16);
+    cr_expect_eq(c.build.lo[2], -1.0);
+    cr_expect_eq(c.build.hi[1], 1.0);
+    cr_expect_eq(c.filter, DFL_PROXY_NEAREST);
+    cr_expect_eq(c.build.storage, DFL_PROXY_DOUBLE);
+    cr_expect_eq(c.build.position, DFL_PROXY_DISPLACEMENT);
+    cr_expect_eq(c.clip_cells, 0.0);
+    cr_expect_eq(c.is_signed, 0);
+    dfl_cfg_free(cfg);
+    cfg = with_field("order = 2\nres = 8\nlo = -1 -2 -0.5\nhi = 2\nfilter = hermite\nstorage = "
+                     "half\nposition = absolute\nclip_radius = 1.5\nsigned = true\nnoise = "
+                     "0.01\nseed = 7\n");
+    cr_assert_eq(dfl_proxy_cfg_read(cfg, "field", &c, NULL), DFL_OK);
+    cr_expect_eq(c.build.order, 2);
+    cr_expect_eq(c.build.res, 8);
+    cr_expect_eq(c.build.lo[1], -2.0);
+    cr_expect_eq(c.build.hi[0], 2.0);
+    cr_expect_eq(c.filter, DFL_PROXY_HERMITE);
+    cr_expect_eq(c.build.storage, DFL_PROXY_HALF);
+    cr_expect_eq(c.build.position, DFL_PROXY_ABSOLUTE);
+    cr_expect_eq(c.clip_cells, 1.5);
+    cr_expect_eq(c.is_signed, 1);
+    cr_expect_eq(c.build.noise, 0.01);
+    cr_expect_eq(c.build.seed, 7);
+    dfl_cfg_free(cfg);
+}
+
+/* The field of the config is the field of the library calls. */
+Test(proxy_cfg, same_as_library)
+{
+    dfl_cfg *cfg = with_field("order = 2\nres = 6\nfilter = trilinear\nsigned = true\n"
+                              "clip_radius = 2\ninput = sdf\ncurvature = analytic\n");
+    dfl_field f;
+    dfl_err err;
+    cr_assert_eq(dfl_field_from_cfg(cfg, "field", &f, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(dfl_cfg_check_used(cfg, &err), DFL_OK, "%s", err.msg);
+    dfl_shape s;
+    cr_assert_eq(dfl_shape_from_cfg(cfg, "shape", &s, NULL), DFL_OK);
+    dfl_proxy_input in;
+    cr_assert_eq(dfl_proxy_input_sdf(&s, DFL_PROXY_CURV_ANALYTIC, NULL, &in, NULL), DFL_OK);
+    dfl_proxy_build_opts o;
+    dfl_proxy_build_opts_default(&o);
+    o.order = 2;
+    o.res = 6;
+    dfl_proxy_grid g;
+    cr_assert_eq(dfl_proxy_grid_build(&in, &o, &g, NULL), DFL_OK);
+    const dfl_proxy_grid *fg = dfl_proxy_field_grid(&f);
+    cr_assert_not_null(fg);
+    cr_expect_eq(memcmp(g.data, fg->data, dfl_proxy_grid_scalars(&g) * 8), 0);
+    const dfl_proxy_filter_opts *fo = dfl_proxy_field_opts(&f);
+    cr_expect_eq(fo->filter, DFL_PROXY_TRILINEAR);
+    cr_expect_float_eq(fo->clip, 2.0 * 2.0 / 6.0, 1e-15);
+    cr_expect_eq(fo->is_signed, 1);
+    const double x[3] = {0.3, -0.2, 0.25};
+    cr_expect_lt(dfl_field_eval1(&f, x, NULL), 0);
+    dfl_proxy_grid_free(&g);
+    dfl_proxy_input_free(&in);
+    dfl_field_destroy(&f);
+    dfl_cfg_free(cfg);
+}
+
+static void expect_reject(const char *field, const char *key)
+{
+    dfl_cfg *cfg = with_field(field);
+    dfl_field f;
+    dfl_err err;
+    cr_expect_eq(dfl_field_from_cfg(cfg, "field", &f, &err), DFL_E_INPUT, "%s", field);
+    char want[64];
+    snprintf(want, sizeof want, "] %s", key);
+    cr_expect(strstr(err.msg, want) != NULL, "%s: %s", field, err.msg);
+    cr_expect(strstr(err.msg, "p.ini:") != NULL, "%s", err.msg);
+    dfl_cfg_free(cfg);
+}
+
+Test(proxy_cfg, bad_keys_name_the_key)
+{
+    expect_reject("res = 0\n", "res");
+    expect_reject("res = -3\n", "res");
+    expect_reject("clip_radius = 0\n", "clip_radius");
+    expect_reject("clip_radius = -0.5\n", "clip_radius");
+    expect_reject("order = 3\n", "order");
+    expect_reject("filter = cubic\n", "filter");
+    expect_reject("storage = int8\n", "storage");
+    expect_reject("lo = 0.5\nhi = 0.5\n", "hi");
+    expect_reject("noise = -1\n", "noise");
+    expect_reject("input = magic\n", "input");
+}
