@@ -2,11 +2,16 @@
  * representations it offers; a builder per representation. */
 #include "cfg/proxy_input_cfg.h"
 
+#include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
+#include "cfg/curve_cfg.h"
 #include "cfg/shape_cfg.h"
 #include "geom/shape.h"
+#include "geom/surface_random.h"
+#include "proxy/input_param.h"
 #include "proxy/input_sdf.h"
 
 enum { IN_PARAMETRIC, IN_SDF, IN_IMPLICIT, IN_COUNT };
@@ -65,6 +70,83 @@ static dfl_status build_sdf(const build_req *rq, dfl_proxy_input *out, dfl_err *
     return st == DFL_OK ? DFL_OK : dfl_cfg_err_at(rq->cfg, rq->field_sec, "input", st, err);
 }
 
+/* A constructor's failure, named at the shape's kind key. */
+static dfl_status at_kind(const build_req *rq, dfl_status st, dfl_err *err)
+{
+    return st == DFL_OK ? DFL_OK : dfl_cfg_err_at(rq->cfg, rq->shape_sec, "kind", st, err);
+}
+
+static void param_opts(const build_req *rq, dfl_param_input_opts *o)
+{
+    dfl_param_input_opts_default(o);
+    o->grid = rq->k->param_grid;
+}
+
+/* sphere: center, radius; torus: center, axis, major, minor; cone: a, b,
+ * ra, rb (the keys of experiments/cfg/shape_cfg.h; the constructors check
+ * the ranges) */
+static dfl_status build_param_analytic(const build_req *rq, dfl_proxy_input *out, dfl_err *err)
+{
+    const dfl_cfg *cfg = rq->cfg;
+    const char *sec = rq->shape_sec;
+    dfl_param_input_opts o;
+    param_opts(rq, &o);
+    double c[3], ax[3], R, r;
+    dfl_status st;
+    if (rq->kind == DFL_SHAPE_CONE) {
+        double a[3], b[3], ra, rb;
+        if ((st = dfl_cfg_vec(cfg, sec, "a", 3, a, err)) != DFL_OK) return st;
+        if ((st = dfl_cfg_vec(cfg, sec, "b", 3, b, err)) != DFL_OK) return st;
+        if ((st = dfl_cfg_double(cfg, sec, "ra", 0.0, HUGE_VAL, &ra, err)) != DFL_OK) return st;
+        if ((st = dfl_cfg_double(cfg, sec, "rb", 0.0, HUGE_VAL, &rb, err)) != DFL_OK) return st;
+        return at_kind(rq, dfl_proxy_input_param_cone(a, b, ra, rb, &o, out, err), err);
+    }
+    if ((st = dfl_cfg_vec(cfg, sec, "center", 3, c, err)) != DFL_OK) return st;
+    if (rq->kind == DFL_SHAPE_SPHERE) {
+        if ((st = dfl_cfg_double(cfg, sec, "radius", 0.0, HUGE_VAL, &r, err)) != DFL_OK) return st;
+        return at_kind(rq, dfl_proxy_input_param_sphere(c, r, &o, out, err), err);
+    }
+    if ((st = dfl_cfg_vec(cfg, sec, "axis", 3, ax, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_double(cfg, sec, "major", 0.0, HUGE_VAL, &R, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_double(cfg, sec, "minor", 0.0, HUGE_VAL, &r, err)) != DFL_OK) return st;
+    return at_kind(rq, dfl_proxy_input_param_torus(c, ax, R, r, &o, out, err), err);
+}
+
+/* bezier_surface / bspline_surface: the patches of experiments/cfg/
+ * curve_cfg.h, or with random_seed = s (bezier_surface only) the random
+ * patch of geom/surface_random.h with random_order (4), random_half (0.8),
+ * random_amp (0.4). */
+static dfl_status build_param_patches(const build_req *rq, dfl_proxy_input *out, dfl_err *err)
+{
+    const dfl_cfg *cfg = rq->cfg;
+    const char *sec = rq->shape_sec;
+    dfl_param_input_opts o;
+    param_opts(rq, &o);
+    dfl_surface_set set = {0};
+    dfl_status st;
+    if (rq->kind == DFL_SHAPE_BEZIER_SURFACE && dfl_cfg_has(cfg, sec, "random_seed")) {
+        long seed, k;
+        double half, amp;
+        if ((st = dfl_cfg_int(cfg, sec, "random_seed", 0, 2147483647L, &seed, err)) != DFL_OK)
+            return st;
+        if ((st = dfl_cfg_int_opt(cfg, sec, "random_order", 4, 2, 16, &k, err)) != DFL_OK)
+            return st;
+        if ((st = dfl_cfg_double_opt(cfg, sec, "random_half", 0.8, 1e-300, HUGE_VAL, &half,
+                                     err)) != DFL_OK)
+            return st;
+        if ((st = dfl_cfg_double_opt(cfg, sec, "random_amp", 0.4, 0.0, HUGE_VAL, &amp, err)) !=
+            DFL_OK)
+            return st;
+        st = dfl_surface_random_bezier((uint64_t)seed, (int)k, half, amp, &set, err);
+        if (st != DFL_OK) return dfl_cfg_err_at(cfg, sec, "random_seed", st, err);
+    } else {
+        st = dfl_surface_from_cfg(cfg, sec, dfl_shape_kind_name((dfl_shape_kind)rq->kind), &set,
+                                  err);
+        if (st != DFL_OK) return st;
+    }
+    return at_kind(rq, dfl_proxy_input_param_surfaces(&set, &o, out, err), err);
+}
+
 /* The representations of each kind ([kind][input]); NULL: not offered. */
 typedef struct kind_row {
     int kind;
@@ -72,9 +154,11 @@ typedef struct kind_row {
 } kind_row;
 
 static const kind_row rows[] = {
-    {DFL_SHAPE_SPHERE, {NULL, build_sdf, NULL}},
-    {DFL_SHAPE_TORUS, {NULL, build_sdf, NULL}},
-    {DFL_SHAPE_CONE, {NULL, build_sdf, NULL}},
+    {DFL_SHAPE_SPHERE, {build_param_analytic, build_sdf, NULL}},
+    {DFL_SHAPE_TORUS, {build_param_analytic, build_sdf, NULL}},
+    {DFL_SHAPE_CONE, {build_param_analytic, build_sdf, NULL}},
+    {DFL_SHAPE_BEZIER_SURFACE, {build_param_patches, NULL, NULL}},
+    {DFL_SHAPE_BSPLINE_SURFACE, {build_param_patches, NULL, NULL}},
     {DFL_SHAPE_CYLINDER, {NULL, build_sdf, NULL}},
     {DFL_SHAPE_PLANE, {NULL, build_sdf, NULL}},
     {DFL_SHAPE_BOX, {NULL, build_sdf, NULL}},

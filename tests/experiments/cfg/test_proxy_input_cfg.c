@@ -2,6 +2,7 @@
  * builds, one it lacks exits 2 (DFL_E_INPUT) naming the key. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "cfg_util.h"
@@ -70,4 +71,34 @@ Test(proxy_input_cfg, bad_keys_name_the_key)
                   "fit_spacing", NULL);
     expect_reject("[field]\nfit_grid = 2\n[shape]\nkind = sphere\n", "fit_grid", NULL);
     expect_reject("[field]\nfootpoint = fast\n[shape]\nkind = sphere\n", "footpoint", NULL);
+}
+
+/* Every hvb25 shape file builds every representation the table says it
+ * offers (and the random Bezier patch is the seed's). */
+Test(proxy_input_cfg, hvb25_shape_files)
+{
+    static const struct { const char *file, *inputs[3]; } files[] = {
+        {"hvb25_sphere.ini", {"sdf", "parametric", NULL}},
+        {"hvb25_torus.ini", {"sdf", "parametric", NULL}},
+        {"hvb25_cone.ini", {"sdf", "parametric", NULL}},
+        {"hvb25_bezier_single.ini", {"parametric", NULL, NULL}},
+        {"hvb25_bezier_multi.ini", {"parametric", NULL, NULL}},
+        {"hvb25_bezier_random.ini", {"parametric", NULL, NULL}},
+    };
+    for (size_t f = 0; f < sizeof files / sizeof *files; f++)
+        for (int i = 0; i < 3 && files[f].inputs[i]; i++) {
+            char text[512];
+            snprintf(text, sizeof text, "[field]\ninput = %s\n[shape]\ninclude = configs/shapes/%s\n",
+                     files[f].inputs[i], files[f].file);
+            dfl_proxy_input in;
+            dfl_err err;
+            cr_assert_eq(build(text, &in, &err), DFL_OK, "%s %s: %s", files[f].file,
+                         files[f].inputs[i], err.msg);
+            cr_assert_str_eq(in.name, files[f].inputs[i]);
+            double x[3] = {0.1, 0.2, 0.3};
+            dfl_surfpoint o;
+            cr_assert_eq(dfl_proxy_input_query(&in, 1, x, 1, &o, NULL), DFL_OK);
+            cr_assert(isfinite(o.d) && o.certified, "%s %s", files[f].file, files[f].inputs[i]);
+            dfl_proxy_input_free(&in);
+        }
 }
