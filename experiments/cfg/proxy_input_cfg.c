@@ -11,6 +11,7 @@
 #include "cfg/shape_cfg.h"
 #include "geom/shape.h"
 #include "geom/surface_random.h"
+#include "proxy/input_implicit.h"
 #include "proxy/input_param.h"
 #include "proxy/input_sdf.h"
 
@@ -147,6 +148,38 @@ static dfl_status build_param_patches(const build_req *rq, dfl_proxy_input *out,
     return at_kind(rq, dfl_proxy_input_param_surfaces(&set, &o, out, err), err);
 }
 
+/* sphere: |q|^2 - r^2; torus: the quartic; implicit: its own surface
+ * (experiments/cfg/shape_cfg.h) */
+static dfl_status build_implicit(const build_req *rq, dfl_proxy_input *out, dfl_err *err)
+{
+    const dfl_cfg *cfg = rq->cfg;
+    const char *sec = rq->shape_sec;
+    dfl_implicit *imp = NULL;
+    double c[3], ax[3], R, r;
+    dfl_status st;
+    if (rq->kind == DFL_SHAPE_IMPLICIT) {
+        if ((st = dfl_implicit_from_cfg(cfg, sec, &imp, err)) != DFL_OK) return st;
+    } else {
+        if ((st = dfl_cfg_vec(cfg, sec, "center", 3, c, err)) != DFL_OK) return st;
+        if (rq->kind == DFL_SHAPE_SPHERE) {
+            if ((st = dfl_cfg_double(cfg, sec, "radius", 0.0, HUGE_VAL, &r, err)) != DFL_OK)
+                return st;
+            st = dfl_implicit_sphere(c, r, NULL, &imp, err);
+        } else {
+            if ((st = dfl_cfg_vec(cfg, sec, "axis", 3, ax, err)) != DFL_OK) return st;
+            if ((st = dfl_cfg_double(cfg, sec, "major", 0.0, HUGE_VAL, &R, err)) != DFL_OK)
+                return st;
+            if ((st = dfl_cfg_double(cfg, sec, "minor", 0.0, HUGE_VAL, &r, err)) != DFL_OK)
+                return st;
+            st = dfl_implicit_torus(c, ax, R, r, NULL, &imp, err);
+        }
+        if (st != DFL_OK) return at_kind(rq, st, err);
+    }
+    dfl_implicit_foot_method m =
+        rq->k->footpoint_robust ? DFL_IMPLICIT_FOOT_ROBUST : DFL_IMPLICIT_FOOT_PAPER;
+    return at_kind(rq, dfl_proxy_input_implicit(&imp, m, out, err), err);
+}
+
 /* The representations of each kind ([kind][input]); NULL: not offered. */
 typedef struct kind_row {
     int kind;
@@ -154,8 +187,9 @@ typedef struct kind_row {
 } kind_row;
 
 static const kind_row rows[] = {
-    {DFL_SHAPE_SPHERE, {build_param_analytic, build_sdf, NULL}},
-    {DFL_SHAPE_TORUS, {build_param_analytic, build_sdf, NULL}},
+    {DFL_SHAPE_SPHERE, {build_param_analytic, build_sdf, build_implicit}},
+    {DFL_SHAPE_TORUS, {build_param_analytic, build_sdf, build_implicit}},
+    {DFL_SHAPE_IMPLICIT, {NULL, NULL, build_implicit}},
     {DFL_SHAPE_CONE, {build_param_analytic, build_sdf, NULL}},
     {DFL_SHAPE_BEZIER_SURFACE, {build_param_patches, NULL, NULL}},
     {DFL_SHAPE_BSPLINE_SURFACE, {build_param_patches, NULL, NULL}},

@@ -107,21 +107,23 @@ static dfl_status torus_keys(const dfl_cfg *cfg, const char *sec, double c[3], d
     return DFL_OK;
 }
 
-/* [shape] kind = implicit: surface = torus | goursat | genus2,
+/* [shape] kind = implicit: surface = torus | goursat | genus2 | sphere | ellipsoid,
  * solver = newton | ceres (default newton), resolution = sample grid nodes
  * along the longest side (default 64);
  * torus: center, axis, major, minor;
  * goursat: center (default 0 0 0), a (default 0), b (default -5),
  *          c (default 11.8; the tangle cube);
- * genus2: center (default 0 0 0), eps in (0, 0.25) (default 0.1). */
-static dfl_status implicit_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *err)
+ * genus2: center (default 0 0 0), eps in (0, 0.25) (default 0.1);
+ * sphere: center, radius (the polynomial |q|^2 - r^2);
+ * ellipsoid: center (default 0 0 0), semi = a b c (> 0), scramble = k >= 0
+ *          (default 4; geom/implicit.h's positive factor). */
+dfl_status dfl_implicit_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_implicit **out,
+                                 dfl_err *err)
 {
-    const dfl_cfg *cfg = rq->cfg;
-    const char *sec = rq->sec;
-    static const char *const surfaces[] = {"torus", "goursat", "genus2"};
+    static const char *const surfaces[] = {"torus", "goursat", "genus2", "sphere", "ellipsoid"};
     static const char *const solvers[] = {"newton", "ceres"};
     int surf, solver;
-    dfl_status st = dfl_cfg_enum(cfg, sec, "surface", surfaces, 3, &surf, err);
+    dfl_status st = dfl_cfg_enum(cfg, sec, "surface", surfaces, 5, &surf, err);
     if (st != DFL_OK) return st;
     if ((st = dfl_cfg_enum_opt(cfg, sec, "solver", solvers, 2, 0, &solver, err)) != DFL_OK)
         return st;
@@ -153,6 +155,22 @@ static dfl_status implicit_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err
             return st;
         st = dfl_implicit_goursat(c, a, b, cc, &opt, &imp, err);
         break;
+    case 3:
+        if ((st = dfl_cfg_vec(cfg, sec, "center", 3, c, err)) != DFL_OK) return st;
+        if ((st = get_pos(cfg, sec, "radius", &r, err)) != DFL_OK) return st;
+        st = dfl_implicit_sphere(c, r, &opt, &imp, err);
+        break;
+    case 4: {
+        double semi[3], k;
+        if ((st = dfl_cfg_vec_opt(cfg, sec, "center", 3, zero, c, err)) != DFL_OK) return st;
+        if ((st = dfl_cfg_vec(cfg, sec, "semi", 3, semi, err)) != DFL_OK) return st;
+        for (int j = 0; j < 3; j++)
+            if (!(semi[j] > 0.0)) return dfl_cfg_reject(cfg, sec, "semi", err, "expected all > 0");
+        if ((st = dfl_cfg_double_opt(cfg, sec, "scramble", 4.0, 0.0, HUGE_VAL, &k, err)) != DFL_OK)
+            return st;
+        st = dfl_implicit_ellipsoid(c, semi, k, &opt, &imp, err);
+        break;
+    }
     default:
         if ((st = dfl_cfg_vec_opt(cfg, sec, "center", 3, zero, c, err)) != DFL_OK) return st;
         if ((st = dfl_cfg_double_opt(cfg, sec, "eps", 0.1, -HUGE_VAL, HUGE_VAL, &eps, err)) !=
@@ -163,8 +181,16 @@ static dfl_status implicit_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err
         st = dfl_implicit_genus2(c, eps, &opt, &imp, err);
         break;
     }
-    if (st == DFL_OK) st = dfl_implicit_shape(&imp, out, err);
+    if (st == DFL_OK) *out = imp;
     return ctor_result(cfg, sec, st, err);
+}
+
+static dfl_status implicit_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *err)
+{
+    dfl_implicit *imp = NULL;
+    dfl_status st = dfl_implicit_from_cfg(rq->cfg, rq->sec, &imp, err);
+    if (st == DFL_OK) st = ctor_result(rq->cfg, rq->sec, dfl_implicit_shape(&imp, out, err), err);
+    return st;
 }
 
 /* circle, sphere: center, radius */

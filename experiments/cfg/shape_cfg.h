@@ -19,7 +19,8 @@
  *             y > 0 (axis-aligned; exact signed distance, no jets)
  *   bspline_curve | bspline_surface | bezier_surface: handed to
  *             dfl_param_shape_from_cfg (experiments/cfg/curve_cfg.h)
- *   implicit: see geom/implicit.h; surface = torus | goursat | genus2,
+ *   implicit: see geom/implicit.h; surface = torus | goursat | genus2 |
+ *             sphere | ellipsoid,
  *             solver = newton | ceres (default newton), plus the surface's
  *             parameters (dfl_implicit_from_cfg in this module documents them)
  *   csg:      op = union | intersection | difference | smooth_union |
@@ -34,11 +35,17 @@
 #define DFL_EXPERIMENTS_SHAPE_CFG_H
 
 #include "core/status.h"
+#include "geom/implicit.h"
 #include "geom/shape.h"
 #include "io/config.h"
 
 /* Builds the shape section sec describes into *out (caller frees with
  * dfl_shape_free).  *out is untouched on failure. */
 dfl_status dfl_shape_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_shape *out, dfl_err *err);
+
+/* The implicit surface of a kind = implicit section (the keys above) into
+ * *out (caller frees with dfl_implicit_free); *out untouched on failure. */
+dfl_status dfl_implicit_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_implicit **out,
+                                 dfl_err *err);
 
 #endif

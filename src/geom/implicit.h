@@ -42,7 +42,7 @@
  *
  * Files: implicit.c (construction, g, samples), implicit_foot.c
  * (footpoints), implicit_sdf.c (jets, Hermite data, the shape wrapper),
- * implicit_surfaces.c (torus, Goursat, genus 2); the polynomial type is
+ * implicit_surfaces.c (torus, Goursat, genus 2, sphere, scrambled ellipsoid); the polynomial type is
  * geom/poly3.h.
  */
 #ifndef DFL_GEOM_IMPLICIT_H
@@ -103,6 +103,17 @@ dfl_status dfl_implicit_goursat(const double centre[3], double a, double b, doub
  * closes the two holes). */
 dfl_status dfl_implicit_genus2(const double centre[3], double eps, const dfl_implicit_options *opt,
                                dfl_implicit **out, dfl_err *err);
+
+/* Sphere as the polynomial |q|^2 - r^2 (q = p - c; not a distance: its
+ * gradient has length 2 |q|), r > 0. */
+dfl_status dfl_implicit_sphere(const double c[3], double r, const dfl_implicit_options *opt,
+                               dfl_implicit **out, dfl_err *err);
+/* Ellipsoid sum_j q_j^2 / semi_j^2 - 1 (axis-aligned, q = p - c) scrambled
+ * by the positive factor 1 + k (q_x^2 + q_y^4 + q_x^2 q_z^2), k >= 0: same
+ * zero set and inside, g far from a distance (degree 6). */
+dfl_status dfl_implicit_ellipsoid(const double c[3], const double semi[3], double k,
+                                  const dfl_implicit_options *opt, dfl_implicit **out,
+                                  dfl_err *err);
 
 void dfl_implicit_free(dfl_implicit *s);
 

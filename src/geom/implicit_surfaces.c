@@ -106,3 +106,55 @@ dfl_status dfl_implicit_genus2(const double centre[3], double eps, const dfl_imp
     double lo[3] = {-rm, -rm, -1.05 * eps}, hi[3] = {rm, rm, 1.05 * eps};
     return dfl_implicit_new(n, t, centre, NULL, lo, hi, opt, out, err);
 }
+
+dfl_status dfl_implicit_sphere(const double c[3], double r, const dfl_implicit_options *opt,
+                               dfl_implicit **out, dfl_err *err)
+{
+    if (!(r > 0.0) || !isfinite(r))
+        return dfl_err_set(err, DFL_E_INPUT, "implicit sphere: need radius > 0, got %g", r);
+    /* |q|^2 - r^2: the sphere, but not its distance (|grad| = 2 |q|) */
+    dfl_poly3 g;
+    memset(&g, 0, sizeof g);
+    dfl_poly3_term(&g, 1, 2, 0, 0);
+    dfl_poly3_term(&g, 1, 0, 2, 0);
+    dfl_poly3_term(&g, 1, 0, 0, 2);
+    dfl_poly3_term(&g, -r * r, 0, 0, 0);
+    dfl_monomial t[DFL_IMPLICIT_MAX_TERMS];
+    int n = poly_to_terms(&g, t);
+    double m = 1.05 * r, lo[3] = {-m, -m, -m}, hi[3] = {m, m, m};
+    return dfl_implicit_new(n, t, c, NULL, lo, hi, opt, out, err);
+}
+
+dfl_status dfl_implicit_ellipsoid(const double c[3], const double semi[3], double k,
+                                  const dfl_implicit_options *opt, dfl_implicit **out,
+                                  dfl_err *err)
+{
+    for (int j = 0; j < 3; j++)
+        if (!(semi[j] > 0.0) || !isfinite(semi[j]))
+            return dfl_err_set(err, DFL_E_INPUT, "implicit ellipsoid: semi-axes must be > 0");
+    if (!(k >= 0.0) || !isfinite(k))
+        return dfl_err_set(err, DFL_E_INPUT, "implicit ellipsoid: scramble k = %g, expected >= 0",
+                           k);
+    /* E = sum q_j^2 / a_j^2 - 1 times phi = 1 + k (u^2 + v^4 + u^2 w^2) >= 1:
+     * the same zero set and inside, a gradient far from unit length */
+    dfl_poly3 e, phi, g;
+    memset(&e, 0, sizeof e);
+    dfl_poly3_term(&e, 1 / (semi[0] * semi[0]), 2, 0, 0);
+    dfl_poly3_term(&e, 1 / (semi[1] * semi[1]), 0, 2, 0);
+    dfl_poly3_term(&e, 1 / (semi[2] * semi[2]), 0, 0, 2);
+    dfl_poly3_term(&e, -1, 0, 0, 0);
+    memset(&phi, 0, sizeof phi);
+    dfl_poly3_term(&phi, 1, 0, 0, 0);
+    dfl_poly3_term(&phi, k, 2, 0, 0);
+    dfl_poly3_term(&phi, k, 0, 4, 0);
+    dfl_poly3_term(&phi, k, 2, 0, 2);
+    dfl_poly3_mul(&e, &phi, &g);
+    dfl_monomial t[DFL_IMPLICIT_MAX_TERMS];
+    int n = poly_to_terms(&g, t);
+    double lo[3], hi[3];
+    for (int j = 0; j < 3; j++) {
+        hi[j] = 1.05 * semi[j];
+        lo[j] = -hi[j];
+    }
+    return dfl_implicit_new(n, t, c, NULL, lo, hi, opt, out, err);
+}

@@ -131,3 +131,31 @@ Test(implicit_surfaces, bad_input)
     cr_assert_eq(dfl_implicit_genus2(c, 0.3, NULL, &s, &err), DFL_E_INPUT);
     cr_assert_eq(dfl_implicit_goursat(c, -0.5, 0, -1, NULL, &s, &err), DFL_E_INPUT);
 }
+
+/* The sphere polynomial and the scrambled ellipsoid: the zero sets are the
+ * closed forms', g < 0 inside, and neither g is a distance. */
+Test(implicit_surfaces, sphere_and_scrambled_ellipsoid)
+{
+    const double c[3] = {0.1, 0, 0}, semi[3] = {0.7, 0.5, 0.35};
+    dfl_implicit *s, *e;
+    cr_assert_eq(dfl_implicit_sphere(c, 0.5, NULL, &s, NULL), DFL_OK);
+    cr_assert_eq(dfl_implicit_ellipsoid(c, semi, 4, NULL, &e, NULL), DFL_OK);
+    double G[3];
+    double on[3] = {0.1 + 0.3, 0.4, 0};
+    cr_assert(fabs(dfl_implicit_g(s, on, G, NULL)) < 1e-15);
+    cr_assert(fabs(dfl_vec3_norm(G) - 1.0) < 1e-14); /* 2 |q| = 1 */
+    double in[3] = {0.1, 0.1, 0.1};
+    cr_assert(dfl_implicit_g(s, in, NULL, NULL) < 0 && dfl_implicit_g(e, in, NULL, NULL) < 0);
+    double ex[3] = {0.1 + 0.7 * 0.6, 0.5 * 0.8, 0};
+    cr_assert(fabs(dfl_implicit_g(e, ex, G, NULL)) < 1e-14);
+    /* E's gradient at ex times the factor 1 + 4 (x^2 + y^4) */
+    double qx = 0.42, qy = 0.4, phi = 1 + 4 * (qx * qx + qy * qy * qy * qy);
+    cr_assert(fabs(G[0] - phi * 2 * qx / 0.49) < 1e-12 && fabs(G[1] - phi * 2 * qy / 0.25) < 1e-12);
+    dfl_implicit_free(s);
+    dfl_implicit_free(e);
+    dfl_err err;
+    dfl_implicit *t = NULL;
+    cr_assert_eq(dfl_implicit_sphere(c, 0, NULL, &t, &err), DFL_E_INPUT);
+    cr_assert_eq(dfl_implicit_ellipsoid(c, semi, -1, NULL, &t, &err), DFL_E_INPUT);
+    cr_assert_null(t);
+}

@@ -66,6 +66,8 @@ Test(proxy_input_cfg, bad_keys_name_the_key)
     expect_reject("[field]\ninput = implicit\n[shape]\nkind = box\ncenter = 0 0 0\nhalf = 1 1 1\n",
                   "input", "offers: sdf");
     expect_reject("[field]\ninput = sdf\n[shape]\nkind = bezier_surface\n", "input", "no sdf");
+    expect_reject("[field]\ninput = parametric\n[shape]\nkind = implicit\n", "input",
+                  "offers: implicit");
     expect_reject("[field]\ninput = mesh\n[shape]\nkind = sphere\n", "input", NULL);
     expect_reject("[field]\ncurvature = fit\nfit_spacing = 0\n[shape]\nkind = sphere\n",
                   "fit_spacing", NULL);
@@ -75,11 +77,33 @@ Test(proxy_input_cfg, bad_keys_name_the_key)
 
 /* Every hvb25 shape file builds every representation the table says it
  * offers (and the random Bezier patch is the seed's). */
+Test(proxy_input_cfg, implicit_footpoint_methods)
+{
+    const char *m[2] = {"paper", "robust"};
+    for (int k = 0; k < 2; k++) {
+        char text[256];
+        snprintf(text, sizeof text,
+                 "[field]\ninput = implicit\nfootpoint = %s\n[shape]\nkind = torus\n"
+                 "center = 0 0 0\naxis = 0 0 1\nmajor = 0.6\nminor = 0.25\n", m[k]);
+        dfl_proxy_input in;
+        dfl_err err;
+        cr_assert_eq(build(text, &in, &err), DFL_OK, "%s", err.msg);
+        double x[3] = {0.9, 0.1, 0.05};
+        dfl_surfpoint o;
+        cr_assert_eq(dfl_proxy_input_query(&in, 1, x, 1, &o, NULL), DFL_OK);
+        double want = hypot(hypot(0.9, 0.1) - 0.6, 0.05) - 0.25;
+        cr_assert(o.certified && fabs(o.d - want) < 1e-12, "%s: %g vs %g", m[k], o.d, want);
+        dfl_proxy_input_free(&in);
+    }
+}
+
 Test(proxy_input_cfg, hvb25_shape_files)
 {
     static const struct { const char *file, *inputs[3]; } files[] = {
-        {"hvb25_sphere.ini", {"sdf", "parametric", NULL}},
-        {"hvb25_torus.ini", {"sdf", "parametric", NULL}},
+        {"hvb25_sphere.ini", {"sdf", "parametric", "implicit"}},
+        {"hvb25_torus.ini", {"sdf", "parametric", "implicit"}},
+        {"hvb25_goursat.ini", {"implicit", NULL, NULL}},
+        {"hvb25_ellipsoid.ini", {"implicit", NULL, NULL}},
         {"hvb25_cone.ini", {"sdf", "parametric", NULL}},
         {"hvb25_bezier_single.ini", {"parametric", NULL, NULL}},
         {"hvb25_bezier_multi.ini", {"parametric", NULL, NULL}},

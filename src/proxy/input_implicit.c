@@ -1,0 +1,193 @@
+/* Implicit proxy inputs: the paper's gradient-start Newton and our
+ * certified search (see proxy/input_implicit.h). */
+#include "proxy/input_implicit.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/linalg.h"
+#include "core/vec.h"
+
+#define PAPER_STARTS 4
+#define PAPER_ITERS 30
+
+typedef struct imp_ctx {
+    dfl_implicit *s;
+    dfl_implicit_foot_method method;
+    double scale;
+} imp_ctx;
+
+static void nan_curv(dfl_curvature *k)
+{
+    k->k1 = k->k2 = k->K = k->H = NAN;
+    for (int j = 0; j < 3; j++) k->e1[j] = k->e2[j] = k->n[j] = NAN;
+}
+
+int dfl_proxy_implicit_certify(const dfl_implicit *s, const double x[3], const double p[3],
+                               double d)
+{
+    const double scale = dfl_implicit_scale(s);
+    double G[3], H[9];
+    double g = dfl_implicit_g(s, p, G, H);
+    double gn = dfl_vec3_norm(G);
+    if (!(gn > 0) || !isfinite(g)) return 0;
+    double u[3] = {x[0] - p[0], x[1] - p[1], x[2] - p[2]}, c[3];
+    dfl_vec3_cross(G, u, c);
+    if (!(fabs(g) / gn <= 1e-10 * scale)) return 0;
+    if (!(dfl_vec3_norm(c) / gn <= 1e-8 * (scale + dfl_vec3_norm(u)))) return 0;
+    if (!(fabs(dfl_vec3_dot(u, G) / gn - d) <= 1e-8 * (scale + fabs(d)))) return 0;
+    dfl_curvature k;
+    if (dfl_curvature_implicit(G, H, &k, NULL) != DFL_OK) return 0;
+    if (!(1 + k.k1 * d > 0) || !(1 + k.k2 * d > 0)) return 0;
+    double gx = dfl_implicit_g(s, x, NULL, NULL);
+    if (fabs(d) > 1e-12 * scale && (gx > 0) != (d > 0)) return 0;
+    return 1;
+}
+
+/* Newton on F(p, t) = (p - x + t grad g(p), g(p)) from p0; 1 on convergence. */
+static int paper_newton(const imp_ctx *c, const double x[3], const double p0[3], double p[3])
+{
+    double G[3], H[9];
+    memcpy(p, p0, 3 * sizeof *p);
+    dfl_implicit_g(c->s, p, G, NULL);
+    double gg = dfl_vec3_dot(G, G);
+    if (!(gg > 0)) return 0;
+    double t = ((x[0] - p[0]) * G[0] + (x[1] - p[1]) * G[1] + (x[2] - p[2]) * G[2]) / gg;
+    for (int it = 0; it < PAPER_ITERS; it++) {
+        double g = dfl_implicit_g(c->s, p, G, H);
+        double gn = dfl_vec3_norm(G);
+        double F[4], J[16];
+        for (int i = 0; i < 3; i++) {
+            F[i] = p[i] - x[i] + t * G[i];
+            for (int j = 0; j < 3; j++) J[4 * i + j] = (i == j) + t * H[3 * i + j];
+            J[4 * i + 3] = G[i];
+            J[12 + i] = G[i];
+        }
+        F[3] = g;
+        J[15] = 0;
+        double res = sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]);
+        if (gn > 0 && res <= 1e-13 * c->scale && fabs(g) / gn <= 1e-13 * c->scale) return 1;
+        int piv[4];
+        if (dfl_lu_factor(4, J, piv, 1e-14, NULL) != DFL_OK) return 0;
+        for (int i = 0; i < 4; i++) F[i] = -F[i];
+        dfl_lu_solve(4, J, piv, F);
+        for (int i = 0; i < 3; i++) p[i] += F[i];
+        t += F[3];
+        if (!isfinite(p[0] + p[1] + p[2] + t)) return 0;
+    }
+    return 0;
+}
+
+static void fill(const imp_ctx *c, const double x[3], const double p[3], int need_curv,
+                 dfl_surfpoint *o)
+{
+    double G[3], H[9];
+    dfl_implicit_g(c->s, p, G, H);
+    double gn = dfl_vec3_norm(G);
+    memcpy(o->p, p, 3 * sizeof *p);
+    for (int j = 0; j < 3; j++) o->n[j] = G[j] / gn;
+    o->d = (x[0] - p[0]) * o->n[0] + (x[1] - p[1]) * o->n[1] + (x[2] - p[2]) * o->n[2];
+    if (!need_curv || dfl_curvature_implicit(G, H, &o->curv, NULL) != DFL_OK) nan_curv(&o->curv);
+}
+
+static void paper_point(const imp_ctx *c, const double x[3], int need_curv, dfl_surfpoint *o)
+{
+    double G[3];
+    double g = dfl_implicit_g(c->s, x, G, NULL), gg = dfl_vec3_dot(G, G);
+    double best[3] = {NAN, NAN, NAN}, bd2 = HUGE_VAL, last[3] = {NAN, NAN, NAN};
+    int ok = 0;
+    for (int k = 1; k <= PAPER_STARTS && gg > 0; k++) {
+        double p0[3], p[3], fr = (double)k / PAPER_STARTS;
+        for (int j = 0; j < 3; j++) p0[j] = x[j] - fr * g * G[j] / gg;
+        int conv = paper_newton(c, x, p0, p);
+        if (!conv) {
+            if (!ok && isfinite(p[0] + p[1] + p[2])) memcpy(last, p, sizeof last);
+            continue;
+        }
+        double u[3] = {x[0] - p[0], x[1] - p[1], x[2] - p[2]}, d2 = dfl_vec3_dot(u, u);
+        if (!ok || d2 < bd2) {
+            memcpy(best, p, sizeof best);
+            bd2 = d2;
+        }
+        ok = 1;
+    }
+    if (!ok) memcpy(best, last, sizeof best);
+    o->certified = ok;
+    if (isfinite(best[0] + best[1] + best[2])) {
+        fill(c, x, best, need_curv, o);
+    } else {
+        for (int j = 0; j < 3; j++) o->p[j] = o->n[j] = NAN;
+        o->d = NAN;
+        nan_curv(&o->curv);
+    }
+}
+
+static void robust_point(const imp_ctx *c, const double x[3], int need_curv, dfl_surfpoint *o)
+{
+    dfl_footpoint f;
+    int ok = dfl_implicit_footpoint_with(c->s, DFL_FOOT_NEWTON, x, &f, NULL) == DFL_OK;
+    int cert = ok && dfl_proxy_implicit_certify(c->s, x, f.p, f.d);
+    if (!cert) {
+        /* the hard cases: Ceres LM from the same starts */
+        dfl_footpoint h;
+        if (dfl_implicit_footpoint_with(c->s, DFL_FOOT_CERES, x, &h, NULL) == DFL_OK) {
+            int hc = dfl_proxy_implicit_certify(c->s, x, h.p, h.d);
+            if (hc || !ok || fabs(h.d) < fabs(f.d)) {
+                f = h;
+                ok = 1;
+                cert = hc;
+            }
+        }
+    }
+    o->certified = cert;
+    if (!ok) {
+        for (int j = 0; j < 3; j++) o->p[j] = o->n[j] = NAN;
+        o->d = NAN;
+        nan_curv(&o->curv);
+        return;
+    }
+    fill(c, x, f.p, need_curv, o);
+    o->d = f.d;
+}
+
+static dfl_status imp_query(const void *vctx, size_t m, const double *x, int need_curv,
+                            dfl_surfpoint *out, dfl_err *err)
+{
+    (void)err;
+    const imp_ctx *c = vctx;
+    for (size_t i = 0; i < m; i++) {
+        if (c->method == DFL_IMPLICIT_FOOT_PAPER) paper_point(c, x + 3 * i, need_curv, out + i);
+        else robust_point(c, x + 3 * i, need_curv, out + i);
+    }
+    return DFL_OK;
+}
+
+static void imp_destroy(void *vctx)
+{
+    imp_ctx *c = vctx;
+    dfl_implicit_free(c->s);
+    free(c);
+}
+
+dfl_status dfl_proxy_input_implicit(dfl_implicit **imp, dfl_implicit_foot_method method,
+                                    dfl_proxy_input *out, dfl_err *err)
+{
+    if (!imp || !*imp) return dfl_err_set(err, DFL_E_INPUT, "implicit input: no surface");
+    imp_ctx *c = calloc(1, sizeof *c);
+    if (!c) {
+        dfl_implicit_free(*imp);
+        *imp = NULL;
+        return dfl_err_set(err, DFL_E_NOMEM, "implicit input: out of memory");
+    }
+    c->s = *imp;
+    *imp = NULL;
+    c->method = method;
+    c->scale = dfl_implicit_scale(c->s);
+    out->name = "implicit";
+    out->query = imp_query;
+    out->destroy = imp_destroy;
+    out->ctx = c;
+    out->has_inside = 1;
+    return DFL_OK;
+}
