@@ -44,26 +44,6 @@ typedef struct acc_keys {
     dfl_grid eval;
 } acc_keys;
 
-static dfl_status read_filters(const dfl_cfg *cfg, acc_keys *k, dfl_err *err)
-{
-    const char *list;
-    dfl_status st = dfl_cfg_string_opt(cfg, "study", "filters", "", &list, err);
-    if (st) return st;
-    char buf[256];
-    snprintf(buf, sizeof buf, "%s", list);
-    for (char *save = NULL, *tok = strtok_r(buf, " \t", &save); tok;
-         tok = strtok_r(NULL, " \t", &save)) {
-        if (k->nfilters == HVB25_MAX_DECODINGS)
-            return dfl_cfg_reject(cfg, "study", "filters", err, "at most %d filters",
-                                  HVB25_MAX_DECODINGS);
-        dfl_err e2;
-        if (dfl_proxy_filter_parse(tok, &k->filters[k->nfilters], &e2))
-            return dfl_cfg_reject(cfg, "study", "filters", err, "%s", e2.msg);
-        k->nfilters++;
-    }
-    return DFL_OK;
-}
-
 static dfl_status read_eval(const dfl_cfg *cfg, dfl_grid *g, dfl_err *err)
 {
     static const double dlo[3] = {-1, -1, -1}, dhi[3] = {1, 1, 1};
@@ -87,7 +67,7 @@ static dfl_status read_keys(const dfl_cfg *cfg, acc_keys *k, dfl_err *err)
     dfl_status st = dfl_cfg_string_opt(cfg, "study", "reference", "shape", &k->ref_sec, err);
     if (!st && !dfl_cfg_has_section(cfg, k->ref_sec))
         return dfl_cfg_reject(cfg, "study", "reference", err, "no section [%s]", k->ref_sec);
-    if (!st) st = read_filters(cfg, k, err);
+    if (!st) st = hvb25_filters_from_cfg(cfg, "study", "filters", k->filters, &k->nfilters, err);
     if (!st) st = dfl_cfg_double_opt(cfg, "study", "band", 0.05, 0, 1e300, &k->band, err);
     if (!st) st = dfl_cfg_double_opt(cfg, "study", "medial", 2, 0, 1e300, &k->medial, err);
     if (!st) st = read_eval(cfg, &k->eval, err);

@@ -1,12 +1,49 @@
 #include "hvb25/hvb25_eval.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include <omp.h>
 
 #include "io/manifest.h"
+
+dfl_status hvb25_filters_from_cfg(const dfl_cfg *cfg, const char *sec, const char *key,
+                                  dfl_proxy_filter *f, int *n, dfl_err *err)
+{
+    const char *list;
+    *n = 0;
+    dfl_status st = dfl_cfg_string_opt(cfg, sec, key, "", &list, err);
+    if (st) return st;
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", list);
+    for (char *save = NULL, *tok = strtok_r(buf, " \t", &save); tok;
+         tok = strtok_r(NULL, " \t", &save)) {
+        if (*n == HVB25_MAX_DECODINGS)
+            return dfl_cfg_reject(cfg, sec, key, err, "at most %d filters", HVB25_MAX_DECODINGS);
+        dfl_err e2;
+        if (dfl_proxy_filter_parse(tok, &f[*n], &e2))
+            return dfl_cfg_reject(cfg, sec, key, err, "%s", e2.msg);
+        (*n)++;
+    }
+    return DFL_OK;
+}
+
+static void view_eval(const void *ctx, size_t m, const double *pts, double *val, double *grad)
+{
+    const hvb25_view *v = ctx;
+    dfl_proxy_filter_eval(v->g, &v->o, m, pts, val, grad);
+}
+
+static const dfl_field_ops view_ops = {"proxy", view_eval, NULL, NULL};
+
+void hvb25_view_field(const hvb25_view *v, dfl_field *out)
+{
+    out->dim = 3;
+    out->ops = &view_ops;
+    out->ctx = (void *)v;
+}
 
 /* Running sums of one decoding: count-weighted means of the slab metrics. */
 typedef struct acc {

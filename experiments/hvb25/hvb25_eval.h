@@ -29,9 +29,25 @@
 #include "field/metrics.h"
 #include "field/sample.h"
 #include "geom/shape.h"
+#include "io/config.h"
+#include "io/table.h"
 #include "proxy/filter.h"
 
 #define HVB25_MAX_DECODINGS 4
+
+/* key = nearest hermite ... (blank-separated filter names, at most
+ * HVB25_MAX_DECODINGS; absent or empty: *n = 0) into f[0..*n-1]. */
+dfl_status hvb25_filters_from_cfg(const dfl_cfg *cfg, const char *sec, const char *key,
+                                  dfl_proxy_filter *f, int *n, dfl_err *err);
+
+/* A proxy grid decoded with options o, as a dfl_field whose ctx is the
+ * view itself (borrowed: the view and its grid must outlive the field;
+ * nothing to destroy).  One grid, several decodings, no copies. */
+typedef struct hvb25_view {
+    const dfl_proxy_grid *g;
+    dfl_proxy_filter_opts o;
+} hvb25_view;
+void hvb25_view_field(const hvb25_view *v, dfl_field *out);
 
 typedef struct hvb25_cells {
     int n;                 /* cells per axis; 0: no cell grid */
