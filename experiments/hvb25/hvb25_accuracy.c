@@ -12,7 +12,7 @@
  *                           [field]), one row each; absent: the field as
  *                           [field] configures it, one row
  *   band      = 0.05        the band |d| <= band of the *_band metrics
- *   medial    = 2           medial threshold in cell sizes (hvb25_eval.h)
+ *   medial    = 1           medial threshold in cell sizes (hvb25_eval.h)
  * [eval] n = 217, lo = -1 -1 -1, hi = 1 1 1: the node grid.
  * Rows: one per decoding: what was built (field kind, order, res, storage,
  * stored scalars and bytes, build time, uncertified / failed footpoints),
@@ -69,7 +69,7 @@ static dfl_status read_keys(const dfl_cfg *cfg, acc_keys *k, dfl_err *err)
         return dfl_cfg_reject(cfg, "study", "reference", err, "no section [%s]", k->ref_sec);
     if (!st) st = hvb25_filters_from_cfg(cfg, "study", "filters", k->filters, &k->nfilters, err);
     if (!st) st = dfl_cfg_double_opt(cfg, "study", "band", 0.05, 0, 1e300, &k->band, err);
-    if (!st) st = dfl_cfg_double_opt(cfg, "study", "medial", 2, 0, 1e300, &k->medial, err);
+    if (!st) st = dfl_cfg_double_opt(cfg, "study", "medial", 1, 0, 1e300, &k->medial, err);
     if (!st) st = read_eval(cfg, &k->eval, err);
     return st;
 }
@@ -148,7 +148,7 @@ static dfl_status acc_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
                         .threads = ctx->threads > 0 ? ctx->threads : 1};
     const dfl_proxy_filter_opts *fo = grid ? dfl_proxy_field_opts(&f) : NULL;
     s.field_signed = fo ? fo->is_signed : 1;
-    for (int i = 0; i < k.nfilters; i++) {
+    for (int i = 0; !st && i < k.nfilters; i++) {
         dfl_proxy_filter_opts_default(k.filters[i], grid, &s.dec[i]);
         s.dec[i].is_signed = fo->is_signed;
     }

@@ -17,8 +17,13 @@
  * farther than `medial` cell sizes from the exact footpoint of the centre
  * of the cell holding x: there the cell's proxy describes another part of
  * the surface (x and its cell centre lie on two sides of the medial axis /
- * cut locus).  Needs a cell grid (proxy or grid peer); without one no
- * point is medial.
+ * cut locus).  On the concave side at depth delta below a surface of
+ * curvature radius r the footpoint moves by the tangential offset times
+ * r / (r - delta), so the region holds the points whose footpoint map
+ * amplifies their offset from the cell centre beyond the threshold
+ * (default 1 cell, hvb25_accuracy's `medial`): all points close enough to
+ * the medial axis (delta -> r), few others.  Needs a cell grid (proxy or
+ * grid peer); without one no point is medial.
  */
 #ifndef DFL_EXPERIMENTS_HVB25_EVAL_H
 #define DFL_EXPERIMENTS_HVB25_EVAL_H
