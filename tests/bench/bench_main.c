@@ -38,5 +38,6 @@ int main(void)
     bench_field();
     bench_footpoint();
     bench_rfunc();
+    bench_trace();
     return 0;
 }
