@@ -33,14 +33,13 @@ dfl_status dfl_proxy_filter_check(const dfl_proxy_grid *g, const dfl_proxy_filte
     return DFL_OK;
 }
 
-double dfl_proxy_proxy_dist(const dfl_proxy_grid *g, size_t c, double clip, const double x[3],
-                            double *grad)
+static inline double clipped(const dfl_proxy_geom *pgp, int order, double clip,
+                             const double x[3], double *grad)
 {
-    dfl_proxy_geom pg;
-    dfl_proxy_cell_decode(g, c, &pg);
-    double phi = dfl_proxy_geom_eval(&pg, g->order, x, grad);
+    const dfl_proxy_geom *pg = pgp;
+    double phi = dfl_proxy_geom_eval(pg, order, x, grad);
     if (clip > 0) {
-        const double v[3] = {x[0] - pg.p[0], x[1] - pg.p[1], x[2] - pg.p[2]};
+        const double v[3] = {x[0] - pg->p[0], x[1] - pg->p[1], x[2] - pg->p[2]};
         const double r = dfl_vec3_norm(v);
         const double ball = r - clip;
         if (ball > fabs(phi)) {
@@ -53,6 +52,23 @@ double dfl_proxy_proxy_dist(const dfl_proxy_grid *g, size_t c, double clip, cons
     return phi;
 }
 
+double dfl_proxy_proxy_dist(const dfl_proxy_grid *g, size_t c, double clip, const double x[3],
+                            double *grad)
+{
+    dfl_proxy_geom pg;
+    dfl_proxy_cell_decode(g, c, &pg);
+    return clipped(&pg, g->order, clip, x, grad);
+}
+
+/* D of cell (i, j, k) */
+static inline double dist_ijk(const dfl_proxy_grid *g, size_t i, size_t j, size_t k,
+                              double clip, const double x[3], double *grad)
+{
+    dfl_proxy_geom pg;
+    dfl_proxy_cell_decode_ijk(g, i, j, k, &pg);
+    return clipped(&pg, g->order, clip, x, grad);
+}
+
 static void fold(int is_signed, double *val, double *grad)
 {
     if (is_signed || *val >= 0) return;
@@ -61,15 +77,12 @@ static void fold(int is_signed, double *val, double *grad)
         for (int j = 0; j < 3; j++) grad[j] = -grad[j];
 }
 
-static size_t nearest_cell(const dfl_proxy_grid *g, const double x[3])
+static inline void nearest_cell(const dfl_proxy_grid *g, const double x[3], size_t idx[3])
 {
-    size_t idx[3];
     for (int j = 0; j < 3; j++) {
         const double s = floor((x[j] - g->lo[j]) / g->h[j]);
         idx[j] = s < 0 ? 0 : s > g->res - 1 ? (size_t)g->res - 1 : (size_t)s;
     }
-    const size_t n = (size_t)g->res;
-    return idx[0] + n * (idx[1] + n * idx[2]);
 }
 
 /* weight of the upper neighbour and its derivative in t */
@@ -128,9 +141,9 @@ static double blend(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, con
         const int a = q & 1, b = (q >> 1) & 1, c = (q >> 2) & 1;
         const double W = w[0][a] * w[1][b] * w[2][c];
         if (W == 0 && !grad) continue;
-        const size_t cell = (a ? i1[0] : i0[0]) + n * ((b ? i1[1] : i0[1]) + n * (c ? i1[2] : i0[2]));
         double gd[3];
-        double d = dfl_proxy_proxy_dist(g, cell, o->clip, x, grad ? gd : NULL);
+        double d = dist_ijk(g, a ? i1[0] : i0[0], b ? i1[1] : i0[1], c ? i1[2] : i0[2], o->clip,
+                            x, grad ? gd : NULL);
         if (!o->is_signed && d < 0) {
             d = -d;
             if (grad)
@@ -154,7 +167,9 @@ void dfl_proxy_filter_eval(const dfl_proxy_grid *g, const dfl_proxy_filter_opts 
     if (o->filter == DFL_PROXY_NEAREST) {
         for (size_t i = 0; i < m; i++) {
             double *gi = grad ? grad + 3 * i : NULL;
-            val[i] = dfl_proxy_proxy_dist(g, nearest_cell(g, x + 3 * i), o->clip, x + 3 * i, gi);
+            size_t c[3];
+            nearest_cell(g, x + 3 * i, c);
+            val[i] = dist_ijk(g, c[0], c[1], c[2], o->clip, x + 3 * i, gi);
             fold(o->is_signed, &val[i], gi);
         }
         return;

@@ -103,6 +103,22 @@ static void noise_dir(uint64_t seed, size_t c, double w[3])
     w[2] = z;
 }
 
+/* Centres of cells c0 .. c0 + m - 1, counting (i, j, k) up. */
+static void centres(const dfl_proxy_grid *g, size_t c0, size_t m, double *x)
+{
+    const size_t n = (size_t)g->res;
+    size_t i = c0 % n, j = (c0 / n) % n, k = c0 / (n * n);
+    for (size_t q = 0; q < m; q++) {
+        x[3 * q] = g->lo[0] + ((double)i + 0.5) * g->h[0];
+        x[3 * q + 1] = g->lo[1] + ((double)j + 0.5) * g->h[1];
+        x[3 * q + 2] = g->lo[2] + ((double)k + 0.5) * g->h[2];
+        if (++i == n) {
+            i = 0;
+            if (++j == n) j = 0, k++;
+        }
+    }
+}
+
 static int finite_answer(int order, const dfl_surfpoint *sp)
 {
     int ok = isfinite(sp->p[0]) && isfinite(sp->p[1]) && isfinite(sp->p[2]) &&
@@ -180,7 +196,7 @@ dfl_status dfl_proxy_grid_build(const dfl_proxy_input *in, const dfl_proxy_build
             if (!x || !sp) continue;
             const size_t c0 = k * CHUNK;
             const size_t m = c0 + CHUNK <= g.ncells ? CHUNK : g.ncells - c0;
-            for (size_t i = 0; i < m; i++) dfl_proxy_cell_centre(&g, c0 + i, x + 3 * i);
+            centres(&g, c0, m, x);
             dfl_err e;
             dfl_status s2 = dfl_proxy_input_query(in, m, x, need_curv, sp, &e);
             if (s2 != DFL_OK) {
@@ -217,10 +233,6 @@ dfl_status dfl_proxy_grid_build(const dfl_proxy_input *in, const dfl_proxy_build
 
 void dfl_proxy_cell_decode(const dfl_proxy_grid *g, size_t c, dfl_proxy_geom *out)
 {
-    double s[DFL_PROXY_NSCALAR_MAX], xc[3];
-    const int ns = g->nscalar;
-    const size_t base = c * (size_t)ns;
-    for (int q = 0; q < ns; q++) s[q] = dfl_proxy_store_get(g->storage, g->data, base + (size_t)q);
-    dfl_proxy_cell_centre(g, c, xc);
-    dfl_proxy_decode(g->order, g->position, xc, s, g->side ? g->side[c] : 1, out);
+    const size_t n = (size_t)g->res;
+    dfl_proxy_cell_decode_ijk(g, c % n, (c / n) % n, c / (n * n), out);
 }

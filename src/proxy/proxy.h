@@ -12,7 +12,7 @@
  *   dfl_proxy_grid_free           releases the grid's buffers
  *   dfl_proxy_cell_centre         x_c of cell c
  *   dfl_proxy_cell_size           max_j h_j, the length clip radii refer to
- *   dfl_proxy_cell_decode         the decoded proxy of cell c (decode.h)
+ *   dfl_proxy_cell_decode[_ijk]   the decoded proxy of cell c or (i,j,k) (decode.h)
  *   dfl_proxy_grid_scalars        stored scalars (the bytes study counts these)
  *
  * Cells: c = i + N (j + N k), cell (i,j,k) spans lo + [i, i+1] h per axis,
@@ -111,6 +111,37 @@ static inline double dfl_proxy_cell_size(const dfl_proxy_grid *g)
 
 /* The decoded proxy of cell c (0 <= c < ncells). */
 void dfl_proxy_cell_decode(const dfl_proxy_grid *g, size_t c, dfl_proxy_geom *out);
+/* The same for cell (i, j, k), each in [0, res) (no index division;
+ * inline, the filters' hot path). */
+/* Cell c's stored scalars as double (one storage switch per cell). */
+static inline void dfl_proxy_cell_load(const dfl_proxy_grid *g, size_t c, double *s)
+{
+    const int ns = g->nscalar;
+    const size_t b = c * (size_t)ns;
+    switch (g->storage) {
+    case DFL_PROXY_DOUBLE:
+        for (int q = 0; q < ns; q++) s[q] = ((const double *)g->data)[b + (size_t)q];
+        break;
+    case DFL_PROXY_FLOAT:
+        for (int q = 0; q < ns; q++) s[q] = ((const float *)g->data)[b + (size_t)q];
+        break;
+    default:
+        for (int q = 0; q < ns; q++)
+            s[q] = imath_half_to_float(((const uint16_t *)g->data)[b + (size_t)q]);
+    }
+}
+
+static inline void dfl_proxy_cell_decode_ijk(const dfl_proxy_grid *g, size_t i, size_t j, size_t k,
+                               dfl_proxy_geom *out)
+{
+    const size_t n = (size_t)g->res, c = i + n * (j + n * k);
+    double s[DFL_PROXY_NSCALAR_MAX];
+    dfl_proxy_cell_load(g, c, s);
+    const double xc[3] = {g->lo[0] + ((double)i + 0.5) * g->h[0],
+                          g->lo[1] + ((double)j + 0.5) * g->h[1],
+                          g->lo[2] + ((double)k + 0.5) * g->h[2]};
+    dfl_proxy_decode(g->order, g->position, xc, s, g->side ? g->side[c] : 1, out);
+}
 
 /* ncells * nscalar. */
 static inline size_t dfl_proxy_grid_scalars(const dfl_proxy_grid *g)

@@ -23,6 +23,7 @@ void bench_pair(const char *name, double rate, double naive_rate, const char *un
 void bench_field(void);
 void bench_footpoint(void);
 void bench_rfunc(void);
+void bench_proxy(void);
 void bench_trace(void);
 
 #endif

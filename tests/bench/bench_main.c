@@ -38,6 +38,7 @@ int main(void)
     bench_field();
     bench_footpoint();
     bench_rfunc();
+    bench_proxy();
     bench_trace();
     return 0;
 }
