@@ -14,6 +14,7 @@
 #include "proxy/input_implicit.h"
 #include "proxy/input_param.h"
 #include "proxy/input_sdf.h"
+#include "proxy/truth.h"
 
 enum { IN_PARAMETRIC, IN_SDF, IN_IMPLICIT, IN_COUNT };
 static const char *const input_names[IN_COUNT] = {"parametric", "sdf", "implicit"};
@@ -117,12 +118,10 @@ static dfl_status build_param_analytic(const build_req *rq, dfl_proxy_input *out
  * curve_cfg.h, or with random_seed = s (bezier_surface only) the random
  * patch of geom/surface_random.h with random_order (4), random_half (0.8),
  * random_amp (0.4). */
-static dfl_status build_param_patches(const build_req *rq, dfl_proxy_input *out, dfl_err *err)
+static dfl_status patches_from_cfg(const build_req *rq, dfl_surface_set *out, dfl_err *err)
 {
     const dfl_cfg *cfg = rq->cfg;
     const char *sec = rq->shape_sec;
-    dfl_param_input_opts o;
-    param_opts(rq, &o);
     dfl_surface_set set = {0};
     dfl_status st;
     if (rq->kind == DFL_SHAPE_BEZIER_SURFACE && dfl_cfg_has(cfg, sec, "random_seed")) {
@@ -145,6 +144,17 @@ static dfl_status build_param_patches(const build_req *rq, dfl_proxy_input *out,
                                   err);
         if (st != DFL_OK) return st;
     }
+    *out = set;
+    return DFL_OK;
+}
+
+static dfl_status build_param_patches(const build_req *rq, dfl_proxy_input *out, dfl_err *err)
+{
+    dfl_param_input_opts o;
+    param_opts(rq, &o);
+    dfl_surface_set set;
+    dfl_status st = patches_from_cfg(rq, &set, err);
+    if (st != DFL_OK) return st;
     return at_kind(rq, dfl_proxy_input_param_surfaces(&set, &o, out, err), err);
 }
 
@@ -231,4 +241,42 @@ dfl_status dfl_proxy_input_from_cfg(const dfl_cfg *cfg, const char *field_sec,
     }
     const build_req rq = {cfg, field_sec, shape_sec, kind, &k};
     return row->b[k.input](&rq, out, err);
+}
+
+dfl_status dfl_proxy_truth_from_cfg(const dfl_cfg *cfg, const char *field_sec,
+                                    const char *shape_sec, dfl_field *out, dfl_err *err)
+{
+    input_keys k;
+    dfl_status st = read_keys(cfg, field_sec, &k, err);
+    if (st != DFL_OK) return st;
+    int kind;
+    if ((st = dfl_cfg_enum(cfg, shape_sec, "kind", dfl_shape_kind_names, DFL_SHAPE_KIND_COUNT,
+                           &kind, err)) != DFL_OK)
+        return st;
+    const build_req rq = {cfg, field_sec, shape_sec, kind, &k};
+    if (kind == DFL_SHAPE_BEZIER_SURFACE || kind == DFL_SHAPE_BSPLINE_SURFACE) {
+        dfl_surface_set set;
+        if ((st = patches_from_cfg(&rq, &set, err)) != DFL_OK) return st;
+        return at_kind(&rq, dfl_proxy_truth_param(&set, 0, out, err), err);
+    }
+    if (kind == DFL_SHAPE_IMPLICIT) {
+        dfl_implicit *imp = NULL;
+        if ((st = dfl_implicit_from_cfg(cfg, shape_sec, &imp, err)) != DFL_OK) return st;
+        return at_kind(&rq, dfl_proxy_truth_implicit(&imp, out, err), err);
+    }
+    if (kind == DFL_SHAPE_CONE && k.input == IN_PARAMETRIC) {
+        double a[3], b[3], ra, rb;
+        if ((st = dfl_cfg_vec(cfg, shape_sec, "a", 3, a, err)) != DFL_OK) return st;
+        if ((st = dfl_cfg_vec(cfg, shape_sec, "b", 3, b, err)) != DFL_OK) return st;
+        if ((st = dfl_cfg_double(cfg, shape_sec, "ra", 0.0, HUGE_VAL, &ra, err)) != DFL_OK)
+            return st;
+        if ((st = dfl_cfg_double(cfg, shape_sec, "rb", 0.0, HUGE_VAL, &rb, err)) != DFL_OK)
+            return st;
+        return at_kind(&rq, dfl_proxy_truth_cone_lateral(a, b, ra, rb, 0, out, err), err);
+    }
+    dfl_shape s = {0};
+    if ((st = dfl_shape_from_cfg(cfg, shape_sec, &s, err)) != DFL_OK) return st;
+    st = dfl_proxy_truth_exact(&s, out, err);
+    dfl_shape_free(&s);
+    return at_kind(&rq, st, err);
 }

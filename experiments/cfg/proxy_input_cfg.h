@@ -27,6 +27,7 @@
 #define DFL_EXPERIMENTS_PROXY_INPUT_CFG_H
 
 #include "core/status.h"
+#include "field/field.h"
 #include "io/config.h"
 #include "proxy/input.h"
 
@@ -34,5 +35,15 @@
  * untouched on failure. */
 dfl_status dfl_proxy_input_from_cfg(const dfl_cfg *cfg, const char *field_sec,
                                     const char *shape_sec, dfl_proxy_input *out, dfl_err *err);
+
+/* The ground truth (proxy/truth.h) for the same sections: the exact SDF of
+ * sphere, torus, cylinder, plane, box, csg and cone (the cone's open
+ * lateral surface when input = parametric), brute-force-seeded footpoints
+ * for bezier_surface / bspline_surface, robust certified footpoints for
+ * kind = implicit.  Whatever `input` says for sphere and torus, the truth is
+ * their exact SDF (all three representations are the same surface).
+ * Release with dfl_field_destroy; *out untouched on failure. */
+dfl_status dfl_proxy_truth_from_cfg(const dfl_cfg *cfg, const char *field_sec,
+                                    const char *shape_sec, dfl_field *out, dfl_err *err);
 
 #endif

@@ -25,5 +25,6 @@ void bench_footpoint(void);
 void bench_rfunc(void);
 void bench_proxy(void);
 void bench_trace(void);
+void bench_proxy_input(void);
 
 #endif

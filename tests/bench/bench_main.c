@@ -40,5 +40,6 @@ int main(void)
     bench_rfunc();
     bench_proxy();
     bench_trace();
+    bench_proxy_input();
     return 0;
 }
