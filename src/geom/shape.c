@@ -111,6 +111,32 @@ dfl_status dfl_shape_derivs_at(const dfl_shape *s, const double *x, dfl_shape_de
     return dfl_jets_polarize(s->dim, shape_dir_jet, s, x, out->H, &out->dxyz, err);
 }
 
+dfl_status dfl_shape_hessian(const dfl_shape *s, const double *x, double *H, dfl_err *err)
+{
+    if (!s || !s->ops || s->dim != 3)
+        return dfl_err_set(err, DFL_E_INPUT, "shape hessian: need a 3D shape");
+    if (dfl_shape_analytic_hess(s, x, H) || dfl_shape_csg_hess(s, x, H)) return DFL_OK;
+    if (!s->ops->jet)
+        return dfl_err_set(err, DFL_E_INPUT, "shape hessian: %s has no jets", s->ops->kind);
+    /* the second-order half of dfl_jets_polarize (no third derivatives) */
+    dfl_jet j;
+    dfl_status st;
+    for (int i = 0; i < 3; i++) {
+        double e[3] = {0, 0, 0};
+        e[i] = 1.0;
+        if ((st = s->ops->jet(s->impl, x, e, 2, &j, err)) != DFL_OK) return st;
+        H[4 * i] = dfl_jet_deriv(&j, 2);
+    }
+    for (int i = 0; i < 3; i++)
+        for (int k = i + 1; k < 3; k++) {
+            double e[3] = {0, 0, 0};
+            e[i] = e[k] = 1.0;
+            if ((st = s->ops->jet(s->impl, x, e, 2, &j, err)) != DFL_OK) return st;
+            H[3 * i + k] = H[3 * k + i] = 0.5 * (dfl_jet_deriv(&j, 2) - H[4 * i] - H[4 * k]);
+        }
+    return DFL_OK;
+}
+
 void dfl_shape_free(dfl_shape *s)
 {
     if (!s) return;

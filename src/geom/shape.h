@@ -184,6 +184,14 @@ dfl_status dfl_shape_derivs_at(const dfl_shape *s, const double *x, dfl_shape_de
 dfl_status dfl_jets_polarize(int n, dfl_dir_jet_fn jet, const void *ctx, const double *x,
                              double *H, double *dxyz, dfl_err *err);
 
+/* Hessian H (9 doubles, row-major) of a 3D shape's d at x: in closed form
+ * for sphere, torus, cylinder, plane and exact (not smooth) CSG over them
+ * (the branch eval takes at x, ties to a), else the polarization of six
+ * order-2 jets (along e_i and e_i + e_k; the branch of d valid on the
+ * positive side of each direction, as the jets).  DFL_E_INPUT for a 2D
+ * shape or one with neither; a failing jet's status otherwise. */
+dfl_status dfl_shape_hessian(const dfl_shape *s, const double *x, double *H, dfl_err *err);
+
 /* Frees impl and zeroes *s.  s may be NULL or already freed. */
 void dfl_shape_free(dfl_shape *s);
 

@@ -52,6 +52,17 @@ static dfl_status ball_jet(const void *impl, const double *x, const double *dir,
     return DFL_OK;
 }
 
+/* Hess |q| = (I - u u^T) / |q|, u = q / |q| (0 at the centre). */
+static void sphere_hess(const void *impl, const double *x, double *H)
+{
+    const ball *b = impl;
+    double u[3] = {x[0] - b->c[0], x[1] - b->c[1], x[2] - b->c[2]};
+    double l = sqrt(dfl_vec3_dot(u, u));
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            H[3 * i + j] = l > 0.0 ? ((i == j) - u[i] * u[j] / (l * l)) / l : 0.0;
+}
+
 static const dfl_shape_ops circle_ops = {"circle", ball_eval, ball_jet, free};
 static const dfl_shape_ops sphere_ops = {"sphere", ball_eval, ball_jet, free};
 
@@ -164,6 +175,32 @@ static dfl_status cylinder_jet(const void *impl, const double *x, const double *
     return DFL_OK;
 }
 
+/* Torus: with e the radial unit vector, phi = w x e, a = rho - R and
+ * q = |(a, z)|, the gradient (a e + z w)/q turns at rate 1/q along the tube
+ * direction t = (-z e + a w)/q and at rate (a/q)/rho along phi:
+ * H = t t^T / q + a / (q rho) phi phi^T (0 where q or rho vanish).
+ * Cylinder (R = 0, the a/q factor is 1): H = phi phi^T / rho. */
+static void axial_hess(const axial *t, const double *x, int torus, double *H)
+{
+    double p[3] = {x[0] - t->c[0], x[1] - t->c[1], x[2] - t->c[2]}, pp[3], e[3], ph[3], tt[3];
+    double z = split_axis(p, t->w, pp);
+    double rho = sqrt(dfl_vecn_dot(3, pp, pp));
+    for (int j = 0; j < 3; j++) e[j] = rho > 0.0 ? pp[j] / rho : t->u[j];
+    dfl_vec3_cross(t->w, e, ph);
+    double a = rho - t->R, q = torus ? sqrt(a * a + z * z) : rho;
+    double cph = rho > 0.0 && q > 0.0 ? (torus ? a / q : 1.0) / rho : 0.0;
+    double ct = torus && q > 0.0 ? 1.0 / q : 0.0;
+    for (int j = 0; j < 3; j++) tt[j] = q > 0.0 ? (-z * e[j] + a * t->w[j]) / q : 0.0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) H[3 * i + j] = ct * tt[i] * tt[j] + cph * ph[i] * ph[j];
+}
+
+static void torus_hess(const void *impl, const double *x, double *H) { axial_hess(impl, x, 1, H); }
+static void cylinder_hess(const void *impl, const double *x, double *H)
+{
+    axial_hess(impl, x, 0, H);
+}
+
 static const dfl_shape_ops torus_ops = {"torus", torus_eval, torus_jet, free};
 static const dfl_shape_ops cylinder_ops = {"cylinder", cylinder_eval, cylinder_jet, free};
 
@@ -234,6 +271,13 @@ static dfl_status plane_jet(const void *impl, const double *x, const double *dir
     for (int j = 0; j < pl->dim; j++) d += (x[j] - pl->p[j]) * pl->n[j];
     dfl_jet_linear(d, dfl_vecn_dot(pl->dim, dir, pl->n), K, out);
     return DFL_OK;
+}
+
+static void plane_hess(const void *impl, const double *x, double *H)
+{
+    (void)impl;
+    (void)x;
+    for (int j = 0; j < 9; j++) H[j] = 0.0;
 }
 
 static const dfl_shape_ops plane_ops = {"plane", plane_eval, plane_jet, free};
@@ -586,4 +630,16 @@ dfl_status dfl_shape_cone(const double a[3], const double b[3], double ra, doubl
         }
     }
     return shape_set(3, &cone_ops, k, out);
+}
+
+/* ---- closed-form Hessians (geom/shape.h's dfl_shape_hessian) ------------ */
+
+int dfl_shape_analytic_hess(const dfl_shape *s, const double *x, double *H)
+{
+    if (s->ops == &sphere_ops) sphere_hess(s->impl, x, H);
+    else if (s->ops == &torus_ops) torus_hess(s->impl, x, H);
+    else if (s->ops == &cylinder_ops) cylinder_hess(s->impl, x, H);
+    else if (s->ops == &plane_ops && s->dim == 3) plane_hess(s->impl, x, H);
+    else return 0;
+    return 1;
 }

@@ -163,3 +163,22 @@ dfl_status dfl_shape_csg(dfl_csg_op op, double k, dfl_shape *a, dfl_shape *b, df
     memset(b, 0, sizeof *b);
     return DFL_OK;
 }
+
+/* Exact ops in 3D: the closed-form Hessian of the branch eval takes at x
+ * (ties to a) with its sign flips, when that child has one. */
+int dfl_shape_csg_hess(const dfl_shape *s, const double *x, double *H)
+{
+    if (s->ops != &csg_ops && s->ops != &csg_nojet_ops) return 0;
+    const csg *c = s->impl;
+    if (s->dim != 3 || csg_smooth(c->op)) return 0;
+    double sa, sb, so, va, vb;
+    csg_signs(c->op, &sa, &sb, &so);
+    c->a.ops->eval(c->a.impl, 1, x, &va, NULL);
+    c->b.ops->eval(c->b.impl, 1, x, &vb, NULL);
+    int take_a = sa * va <= sb * vb;
+    const dfl_shape *ch = take_a ? &c->a : &c->b;
+    if (!dfl_shape_analytic_hess(ch, x, H) && !dfl_shape_csg_hess(ch, x, H)) return 0;
+    double f = so * (take_a ? sa : sb);
+    for (int j = 0; j < 9; j++) H[j] *= f;
+    return 1;
+}

@@ -107,4 +107,11 @@ static inline dfl_status shape_set(int dim, const dfl_shape_ops *ops, void *impl
     return DFL_OK;
 }
 
+/* Closed-form Hessians at a 3D point (9 doubles): 1 when s is a kind that
+ * has one (shape_analytic.c: sphere, torus, cylinder, 3D plane;
+ * shape_csg.c: exact CSG whose active branch has one), 0 otherwise (H
+ * untouched). */
+int dfl_shape_analytic_hess(const dfl_shape *s, const double *x, double *H);
+int dfl_shape_csg_hess(const dfl_shape *s, const double *x, double *H);
+
 #endif

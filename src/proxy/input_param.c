@@ -238,10 +238,33 @@ static void nan_curv(dfl_curvature *k)
     for (int j = 0; j < 3; j++) k->e1[j] = k->e2[j] = k->n[j] = NAN;
 }
 
+/* Each patch's nearest node, for patches the NSTART nearest nodes missed
+ * (a chart's dense pole region can crowd out the chart that is regular
+ * there); appended to st (capacity NSTART + MAXEXTRA). */
+#define MAXEXTRA 8
+static int add_patch_starts(const param_ctx *c, const double x[3], start *st, int n)
+{
+    const int G = c->grid;
+    for (int p = 0; p < c->npatch && n < NSTART + MAXEXTRA; p++) {
+        int have = 0;
+        for (int k = 0; k < n; k++) have |= st[k].patch == p;
+        if (have) continue;
+        start b = {p, 0, 0, HUGE_VAL};
+        for (int j = 0; j < G; j++)
+            for (int i = 0; i < G; i++) {
+                double d2 = dist2(x, c->samp + 3 * ((size_t)(p * G + j) * G + i));
+                if (d2 < b.d2) b = (start){p, i, j, d2};
+            }
+        st[n++] = b;
+    }
+    return n;
+}
+
 static void point_query(const param_ctx *c, const double x[3], int need_curv, dfl_surfpoint *o)
 {
-    start st[NSTART];
+    start st[NSTART + MAXEXTRA];
     int ns = find_starts(c, x, st);
+    if (c->npatch > 1) ns = add_patch_starts(c, x, st, ns);
     foot best = {0}, cur;
     int have = 0;
     for (int k = 0; k < ns; k++) {
@@ -390,17 +413,21 @@ dfl_status dfl_proxy_input_param_sphere(const double c[3], double r,
 {
     if (!(r > 0) || !isfinite(r))
         return dfl_err_set(err, DFL_E_INPUT, "parametric sphere: need radius > 0");
-    param_ctx *x = new_ctx(1, err);
+    /* two charts, polar axes z and x: each covers the other's poles, where
+     * S_u vanishes and Newton stalls; the better footpoint of the two wins */
+    param_ctx *x = new_ctx(2, err);
     if (!x) return DFL_E_NOMEM;
-    patch *P = x->pt;
-    const double z[3] = {0, 0, 1};
-    unit_frame(z, P);
-    P->type = P_SPHERE;
-    memcpy(P->c, c, sizeof P->c);
-    P->R = 0;
-    P->r = r;
-    P->u0 = 0; P->u1 = 2 * DFL_PI; P->per_u = 1;
-    P->v0 = -0.5 * DFL_PI; P->v1 = 0.5 * DFL_PI;
+    for (int k = 0; k < 2; k++) {
+        patch *P = &x->pt[k];
+        const double w[2][3] = {{0, 0, 1}, {1, 0, 0}};
+        unit_frame(w[k], P);
+        P->type = P_SPHERE;
+        memcpy(P->c, c, sizeof P->c);
+        P->R = 0;
+        P->r = r;
+        P->u0 = 0; P->u1 = 2 * DFL_PI; P->per_u = 1;
+        P->v0 = -0.5 * DFL_PI; P->v1 = 0.5 * DFL_PI;
+    }
     x->closed = 1;
     return finish(x, opt, out, err);
 }

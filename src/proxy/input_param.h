@@ -12,6 +12,8 @@
  * rho(u) = cos u e1 + sin u e2 with (e1, e2, w) = dfl_vec3_tangent_basis(w)
  * completed to a right-handed frame, w the unit axis (sphere: w = z).  The
  * analytic parametrizations are periodic in u; S_u x S_v points outward.
+ * The sphere is two such charts, with polar axes z and x, so that every
+ * footpoint has a regular chart (the better answer of the two wins).
  *
  * Footpoint: the paper's start, the nearest node of a regular grid x grid
  * parameter grid per patch (precomputed), refined by geometric Newton
@@ -21,7 +23,8 @@
  * fundamental form [E F; F G]); every step halved until f decreases;
  * non-periodic parameters are clamped with an active set at the domain
  * bounds.  To survive grids whose nearest node lies in the wrong basin the
- * three nearest nodes at least two grid steps apart are refined and the
+ * three nearest nodes at least two grid steps apart (and the nearest node
+ * of every patch none of them is on, up to 8 patches) are refined and the
  * closest result wins (the paper used one).
  *
  * Normal, sign, curvature: n = S_u x S_v / |.| at the footpoint.  Closed
@@ -34,7 +37,7 @@
  * certified = 1 when Newton met its stationarity test |grad f| <= 1e-13
  * |S_u| |S_v| scale (interior; at bounds on the free parameter) and the
  * parametrization is regular there; NAN curvatures where it is singular
- * (sphere poles, cone apex).
+ * (a cone's apex).
  *
  * Thread safety: read-only after construction; no allocation per point.
  */

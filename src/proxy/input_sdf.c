@@ -6,7 +6,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/jet.h"
 #include "core/vec.h"
 #include "proxy/curvfit.h"
 
@@ -24,29 +23,6 @@ static void nan_curv(dfl_curvature *c)
     for (int j = 0; j < 3; j++) c->e1[j] = c->e2[j] = c->n[j] = NAN;
 }
 
-/* Hessian of the SDF at p from six order-2 jets: H_ii = D2_{e_i},
- * H_ik = (D2_{e_i+e_k} - H_ii - H_kk) / 2 (the polarization of
- * geom/shape.h's dfl_jets_polarize without its third-order part, which the
- * curvature does not need). */
-static dfl_status sdf_hessian(const dfl_shape *s, const double p[3], double H[9])
-{
-    dfl_jet j;
-    for (int i = 0; i < 3; i++) {
-        double e[3] = {0, 0, 0};
-        e[i] = 1.0;
-        if (s->ops->jet(s->impl, p, e, 2, &j, NULL) != DFL_OK) return DFL_E_NUMERIC;
-        H[4 * i] = dfl_jet_deriv(&j, 2);
-    }
-    for (int i = 0; i < 3; i++)
-        for (int k = i + 1; k < 3; k++) {
-            double e[3] = {0, 0, 0};
-            e[i] = e[k] = 1.0;
-            if (s->ops->jet(s->impl, p, e, 2, &j, NULL) != DFL_OK) return DFL_E_NUMERIC;
-            H[3 * i + k] = H[3 * k + i] = 0.5 * (dfl_jet_deriv(&j, 2) - H[4 * i] - H[4 * k]);
-        }
-    return DFL_OK;
-}
-
 static void point_curvature(const sdf_ctx *c, dfl_surfpoint *o)
 {
     if (c->curv == DFL_PROXY_CURV_FIT) {
@@ -57,7 +33,7 @@ static void point_curvature(const sdf_ctx *c, dfl_surfpoint *o)
         return;
     }
     double H[9];
-    if (!c->shape.ops->jet || sdf_hessian(&c->shape, o->p, H) != DFL_OK ||
+    if (dfl_shape_hessian(&c->shape, o->p, H, NULL) != DFL_OK ||
         dfl_curvature_implicit(o->n, H, &o->curv, NULL) != DFL_OK) {
         nan_curv(&o->curv);
         o->certified = 0;

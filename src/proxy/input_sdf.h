@@ -14,9 +14,10 @@
  *
  * Curvature:
  *   analytic: Goldman's formula (hvb25 ref. [6]; geom/curvature.h's
- *     dfl_curvature_implicit) with grad = n and the SDF's Hessian at p from
- *     six order-2 jets (along e_i and e_i + e_k, polarized); shapes without
- *     jets give NAN curvatures and certified = 0.
+ *     dfl_curvature_implicit) with grad = n and the SDF's Hessian at p
+ *     (geom/shape.h's dfl_shape_hessian: closed form for sphere, torus,
+ *     cylinder, plane and exact CSG of them, else six order-2 jets);
+ *     shapes without either give NAN curvatures and certified = 0.
  *   fit: the paper's cubic fit on a g x g tangent grid (proxy/curvfit.h).
  *
  * Thread safety: the input is read-only after construction; queries run

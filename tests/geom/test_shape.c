@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "core/vec.h"
+#include "core/rng.h"
 #include "geom/shape.h"
 #include "geom/shape_check.h"
 
@@ -76,4 +77,40 @@ Test(shape, kind_table)
     cr_assert_str_eq(dfl_shape_kind_name(DFL_SHAPE_CSG), "csg");
     cr_assert_null(dfl_shape_kind_name((dfl_shape_kind)-1));
     cr_assert_eq(dfl_shape_kind_from_name(NULL), -1);
+}
+
+/* dfl_shape_hessian: the closed forms agree with the polarized jets
+ * (dfl_jets_polarize) at random points off the medial sets, and a kind
+ * without a closed form (box) goes through the jets. */
+Test(shape, hessian_closed_forms_match_the_jets)
+{
+    const double c[3] = {0.1, 0, -0.1}, ax[3] = {0.2, 1, 0.3}, n[3] = {1, 2, 2}, h[3] = {0.3, 0.4, 0.5};
+    dfl_shape s[6], a, b;
+    cr_assert_eq(dfl_shape_sphere(c, 0.5, &s[0], NULL), DFL_OK);
+    cr_assert_eq(dfl_shape_torus(c, ax, 0.6, 0.25, &s[1], NULL), DFL_OK);
+    cr_assert_eq(dfl_shape_cylinder(c, ax, 0.3, &s[2], NULL), DFL_OK);
+    cr_assert_eq(dfl_shape_plane(3, c, n, &s[3], NULL), DFL_OK);
+    cr_assert_eq(dfl_shape_box(3, c, h, &s[4], NULL), DFL_OK);
+    cr_assert_eq(dfl_shape_sphere(c, 0.4, &a, NULL), DFL_OK);
+    cr_assert_eq(dfl_shape_torus(c, ax, 0.6, 0.2, &b, NULL), DFL_OK);
+    cr_assert_eq(dfl_shape_csg(DFL_CSG_DIFFERENCE, 0, &a, &b, &s[5], NULL), DFL_OK);
+    uint64_t seed = 3;
+    for (int k = 0; k < 6; k++)
+        for (int t = 0; t < 50; t++) {
+            double x[3], H[9];
+            for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(&seed, -1, 1);
+            cr_assert_eq(dfl_shape_hessian(&s[k], x, H, NULL), DFL_OK);
+            dfl_shape_derivs der;
+            cr_assert_eq(dfl_shape_derivs_at(&s[k], x, &der, NULL), DFL_OK);
+            for (int j = 0; j < 9; j++)
+                cr_assert(fabs(H[j] - der.H[j]) < 1e-9 * (1 + fabs(der.H[j])),
+                          "shape %d: H[%d] %g vs %g", k, j, H[j], der.H[j]);
+        }
+    for (int k = 0; k < 6; k++) dfl_shape_free(&s[k]);
+    double H[9], x[3] = {0, 0, 0};
+    dfl_shape c2;
+    const double cc[2] = {0, 0};
+    cr_assert_eq(dfl_shape_circle(cc, 1, &c2, NULL), DFL_OK);
+    cr_assert_eq(dfl_shape_hessian(&c2, x, H, NULL), DFL_E_INPUT);
+    dfl_shape_free(&c2);
 }

@@ -160,3 +160,25 @@ Test(input_param, kallay_newton_vs_brute_force_on_bezier)
         dfl_proxy_input_free(&ip);
     }
 }
+
+/* Every cell centre of a 32^3 grid, poles included (the two charts): the
+ * parametric sphere is the exact SDF. */
+Test(input_param, sphere_all_cell_centres)
+{
+    const double c[3] = {0, 0, 0}, r = 0.5;
+    dfl_proxy_input ip;
+    cr_assert_eq(dfl_proxy_input_param_sphere(c, r, NULL, &ip, NULL), DFL_OK);
+    const int N = 32;
+    for (int k = 0; k < N; k++)
+        for (int j = 0; j < N; j++)
+            for (int i = 0; i < N; i++) {
+                double x[3] = {-1 + (i + 0.5) * 2.0 / N, -1 + (j + 0.5) * 2.0 / N,
+                               -1 + (k + 0.5) * 2.0 / N};
+                dfl_surfpoint o;
+                dfl_proxy_input_query(&ip, 1, x, 1, &o, NULL);
+                cr_assert(o.certified && fabs(o.d - (dfl_vec3_norm(x) - r)) < 1e-12 &&
+                              fabs(o.curv.k1 - 1 / r) < 1e-9,
+                          "(%g %g %g): d %g", x[0], x[1], x[2], o.d);
+            }
+    dfl_proxy_input_free(&ip);
+}

@@ -126,3 +126,48 @@ Test(proxy_input_cfg, hvb25_shape_files)
             dfl_proxy_input_free(&in);
         }
 }
+
+/* The CSG scenes: every section from its own shape file, input = sdf with
+ * both curvatures; a point next to a known part gets that part's distance. */
+Test(proxy_input_cfg, hvb25_csg_scenes)
+{
+    static const char *const scene2 =
+        "[field]\ninput = sdf\ncurvature = %s\n"
+        "[shape]\ninclude = configs/shapes/hvb25_scene2.ini\n"
+        "[scene2_body]\ninclude = configs/shapes/hvb25_scene2_body.ini\n"
+        "[scene2_box]\ninclude = configs/shapes/hvb25_scene2_box.ini\n"
+        "[scene2_hole]\ninclude = configs/shapes/hvb25_scene2_hole.ini\n"
+        "[scene2_ring]\ninclude = configs/shapes/hvb25_scene2_ring.ini\n";
+    static const char *const details =
+        "[field]\ninput = sdf\ncurvature = %s\n"
+        "[shape]\ninclude = configs/shapes/hvb25_details.ini\n"
+        "[det_bumpy]\ninclude = configs/shapes/hvb25_details_bumpy.ini\n"
+        "[det_core]\ninclude = configs/shapes/hvb25_details_core.ini\n"
+        "[det_adds]\ninclude = configs/shapes/hvb25_details_adds.ini\n"
+        "[det_pin]\ninclude = configs/shapes/hvb25_details_pin.ini\n"
+        "[det_bump]\ninclude = configs/shapes/hvb25_details_bump.ini\n"
+        "[det_groove]\ninclude = configs/shapes/hvb25_details_groove.ini\n";
+    const char *curv[2] = {"analytic", "fit"};
+    for (int k = 0; k < 2; k++) {
+        char text[1024];
+        dfl_proxy_input in;
+        dfl_err err;
+        dfl_surfpoint o;
+        /* scene2: below the box bottom (z = -0.6), 0.2 away */
+        snprintf(text, sizeof text, scene2, curv[k]);
+        cr_assert_eq(build(text, &in, &err), DFL_OK, "%s", err.msg);
+        double x[3] = {0.1, 0.1, -0.8};
+        cr_assert_eq(dfl_proxy_input_query(&in, 1, x, 1, &o, NULL), DFL_OK);
+        cr_assert(fabs(o.d - 0.2) < 1e-14 && fabs(o.curv.k1) < 1e-6 && fabs(o.curv.k2) < 1e-6,
+                  "%s: d %g k %g %g", curv[k], o.d, o.curv.k1, o.curv.k2);
+        dfl_proxy_input_free(&in);
+        /* details: beside the pin, 0.05 from its axis at height 0.55 */
+        snprintf(text, sizeof text, details, curv[k]);
+        cr_assert_eq(build(text, &in, &err), DFL_OK, "%s", err.msg);
+        double y[3] = {0.05, 0, 0.55};
+        cr_assert_eq(dfl_proxy_input_query(&in, 1, y, 1, &o, NULL), DFL_OK);
+        cr_assert(fabs(o.d - 0.02) < 1e-14, "d %g", o.d);
+        if (k == 0) cr_assert(fabs(o.curv.k2 - 1 / 0.03) < 1e-8, "k %g", o.curv.k2);
+        dfl_proxy_input_free(&in);
+    }
+}
