@@ -4,8 +4,13 @@
  * reference shape on the paper's 217^3 node grid.
  *
  * Keys.  [study]
- *   reference = <section>   the reference shape (default shape): its SDF
- *                           is the ground truth
+ *   reference = <section>   the reference shape (default shape); the
+ *                           ground truth is its distance as
+ *                           experiments/cfg/proxy_input_cfg.h's
+ *                           dfl_proxy_truth_from_cfg gives it (exact SDFs of
+ *                           analytic shapes and CSG, brute-force-seeded
+ *                           footpoints on parametric surfaces, certified
+ *                           footpoints on implicit ones)
  *   filters   = nearest hermite ...   proxy fields only: decode the one
  *                           grid with each of these filters (each with its
  *                           default clip, proxy/filter.h; signedness of
@@ -28,7 +33,7 @@
 #include <string.h>
 
 #include "cfg/field_cfg.h"
-#include "cfg/shape_cfg.h"
+#include "cfg/proxy_input_cfg.h"
 #include "field/gridpeer.h"
 #include "harness/experiment.h"
 #include "hvb25/hvb25.h"
@@ -130,12 +135,12 @@ static dfl_status acc_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
 {
     acc_keys k;
     dfl_field f = {0};
-    dfl_shape ref = {0};
+    dfl_field ref = {0};
     dfl_status st = read_keys(cfg, &k, err);
     const double t0 = dfl_wall_seconds();
     if (!st) st = dfl_field_from_cfg(cfg, "field", &f, err);
     const double gen = dfl_wall_seconds() - t0;
-    if (!st) st = dfl_shape_from_cfg(cfg, k.ref_sec, &ref, err);
+    if (!st) st = dfl_proxy_truth_from_cfg(cfg, "field", k.ref_sec, &ref, err);
     if (!st && ref.dim != 3)
         st = dfl_cfg_reject(cfg, "study", "reference", err, "a 3D shape is required");
     if (!st && f.dim != 3) st = dfl_cfg_reject(cfg, "field", "kind", err, "a 3D field is required");
@@ -172,7 +177,7 @@ static dfl_status acc_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
         if (!st) st = hvb25_acc_put(table, &res[i], npts, err);
     }
     dfl_field_destroy(&f);
-    dfl_shape_free(&ref);
+    dfl_field_destroy(&ref);
     return st;
 }
 

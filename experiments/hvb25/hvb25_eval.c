@@ -99,7 +99,7 @@ static void cell_footpoints(const hvb25_acc_spec *s, double *pc)
         const long ijk[3] = {i % n, (i / n) % n, i / (n * n)};
         double x[3], g[3], d;
         for (int a = 0; a < 3; a++) x[a] = c->lo[a] + (ijk[a] + 0.5) * c->h[a];
-        dfl_shape_eval(s->ref, 1, x, &d, g);
+        s->ref->ops->eval(s->ref->ctx, 1, x, &d, g);
         for (int a = 0; a < 3; a++) pc[3 * i + a] = x[a] - d * g[a];
     }
 }
@@ -157,7 +157,7 @@ static dfl_status slab(const hvb25_acc_spec *s, int z, slab_bufs *b, acc *accs, 
 #pragma omp parallel for schedule(static) num_threads(s->threads)
     for (long c = 0; c < chunks; c++) {
         const size_t i0 = (size_t)c * 256, len = i0 + 256 <= m ? 256 : m - i0;
-        dfl_shape_eval(s->ref, len, b->pts + 3 * i0, b->d + i0, b->gd + 3 * i0);
+        s->ref->ops->eval(s->ref->ctx, len, b->pts + 3 * i0, b->d + i0, b->gd + 3 * i0);
     }
     const double hmax = s->cells.n ? fmax(s->cells.h[0], fmax(s->cells.h[1], s->cells.h[2])) : 1;
     size_t nmedial = 0;

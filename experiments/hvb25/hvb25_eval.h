@@ -33,7 +33,6 @@
 #include "field/field.h"
 #include "field/metrics.h"
 #include "field/sample.h"
-#include "geom/shape.h"
 #include "io/config.h"
 #include "io/table.h"
 #include "proxy/filter.h"
@@ -73,7 +72,7 @@ typedef struct hvb25_acc_spec {
     dfl_proxy_filter_opts dec[HVB25_MAX_DECODINGS];
     int field_signed;               /* signedness when ndec == 0 */
     hvb25_cells cells;
-    const dfl_shape *ref;           /* reference SDF (3D) */
+    const dfl_field *ref;           /* reference distance with gradient (3D) */
     dfl_grid eval;                  /* 3D node grid */
     double band, medial;            /* band half-width; medial threshold in cell sizes */
     int threads;
