@@ -179,9 +179,11 @@ static void trace_row(const dfl_field *f, const dfl_camera *cam, const dfl_trace
     for (int k = 0; k < nh; k++) {
         const int px = b->live[k];
         const double *g = b->grad + 3 * k, l = dfl_vec3_norm(g);
+        /* facing the eye: an unsigned field's gradient flips across its zero set */
+        const double s = dfl_vec3_dot(g, b->dir + 3 * px) > 0 ? -l : l;
         out->depth[row + px] = (float)b->t[px];
         if (l > 0 && isfinite(l))
-            for (int j = 0; j < 3; j++) out->normal[3 * (row + px) + j] = (float)(g[j] / l);
+            for (int j = 0; j < 3; j++) out->normal[3 * (row + px) + j] = (float)(g[j] / s);
     }
 }
 

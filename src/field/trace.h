@@ -25,8 +25,11 @@
  * field values it took (the hit's gradient evaluation not counted).  This
  * is safe for signed and unsigned fields alike as long as |u| does not
  * overestimate the distance to the zero set by more than 1/step_scale.
- * Per pixel: depth = t at the hit (+inf otherwise), normal = grad u/|grad u|
- * at the hit (0 0 0 otherwise, or when the gradient vanishes), steps.
+ * Per pixel: depth = t at the hit (+inf otherwise), normal = +-grad u/|grad u|
+ * at the hit with the sign that faces the eye (n.dir <= 0: an unsigned
+ * field's gradient flips across its zero set, a signed field seen from
+ * outside keeps its outward gradient; 0 0 0 on a miss or where the
+ * gradient vanishes), steps.
  *
  * Cost: rays of one image row advance in lockstep, so each step is one
  * batched eval of the row's live rays (no dispatch per point); rows are

@@ -101,8 +101,8 @@ Test(trace, frames_are_thread_invariant)
 }
 
 /* A box that holds only the far half of the sphere (y > 0.1): rays start
- * at the box's face, so they see the sphere behind the cut, and rays
- * missing the box take no step. */
+ * at the box's face, so they see the sphere behind the cut from inside,
+ * and rays missing the box take no step. */
 Test(trace, box_clips_the_rays)
 {
     dfl_field f = sphere_field(0.5);
@@ -118,7 +118,8 @@ Test(trace, box_clips_the_rays)
     /* the centre ray enters at y = 0.1, inside the sphere: |u| = 0.4 steps
      * on to the far wall y = 0.5 */
     cr_assert(fabs(fr.depth[mid] - 3.5) < 1e-5, "depth %g", fr.depth[mid]);
-    cr_assert(fr.normal[3 * mid + 1] > 0.999f, "the far wall's outward normal");
+    /* seen from inside: the outward gradient +y, turned to face the eye */
+    cr_assert(fr.normal[3 * mid + 1] < -0.999f, "the far wall's normal, facing the eye");
     cr_assert(isinf(fr.depth[0]) && fr.steps[0] == 0.0f, "a corner ray misses the box");
     dfl_frame_free(&fr);
     dfl_field_destroy(&f);
