@@ -144,8 +144,8 @@ static dfl_status slab(const hvb25_acc_spec *s, int z, slab_bufs *b, acc *accs, 
 {
     const dfl_grid *g = &s->eval;
     const size_t m = (size_t)g->n[0] * (size_t)g->n[1];
-    const double hz = (g->hi[2] - g->lo[2]) / (g->n[2] - 1);
-    const double zc = z == g->n[2] - 1 ? g->hi[2] : g->lo[2] + z * hz;
+    /* the node coordinate of field/sample.h, so the slabs are the grid's nodes exactly */
+    const double t = (double)z / (double)(g->n[2] - 1), zc = (1.0 - t) * g->lo[2] + t * g->hi[2];
     dfl_grid pg;
     dfl_grid_plane(2, zc, g->n, g->lo, g->hi, &pg);
     for (size_t i = 0; i < m; i++) {
