@@ -31,11 +31,11 @@ def _table1(ctx, shape):
     rows = ctx.csv()
     imp = pick(C.sibling(ctx, f"hvb25_implicit_{shape}"), footpoint="paper")
     out = [f"**Table 1, {shape}** (half storage, unsigned). {METRIC_NOTE} The implicit columns "
-           f"are the paper's footpoint method (run hvb25_implicit_{shape}). In double storage "
-           "the order-2 sphere is exact to rounding (L∞ ≤ 1e-15, hvb25_convergence_sphere): its "
+           f"are the paper's footpoint method (run hvb25_implicit_{shape})."
+           + ("" if shape != "sphere" else " In double storage the order-2 sphere is exact to rounding (L∞ ≤ 1e-15, hvb25_convergence_sphere): its "
            "half-storage cells show the floor of rounding each stored scalar to 2⁻¹¹ relative "
            "(L∞ ≈ 3e-4 where |d| ≈ 1, as the paper's SDF and implicit L∞ 2e-4 – 3.5e-4; the "
-           "paper's L1 ~1e-7 is below what that rounding gives on a grid filling [−1, 1]³).", ""]
+           "paper's L1 ~1e-7 is below what that rounding gives on a grid filling [−1, 1]³)."), ""]
     head = ["order", "N", "norm", "param. nearest", "param. Hermite", "SDF nearest",
             "SDF Hermite", "implicit nearest", "implicit Hermite"]
     body = []
