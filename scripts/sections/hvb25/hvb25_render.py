@@ -84,12 +84,23 @@ def render(ctx):
         body.append([f"{res}³", flt, f"{g(f(r, 'frame_ms'))} ({g(pm)})", g(f(r, "steps_mean")),
                      g(f(r, "ns_per_eval")), r["hits"], r["exhausted"]])
     w, h = (rows[0]["width"], rows[0]["height"]) if rows else ("?", "?")
+    lost = []
+    for r in rows:
+        near = [q for q in rows if q["res"] == r["res"] and q["filter"] == "nearest"]
+        if near and r["filter"] != "nearest" and f(r, "hits") < 0.95 * f(near[0], "hits"):
+            lost.append(f"{r['filter']} at {r['res']}³ hits {r['hits']} pixels, nearest "
+                        f"{near[0]['hits']}")
+    holes = ("" if not lost else
+             " Holes: " + "; ".join(lost) + " — a blend of unsigned proxy distances need not "
+             "reach zero where neighbouring proxies disagree, so the tracer never gets within "
+             "eps (signed output, `signed = true`, would cross zero).")
     out = []
     if ctx.name.endswith("torus"):
         out.append(_gen_table(ctx))
     out += [f"**Table 4 (right): one sphere-traced frame** ({w}×{h}, order-2 SDF-input field, "
             "half storage; best of the run's frames) per filter. The paper's frame size is not "
             "stated, so compare the cost per decoded query (last-but-two column) rather than the "
-            "frame: ours are CPU nanoseconds on a shared 2-core machine, the paper's a GPU's.", "",
+            "frame: ours are CPU nanoseconds on a shared 2-core machine, the paper's a GPU's."
+            + holes, "",
             dflio.md_table(head, body), "", _frames_png(ctx, rows), ""]
     return "\n".join(out)
