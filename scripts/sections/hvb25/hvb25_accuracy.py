@@ -338,13 +338,13 @@ def _table3(ctx):
                 sel = pick(src, order=order, res=res, filter=flt)
                 line.append(vs(_cell(sel, m), _paper3(ctx, res, norm, pc)))
             body.append(line)
-    fails = ", ".join(f"{C.col(r, 'field.res')}³: {r['failed']}" for r in fit
-                      if r["filter"] == "nearest")
+    fails = ", ".join(f"{C.col(r, 'field.res')}³: {r['failed']} cells, {r['nonfinite']} "
+                      f"{r['filter']} evaluation points" for r in fit)
     return "\n".join([
         "**Table 3, Scene 2** (our CSG stand-in; the paper's composition is not given, so the "
         f"ratios compare two different scenes of the same kind). {METRIC_NOTE} G2 uses the SDF's "
         "Hessian; the 'fit' columns the paper's fitted curvature (hvb25_table3_fit; cells whose "
-        f"fit gave no finite curvature, left out of the metrics: {fails or '—'}).", "",
+        f"fit gave no finite curvature — the tangent grid's orthogonal projection misses the surface at the CSG creases — and the points they decode to NaN, left out of the metrics: {fails or '—'}; compare those columns with that in mind).", "",
         dflio.md_table(head, body), "", _worst(rows, "Scene 2, Hessian curvature")])
 
 
