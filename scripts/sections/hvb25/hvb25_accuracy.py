@@ -344,7 +344,7 @@ def _table3(ctx):
         "**Table 3, Scene 2** (our CSG stand-in; the paper's composition is not given, so the "
         f"ratios compare two different scenes of the same kind). {METRIC_NOTE} G2 uses the SDF's "
         "Hessian; the 'fit' columns the paper's fitted curvature (hvb25_table3_fit; cells whose "
-        f"fit gave no finite curvature — the tangent grid's orthogonal projection misses the surface at the CSG creases — and the points they decode to NaN, left out of the metrics: {fails or '—'}; compare those columns with that in mind).", "",
+        f"fit gave no finite curvature (the builder's failed cells; where they lie we did not map) and the points they decode to NaN, left out of the metrics: {fails or '—'}; compare those columns with that in mind).", "",
         dflio.md_table(head, body), "", _worst(rows, "Scene 2, Hessian curvature")])
 
 
