@@ -25,6 +25,8 @@ typedef struct input_keys {
     int footpoint_robust;
     dfl_curvfit_opts fit;
     int param_grid;
+    int implicit_resolution;
+    int param_starts;
 } input_keys;
 
 static dfl_status read_keys(const dfl_cfg *cfg, const char *sec, input_keys *k, dfl_err *err)
@@ -46,6 +48,13 @@ static dfl_status read_keys(const dfl_cfg *cfg, const char *sec, input_keys *k, 
     if (!(k->fit.spacing > 0.0))
         return dfl_cfg_reject(cfg, sec, "fit_spacing", err, "expected a number > 0");
     if ((st = dfl_cfg_int_opt(cfg, sec, "param_grid", 16, 4, 512, &pg, err)) != DFL_OK) return st;
+    long ir;
+    if ((st = dfl_cfg_int_opt(cfg, sec, "implicit_resolution", 64, 8, 1024, &ir, err)) != DFL_OK)
+        return st;
+    k->implicit_resolution = (int)ir;
+    long ps;
+    if ((st = dfl_cfg_int_opt(cfg, sec, "param_starts", 3, 1, 3, &ps, err)) != DFL_OK) return st;
+    k->param_starts = (int)ps;
     k->curv = cv ? DFL_PROXY_CURV_FIT : DFL_PROXY_CURV_ANALYTIC;
     k->footpoint_robust = fp;
     k->fit.g = (int)g;
@@ -82,6 +91,21 @@ static void param_opts(const build_req *rq, dfl_param_input_opts *o)
 {
     dfl_param_input_opts_default(o);
     o->grid = rq->k->param_grid;
+    o->starts = rq->k->param_starts;
+}
+
+/* cone: a, b, ra, rb of the shape section (ranges checked by the
+ * constructors) */
+static dfl_status cone_keys(const build_req *rq, double a[3], double b[3], double *ra,
+                            double *rb, dfl_err *err)
+{
+    const dfl_cfg *cfg = rq->cfg;
+    const char *sec = rq->shape_sec;
+    dfl_status st;
+    if ((st = dfl_cfg_vec(cfg, sec, "a", 3, a, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_vec(cfg, sec, "b", 3, b, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_double(cfg, sec, "ra", 0.0, HUGE_VAL, ra, err)) != DFL_OK) return st;
+    return dfl_cfg_double(cfg, sec, "rb", 0.0, HUGE_VAL, rb, err);
 }
 
 /* sphere: center, radius; torus: center, axis, major, minor; cone: a, b,
@@ -97,10 +121,7 @@ static dfl_status build_param_analytic(const build_req *rq, dfl_proxy_input *out
     dfl_status st;
     if (rq->kind == DFL_SHAPE_CONE) {
         double a[3], b[3], ra, rb;
-        if ((st = dfl_cfg_vec(cfg, sec, "a", 3, a, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_vec(cfg, sec, "b", 3, b, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_double(cfg, sec, "ra", 0.0, HUGE_VAL, &ra, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_double(cfg, sec, "rb", 0.0, HUGE_VAL, &rb, err)) != DFL_OK) return st;
+        if ((st = cone_keys(rq, a, b, &ra, &rb, err)) != DFL_OK) return st;
         return at_kind(rq, dfl_proxy_input_param_cone(a, b, ra, rb, &o, out, err), err);
     }
     if ((st = dfl_cfg_vec(cfg, sec, "center", 3, c, err)) != DFL_OK) return st;
@@ -167,6 +188,9 @@ static dfl_status build_implicit(const build_req *rq, dfl_proxy_input *out, dfl_
     dfl_implicit *imp = NULL;
     double c[3], ax[3], R, r;
     dfl_status st;
+    dfl_implicit_options io;
+    dfl_implicit_options_default(&io);
+    io.resolution = rq->k->implicit_resolution;
     if (rq->kind == DFL_SHAPE_IMPLICIT) {
         if ((st = dfl_implicit_from_cfg(cfg, sec, &imp, err)) != DFL_OK) return st;
     } else {
@@ -174,14 +198,14 @@ static dfl_status build_implicit(const build_req *rq, dfl_proxy_input *out, dfl_
         if (rq->kind == DFL_SHAPE_SPHERE) {
             if ((st = dfl_cfg_double(cfg, sec, "radius", 0.0, HUGE_VAL, &r, err)) != DFL_OK)
                 return st;
-            st = dfl_implicit_sphere(c, r, NULL, &imp, err);
+            st = dfl_implicit_sphere(c, r, &io, &imp, err);
         } else {
             if ((st = dfl_cfg_vec(cfg, sec, "axis", 3, ax, err)) != DFL_OK) return st;
             if ((st = dfl_cfg_double(cfg, sec, "major", 0.0, HUGE_VAL, &R, err)) != DFL_OK)
                 return st;
             if ((st = dfl_cfg_double(cfg, sec, "minor", 0.0, HUGE_VAL, &r, err)) != DFL_OK)
                 return st;
-            st = dfl_implicit_torus(c, ax, R, r, NULL, &imp, err);
+            st = dfl_implicit_torus(c, ax, R, r, &io, &imp, err);
         }
         if (st != DFL_OK) return at_kind(rq, st, err);
     }
@@ -266,12 +290,7 @@ dfl_status dfl_proxy_truth_from_cfg(const dfl_cfg *cfg, const char *field_sec,
     }
     if (kind == DFL_SHAPE_CONE && k.input == IN_PARAMETRIC) {
         double a[3], b[3], ra, rb;
-        if ((st = dfl_cfg_vec(cfg, shape_sec, "a", 3, a, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_vec(cfg, shape_sec, "b", 3, b, err)) != DFL_OK) return st;
-        if ((st = dfl_cfg_double(cfg, shape_sec, "ra", 0.0, HUGE_VAL, &ra, err)) != DFL_OK)
-            return st;
-        if ((st = dfl_cfg_double(cfg, shape_sec, "rb", 0.0, HUGE_VAL, &rb, err)) != DFL_OK)
-            return st;
+        if ((st = cone_keys(&rq, a, b, &ra, &rb, err)) != DFL_OK) return st;
         return at_kind(&rq, dfl_proxy_truth_cone_lateral(a, b, ra, rb, 0, out, err), err);
     }
     dfl_shape s = {0};

@@ -1,5 +1,9 @@
 /* [field] + [shape] -> the proxy input (src/proxy/input.h) of issue 9.
  *
+ * Function index
+ *   dfl_proxy_input_from_cfg   the input the keys below pick
+ *   dfl_proxy_truth_from_cfg   the ground truth of the same sections
+ *
  * Keys of the field section (the rest of it, order, res, filter, ... is the
  * proxy grid's, experiments/cfg/proxy_cfg.c):
  *   input     = parametric | sdf | implicit     (default sdf)
@@ -9,6 +13,15 @@
  *   fit_spacing = h > 0                         (default 0.01; curvature = fit)
  *   param_grid  = n, 4..512: parameter-grid starts per patch and direction
  *                 (default 16; parametric)
+ *   param_starts = 1..3: nearest grid nodes refined by Newton (default 3;
+ *                 1 is the paper's single start, ~2x faster, and misses the
+ *                 closest basin at a few cells of a random Bezier patch)
+ *   implicit_resolution = n, 8..1024: surface samples (the robust seeds)
+ *                 along the longest side for the implicit sphere and torus
+ *                 (default 64; kind = implicit reads its own [shape]
+ *                 resolution key).  Fewer samples are faster (torus at 16^3
+ *                 cells: 16 -> ~17 us, 64 -> ~110 us of CPU per point) and
+ *                 stay certified while the spacing is below the reach.
  * Every key is read whatever the input, so none is reported unused.
  *
  * Representations a [shape] kind offers (`input` picks one):

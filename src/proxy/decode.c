@@ -12,7 +12,7 @@ int dfl_proxy_encode(int order, const double xc[3], const dfl_surfpoint *sp,
     for (int j = 0; j < 3; j++) p[j] = sp->p[j] + (offset ? offset[j] : 0.0);
     for (int j = 0; j < 3; j++) d[j] = p[j] - xc[j];
     int moved = 0;
-    if (dfl_vec3_norm(d) < delta) {
+    if (dfl_vec3_dot(d, d) < delta * delta) {
         for (int j = 0; j < 3; j++) p[j] = xc[j] - delta * sp->n[j];
         for (int j = 0; j < 3; j++) d[j] = p[j] - xc[j];
         moved = 1;

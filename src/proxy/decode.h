@@ -49,8 +49,11 @@
  *      the core radius is R = |1/kappa_R - 1/kappa_r|: R' + r when the
  *      curvatures have opposite signs (p on the inner equator, hyperbolic),
  *      R' - r when they agree (outer equator, elliptic), as eq. 8 states.
- *      Choosing |kappa_r| >= |kappa_R| keeps R >= 0 with p on the outer
- *      part of the surface.
+ *      Choosing |kappa_r| >= |kappa_R| (the paper: t along the larger
+ *      curvature) keeps the tube on p's side of the axis (R' >= r), so p
+ *      lies on the outer equator of a ring, horn or spindle torus (same
+ *      signs) or the inner equator of a ring torus (opposite signs); the
+ *      formula itself matches the surface to second order at p either way.
  *   3. The cases of eq. 10 are limits of this one formula, with no branch:
  *      kappa_R = 0 gives a = v_n, a cylinder about the line through
  *      p - n/kappa_r along b (eq. 6-7); kappa_r = kappa_R = 0 the plane
@@ -138,14 +141,15 @@ static inline void dfl_proxy_decode(int order, dfl_proxy_position pos, const dou
     const double *lt = s + 5;
     const double l2 = dfl_vec3_dot(lt, lt);
     const double sgn = l2 > 2.25 ? -1.0 : 1.0;
-    for (int j = 0; j < 3; j++) g->n[j] = sgn * d[j] / dl;
+    const double in = sgn / dl;
+    for (int j = 0; j < 3; j++) g->n[j] = in * d[j];
     /* t is orthogonal to n up to the storage's rounding; project it back
      * so that (n, t, b) is orthonormal. */
     const double tn = dfl_vec3_dot(lt, g->n);
     double t[3];
     for (int j = 0; j < 3; j++) t[j] = lt[j] - tn * g->n[j];
-    const double tl = dfl_vec3_norm(t);
-    for (int j = 0; j < 3; j++) g->t[j] = t[j] / tl;
+    const double it = 1.0 / dfl_vec3_norm(t);
+    for (int j = 0; j < 3; j++) g->t[j] = it * t[j];
     dfl_vec3_cross(g->n, g->t, g->b);
     g->kr = s[3];
     g->kR = s[4];
@@ -172,14 +176,18 @@ static inline double dfl_proxy_geom_eval(const dfl_proxy_geom *g, int order, con
     const double phi = (kr * (a * a + vt * vt) + 2.0 * a) / (1.0 + Sr);
     if (grad) {
         double ga[3];
-        if (SR > 0)
-            for (int j = 0; j < 3; j++) ga[j] = (uR * g->n[j] + wR * g->b[j]) / SR;
-        else
+        if (SR > 0) {
+            const double i = 1.0 / SR;
+            for (int j = 0; j < 3; j++) ga[j] = i * (uR * g->n[j] + wR * g->b[j]);
+        } else {
             for (int j = 0; j < 3; j++) ga[j] = g->n[j];
-        if (Sr > 0)
-            for (int j = 0; j < 3; j++) grad[j] = (ur * ga[j] + wr * g->t[j]) / Sr;
-        else
+        }
+        if (Sr > 0) {
+            const double i = 1.0 / Sr;
+            for (int j = 0; j < 3; j++) grad[j] = i * (ur * ga[j] + wr * g->t[j]);
+        } else {
             for (int j = 0; j < 3; j++) grad[j] = ga[j];
+        }
     }
     return phi;
 }

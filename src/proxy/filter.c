@@ -40,11 +40,12 @@ static inline double clipped(const dfl_proxy_geom *pgp, int order, double clip,
     double phi = dfl_proxy_geom_eval(pg, order, x, grad);
     if (clip > 0) {
         const double v[3] = {x[0] - pg->p[0], x[1] - pg->p[1], x[2] - pg->p[2]};
-        const double r = dfl_vec3_norm(v);
-        const double ball = r - clip;
-        if (ball > fabs(phi)) {
+        /* |x - p| - rho > |phi|, without a square root when it is not */
+        const double lim = clip + fabs(phi), r2 = dfl_vec3_dot(v, v);
+        if (r2 > lim * lim) {
+            const double r = sqrt(r2), ball = r - clip;
             const double s = phi < 0 ? -1.0 : 1.0;
-            phi = s * ball;
+            phi = s * fmax(ball, fabs(phi));
             if (grad)
                 for (int j = 0; j < 3; j++) grad[j] = s * v[j] / r;
         }

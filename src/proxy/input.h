@@ -7,6 +7,7 @@
  *   dfl_proxy_input        an input: a batched query function and its context
  *   dfl_proxy_input_query  answer a batch of query points
  *   dfl_proxy_input_free   release an input
+ *   dfl_curvature_set_nan  the "not asked for / not available" curvature
  *
  * Conventions: curvatures and directions follow geom/curvature.h (the
  * eigenvalues of dn for the normal n stored here; a sphere with outward
@@ -57,6 +58,10 @@ typedef struct dfl_proxy_input {
 /* Calls in->query; DFL_E_INPUT when in or in->query is NULL. */
 dfl_status dfl_proxy_input_query(const dfl_proxy_input *in, size_t m, const double *x,
                                  int need_curv, dfl_surfpoint *out, dfl_err *err);
+
+/* Sets every field of *c to NAN (what inputs write when curvature was not
+ * asked for or could not be computed). */
+void dfl_curvature_set_nan(dfl_curvature *c);
 
 /* Releases ctx and zeroes *in.  in may be NULL or already freed. */
 void dfl_proxy_input_free(dfl_proxy_input *in);

@@ -6,23 +6,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/linalg.h"
 #include "core/vec.h"
+#include "proxy/input_implicit_fast.h"
 
 #define PAPER_STARTS 4
-#define PAPER_ITERS 30
 
 typedef struct imp_ctx {
     dfl_implicit *s;
     dfl_implicit_foot_method method;
     double scale;
+    dfl_imp_index *ix;   /* robust only: the fast path's samples */
 } imp_ctx;
-
-static void nan_curv(dfl_curvature *k)
-{
-    k->k1 = k->k2 = k->K = k->H = NAN;
-    for (int j = 0; j < 3; j++) k->e1[j] = k->e2[j] = k->n[j] = NAN;
-}
 
 int dfl_proxy_implicit_certify(const dfl_implicit *s, const double x[3], const double p[3],
                                double d)
@@ -45,38 +39,11 @@ int dfl_proxy_implicit_certify(const dfl_implicit *s, const double x[3], const d
     return 1;
 }
 
-/* Newton on F(p, t) = (p - x + t grad g(p), g(p)) from p0; 1 on convergence. */
+/* The paper's Newton on the square system from p0 (input_implicit_fast.h). */
 static int paper_newton(const imp_ctx *c, const double x[3], const double p0[3], double p[3])
 {
-    double G[3], H[9];
     memcpy(p, p0, 3 * sizeof *p);
-    dfl_implicit_g(c->s, p, G, NULL);
-    double gg = dfl_vec3_dot(G, G);
-    if (!(gg > 0)) return 0;
-    double t = ((x[0] - p[0]) * G[0] + (x[1] - p[1]) * G[1] + (x[2] - p[2]) * G[2]) / gg;
-    for (int it = 0; it < PAPER_ITERS; it++) {
-        double g = dfl_implicit_g(c->s, p, G, H);
-        double gn = dfl_vec3_norm(G);
-        double F[4], J[16];
-        for (int i = 0; i < 3; i++) {
-            F[i] = p[i] - x[i] + t * G[i];
-            for (int j = 0; j < 3; j++) J[4 * i + j] = (i == j) + t * H[3 * i + j];
-            J[4 * i + 3] = G[i];
-            J[12 + i] = G[i];
-        }
-        F[3] = g;
-        J[15] = 0;
-        double res = sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]);
-        if (gn > 0 && res <= 1e-13 * c->scale && fabs(g) / gn <= 1e-13 * c->scale) return 1;
-        int piv[4];
-        if (dfl_lu_factor(4, J, piv, 1e-14, NULL) != DFL_OK) return 0;
-        for (int i = 0; i < 4; i++) F[i] = -F[i];
-        dfl_lu_solve(4, J, piv, F);
-        for (int i = 0; i < 3; i++) p[i] += F[i];
-        t += F[3];
-        if (!isfinite(p[0] + p[1] + p[2] + t)) return 0;
-    }
-    return 0;
+    return dfl_imp_square_newton(c->s, x, p, c->scale);
 }
 
 static void fill(const imp_ctx *c, const double x[3], const double p[3], int need_curv,
@@ -88,7 +55,8 @@ static void fill(const imp_ctx *c, const double x[3], const double p[3], int nee
     memcpy(o->p, p, 3 * sizeof *p);
     for (int j = 0; j < 3; j++) o->n[j] = G[j] / gn;
     o->d = (x[0] - p[0]) * o->n[0] + (x[1] - p[1]) * o->n[1] + (x[2] - p[2]) * o->n[2];
-    if (!need_curv || dfl_curvature_implicit(G, H, &o->curv, NULL) != DFL_OK) nan_curv(&o->curv);
+    if (!need_curv || dfl_curvature_implicit(G, H, &o->curv, NULL) != DFL_OK)
+        dfl_curvature_set_nan(&o->curv);
 }
 
 static void paper_point(const imp_ctx *c, const double x[3], int need_curv, dfl_surfpoint *o)
@@ -119,12 +87,19 @@ static void paper_point(const imp_ctx *c, const double x[3], int need_curv, dfl_
     } else {
         for (int j = 0; j < 3; j++) o->p[j] = o->n[j] = NAN;
         o->d = NAN;
-        nan_curv(&o->curv);
+        dfl_curvature_set_nan(&o->curv);
     }
 }
 
 static void robust_point(const imp_ctx *c, const double x[3], int need_curv, dfl_surfpoint *o)
 {
+    double fp[3], fd;
+    if (c->ix && dfl_imp_fast_foot(c->ix, x, fp, &fd)) {
+        o->certified = 1;
+        fill(c, x, fp, need_curv, o);
+        o->d = fd;
+        return;
+    }
     dfl_footpoint f;
     int ok = dfl_implicit_footpoint_with(c->s, DFL_FOOT_NEWTON, x, &f, NULL) == DFL_OK;
     int cert = ok && dfl_proxy_implicit_certify(c->s, x, f.p, f.d);
@@ -144,7 +119,7 @@ static void robust_point(const imp_ctx *c, const double x[3], int need_curv, dfl
     if (!ok) {
         for (int j = 0; j < 3; j++) o->p[j] = o->n[j] = NAN;
         o->d = NAN;
-        nan_curv(&o->curv);
+        dfl_curvature_set_nan(&o->curv);
         return;
     }
     fill(c, x, f.p, need_curv, o);
@@ -166,6 +141,7 @@ static dfl_status imp_query(const void *vctx, size_t m, const double *x, int nee
 static void imp_destroy(void *vctx)
 {
     imp_ctx *c = vctx;
+    dfl_imp_index_free(c->ix);
     dfl_implicit_free(c->s);
     free(c);
 }
@@ -184,6 +160,10 @@ dfl_status dfl_proxy_input_implicit(dfl_implicit **imp, dfl_implicit_foot_method
     *imp = NULL;
     c->method = method;
     c->scale = dfl_implicit_scale(c->s);
+    if (method == DFL_IMPLICIT_FOOT_ROBUST && !(c->ix = dfl_imp_index_new(c->s))) {
+        imp_destroy(c);
+        return dfl_err_set(err, DFL_E_NOMEM, "implicit input: out of memory");
+    }
     out->name = "implicit";
     out->query = imp_query;
     out->destroy = imp_destroy;

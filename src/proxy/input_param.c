@@ -10,7 +10,7 @@
 #include "core/vec.h"
 
 enum { P_SPHERE, P_TORUS, P_CONE, P_SURFACE };
-#define NSTART 3
+#define NSTART 3 /* most starts (dfl_param_input_opts.starts) */
 
 typedef struct patch {
     int type;
@@ -22,7 +22,7 @@ typedef struct patch {
 } patch;
 
 typedef struct param_ctx {
-    int npatch, grid, max_iter, closed;
+    int npatch, grid, max_iter, closed, starts;
     patch *pt;
     double *samp;        /* npatch * grid * grid points */
     double scale;
@@ -33,6 +33,7 @@ void dfl_param_input_opts_default(dfl_param_input_opts *o)
 {
     o->grid = 16;
     o->max_iter = 60;
+    o->starts = 3;
 }
 
 /* S, Su, Sv, Suu, Suv, Svv at (u, v) into D[18]. */
@@ -94,7 +95,7 @@ typedef struct start {
     double d2;
 } start;
 
-/* The NSTART nearest grid nodes, pairwise at least two grid steps apart
+/* The c->starts nearest grid nodes, pairwise at least two grid steps apart
  * (or on different patches); returns their count. */
 static int find_starts(const param_ctx *c, const double x[3], start *st)
 {
@@ -104,7 +105,7 @@ static int find_starts(const param_ctx *c, const double x[3], start *st)
         for (int j = 0; j < G; j++)
             for (int i = 0; i < G; i++) {
                 double d2 = dist2(x, c->samp + 3 * ((size_t)(p * G + j) * G + i));
-                if (n == NSTART && d2 >= st[n - 1].d2) continue;
+                if (n == c->starts && d2 >= st[n - 1].d2) continue;
                 int near = -1;
                 for (int k = 0; k < n; k++) {
                     int di = abs(st[k].i - i);
@@ -114,7 +115,7 @@ static int find_starts(const param_ctx *c, const double x[3], start *st)
                     if (st[k].patch == p && di < 2 && dj < 2) { near = k; break; }
                 }
                 if (near >= 0 && d2 >= st[near].d2) continue;
-                int k = near >= 0 ? near : (n < NSTART ? n++ : n - 1);
+                int k = near >= 0 ? near : (n < c->starts ? n++ : n - 1);
                 st[k] = (start){p, i, j, d2};
                 while (k > 0 && st[k].d2 < st[k - 1].d2) {
                     start t = st[k];
@@ -232,12 +233,6 @@ static void newton(const param_ctx *c, const patch *P, const double x[3], double
     memcpy(o->D, D, sizeof D);
 }
 
-static void nan_curv(dfl_curvature *k)
-{
-    k->k1 = k->k2 = k->K = k->H = NAN;
-    for (int j = 0; j < 3; j++) k->e1[j] = k->e2[j] = k->n[j] = NAN;
-}
-
 /* Each patch's nearest node, for patches the NSTART nearest nodes missed
  * (a chart's dense pole region can crowd out the chart that is regular
  * there); appended to st (capacity NSTART + MAXEXTRA). */
@@ -302,7 +297,7 @@ static void point_query(const param_ctx *c, const double x[3], int need_curv, df
     }
     if (!need_curv || dfl_curvature_parametric(D + 3, D + 6, D + 9, D + 12, D + 15, o->n,
                                                &o->curv, NULL) != DFL_OK)
-        nan_curv(&o->curv);
+        dfl_curvature_set_nan(&o->curv);
 }
 
 static dfl_status param_query(const void *vctx, size_t m, const double *x, int need_curv,
@@ -329,11 +324,13 @@ static dfl_status finish(param_ctx *c, const dfl_param_input_opts *opt, dfl_prox
     dfl_param_input_opts d;
     dfl_param_input_opts_default(&d);
     if (opt) d = *opt;
-    if (d.grid < 4 || d.grid > 512 || d.max_iter < 1) {
+    if (d.grid < 4 || d.grid > 512 || d.max_iter < 1 || d.starts < 1 || d.starts > NSTART) {
         param_destroy(c);
-        return dfl_err_set(err, DFL_E_INPUT, "parametric input: grid %d (4..512), max_iter %d",
-                           d.grid, d.max_iter);
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "parametric input: grid %d (4..512), max_iter %d (>= 1), starts %d (1..%d)",
+                           d.grid, d.max_iter, d.starts, NSTART);
     }
+    c->starts = d.starts;
     c->grid = d.grid;
     c->max_iter = d.max_iter;
     size_t G = (size_t)d.grid;

@@ -3,7 +3,7 @@
  *
  * Function index
  *   dfl_param_input_opts          starts grid and iteration limit
- *   dfl_param_input_opts_default  grid 16, 60 iterations
+ *   dfl_param_input_opts_default  grid 16, 60 iterations, 3 starts
  *   dfl_proxy_input_param_sphere  S = c + r (cos v rho(u) + sin v w)
  *   dfl_proxy_input_param_torus   S = c + (R + r cos v) rho(u) + r sin v w
  *   dfl_proxy_input_param_cone    S = a + v (b - a) + (ra + v (rb - ra)) rho(u)
@@ -23,7 +23,8 @@
  * fundamental form [E F; F G]); every step halved until f decreases;
  * non-periodic parameters are clamped with an active set at the domain
  * bounds.  To survive grids whose nearest node lies in the wrong basin the
- * three nearest nodes at least two grid steps apart (and the nearest node
+ * `starts` (default 3; 1 is the paper's) nearest nodes at least two grid
+ * steps apart (and the nearest node
  * of every patch none of them is on, up to 8 patches) are refined and the
  * closest result wins (the paper used one).
  *
@@ -51,6 +52,7 @@
 typedef struct dfl_param_input_opts {
     int grid;       /* parameter-grid nodes per patch and direction, 4..512 */
     int max_iter;   /* Newton iterations per start, >= 1 */
+    int starts;     /* nearest grid nodes refined, 1 (the paper's) .. 3 */
 } dfl_param_input_opts;
 
 void dfl_param_input_opts_default(dfl_param_input_opts *o);

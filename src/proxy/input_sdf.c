@@ -17,17 +17,11 @@ typedef struct sdf_ctx {
     dfl_curvfit *fit;   /* curv == FIT only */
 } sdf_ctx;
 
-static void nan_curv(dfl_curvature *c)
-{
-    c->k1 = c->k2 = c->K = c->H = NAN;
-    for (int j = 0; j < 3; j++) c->e1[j] = c->e2[j] = c->n[j] = NAN;
-}
-
 static void point_curvature(const sdf_ctx *c, dfl_surfpoint *o)
 {
     if (c->curv == DFL_PROXY_CURV_FIT) {
         if (dfl_curvfit_sdf(c->fit, &c->shape, o->p, o->n, &o->curv) != DFL_OK) {
-            nan_curv(&o->curv);
+            dfl_curvature_set_nan(&o->curv);
             o->certified = 0;
         }
         return;
@@ -35,7 +29,7 @@ static void point_curvature(const sdf_ctx *c, dfl_surfpoint *o)
     double H[9];
     if (dfl_shape_hessian(&c->shape, o->p, H, NULL) != DFL_OK ||
         dfl_curvature_implicit(o->n, H, &o->curv, NULL) != DFL_OK) {
-        nan_curv(&o->curv);
+        dfl_curvature_set_nan(&o->curv);
         o->certified = 0;
     }
 }
@@ -60,7 +54,7 @@ static dfl_status sdf_query(const void *vctx, size_t m, const double *x, int nee
             o->d = f;
             o->certified = isfinite(f) && isfinite(gn) && fabs(gn - 1.0) <= 1e-6;
             if (need_curv) point_curvature(c, o);
-            else nan_curv(&o->curv);
+            else dfl_curvature_set_nan(&o->curv);
         }
     }
     return DFL_OK;

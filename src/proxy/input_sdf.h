@@ -2,6 +2,7 @@
  *
  * Function index
  *   dfl_proxy_curv_method   analytic (SDF Hessian) | fit (proxy/curvfit.h)
+ *   dfl_curvfit_opts        grid g and spacing of curvature = fit
  *   dfl_proxy_input_sdf     wrap a dfl_shape as a proxy input
  *
  * Footpoint (the paper's): p = x - f(x) grad f(x), n = grad f(x) / |grad f(x)|,

@@ -151,11 +151,22 @@ static void store_cell(dfl_proxy_grid *g, const dfl_proxy_build_opts *o, size_t 
         noise_dir(o->seed, c, w);
         for (int j = 0; j < 3; j++) w[j] *= o->noise;
     }
-    int side;
-    cnt->moved += (size_t)dfl_proxy_encode(g->order, xc, sp, o->noise > 0 ? w : NULL, delta, s,
-                                           &side);
-    if (g->position == DFL_PROXY_DISPLACEMENT)
-        for (int j = 0; j < 3; j++) s[j] -= xc[j];
+    /* The normal is decoded from the stored footpoint, so the centre must
+     * stay delta away from it after rounding (absolute half footpoints can
+     * round onto the centre): move it further out until it does. */
+    int side, moved = 0;
+    for (int it = 0; it < 40; it++, delta *= 2) {
+        moved |= dfl_proxy_encode(g->order, xc, sp, o->noise > 0 ? w : NULL, delta, s, &side);
+        if (g->position == DFL_PROXY_DISPLACEMENT)
+            for (int j = 0; j < 3; j++) s[j] -= xc[j];
+        double dd[3];
+        for (int j = 0; j < 3; j++) {
+            const double r = dfl_proxy_store_round(g->storage, s[j]);
+            dd[j] = g->position == DFL_PROXY_DISPLACEMENT ? r : r - xc[j];
+        }
+        if (dd[0] * dd[0] + dd[1] * dd[1] + dd[2] * dd[2] >= delta * delta) break;
+    }
+    cnt->moved += (size_t)moved;
     for (int q = 0; q < ns; q++) dfl_proxy_store_put(g->storage, base, (size_t)q, s[q]);
     if (g->side) g->side[c] = (signed char)side;
 }

@@ -25,8 +25,11 @@
  * order 2 carries it in t's length (decode.h).
  *
  * Cell centres on the surface: the normal of a proxy is p - x_c, so a
- * footpoint closer to x_c than delta = h * 2^-40 | 2^-20 | 2^-10 (double,
- * float, half) moves to x_c - delta n (decode.h); such cells are counted.
+ * footpoint whose stored (rounded) displacement from x_c is shorter than
+ * delta = h * 2^-40 | 2^-20 | 2^-10 (double, float, half) moves to
+ * x_c - delta' n (decode.h), delta' the first of delta, 2 delta, 4 delta,
+ * ... that survives the rounding (absolute half footpoints can round onto
+ * x_c); such cells are counted in stats.moved.
  *
  * Noise (the footpoint-noise study): with noise > 0 each footpoint moves by
  * noise * w, w uniform on the unit sphere from SplitMix64 seeded by

@@ -122,3 +122,36 @@ Test(input_implicit, scrambled_ellipsoid_robust_vs_paper)
     dfl_proxy_input_free(&rb);
     dfl_proxy_input_free(&pp);
 }
+
+/* The robust method's fast path (one Newton from the nearest sample, kept
+ * when the cap test passes) answers what geom's full search answers, on
+ * Goursat's surface (several components) and the scrambled ellipsoid. */
+Test(input_implicit, fast_path_matches_the_full_search)
+{
+    const double c[3] = {0, 0, 0}, semi[3] = {0.7, 0.5, 0.35};
+    for (int shape = 0; shape < 2; shape++) {
+        dfl_implicit *a, *b;
+        if (shape == 0) {
+            cr_assert_eq(dfl_implicit_goursat(c, 0, -0.8, 0.30208, NULL, &a, NULL), DFL_OK);
+            cr_assert_eq(dfl_implicit_goursat(c, 0, -0.8, 0.30208, NULL, &b, NULL), DFL_OK);
+        } else {
+            cr_assert_eq(dfl_implicit_ellipsoid(c, semi, 4, NULL, &a, NULL), DFL_OK);
+            cr_assert_eq(dfl_implicit_ellipsoid(c, semi, 4, NULL, &b, NULL), DFL_OK);
+        }
+        dfl_proxy_input in;
+        cr_assert_eq(dfl_proxy_input_implicit(&a, DFL_IMPLICIT_FOOT_ROBUST, &in, NULL), DFL_OK);
+        uint64_t seed = 40 + shape;
+        for (int t = 0; t < 150; t++) {
+            double x[3];
+            cell_centre(&seed, 32, x);
+            dfl_surfpoint o;
+            dfl_footpoint f;
+            cr_assert_eq(dfl_proxy_input_query(&in, 1, x, 1, &o, NULL), DFL_OK);
+            cr_assert_eq(dfl_implicit_footpoint(b, x, &f, NULL), DFL_OK);
+            cr_assert(o.certified && fabs(o.d - f.d) < 1e-9, "shape %d (%g %g %g): %g vs %g", shape,
+                      x[0], x[1], x[2], o.d, f.d);
+        }
+        dfl_proxy_input_free(&in);
+        dfl_implicit_free(b);
+    }
+}

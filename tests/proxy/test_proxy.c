@@ -163,3 +163,38 @@ Test(proxy_grid, counts_and_errors)
     cr_expect_str_eq(err.msg, "query failed");
     cr_expect_null(g.data);
 }
+
+/* Cell centres on the surface (a plane through a layer of centres), with
+ * the footpoint stored absolutely in half precision, where a footpoint
+ * moved by delta alone would round back onto the centre: every such cell
+ * is moved until its normal survives, and decodes to the plane within the
+ * documented offset. */
+Test(proxy_grid, centres_on_surface_half_absolute)
+{
+    static const ta_shape plane = {TA_PLANE, {0.3, -0.2, -0.125}, {0, 0, 1}, 0, 0};
+    dfl_proxy_input in;
+    ta_input(&plane, &in);
+    for (int order = 1; order <= 2; order++)
+        for (int pos = 0; pos < 2; pos++) {
+            dfl_proxy_build_opts o;
+            dfl_proxy_build_opts_default(&o);
+            o.order = order;
+            o.res = 8;
+            o.storage = DFL_PROXY_HALF;
+            o.position = (dfl_proxy_position)pos;
+            dfl_proxy_grid g;
+            cr_assert_eq(dfl_proxy_grid_build(&in, &o, &g, NULL), DFL_OK);
+            cr_expect_eq(g.stats.moved, 64, "order %d %s", order, dfl_proxy_position_name(pos));
+            for (size_t c = 3 * 64; c < 4 * 64; c++) {
+                dfl_proxy_geom pg;
+                dfl_proxy_cell_decode(&g, c, &pg);
+                cr_expect_float_eq(pg.n[2], 1.0, 1e-3, "cell %zu", c);
+                double xc[3];
+                dfl_proxy_cell_centre(&g, c, xc);
+                xc[2] += 0.1;
+                /* moved by at most 8 delta = 8 h 2^-10 (|x_c| < 2), plus rounding */
+                cr_expect_lt(fabs(dfl_proxy_proxy_dist(&g, c, 0, xc, NULL) - 0.1), 3e-3);
+            }
+            dfl_proxy_grid_free(&g);
+        }
+}

@@ -20,9 +20,22 @@ static const char *const sphere_ini =
 static const double pts[][4] = {{1, 0.2, 0.1, 0.05}, {-0.3, 1, 0.4, -0.08},
                                 {0.2, -0.5, -1, 0.0}, {-1, -1, 1, 0.12}};
 
+/* dflab probe dir/f.ini --points dir/p.csv must succeed; path receives
+ * its output's path. */
+static void probe_ok(const char *dir, char *path, size_t size)
+{
+    char args[1024];
+    snprintf(args, sizeof args, "probe %s/f.ini --points %s/p.csv", dir, dir);
+    int rc = e2e_dflab(dir, args);
+    char *msg = e2e_err_text(dir);
+    cr_assert_eq(rc, 0, "%s", msg);
+    free(msg);
+    snprintf(path, size, "%s/out.txt", dir);
+}
+
 Test(e2e_probe_proxy, order2_sphere_hermite_exact)
 {
-    char dir[256], path[600], csv[2048] = "x,y,z\n", args[1024];
+    char dir[256], path[600], csv[2048] = "x,y,z\n";
     e2e_tmpdir(dir, sizeof dir);
     e2e_write(dir, "f.ini", sphere_ini, path, sizeof path);
     const double c[3] = {0.01, -0.02, 0.03};
@@ -39,12 +52,7 @@ Test(e2e_probe_proxy, order2_sphere_hermite_exact)
                  x[2]);
     }
     e2e_write(dir, "p.csv", csv, path, sizeof path);
-    snprintf(args, sizeof args, "probe %s/f.ini --points %s/p.csv", dir, dir);
-    int rc = e2e_dflab(dir, args);
-    char *msg = e2e_err_text(dir);
-    cr_assert_eq(rc, 0, "%s", msg);
-    free(msg);
-    snprintf(path, sizeof path, "%s/out.txt", dir);
+    probe_ok(dir, path, sizeof path);
     cr_assert_eq(e2e_csv_rows(path), 4);
     static const char *const col[] = {"value", "gx", "gy", "gz"};
     for (int i = 0; i < 4; i++)
@@ -57,7 +65,7 @@ Test(e2e_probe_proxy, order2_sphere_hermite_exact)
 
 Test(e2e_probe_proxy, order1_plane_nearest_exact)
 {
-    char dir[256], path[600], args[1024];
+    char dir[256], path[600];
     e2e_tmpdir(dir, sizeof dir);
     e2e_write(dir, "f.ini",
               "[field]\nkind = proxy\nres = 5\n[shape]\nkind = plane\npoint = 0.1 0.2 0.3\n"
@@ -65,12 +73,7 @@ Test(e2e_probe_proxy, order1_plane_nearest_exact)
               path, sizeof path);
     e2e_write(dir, "p.csv", "x,y,z\n0.3,-0.7,0.9\n-0.9,0.5,-0.4\n0.05,0.2,0.3\n", path,
               sizeof path);
-    snprintf(args, sizeof args, "probe %s/f.ini --points %s/p.csv", dir, dir);
-    int rc = e2e_dflab(dir, args);
-    char *msg = e2e_err_text(dir);
-    cr_assert_eq(rc, 0, "%s", msg);
-    free(msg);
-    snprintf(path, sizeof path, "%s/out.txt", dir);
+    probe_ok(dir, path, sizeof path);
     const double x[3][3] = {{0.3, -0.7, 0.9}, {-0.9, 0.5, -0.4}, {0.05, 0.2, 0.3}};
     for (int i = 0; i < 3; i++) {
         /* unsigned (the default): |(x - q) . n| */

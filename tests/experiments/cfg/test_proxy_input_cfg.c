@@ -38,7 +38,7 @@ Test(proxy_input_cfg, sdf_fit_keys)
     dfl_proxy_input in;
     dfl_err err;
     cr_assert_eq(build("[field]\ninput = sdf\ncurvature = fit\nfit_grid = 7\nfit_spacing = 0.005\n"
-                       "footpoint = paper\nparam_grid = 8\n"
+                       "footpoint = paper\nparam_grid = 8\nparam_starts = 1\n"
                        "[shape]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\n",
                        &in, &err),
                  DFL_OK, "%s", err.msg);
@@ -73,6 +73,9 @@ Test(proxy_input_cfg, bad_keys_name_the_key)
                   "fit_spacing", NULL);
     expect_reject("[field]\nfit_grid = 2\n[shape]\nkind = sphere\n", "fit_grid", NULL);
     expect_reject("[field]\nfootpoint = fast\n[shape]\nkind = sphere\n", "footpoint", NULL);
+    expect_reject("[field]\nparam_starts = 4\n[shape]\nkind = sphere\n", "param_starts", NULL);
+    expect_reject("[field]\nimplicit_resolution = 4\n[shape]\nkind = sphere\n",
+                  "implicit_resolution", NULL);
 }
 
 /* Every hvb25 shape file builds every representation the table says it
@@ -83,7 +86,8 @@ Test(proxy_input_cfg, implicit_footpoint_methods)
     for (int k = 0; k < 2; k++) {
         char text[256];
         snprintf(text, sizeof text,
-                 "[field]\ninput = implicit\nfootpoint = %s\n[shape]\nkind = torus\n"
+                 "[field]\ninput = implicit\nfootpoint = %s\nimplicit_resolution = 24\n"
+                 "[shape]\nkind = torus\n"
                  "center = 0 0 0\naxis = 0 0 1\nmajor = 0.6\nminor = 0.25\n", m[k]);
         dfl_proxy_input in;
         dfl_err err;

@@ -1,0 +1,232 @@
+/* The robust implicit footpoint's fast path (see input_implicit_fast.h). */
+#include "proxy/input_implicit_fast.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/linalg.h"
+#include "core/vec.h"
+#include "proxy/input_implicit.h"
+
+struct dfl_imp_index {
+    const dfl_implicit *s;
+    size_t ns;
+    double *pts, *nrm;      /* sorted by bucket: ns points and unit normals */
+    size_t *start;          /* nb[0] nb[1] nb[2] + 1 bucket starts */
+    double lo[3], cell, h;
+    int nb[3];
+};
+
+static void bucket_of(const dfl_imp_index *ix, const double q[3], int b[3])
+{
+    for (int a = 0; a < 3; a++) {
+        int i = (int)floor((q[a] - ix->lo[a]) / ix->cell);
+        b[a] = i < 0 ? 0 : (i >= ix->nb[a] ? ix->nb[a] - 1 : i);
+    }
+}
+
+static size_t bucket_id(const dfl_imp_index *ix, int i, int j, int k)
+{
+    return ((size_t)k * ix->nb[1] + j) * ix->nb[0] + i;
+}
+
+dfl_imp_index *dfl_imp_index_new(const dfl_implicit *s)
+{
+    dfl_imp_index *ix = calloc(1, sizeof *ix);
+    if (!ix) return NULL;
+    size_t ns;
+    const double *sp = dfl_implicit_samples(s, &ns);
+    ix->s = s;
+    ix->ns = ns;
+    ix->h = dfl_implicit_spacing(s);
+    /* coarse buckets: far queries visit few, and buckets are pruned by
+     * their distance to the query */
+    ix->cell = 6 * ix->h;
+    double hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (int a = 0; a < 3; a++) ix->lo[a] = HUGE_VAL;
+    for (size_t t = 0; t < ns; t++)
+        for (int a = 0; a < 3; a++) {
+            ix->lo[a] = fmin(ix->lo[a], sp[3 * t + a]);
+            hi[a] = fmax(hi[a], sp[3 * t + a]);
+        }
+    size_t nbt = 1;
+    for (int a = 0; a < 3; a++) {
+        ix->nb[a] = 1 + (int)((hi[a] - ix->lo[a]) / ix->cell);
+        nbt *= (size_t)ix->nb[a];
+    }
+    ix->pts = malloc(3 * ns * sizeof *ix->pts);
+    ix->nrm = malloc(3 * ns * sizeof *ix->nrm);
+    ix->start = calloc(nbt + 1, sizeof *ix->start);
+    size_t *fill = malloc((nbt + 1) * sizeof *fill), *bid = malloc(ns * sizeof *bid);
+    if (!ix->pts || !ix->nrm || !ix->start || !fill || !bid) {
+        free(fill);
+        free(bid);
+        dfl_imp_index_free(ix);
+        return NULL;
+    }
+    for (size_t t = 0; t < ns; t++) {
+        int b[3];
+        bucket_of(ix, sp + 3 * t, b);
+        bid[t] = bucket_id(ix, b[0], b[1], b[2]);
+        ix->start[bid[t] + 1]++;
+    }
+    for (size_t b = 0; b < nbt; b++) ix->start[b + 1] += ix->start[b];
+    memcpy(fill, ix->start, (nbt + 1) * sizeof *fill);
+    for (size_t t = 0; t < ns; t++) {
+        size_t w = fill[bid[t]]++;
+        double G[3];
+        dfl_implicit_g(s, sp + 3 * t, G, NULL);
+        double gn = dfl_vec3_norm(G);
+        for (int a = 0; a < 3; a++) {
+            ix->pts[3 * w + a] = sp[3 * t + a];
+            ix->nrm[3 * w + a] = gn > 0 ? G[a] / gn : 0.0;
+        }
+    }
+    free(fill);
+    free(bid);
+    return ix;
+}
+
+void dfl_imp_index_free(dfl_imp_index *ix)
+{
+    if (!ix) return;
+    free(ix->pts);
+    free(ix->nrm);
+    free(ix->start);
+    free(ix);
+}
+
+/* Squared distance from x to bucket (i, j, k)'s box. */
+static double box_d2(const dfl_imp_index *ix, const double x[3], int i, int j, int k)
+{
+    const int b[3] = {i, j, k};
+    double s = 0;
+    for (int a = 0; a < 3; a++) {
+        double lo = ix->lo[a] + b[a] * ix->cell, hi = lo + ix->cell;
+        double o = x[a] < lo ? lo - x[a] : (x[a] > hi ? x[a] - hi : 0.0);
+        s += o * o;
+    }
+    return s;
+}
+
+static double d2(const double *a, const double *b)
+{
+    double u[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+    return dfl_vec3_dot(u, u);
+}
+
+/* Index of the nearest sample (rings of buckets until the ring's lower
+ * bound exceeds the best). */
+static size_t nearest(const dfl_imp_index *ix, const double x[3])
+{
+    int c0[3];
+    bucket_of(ix, x, c0);
+    double best = HUGE_VAL, lb = 0;
+    size_t bi = 0;
+    for (int a = 0; a < 3; a++) {
+        double o = x[a] < ix->lo[a] ? ix->lo[a] - x[a]
+                                    : fmax(0.0, x[a] - (ix->lo[a] + ix->nb[a] * ix->cell));
+        lb += o * o;
+    }
+    int rmax = ix->nb[0] + ix->nb[1] + ix->nb[2];
+    for (int r = 0; r <= rmax; r++) {
+        for (int k = c0[2] - r; k <= c0[2] + r; k++) {
+            if (k < 0 || k >= ix->nb[2]) continue;
+            for (int j = c0[1] - r; j <= c0[1] + r; j++) {
+                if (j < 0 || j >= ix->nb[1]) continue;
+                for (int i = c0[0] - r; i <= c0[0] + r; i++) {
+                    if (i < 0 || i >= ix->nb[0]) continue;
+                    if (abs(i - c0[0]) < r && abs(j - c0[1]) < r && abs(k - c0[2]) < r) continue;
+                    size_t b = bucket_id(ix, i, j, k);
+                    if (ix->start[b] == ix->start[b + 1] || box_d2(ix, x, i, j, k) >= best)
+                        continue;
+                    for (size_t t = ix->start[b]; t < ix->start[b + 1]; t++) {
+                        double e = d2(x, ix->pts + 3 * t);
+                        if (e < best) { best = e; bi = t; }
+                    }
+                }
+            }
+        }
+        double ring = r * ix->cell;
+        if (best < HUGE_VAL && sqrt(best) <= sqrt(lb) + ring) break;
+    }
+    return bi;
+}
+
+int dfl_imp_square_newton(const dfl_implicit *s, const double x[3], double p[3], double scale)
+{
+    double G[3], H[9];
+    dfl_implicit_g(s, p, G, NULL);
+    double gg = dfl_vec3_dot(G, G);
+    if (!(gg > 0)) return 0;
+    double t = ((x[0] - p[0]) * G[0] + (x[1] - p[1]) * G[1] + (x[2] - p[2]) * G[2]) / gg;
+    for (int it = 0; it < 30; it++) {
+        double g = dfl_implicit_g(s, p, G, H), gn = dfl_vec3_norm(G);
+        double F[4], J[16];
+        for (int i = 0; i < 3; i++) {
+            F[i] = p[i] - x[i] + t * G[i];
+            for (int j = 0; j < 3; j++) J[4 * i + j] = (i == j) + t * H[3 * i + j];
+            J[4 * i + 3] = G[i];
+            J[12 + i] = G[i];
+        }
+        F[3] = g;
+        J[15] = 0;
+        if (gn > 0 && sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]) <= 1e-13 * scale &&
+            fabs(g) / gn <= 1e-13 * scale)
+            return 1;
+        int piv[4];
+        if (dfl_lu_factor(4, J, piv, 1e-14, NULL) != DFL_OK) return 0;
+        for (int i = 0; i < 4; i++) F[i] = -F[i];
+        dfl_lu_solve(4, J, piv, F);
+        for (int i = 0; i < 3; i++) p[i] += F[i];
+        t += F[3];
+        if (!isfinite(p[0] + p[1] + p[2] + t)) return 0;
+    }
+    return 0;
+}
+
+static int cap_test(const dfl_imp_index *ix, const double x[3], const double p[3], double ad)
+{
+    const double rb = ad + 2 * ix->h, near2 = 4 * ix->h * ix->h;
+    double lo[3] = {x[0] - rb, x[1] - rb, x[2] - rb}, hi[3] = {x[0] + rb, x[1] + rb, x[2] + rb};
+    int bl[3], bh[3];
+    bucket_of(ix, lo, bl);
+    bucket_of(ix, hi, bh);
+    for (int k = bl[2]; k <= bh[2]; k++)
+        for (int j = bl[1]; j <= bh[1]; j++)
+            for (int i = bl[0]; i <= bh[0]; i++) {
+                size_t b = bucket_id(ix, i, j, k);
+                if (ix->start[b] == ix->start[b + 1] || box_d2(ix, x, i, j, k) > rb * rb) continue;
+                for (size_t t = ix->start[b]; t < ix->start[b + 1]; t++) {
+                    const double *s = ix->pts + 3 * t, *n = ix->nrm + 3 * t;
+                    if (d2(x, s) > rb * rb || d2(p, s) <= near2) continue;
+                    double u[3] = {x[0] - s[0], x[1] - s[1], x[2] - s[2]};
+                    double un = dfl_vec3_dot(u, n), tt[3], q[3] = {p[0] - s[0], p[1] - s[1], p[2] - s[2]};
+                    for (int a = 0; a < 3; a++) tt[a] = u[a] - un * n[a];
+                    double tl = dfl_vec3_norm(tt), ql = dfl_vec3_norm(q);
+                    if (!(dfl_vec3_dot(tt, q) >= 0.5 * tl * ql) || !(tl > 0)) return 0;
+                }
+            }
+    return 1;
+}
+
+int dfl_imp_fast_foot(const dfl_imp_index *ix, const double x[3], double p[3], double *d)
+{
+    if (ix->ns == 0) return 0;
+    const double scale = dfl_implicit_scale(ix->s);
+    size_t t = nearest(ix, x);
+    memcpy(p, ix->pts + 3 * t, 3 * sizeof *p);
+    if (!dfl_imp_square_newton(ix->s, x, p, scale)) return 0;
+    double G[3];
+    double gx = dfl_implicit_g(ix->s, x, NULL, NULL);
+    dfl_implicit_g(ix->s, p, G, NULL);
+    double u[3] = {x[0] - p[0], x[1] - p[1], x[2] - p[2]}, gn = dfl_vec3_norm(G);
+    if (!(gn > 0)) return 0;
+    double dd = dfl_vec3_dot(u, G) / gn;
+    if (fabs(dd) > 1e-12 * scale && (gx > 0) != (dd > 0)) return 0;
+    if (!dfl_proxy_implicit_certify(ix->s, x, p, dd)) return 0;
+    if (!cap_test(ix, x, p, fabs(dd))) return 0;
+    *d = dd;
+    return 1;
+}
