@@ -1,6 +1,7 @@
 #include "cfg/field_cfg.h"
 
 #include "cfg/proxy_cfg.h"
+#include "cfg/gridpeer_cfg.h"
 #include "cfg/rfunc_cfg.h"
 #include "cfg/shape_cfg.h"
 #include "field/exact.h"
@@ -26,6 +27,7 @@ static const dfl_field_kind kinds[] = {
     {"rfunc", dfl_rfunc_field_from_cfg},
     {"normalized", dfl_rfunc_normalized_from_cfg},
     {"proxy", dfl_proxy_field_from_cfg},
+    {"gridpeer", dfl_gridpeer_field_from_cfg},
 };
 #define NKINDS (sizeof kinds / sizeof kinds[0])
 

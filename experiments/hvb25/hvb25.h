@@ -9,6 +9,9 @@
 
 #include "harness/experiment.h"
 
+extern const dfl_study dfl_study_hvb25_accuracy;
+extern const dfl_study dfl_study_hvb25_render;
+
 /* NULL-terminated. */
 extern const dfl_study *const dfl_hvb25_studies[];
 

@@ -24,6 +24,7 @@ void bench_field(void);
 void bench_footpoint(void);
 void bench_rfunc(void);
 void bench_proxy(void);
+void bench_trace(void);
 void bench_proxy_input(void);
 
 #endif

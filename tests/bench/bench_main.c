@@ -39,6 +39,7 @@ int main(void)
     bench_footpoint();
     bench_rfunc();
     bench_proxy();
+    bench_trace();
     bench_proxy_input();
     return 0;
 }

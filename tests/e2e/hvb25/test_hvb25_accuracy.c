@@ -1,0 +1,122 @@
+/* End-to-end: the hvb25_accuracy study on small grids, with expected
+ * numbers derived, not copied from a run:
+ *   - an order-1 proxy grid of a plane is the plane: error 0 (rounding)
+ *     under every filter, everywhere;
+ *   - an order-2 grid of a sphere (SDF input, analytic curvature, double)
+ *     is the sphere: Hermite and trilinear blends of 8 copies of the exact
+ *     distance are exact everywhere; nearest is exact in the band;
+ *   - half storage at the cell centres: the decoded distance there is
+ *     |rounded displacement|, within 2^-11 relative of the exact |d|;
+ *   - the trilinear grid peer's worst error on the sphere is at its centre,
+ *     sqrt(3) h / 2 (8 samples at (+-h/2)^3 of the cone |x| - r);
+ *   - bad keys exit 2 naming the key. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "util/e2e_util.h"
+
+#define PLANE "[shape]\nkind = plane\npoint = 0.05 -0.1 0.02\nnormal = 1 2 -2\n"
+#define SPHERE "[shape]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\n"
+#define TORUS \
+    "[shape]\nkind = torus\ncenter = 0 0 0\naxis = 0 0 1\nmajor = 0.6\nminor = 0.25\n"
+
+static long run_text(const char *ini, long nrows, char *csv, size_t ncsv)
+{
+    char dir[256], cfg[512], out[512];
+    e2e_tmpdir(dir, sizeof dir);
+    e2e_write(dir, "t.ini", ini, cfg, sizeof cfg);
+    return e2e_run_table(cfg, NULL, "hvb25_accuracy", nrows, out, sizeof out, csv, ncsv);
+}
+
+Test(e2e_hvb25_accuracy, order1_plane_is_exact, .timeout = 60)
+{
+    char csv[700];
+    run_text("[study]\nname = hvb25_accuracy\nfilters = nearest trilinear hermite\n" PLANE
+             "[field]\nkind = proxy\norder = 1\nres = 6\ninput = sdf\nstorage = double\n"
+             "[eval]\nn = 23\n",
+             3, csv, sizeof csv);
+    for (long r = 0; r < 3; r++) {
+        cr_expect(e2e_csv_get(csv, r, "linf") < 1e-13, "row %ld: linf %g", r,
+                  e2e_csv_get(csv, r, "linf"));
+        cr_expect_eq(e2e_csv_get(csv, r, "count"), 23.0 * 23 * 23);
+        cr_expect_eq(e2e_csv_get(csv, r, "scalars"), 3.0 * 216);
+        /* 3 doubles per cell + one sign byte (the plane has an inside) */
+        cr_expect_eq(e2e_csv_get(csv, r, "bytes"), 216.0 * 25);
+    }
+}
+
+Test(e2e_hvb25_accuracy, order2_sphere_is_exact, .timeout = 60)
+{
+    char csv[700];
+    run_text("[study]\nname = hvb25_accuracy\nfilters = nearest trilinear hermite\nband = 0.1\n" SPHERE
+             "[field]\nkind = proxy\norder = 2\nres = 8\ninput = sdf\ncurvature = analytic\n"
+             "storage = double\n[eval]\nn = 25\n",
+             3, csv, sizeof csv);
+    cr_expect(e2e_csv_get(csv, 0, "linf_band") < 1e-10, "nearest in the band: %g",
+              e2e_csv_get(csv, 0, "linf_band"));
+    cr_expect(e2e_csv_get(csv, 0, "count_band") > 100);
+    for (long r = 1; r < 3; r++)
+        cr_expect(e2e_csv_get(csv, r, "linf") < 1e-10, "row %ld everywhere: %g", r,
+                  e2e_csv_get(csv, r, "linf"));
+}
+
+/* Eval nodes = the 8^3 cell centres (lo = -1 + h/2, hi = 1 - h/2, n = 8). */
+Test(e2e_hvb25_accuracy, half_storage_at_cell_centres, .timeout = 60)
+{
+    char csv[700];
+    const char *fmt = "[study]\nname = hvb25_accuracy\n" TORUS
+                      "[field]\nkind = proxy\norder = 1\nres = 8\ninput = sdf\nstorage = %s\n"
+                      "[eval]\nn = 8\nlo = -0.875 -0.875 -0.875\nhi = 0.875 0.875 0.875\n";
+    char ini[1024];
+    snprintf(ini, sizeof ini, fmt, "half");
+    run_text(ini, 1, csv, sizeof csv);
+    /* max |d| over the centres: the corner (0.875, 0.875, 0.875) */
+    const double c = 0.875, rho = sqrt(2 * c * c) - 0.6, dmax = sqrt(rho * rho + c * c) - 0.25;
+    const double linf = e2e_csv_get(csv, 0, "linf");
+    cr_expect(linf <= ldexp(1.0, -11) * dmax * (1 + 1e-6), "half: %g > %g", linf,
+              ldexp(1.0, -11) * dmax);
+    cr_expect(linf > 0, "half must round");
+    snprintf(ini, sizeof ini, fmt, "double");
+    run_text(ini, 1, csv, sizeof csv);
+    cr_expect(e2e_csv_get(csv, 0, "linf") < 1e-14, "double: %g", e2e_csv_get(csv, 0, "linf"));
+}
+
+Test(e2e_hvb25_accuracy, trilinear_peer_worst_at_the_sphere_centre, .timeout = 60)
+{
+    char csv[700];
+    run_text("[study]\nname = hvb25_accuracy\n" SPHERE
+             "[field]\nkind = gridpeer\nmethod = trilinear0\nres = 8\n[eval]\nn = 17\n",
+             1, csv, sizeof csv);
+    const double h = 0.25;
+    cr_expect(fabs(e2e_csv_get(csv, 0, "worst_err") - sqrt(3.0) * h / 2) < 1e-15);
+    cr_expect(fabs(e2e_csv_get(csv, 0, "worst_x")) < 1e-15);
+    cr_expect(fabs(e2e_csv_get(csv, 0, "worst_d") + 0.5) < 1e-15);
+    /* the centre is medial: its footpoint (r e_x: the sphere's gradient at its
+     * centre is the first axis, geom/shape.h) is r |e_x - (1,1,1)/sqrt 3| =
+     * r sqrt(2 - 2/sqrt 3) from its cell centre's, in cells of h = r/2 */
+    cr_expect(fabs(e2e_csv_get(csv, 0, "worst_jump") - 2 * sqrt(2 - 2 / sqrt(3.0))) < 1e-12);
+    cr_expect(e2e_csv_get(csv, 0, "linf_off") < e2e_csv_get(csv, 0, "linf"));
+    cr_expect_eq(e2e_csv_get(csv, 0, "scalars"), 512);
+}
+
+Test(e2e_hvb25_accuracy, bad_keys_exit_2, .timeout = 60)
+{
+    e2e_expect_bad_config("[study]\nname = hvb25_accuracy\nfilters = nearest bilinear\n" SPHERE
+                          "[field]\nkind = proxy\n",
+                          "filters", "bilinear");
+    e2e_expect_bad_config("[study]\nname = hvb25_accuracy\n" SPHERE
+                          "[field]\nkind = proxy\nres = 0\n",
+                          "res", NULL);
+    e2e_expect_bad_config("[study]\nname = hvb25_accuracy\n" SPHERE
+                          "[field]\nkind = gridpeer\nmethod = taylor3\n",
+                          "method", "taylor3");
+    e2e_expect_bad_config("[study]\nname = hvb25_accuracy\nfilters = nearest\n" SPHERE
+                          "[field]\nkind = gridpeer\n",
+                          "filters", "proxy field");
+    e2e_expect_bad_config("[study]\nname = hvb25_accuracy\nreference = nope\n" SPHERE
+                          "[field]\nkind = exact\n",
+                          "reference", "nope");
+}
