@@ -29,6 +29,7 @@
  *   dfl_pht_spline_locate       index of the cell holding a point (tmesh leaf order)
  *   dfl_pht_spline_cell         box and coefficients of cell i
  *   dfl_pht_eval                batched value, gradient, Hessian
+ *   dfl_pht_eval_cell           the same with the cell given (no location)
  *   dfl_pht_jet                 exact jet along a ray (a dfl_dir_jet_fn)
  */
 #ifndef DFL_PHT_SPLINE_H
@@ -90,6 +91,11 @@ const double *dfl_pht_spline_cell(const dfl_pht_spline *s, size_t i, double *lo,
  * thread-safe: callers parallelize over chunks (the field adapter does). */
 void dfl_pht_eval(const dfl_pht_spline *s, size_t m, const double *pts, double *val,
                   double *grad, double *hess);
+
+/* As dfl_pht_eval, but every point is evaluated with the polynomial of cell
+ * i (also outside that cell: polynomial extrapolation). */
+void dfl_pht_eval_cell(const dfl_pht_spline *s, size_t i, size_t m, const double *pts,
+                       double *val, double *grad, double *hess);
 
 /* Exact jet of t -> f(x + t dir) at t = 0+ to order K: the cell that
  * x + t dir enters for small t > 0 is a polynomial of degree <= 3 dim along
