@@ -5,6 +5,7 @@
 
 #include "bs04/bs04.h"
 #include "harness/experiment.h"
+#include "sjp10/sjp10.h"
 #include "smoke/smoke.h"
 
 Test(registry, names_unique_and_found)
@@ -28,7 +29,7 @@ Test(registry, names_unique_and_found)
  * studies of the per-paper lists. */
 Test(registry, concatenates_paper_lists)
 {
-    const dfl_study *const *lists[] = {dfl_smoke_studies, dfl_bs04_studies};
+    const dfl_study *const *lists[] = {dfl_smoke_studies, dfl_bs04_studies, dfl_sjp10_studies};
     size_t total = 0;
     for (size_t l = 0; l < sizeof lists / sizeof lists[0]; l++)
         for (const dfl_study *const *s = lists[l]; *s; s++) {
@@ -38,4 +39,6 @@ Test(registry, concatenates_paper_lists)
     cr_assert_eq(total, dfl_study_count());
     for (const dfl_study *const *s = dfl_bs04_studies; *s; s++)
         cr_assert(strncmp((*s)->name, "bs04_", 5) == 0, "%s in the bs04 list", (*s)->name);
+    for (const dfl_study *const *s = dfl_sjp10_studies; *s; s++)
+        cr_assert(strncmp((*s)->name, "sjp10_", 6) == 0, "%s in the sjp10 list", (*s)->name);
 }
