@@ -3,6 +3,7 @@
 distance functions the sjp10_cells study fits, on the same validation points.
 
     sjp10_fitpack.py --results DIR [--dflab build/dflab] [--val-n 401] [--band 0.02]
+                     [--cases circle,...] [--s0-n 9,17,...] [--rms 1e-3,...]
 
 Shapes: configs/shapes/sjp10_{circle,convex,nonconvex,tip}.ini and the smooth
 case of configs/paper/sjp10/sjp10_cells.ini (a circle centred outside the
@@ -107,13 +108,13 @@ def evaluate(spl, xn, xm):
     return vn, vm
 
 
-def run_case(name, text, dflab, val_n, w, tmp):
+def run_case(name, text, dflab, val_n, w, tmp, s0_n=S0_N, rms=RMS):
     cfg = os.path.join(tmp, f"{name}.ini")
     with open(cfg, "w") as fp:
         fp.write(text.format(root=ROOT) + "[field]\nkind = exact\n")
     xn, xm = grid_axes(val_n), mid_axes(val_n)
     pn, pm = mesh_points(xn, xn), mesh_points(xm, xm)
-    grids = [mesh_points(grid_axes(n), grid_axes(n)) for n in S0_N]
+    grids = [mesh_points(grid_axes(n), grid_axes(n)) for n in s0_n]
     allp = np.vstack([pn, pm] + grids)
     d, g = probe(dflab, cfg, allp, tmp)
     nn, nm = len(pn), len(pm)
@@ -136,14 +137,14 @@ def run_case(name, text, dflab, val_n, w, tmp):
                      "seconds": seconds})
 
     at = nn + nm
-    for n, gp in zip(S0_N, grids):
+    for n, gp in zip(s0_n, grids):
         z = d[at:at + len(gp)].reshape(n, n).T  # z[i, j] = f(x_i, y_j)
         at += len(gp)
         t0 = time.perf_counter()
         spl = RectBivariateSpline(grid_axes(n), grid_axes(n), z, kx=3, ky=3, s=0)
         row("fitpack_s0", f"n={n}", spl, time.perf_counter() - t0)
     zdata = dn.reshape(val_n, val_n).T
-    for r in RMS:
+    for r in rms:
         s = nn * r * r
         t0 = time.perf_counter()
         spl = RectBivariateSpline(xn, xn, zdata, kx=3, ky=3, s=s)
@@ -160,6 +161,8 @@ def main(argv=None):
     ap.add_argument("--band", type=float, default=0.02)
     ap.add_argument("--cases", default=",".join(c for c, _ in CASES),
                     help="comma-separated subset of " + ",".join(c for c, _ in CASES))
+    ap.add_argument("--s0-n", default=",".join(map(str, S0_N)), help="grid sizes of the s = 0 fits")
+    ap.add_argument("--rms", default=",".join(map(str, RMS)), help="target RMS residuals of the s > 0 fits")
     a = ap.parse_args(argv)
     want = a.cases.split(",")
     unknown = [c for c in want if c not in dict(CASES)]
@@ -169,12 +172,21 @@ def main(argv=None):
     if a.val_n < 2:
         print("sjp10_fitpack: error: --val-n: expected >= 2", file=sys.stderr)
         return 2
+    try:
+        s0_n = [int(v) for v in a.s0_n.split(",") if v]
+        rms = [float(v) for v in a.rms.split(",") if v]
+    except ValueError:
+        print("sjp10_fitpack: error: --s0-n / --rms: expected comma-separated numbers", file=sys.stderr)
+        return 2
+    if any(n < 4 for n in s0_n) or any(not r > 0 for r in rms):
+        print("sjp10_fitpack: error: --s0-n: expected n >= 4; --rms: expected r > 0", file=sys.stderr)
+        return 2
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         try:
             for name, text in CASES:
                 if name in want:
-                    rows += run_case(name, text, a.dflab, a.val_n, a.band, tmp)
+                    rows += run_case(name, text, a.dflab, a.val_n, a.band, tmp, s0_n, rms)
         except subprocess.CalledProcessError as e:
             print(f"sjp10_fitpack: error: dflab probe failed: {e.stderr.strip()}", file=sys.stderr)
             return 1
