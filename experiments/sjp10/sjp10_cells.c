@@ -15,7 +15,7 @@
  *   uniform_levels = k1 k2 ...        uniform grid levels (0..12)
  *   uniform_samples = 1               estimator points per cell of the uniform
  *                                     fits (only its column uses them)
- *   val_n = 401, band = 0.02          validation grid (+ midpoints), medial band
+ *   val_n = 301, band = 0.02          validation grid (+ midpoints), medial band
  * Rows: one per case and method (pht: per eps; uniform: per level).
  * Signs: dflab's SDF is negative inside (sjp10: positive inside); errors
  * are absolute values and do not depend on it.
@@ -73,7 +73,7 @@ static dfl_status read_keys(const dfl_cfg *cfg, cells_keys *k, dfl_err *err)
                                   "expected integer levels in 0..12, got %g", k->levels[i]);
     if ((st = dfl_cfg_int_opt(cfg, "study", "uniform_samples", 1, 1, 4096, &k->uniform_samples, err)))
         return st;
-    if ((st = dfl_cfg_int_opt(cfg, "study", "val_n", 401, 2, 4001, &k->val_n, err))) return st;
+    if ((st = dfl_cfg_int_opt(cfg, "study", "val_n", 301, 2, 4001, &k->val_n, err))) return st;
     return dfl_cfg_double_opt(cfg, "study", "band", 0.02, 0.0, 1e300, &k->band, err);
 }
 

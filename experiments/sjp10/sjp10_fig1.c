@@ -7,7 +7,7 @@
  *   fit        = <section>       PHT fit options (experiments/cfg/pht_cfg.h:
  *                                eps, max_level, samples, split, estimator,
  *                                seed, lo, hi)
- *   val_n      = 401             validation grid nodes per axis (+ midpoints)
+ *   val_n      = 301             validation grid nodes per axis (+ midpoints)
  *   band       = 0.02            medial band width (pht/validate.h)
  *   image_n    = 201             nodes per axis of the .vti/.exr sample
  *   graph_n    = 101             nodes per axis of the graph surface
@@ -50,7 +50,7 @@ static dfl_status read_keys(const dfl_cfg *cfg, fig1_keys *k, dfl_err *err)
     if (!dfl_cfg_has_section(cfg, fsec))
         return dfl_cfg_reject(cfg, "study", "fit", err, "no section [%s]", fsec);
     if ((st = dfl_pht_opts_from_cfg(cfg, fsec, 2, &k->fit, err))) return st;
-    if ((st = dfl_cfg_int_opt(cfg, "study", "val_n", 401, 2, 4001, &k->val_n, err))) return st;
+    if ((st = dfl_cfg_int_opt(cfg, "study", "val_n", 301, 2, 4001, &k->val_n, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.02, 0.0, 1e300, &k->band, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "image_n", 201, 2, 4001, &k->image_n, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "graph_n", 101, 2, 2001, &k->graph_n, err))) return st;

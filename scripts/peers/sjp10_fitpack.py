@@ -2,7 +2,7 @@
 """SciPy FITPACK peer of sjp10 Fig. 2: bicubic splines of the same signed
 distance functions the sjp10_cells study fits, on the same validation points.
 
-    sjp10_fitpack.py --results DIR [--dflab build/dflab] [--val-n 401] [--band 0.02]
+    sjp10_fitpack.py --results DIR [--dflab build/dflab] [--val-n 301] [--band 0.02]
                      [--cases circle,...] [--s0-n 9,17,...] [--rms 1e-3,...]
 
 Shapes: configs/shapes/sjp10_{circle,convex,nonconvex,tip}.ini and the smooth
@@ -157,7 +157,7 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--results", required=True, help="results directory (writes <DIR>/sjp10_peers/)")
     ap.add_argument("--dflab", default=os.environ.get("DFL_DFLAB", os.path.join(ROOT, "build", "dflab")))
-    ap.add_argument("--val-n", type=int, default=401)
+    ap.add_argument("--val-n", type=int, default=301)
     ap.add_argument("--band", type=float, default=0.02)
     ap.add_argument("--cases", default=",".join(c for c, _ in CASES),
                     help="comma-separated subset of " + ",".join(c for c, _ in CASES))

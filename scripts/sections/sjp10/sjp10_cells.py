@@ -22,7 +22,7 @@ ASSUMPTIONS = [
     "uniform grid's dofs likewise; FITPACK's stored scalars = coefficients + knots (coefficients "
     "alone in the CSV).",
     "FITPACK peer (scripts/peers/sjp10_fitpack.py, SciPy RectBivariateSpline kx = ky = 3): s = 0 on "
-    "n × n grids (n = 9..257) and s = N r² on the 401² node data with target RMS r = 1e-3..3e-6, "
+    "n × n grids (n = 9..257) and s = N r² on the 301² node data with target RMS r = 1e-3..3e-6, "
     "validated on the same nodes + midpoints (for s > 0 the nodes are its own data).",
 ]
 
@@ -63,7 +63,7 @@ def render(ctx):
                          int(_f(r, "max_cell_level")), "yes" if _f(r, "converged") == 1 else "no",
                          _f(r, "est_max"), _f(r, "val_max"), _f(r, "val_off_max"), _f(r, "val_mean"),
                          _f(r, "t_total")])
-    md += "**Adaptive PHT fits** (validation on 401² nodes + 400² midpoints):\n\n"
+    md += "**Adaptive PHT fits** (validation on 301² nodes + 300² midpoints):\n\n"
     md += dflio.md_table(["case", "eps", "cells", "dofs", "deepest level", "met eps", "estimator max",
                           "val max", "val max off band", "val mean", "time s"], body) + "\n\n"
     body = []

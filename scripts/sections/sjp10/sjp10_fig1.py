@@ -21,7 +21,7 @@ ASSUMPTIONS = [
     "Footpoints: geom's robust multi-start Newton with step control (geom/footpoint.h), not the "
     "paper's bare Newton from k ≤ 3 sampled starts; Hermite data (f, fx, fy, fxy) from the closed "
     "forms through the footpoint's curvature (pht/hermite.c derives sjp10 eq. 2–7).",
-    "Validation (sjp10 reports only the estimator): 401² nodes plus 400² cell midpoints of the "
+    "Validation (sjp10 reports only the estimator): 301² nodes plus 300² cell midpoints of the "
     "square, never the estimator's points; 'off band' excludes points whose normal line meets the "
     "medial axis within w = 0.02 (pht/validate.h).",
     sc.SIGN_NOTE,
