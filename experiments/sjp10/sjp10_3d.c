@@ -21,6 +21,7 @@
  *   band      = 0           medial band width (0: every point counts)
  *   cache     = false       true: exact values computed once and kept
  *                           (slow references, small grids); false: per chunk
+ *   eps, uniform_levels     the case's own lists (default: the study's)
  * Rows: one per case and fit.  Signs: negative inside (sjp10: positive).
  */
 #include <math.h>
@@ -46,6 +47,8 @@ typedef struct case3 {
     long val_n;
     bool midpoints, cache;
     double band;
+    double *eps, *levels;   /* the case's own lists (NULL: the study's) */
+    size_t neps, nlevels;
 } case3;
 
 typedef struct keys3 {
@@ -63,9 +66,28 @@ static void keys_free(keys3 *k)
         dfl_pht_source_free(k->c[i].src);
         if (k->c[i].have_shape) dfl_shape_free(&k->c[i].shape);
         if (k->c[i].have_ref) dfl_shape_free(&k->c[i].ref);
+        free(k->c[i].eps);
+        free(k->c[i].levels);
     }
     free(k->eps);
     free(k->levels);
+}
+
+/* [sec] eps (thresholds > 0) or uniform_levels (integers 0..7), whichever key is given. */
+static dfl_status read_lists(const dfl_cfg *cfg, const char *sec, const char *eps_key,
+                             const char *lev_key, double **out, size_t *n, dfl_err *err)
+{
+    const char *key = eps_key ? eps_key : lev_key;
+    dfl_status st = dfl_cfg_doubles(cfg, sec, key, eps_key ? 1 : 0, out, n, err);
+    if (st) return st;
+    for (size_t i = 0; i < *n; i++) {
+        const double v = (*out)[i];
+        if (eps_key && !(v > 0.0))
+            return dfl_cfg_reject(cfg, sec, key, err, "expected thresholds > 0, got %g", v);
+        if (!eps_key && !(v >= 0 && v <= 7 && v == floor(v)))
+            return dfl_cfg_reject(cfg, sec, key, err, "expected integer levels in 0..7, got %g", v);
+    }
+    return DFL_OK;
 }
 
 static dfl_status read_case(const dfl_cfg *cfg, case3 *c, dfl_err *err)
@@ -95,7 +117,14 @@ static dfl_status read_case(const dfl_cfg *cfg, case3 *c, dfl_err *err)
     if ((st = dfl_cfg_int_opt(cfg, sec, "val_n", 217, 2, 1001, &c->val_n, err))) return st;
     if ((st = dfl_cfg_bool_opt(cfg, sec, "midpoints", false, &c->midpoints, err))) return st;
     if ((st = dfl_cfg_bool_opt(cfg, sec, "cache", false, &c->cache, err))) return st;
-    return dfl_cfg_double_opt(cfg, sec, "band", 0.0, 0.0, 1e300, &c->band, err);
+    if ((st = dfl_cfg_double_opt(cfg, sec, "band", 0.0, 0.0, 1e300, &c->band, err))) return st;
+    if (dfl_cfg_has(cfg, sec, "eps") &&
+        (st = read_lists(cfg, sec, "eps", NULL, &c->eps, &c->neps, err)))
+        return st;
+    if (dfl_cfg_has(cfg, sec, "uniform_levels") &&
+        (st = read_lists(cfg, sec, NULL, "uniform_levels", &c->levels, &c->nlevels, err)))
+        return st;
+    return DFL_OK;
 }
 
 static dfl_status read_keys(const dfl_cfg *cfg, keys3 *k, dfl_err *err)
@@ -112,16 +141,8 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys3 *k, dfl_err *err)
     if (!dfl_cfg_has_section(cfg, fsec))
         return dfl_cfg_reject(cfg, "study", "fit", err, "no section [%s]", fsec);
     if ((st = dfl_pht_opts_from_cfg(cfg, fsec, 3, &k->fit, err))) return st;
-    if ((st = dfl_cfg_doubles(cfg, "study", "eps", 1, &k->eps, &k->neps, err))) return st;
-    for (size_t i = 0; i < k->neps; i++)
-        if (!(k->eps[i] > 0.0))
-            return dfl_cfg_reject(cfg, "study", "eps", err, "expected thresholds > 0, got %g", k->eps[i]);
-    if ((st = dfl_cfg_doubles(cfg, "study", "uniform_levels", 0, &k->levels, &k->nlevels, err)))
-        return st;
-    for (size_t i = 0; i < k->nlevels; i++)
-        if (!(k->levels[i] >= 0 && k->levels[i] <= 7 && k->levels[i] == floor(k->levels[i])))
-            return dfl_cfg_reject(cfg, "study", "uniform_levels", err,
-                                  "expected integer levels in 0..7, got %g", k->levels[i]);
+    if ((st = read_lists(cfg, "study", "eps", NULL, &k->eps, &k->neps, err))) return st;
+    if ((st = read_lists(cfg, "study", NULL, "uniform_levels", &k->levels, &k->nlevels, err))) return st;
     return dfl_cfg_int_opt(cfg, "study", "uniform_samples", 1, 1, 4096, &k->uniform_samples, err);
 }
 
@@ -186,10 +207,12 @@ static dfl_status run_case(const keys3 *k, const case3 *c, const dfl_study_ctx *
     if (c->cache)
         st = sjp10_ref_grid(&c->ref, c->lo, c->hi, (int)c->val_n, c->midpoints, c->band,
                             ctx->threads, &ref, err);
-    for (size_t i = 0; i < k->neps && !st; i++)
-        st = one_fit(k, c, c->cache ? &ref : NULL, k->eps[i], -1, ctx, t, err);
-    for (size_t i = 0; i < k->nlevels && !st; i++)
-        st = one_fit(k, c, c->cache ? &ref : NULL, NAN, (long)k->levels[i], ctx, t, err);
+    const double *eps = c->eps ? c->eps : k->eps, *lev = c->levels ? c->levels : k->levels;
+    const size_t neps = c->eps ? c->neps : k->neps, nlev = c->levels ? c->nlevels : k->nlevels;
+    for (size_t i = 0; i < neps && !st; i++)
+        st = one_fit(k, c, c->cache ? &ref : NULL, eps[i], -1, ctx, t, err);
+    for (size_t i = 0; i < nlev && !st; i++)
+        st = one_fit(k, c, c->cache ? &ref : NULL, NAN, (long)lev[i], ctx, t, err);
     sjp10_ref_free(&ref);
     return st;
 }
