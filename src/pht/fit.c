@@ -46,6 +46,7 @@ void dfl_pht_fit_opts_default(int dim, dfl_pht_fit_opts *o)
     o->estimator = DFL_PHT_EST_RANDOM;
     o->seed = 1;
     o->grade = 1;
+    o->peaks = 1;
 }
 
 
@@ -218,9 +219,19 @@ static void cell_points(const fitter *F, const dfl_tmesh_cell *c, double *pts)
         memcpy(&b, &c->lo[j], sizeof b);
         s = mix64(s ^ (b + 0x632BE59BD9B4E019ull * (uint64_t)(j + 1)));
     }
-    for (int i = 0; i < F->npts; i++)
+    const int nr = F->o->samples;
+    for (int i = 0; i < nr; i++)
         for (int j = 0; j < dim; j++)
             pts[i * dim + j] = dfl_rng_splitmix(&s, c->lo[j], c->hi[j]);
+    /* the centre, then the face centres (axis a low, high) */
+    for (int q = 0; nr + q < F->npts; q++) {
+        double *x = pts + (size_t)(nr + q) * (size_t)dim;
+        for (int j = 0; j < dim; j++) x[j] = 0.5 * (c->lo[j] + c->hi[j]);
+        if (q > 0) {
+            int a = (q - 1) / 2;
+            x[a] = (q - 1) % 2 ? c->hi[a] : c->lo[a];
+        }
+    }
 }
 
 /* Estimator over all leaves; per-leaf error into err_out (leaf order).
@@ -251,7 +262,7 @@ static dfl_status estimate(fitter *F, double *err_out, dfl_pht_level *rec, dfl_e
     const int par = nt * (size_t)np > 4096;
 #pragma omp parallel if (par)
     {
-        double pts[4096 * 3];
+        double pts[(4096 + 7) * 3];
 #pragma omp for schedule(dynamic, 4)
         for (size_t k = 0; k < nt; k++) {
             dfl_tmesh_cell c;
@@ -264,7 +275,7 @@ static dfl_status estimate(fitter *F, double *err_out, dfl_pht_level *rec, dfl_e
     double t1 = omp_get_wtime();
 #pragma omp parallel if (par)
     {
-        double pts[4096 * 3], val[4096], g[4096 * 3];
+        double pts[(4096 + 7) * 3], val[4096 + 7], g[(4096 + 7) * 3];
 #pragma omp for schedule(dynamic, 4)
         for (size_t k = 0; k < nt; k++) {
             size_t i = todo[k], id = leaves[i];
@@ -352,7 +363,7 @@ static dfl_status fitter_init(fitter *F, const dfl_pht_source *src, const dfl_ph
         if (n < 1) n = 1;
         F->npts = F->dim == 2 ? n * n : n * n * n;
     } else {
-        F->npts = o->samples;
+        F->npts = o->samples + (o->peaks ? 1 + 2 * F->dim : 0);
     }
     return dfl_tmesh_new(F->dim, o->lo, o->hi, &F->mesh, err);
 }
