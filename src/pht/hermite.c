@@ -56,6 +56,7 @@
  * medial axis, from a poor start), geom does not. */
 #include "pht/hermite.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -96,6 +97,9 @@ void dfl_pht_source_free(dfl_pht_source *src) { free(src); }
 int dfl_pht_source_dim(const dfl_pht_source *src) { return src->shape->dim; }
 const dfl_shape *dfl_pht_source_shape(const dfl_pht_source *src) { return src->shape; }
 
+static dfl_status hermite_exact(const dfl_pht_source *src, const double *x, double *out,
+                                int *flags, dfl_err *err);
+
 static dfl_status jet2(const dfl_shape *s, const double *x, const double *e, int K, double *D,
                        dfl_err *err)
 {
@@ -112,6 +116,37 @@ dfl_status dfl_pht_hermite(const dfl_pht_source *src, const double *x, double *d
     const dfl_shape *s = src->shape;
     double out[DFL_PHT_NDATA_MAX];
     int fl = 0;
+    dfl_status st = hermite_exact(src, x, out, &fl, err);
+    if (st == DFL_E_NUMERIC) {
+        /* a focal or medial point: d is not differentiable here, so any data
+         * are a choice; take the one-sided gradient of eval and no twist */
+        double g[3];
+        memset(out, 0, sizeof out);
+        out[0] = dfl_shape_eval1(s, x, g);
+        out[1] = g[0];
+        out[2] = g[1];
+        if (s->dim == 3) out[4] = g[2];
+        fl = DFL_PHT_HERMITE_FALLBACK | DFL_PHT_HERMITE_MEDIAL;
+        st = DFL_OK;
+        dfl_err_clear(err);
+    }
+    if (st != DFL_OK) return st;
+    int nd = DFL_PHT_NDATA(s->dim);
+    for (int b = 0; b < nd; b++)
+        if (!isfinite(out[b]))
+            return dfl_err_set(err, DFL_E_NUMERIC,
+                               "PHT source: Hermite data of '%s' not finite at a vertex",
+                               s->ops->kind);
+    memcpy(data, out, (size_t)nd * sizeof *out);
+    if (flags) *flags = fl;
+    return DFL_OK;
+}
+
+static dfl_status hermite_exact(const dfl_pht_source *src, const double *x, double *out,
+                                int *flags, dfl_err *err)
+{
+    const dfl_shape *s = src->shape;
+    int fl = 0;
     dfl_status st;
     if (src->imp) {
         dfl_sdf_derivs D;
@@ -124,7 +159,11 @@ dfl_status dfl_pht_hermite(const dfl_pht_source *src, const double *x, double *d
         out[5] = D.H[2];
         out[6] = D.H[5];
         out[7] = D.dxyz;
-        if (D.foot.medial) fl |= DFL_PHT_HERMITE_MEDIAL;
+        /* a footpoint tie (e.g. on the torus' axis, where a whole circle
+         * ties) gives jets of one arbitrary branch, or none: use the
+         * fallback there */
+        if (D.foot.medial)
+            return dfl_err_set(err, DFL_E_NUMERIC, "PHT source: medial footpoint tie");
     } else if (s->dim == 2) {
         double g[2], a[1], b[1];
         out[0] = dfl_shape_eval1(s, x, g);
@@ -148,14 +187,10 @@ dfl_status dfl_pht_hermite(const dfl_pht_source *src, const double *x, double *d
         out[6] = (D[0][0] - D[1][0] - D[2][0] + D[3][0]) / 8.0;
         out[7] = (D[0][1] - D[1][1] - D[2][1] - D[3][1]) / 24.0;
     }
-    int nd = DFL_PHT_NDATA(s->dim);
-    for (int b = 0; b < nd; b++)
-        if (!(out[b] == out[b]))
-            return dfl_err_set(err, DFL_E_NUMERIC,
-                               "PHT source: Hermite data of '%s' not finite at a vertex",
-                               s->ops->kind);
-    memcpy(data, out, (size_t)nd * sizeof *out);
-    if (flags) *flags = fl;
+    for (int b = 0; b < DFL_PHT_NDATA(s->dim); b++)
+        if (!isfinite(out[b]))
+            return dfl_err_set(err, DFL_E_NUMERIC, "PHT source: derivatives not finite");
+    *flags = fl;
     return DFL_OK;
 }
 

@@ -41,6 +41,11 @@
 /* Flags of dfl_pht_hermite. */
 #define DFL_PHT_HERMITE_MEDIAL 1  /* the point is (numerically) on the medial axis:
                                      the data are those of one footpoint's branch */
+#define DFL_PHT_HERMITE_FALLBACK 2 /* the jets failed (a focal point such as a torus'
+                                      axis) or the footpoint ties (implicit surfaces
+                                      report ties): value and gradient
+                                      are the shape's eval (its deterministic one-sided
+                                      gradient), the mixed derivatives are 0 */
 
 typedef struct dfl_pht_source dfl_pht_source;
 
@@ -56,9 +61,11 @@ int dfl_pht_source_dim(const dfl_pht_source *src);
 const dfl_shape *dfl_pht_source_shape(const dfl_pht_source *src);
 
 /* The DFL_PHT_NDATA(dim) data at x into data (mask order, dflab sign);
- * *flags (may be NULL) gets DFL_PHT_HERMITE_* bits.  Thread-safe, no
- * allocation outside the shape's own footpoint solver.  DFL_E_NUMERIC if
- * the footpoint or the jets fail (data then untouched). */
+ * *flags (may be NULL) gets DFL_PHT_HERMITE_* bits.  Where the SDF is not
+ * differentiable (medial axis, focal points) any data are a choice: when
+ * the jets fail there the FALLBACK data are returned (flagged).  Thread-safe,
+ * no allocation outside the shape's own footpoint solver.  DFL_E_NUMERIC
+ * only if even the value or gradient is not finite (data then untouched). */
 dfl_status dfl_pht_hermite(const dfl_pht_source *src, const double *x, double *data, int *flags,
                            dfl_err *err);
 

@@ -115,27 +115,38 @@ void dfl_pht_resolve(const dfl_tmesh *m, double *data)
     }
 }
 
+/* Separable: the local data, indexed per axis by q = 2 corner + derivative,
+ * form a 4^dim tensor; the coefficients are that tensor with the 4x4 basis
+ * matrix applied along every axis (3 * 64 * 4 products in 3D instead of
+ * 64 * 64 * 3). */
 void dfl_pht_cell_poly(int dim, const double *lo, const double *hi, const double *corner,
                        double *coef)
 {
     int nd = DFL_PHT_NDATA(dim), nc = DFL_PHT_NCOEF(dim), ncor = 1 << dim;
-    double h[3] = {1, 1, 1};
+    double h[3] = {1, 1, 1}, T[64];
     for (int j = 0; j < dim; j++) h[j] = hi[j] - lo[j];
-    memset(coef, 0, (size_t)nc * sizeof *coef);
     for (int c = 0; c < ncor; c++)
         for (int b = 0; b < nd; b++) {
             double D = corner[c * nd + b];
-            for (int j = 0; j < dim; j++)
+            int q = 0;
+            for (int j = 0; j < dim; j++) {
                 if (b >> j & 1) D *= h[j];
-            if (D == 0.0) continue;
-            const double *P[3];
-            for (int j = 0; j < dim; j++) P[j] = HB[2 * ((c >> j) & 1) + ((b >> j) & 1)];
-            for (int k = 0; k < nc; k++) {
-                double w = D;
-                for (int j = 0; j < dim; j++) w *= P[j][(k >> (2 * j)) & 3];
-                coef[k] += w;
+                q += (2 * ((c >> j) & 1) + ((b >> j) & 1)) << (2 * j);
+            }
+            coef[q] = D;
+        }
+    for (int j = 0; j < dim; j++) {
+        int st = 1 << (2 * j);
+        for (int k = 0; k < nc; k++) {
+            if ((k >> (2 * j)) & 3) continue;
+            for (int i = 0; i < 4; i++) {
+                double acc = 0.0;
+                for (int q = 0; q < 4; q++) acc += HB[q][i] * coef[k + q * st];
+                T[k + i * st] = acc;
             }
         }
+        memcpy(coef, T, (size_t)nc * sizeof *coef);
+    }
 }
 
 dfl_status dfl_pht_spline_new(const dfl_tmesh *m, const double *data, dfl_pht_spline **out,
@@ -185,6 +196,7 @@ dfl_status dfl_pht_spline_new(const dfl_tmesh *m, const double *data, dfl_pht_sp
         dfl_tmesh_cell_get(m, c.child, &k);
         for (int j = 0; j < dim; j++) q->mid[j] = k.hi[j];
     }
+#pragma omp parallel for schedule(static) if (ncell > 4096)
     for (size_t i = 0; i < ncell; i++) {
         dfl_tmesh_cell c;
         dfl_tmesh_cell_get(m, leaves[i], &c);

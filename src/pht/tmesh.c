@@ -37,6 +37,7 @@ typedef struct tvert {
     uint32_t key[3];
     int kind, axis;
     size_t dep[4];
+    size_t owner;
 } tvert;
 
 struct dfl_tmesh {
@@ -129,6 +130,7 @@ static size_t vert_get(dfl_tmesh *m, const uint32_t *k)
     memcpy(t->key, k, sizeof t->key);
     t->kind = DFL_TMESH_BASE;
     t->axis = -1;
+    t->owner = NONE;
     for (int i = 0; i < 4; i++) t->dep[i] = NONE;
     size_t i = key_hash(k) & (m->hcap - 1);
     while (m->hash[i] != NONE) i = (i + 1) & (m->hcap - 1);
@@ -217,7 +219,7 @@ static size_t descend(const dfl_tmesh *m, const uint32_t *k, const int *pos)
 static void classify_vertex(dfl_tmesh *m, size_t v)
 {
     tvert *t = &m->vert[v];
-    int best_vol = -1, best_cell = -1;
+    int best_vol = -1;
     size_t best = NONE;
     int ncorner = 1 << m->dim;
     for (int o = 0; o < ncorner; o++) {
@@ -237,11 +239,10 @@ static void classify_vertex(dfl_tmesh *m, size_t v)
         if (inner && vol > best_vol) {
             best_vol = vol;
             best = id;
-            best_cell = o;
         }
     }
-    (void)best_cell;
     t->axis = -1;
+    t->owner = best;
     for (int i = 0; i < 4; i++) t->dep[i] = NONE;
     if (best == NONE) {
         t->kind = DFL_TMESH_BASE;
@@ -291,11 +292,17 @@ static void order_visit(dfl_tmesh *m, size_t v, unsigned char *state)
     m->order[m->norder++] = v;
 }
 
-static int classify(dfl_tmesh *m)
+/* Classifies the vertices v >= from and those whose owner is marked (NULL:
+ * all), then recounts and reorders.  Splitting a cell C changes the leaves
+ * around a vertex only if C was one of them: C's corners stay corners (of
+ * C's children), a vertex owned by another, at least as large leaf keeps
+ * that owner, so only new vertices and those owned by C can change. */
+static int classify(dfl_tmesh *m, size_t from, const unsigned char *mark)
 {
     m->nbase = 0;
     for (size_t v = 0; v < m->nvert; v++) {
-        classify_vertex(m, v);
+        if (v >= from || !mark || (m->vert[v].owner != NONE && mark[m->vert[v].owner]))
+            classify_vertex(m, v);
         if (m->vert[v].kind == DFL_TMESH_BASE) m->nbase++;
     }
     size_t *order = realloc(m->order, (m->nvert ? m->nvert : 1) * sizeof *order);
@@ -338,7 +345,8 @@ dfl_status dfl_tmesh_new(int dim, const double *lo, const double *hi, dfl_tmesh 
     r->parent = NONE;
     r->child = NONE;
     m->ncell = 1;
-    if (cell_corners(m, 0) != 0 || collect_leaves(m) != 0 || classify(m) != 0) goto nomem;
+    if (cell_corners(m, 0) != 0 || collect_leaves(m) != 0 || classify(m, 0, NULL) != 0)
+        goto nomem;
     *out = m;
     return DFL_OK;
 nomem:
@@ -424,14 +432,20 @@ dfl_status dfl_tmesh_refine(dfl_tmesh *m, size_t n, const size_t *ids, dfl_pht_s
                                "T-mesh: cell %zu (level %d) is at the lattice resolution", ids[i],
                                c->level);
     }
+    size_t from = m->nvert;
+    unsigned char *mark = calloc(m->ncell ? m->ncell : 1, 1);
+    if (!mark) return dfl_err_set(err, DFL_E_NOMEM, "T-mesh: out of memory");
+    for (size_t i = 0; i < n; i++) mark[ids[i]] = 1;
     for (size_t i = 0; i < n; i++)
         if (m->cell[ids[i]].nchild == 0 && split_cell(m, ids[i], rule) != 0) goto nomem;
-    if (collect_leaves(m) != 0 || classify(m) != 0) goto nomem;
+    if (collect_leaves(m) != 0 || classify(m, from, mark) != 0) goto nomem;
+    free(mark);
     return DFL_OK;
 nomem:
     /* keep the mesh valid: whatever was split is a proper tree */
+    free(mark);
     collect_leaves(m);
-    classify(m);
+    classify(m, 0, NULL);
     return dfl_err_set(err, DFL_E_NOMEM, "T-mesh: out of memory");
 }
 
@@ -477,6 +491,7 @@ void dfl_tmesh_vertex_get(const dfl_tmesh *m, size_t v, dfl_tmesh_vertex *out)
     out->kind = t->kind;
     out->axis = t->axis;
     memcpy(out->dep, t->dep, sizeof out->dep);
+    out->owner = t->owner;
 }
 
 size_t dfl_tmesh_nbase(const dfl_tmesh *m) { return m->nbase; }

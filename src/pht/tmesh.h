@@ -88,6 +88,8 @@ typedef struct dfl_tmesh_vertex {
     size_t dep[4];        /* EDGE: ends (low, high along axis); FACE: corners, index
                              bit 0 = high along the first tangential axis, bit 1 = the
                              second (tangential axes in increasing order) */
+    size_t owner;         /* EDGE/FACE: the leaf whose edge/face holds the vertex
+                             (the coarse cell its data come from); BASE: SIZE_MAX */
 } dfl_tmesh_vertex;
 
 typedef struct dfl_tmesh_cell {

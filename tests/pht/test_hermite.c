@@ -74,7 +74,7 @@ static void check_shape(const dfl_shape *s, double lo, double hi, double dmin, d
 
 static const double TOL[4] = {1e-14, 1e-8, 1e-5, 1e-4};
 
-Test(hermite, circle_matches_finite_differences)
+Test(pht_hermite, circle_matches_finite_differences)
 {
     dfl_shape s;
     const double c[2] = {0.5, 0.5};
@@ -90,7 +90,7 @@ Test(hermite, circle_matches_finite_differences)
     dfl_shape_free(&s);
 }
 
-Test(hermite, closed_bspline_curve_matches_finite_differences)
+Test(pht_hermite, closed_bspline_curve_matches_finite_differences)
 {
     dfl_bspline c;
     cf_make_blob(&c);
@@ -118,7 +118,7 @@ Test(hermite, closed_bspline_curve_matches_finite_differences)
     dfl_shape_free(&s);
 }
 
-Test(hermite, sphere_and_analytic_torus_match_finite_differences)
+Test(pht_hermite, sphere_and_analytic_torus_match_finite_differences)
 {
     dfl_shape s;
     const double c[3] = {0.5, 0.5, 0.5}, ax[3] = {0, 0, 1};
@@ -131,7 +131,7 @@ Test(hermite, sphere_and_analytic_torus_match_finite_differences)
     dfl_shape_free(&s);
 }
 
-Test(hermite, implicit_torus_matches_finite_differences)
+Test(pht_hermite, implicit_torus_matches_finite_differences)
 {
     dfl_implicit *imp;
     const double c[3] = {0.5, 0.5, 0.5}, ax[3] = {0, 0, 1};
@@ -143,7 +143,7 @@ Test(hermite, implicit_torus_matches_finite_differences)
     dfl_shape_free(&s);
 }
 
-Test(hermite, rejects_shapes_without_derivatives_or_sign)
+Test(pht_hermite, rejects_shapes_without_derivatives_or_sign)
 {
     dfl_shape s;
     dfl_pht_source *src = NULL;

@@ -26,7 +26,7 @@ static dfl_tmesh *refined(int dim, int rule, uint64_t seed, const double *lo, co
 
 static const double LO[3] = {-0.3, 0.2, -1.0}, HI[3] = {1.7, 0.9, 0.5};
 
-Test(spline, reproduces_cubic_polynomials_on_any_refined_mesh)
+Test(pht_spline, reproduces_cubic_polynomials_on_any_refined_mesh)
 {
     for (int dim = 2; dim <= 3; dim++)
         for (int rule = 0; rule < DFL_PHT_SPLIT_COUNT; rule++)
@@ -145,7 +145,7 @@ static double max_jump(const dfl_pht_spline *s, uint64_t seed)
     return worst;
 }
 
-Test(spline, value_and_gradient_are_continuous_across_every_face)
+Test(pht_spline, value_and_gradient_are_continuous_across_every_face)
 {
     for (int dim = 2; dim <= 3; dim++)
         for (int rule = 0; rule < DFL_PHT_SPLIT_COUNT; rule++)
@@ -169,7 +169,7 @@ Test(spline, value_and_gradient_are_continuous_across_every_face)
             }
 }
 
-Test(spline, cell_polynomial_interpolates_its_corner_data)
+Test(pht_spline, cell_polynomial_interpolates_its_corner_data)
 {
     for (int dim = 2; dim <= 3; dim++) {
         int nd = DFL_PHT_NDATA(dim), nc = DFL_PHT_NCOEF(dim);

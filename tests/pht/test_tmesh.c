@@ -29,7 +29,7 @@ static size_t find_vertex(const dfl_tmesh *m, double x, double y)
     return 0;
 }
 
-Test(tmesh, one_cell_and_a_cross_split)
+Test(pht_tmesh, one_cell_and_a_cross_split)
 {
     dfl_tmesh *m = unit_mesh(2);
     cr_assert_eq(dfl_tmesh_nleaves(m), 1);
@@ -69,7 +69,7 @@ Test(tmesh, one_cell_and_a_cross_split)
     dfl_tmesh_free(m);
 }
 
-Test(tmesh, binary_split_takes_the_longest_side)
+Test(pht_tmesh, binary_split_takes_the_longest_side)
 {
     const double lo[2] = {0, 0}, hi[2] = {1, 3};
     dfl_tmesh *m;
@@ -85,7 +85,7 @@ Test(tmesh, binary_split_takes_the_longest_side)
     dfl_tmesh_free(m);
 }
 
-Test(tmesh, three_d_cross_split_of_one_octant)
+Test(pht_tmesh, three_d_cross_split_of_one_octant)
 {
     dfl_tmesh *m = unit_mesh(3);
     size_t root = 0;
@@ -203,7 +203,7 @@ static void check_locate(const dfl_tmesh *m, uint64_t seed)
     for (int j = 0; j < dim; j++) cr_assert_eq(c.lo[j], 0.5);
 }
 
-Test(tmesh, classification_matches_brute_force)
+Test(pht_tmesh, classification_matches_brute_force)
 {
     for (int dim = 2; dim <= 3; dim++)
         for (int rule = 0; rule < DFL_PHT_SPLIT_COUNT; rule++)
@@ -220,7 +220,7 @@ Test(tmesh, classification_matches_brute_force)
             }
 }
 
-Test(tmesh, split_names)
+Test(pht_tmesh, split_names)
 {
     cr_assert_str_eq(dfl_pht_split_name(DFL_PHT_SPLIT_BINARY), "binary");
     cr_assert_eq(dfl_pht_split_from_name("cross"), DFL_PHT_SPLIT_CROSS);
