@@ -1,5 +1,6 @@
 #include "cfg/field_cfg.h"
 
+#include "cfg/pht_cfg.h"
 #include "cfg/rfunc_cfg.h"
 #include "cfg/shape_cfg.h"
 #include "field/exact.h"
@@ -23,6 +24,7 @@ static dfl_status exact_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field 
 static const dfl_field_kind kinds[] = {
     {"exact", exact_from_cfg},
     {"rfunc", dfl_rfunc_field_from_cfg},
+    {"pht", dfl_pht_field_from_cfg},
 };
 #define NKINDS (sizeof kinds / sizeof kinds[0])
 

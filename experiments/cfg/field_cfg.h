@@ -2,6 +2,7 @@
  *
  *   kind = exact   the exact signed distance of the [shape] section
  *   kind = rfunc   a bs04 R-function field (experiments/cfg/rfunc_cfg.h)
+ *   kind = pht     an sjp10 PHT spline fitted to [shape] (experiments/cfg/pht_cfg.h)
  *
  * Each kind is one row {name, factory} of the table in field_cfg.c; a
  * module that brings a new kind of field adds its row there and its

@@ -36,6 +36,13 @@ struct dfl_pht_spline {
     double *chi;     /* per cell: hi[dim] (exact, for dfl_pht_spline_cell) */
     int *level;
     size_t stride;
+    /* location index: a uniform grid of gn^dim cells over the box (gn =
+     * 2^gbits), each holding the deepest tree node that contains it; the
+     * grid lines gline[j*(gn+1) + k] are the tree's split positions */
+    int gn;
+    double ginv[3];
+    double *gline;
+    int64_t *gnode;
 };
 
 /* Derivative order r (0..2) of basis idx at t. */
@@ -149,6 +156,62 @@ void dfl_pht_cell_poly(int dim, const double *lo, const double *hi, const double
     }
 }
 
+static size_t grid_size(const dfl_pht_spline *s)
+{
+    size_t n = 1;
+    for (int j = 0; j < s->dim; j++) n *= (size_t)s->gn;
+    return n;
+}
+
+/* The node a grid cell starts from: descend with the cell's centre while
+ * no split plane of the node cuts the cell's interior. */
+static int64_t grid_cell_node(const dfl_pht_spline *s, const double *glo, const double *ghi)
+{
+    int64_t id = 0;
+    double c[3];
+    for (int j = 0; j < s->dim; j++) c[j] = 0.5 * (glo[j] + ghi[j]);
+    while (s->node[id].child >= 0) {
+        const snode *q = &s->node[id];
+        int idx = 0;
+        for (int j = 0; j < s->dim; j++) {
+            if (q->axis >= 0 && q->axis != j) continue;
+            if (q->mid[j] > glo[j] && q->mid[j] < ghi[j]) return id;
+            if (c[j] >= q->mid[j]) idx |= q->axis >= 0 ? 1 : 1 << j;
+        }
+        id = q->child + idx;
+    }
+    return id;
+}
+
+/* gbits: 7 in 2D (16 k entries), 5 in 3D (32 k), fewer for shallow trees. */
+static int build_grid(dfl_pht_spline *s, int depth)
+{
+    int gbits = depth < (s->dim == 2 ? 7 : 5) ? depth : (s->dim == 2 ? 7 : 5);
+    s->gn = 1 << gbits;
+    int gn = s->gn;
+    s->gline = malloc((size_t)s->dim * (size_t)(gn + 1) * sizeof *s->gline);
+    s->gnode = malloc(grid_size(s) * sizeof *s->gnode);
+    if (!s->gline || !s->gnode) return -1;
+    for (int j = 0; j < s->dim; j++) {
+        s->ginv[j] = gn / (s->hi[j] - s->lo[j]);
+        for (int k = 0; k <= gn; k++)
+            s->gline[j * (gn + 1) + k] =
+                k == gn ? s->hi[j] : s->lo[j] + (s->hi[j] - s->lo[j]) * ((double)k / gn);
+    }
+    for (size_t g = 0; g < grid_size(s); g++) {
+        double glo[3], ghi[3];
+        size_t r = g;
+        for (int j = 0; j < s->dim; j++) {
+            size_t i = r % (size_t)gn;
+            r /= (size_t)gn;
+            glo[j] = s->gline[j * (gn + 1) + (int)i];
+            ghi[j] = s->gline[j * (gn + 1) + (int)i + 1];
+        }
+        s->gnode[g] = grid_cell_node(s, glo, ghi);
+    }
+    return 0;
+}
+
 dfl_status dfl_pht_spline_new(const dfl_tmesh *m, const double *data, dfl_pht_spline **out,
                               dfl_err *err)
 {
@@ -212,6 +275,10 @@ dfl_status dfl_pht_spline_new(const dfl_tmesh *m, const double *data, dfl_pht_sp
         s->level[i] = c.level;
     }
     free(leaf_of);
+    if (build_grid(s, dfl_tmesh_max_level(m)) != 0) {
+        dfl_pht_spline_free(s);
+        return dfl_err_set(err, DFL_E_NOMEM, "PHT spline: out of memory");
+    }
     *out = s;
     return DFL_OK;
 }
@@ -223,6 +290,8 @@ void dfl_pht_spline_free(dfl_pht_spline *s)
     free(s->cell);
     free(s->level);
     free(s->chi);
+    free(s->gline);
+    free(s->gnode);
     free(s);
 }
 
@@ -238,7 +307,9 @@ size_t dfl_pht_spline_bytes(const dfl_pht_spline *s)
 {
     return sizeof *s + s->nnode * sizeof *s->node +
            s->ncell * (s->stride * sizeof *s->cell + sizeof *s->level +
-                       (size_t)s->dim * sizeof *s->chi);
+                       (size_t)s->dim * sizeof *s->chi) +
+           (size_t)s->dim * (size_t)(s->gn + 1) * sizeof *s->gline +
+           grid_size(s) * sizeof *s->gnode;
 }
 
 void dfl_pht_spline_box(const dfl_pht_spline *s, double *lo, double *hi)
@@ -263,6 +334,39 @@ static inline size_t locate(const dfl_pht_spline *s, const double *x, const doub
             for (int j = 0; j < s->dim; j++)
                 if (x[j] > q->mid[j] || (x[j] == q->mid[j] && !(dir && dir[j] < 0)))
                     idx |= 1 << j;
+        }
+        id = q->child + idx;
+    }
+    return (size_t)(-nd[id].child - 1);
+}
+
+/* Location for evaluation (ties to the high side, like locate without a
+ * direction): the grid cell by index arithmetic, corrected against the grid
+ * lines so that it agrees with the tree's comparisons, then a branch-free
+ * descent. */
+static inline size_t locate_fast(const dfl_pht_spline *s, const double *x)
+{
+    const int gn = s->gn, dim = s->dim;
+    size_t g = 0, mul = 1;
+    for (int j = 0; j < dim; j++) {
+        double t = (x[j] - s->lo[j]) * s->ginv[j];
+        int i = t >= 0.0 ? (t < gn ? (int)t : gn - 1) : 0;
+        const double *L = s->gline + j * (gn + 1);
+        if (i > 0 && x[j] < L[i]) i--;
+        else if (i < gn - 1 && x[j] >= L[i + 1]) i++;
+        g += (size_t)i * mul;
+        mul *= (size_t)gn;
+    }
+    const snode *nd = s->node;
+    int64_t id = s->gnode[g];
+    while (nd[id].child >= 0) {
+        const snode *q = &nd[id];
+        int idx;
+        if (q->axis >= 0) {
+            idx = x[q->axis] >= q->mid[q->axis];
+        } else {
+            idx = (x[0] >= q->mid[0]) | ((x[1] >= q->mid[1]) << 1);
+            if (dim == 3) idx |= (x[2] >= q->mid[2]) << 2;
         }
         id = q->child + idx;
     }
@@ -355,7 +459,7 @@ void dfl_pht_eval(const dfl_pht_spline *s, size_t m, const double *pts, double *
     const int d = s->dim;
     for (size_t i = 0; i < m; i++) {
         const double *x = pts + i * (size_t)d;
-        const double *cell = s->cell + locate(s, x, NULL) * s->stride;
+        const double *cell = s->cell + locate_fast(s, x) * s->stride;
         double *v = val ? val + i : NULL, *g = grad ? grad + i * (size_t)d : NULL,
                *H = hess ? hess + i * (size_t)(d * d) : NULL;
         if (d == 2) eval2(cell, x, v, g, H);

@@ -23,5 +23,6 @@ void bench_pair(const char *name, double rate, double naive_rate, const char *un
 void bench_field(void);
 void bench_footpoint(void);
 void bench_rfunc(void);
+void bench_pht(void);
 
 #endif

@@ -38,5 +38,6 @@ int main(void)
     bench_field();
     bench_footpoint();
     bench_rfunc();
+    bench_pht();
     return 0;
 }

@@ -199,3 +199,40 @@ Test(pht_spline, cell_polynomial_interpolates_its_corner_data)
             }
     }
 }
+
+/* dfl_pht_eval locates through its grid index; it must pick the cell that
+ * dfl_pht_spline_locate picks (ties to the high side), also for points on
+ * cell faces and outside the box. */
+Test(pht_spline, eval_locates_like_the_tree)
+{
+    for (int dim = 2; dim <= 3; dim++)
+        for (int rule = 0; rule < DFL_PHT_SPLIT_COUNT; rule++) {
+            dfl_tmesh *m = refined(dim, rule, 31, LO, HI);
+            int nd = DFL_PHT_NDATA(dim);
+            size_t nv = dfl_tmesh_nverts(m);
+            double *data = calloc(nv * (size_t)nd, sizeof *data);
+            uint64_t rs = 77;
+            for (size_t v = 0; v < nv * (size_t)nd; v++) data[v] = dfl_rng_splitmix(&rs, -1, 1);
+            dfl_pht_resolve(m, data);
+            dfl_pht_spline *s;
+            cr_assert_eq(dfl_pht_spline_new(m, data, &s, NULL), DFL_OK);
+            for (int k = 0; k < 2000; k++) {
+                double x[3], lo[3], hi[3];
+                size_t c = (size_t)dfl_rng_splitmix(&rs, 0, (double)dfl_pht_spline_ncells(s));
+                dfl_pht_spline_cell(s, c, lo, hi, NULL);
+                for (int j = 0; j < dim; j++) {
+                    double u = dfl_rng_splitmix(&rs, 0, 1);
+                    /* a third of the coordinates exactly on a face, some outside */
+                    x[j] = u < 0.2 ? lo[j] : u < 0.33 ? hi[j] : lo[j] + (hi[j] - lo[j]) * u;
+                    if (k % 50 == 0) x[j] = LO[j] - 0.1 + (HI[j] - LO[j] + 0.2) * u;
+                }
+                double v0, v1, g0[3], g1[3];
+                dfl_pht_eval(s, 1, x, &v0, g0, NULL);
+                dfl_pht_eval_cell(s, dfl_pht_spline_locate(s, x, NULL), 1, x, &v1, g1, NULL);
+                cr_assert(v0 == v1 && g0[0] == g1[0] && g0[1] == g1[1], "dim %d rule %d", dim, rule);
+            }
+            dfl_pht_spline_free(s);
+            free(data);
+            dfl_tmesh_free(m);
+        }
+}

@@ -14,10 +14,11 @@ Test(field_cfg, table_rows)
 {
     size_t n;
     const dfl_field_kind *kinds = dfl_field_kinds(&n);
-    cr_assert_eq(n, 2);
+    cr_assert_eq(n, 3);
     cr_expect_str_eq(kinds[0].name, "exact");
     cr_expect_str_eq(kinds[1].name, "rfunc");
     cr_expect_eq(kinds[1].build, dfl_rfunc_field_from_cfg);
+    cr_expect_str_eq(kinds[2].name, "pht");
     for (size_t i = 0; i < n; i++) {
         char text[64];
         snprintf(text, sizeof text, "[field]\nkind = %s\n", kinds[i].name);
