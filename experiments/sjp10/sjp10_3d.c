@@ -105,8 +105,7 @@ static dfl_status read_case(const dfl_cfg *cfg, case3 *c, dfl_err *err)
     if ((st = dfl_shape_from_cfg(cfg, ssec, &c->shape, err))) return st;
     c->have_shape = 1;
     if (c->shape.dim != 3) return dfl_cfg_reject(cfg, sec, "shape", err, "expected a 3D shape");
-    if ((st = dfl_pht_source_new(&c->shape, &c->src, err)))
-        return dfl_cfg_err_at(cfg, ssec, "kind", st, err);
+    if ((st = sjp10_source_new(cfg, ssec, &c->shape, &c->src, err))) return st;
     if ((st = dfl_shape_from_cfg(cfg, rsec, &c->ref, err))) return st;
     c->have_ref = 1;
     if (c->ref.dim != 3) return dfl_cfg_reject(cfg, sec, "ref", err, "expected a 3D shape");

@@ -12,6 +12,7 @@
 #include "io/path.h"
 #include "io/table.h"
 #include "io/vtk.h"
+#include "cfg/curve_cfg.h"
 #include "cfg/list_cfg.h"
 #include "cfg/shape_cfg.h"
 #include "pht/spline.h"
@@ -359,6 +360,27 @@ dfl_status sjp10_write_graph(const dfl_study_ctx *ctx, const char *stem, const d
     return st;
 }
 
+dfl_status sjp10_source_new(const dfl_cfg *cfg, const char *sec, const dfl_shape *shape,
+                            dfl_pht_source **src, dfl_err *err)
+{
+    const char *kind;
+    dfl_status st = dfl_cfg_string(cfg, sec, "kind", &kind, err);
+    if (st) return st;
+    if (strcmp(kind, "bspline_curve") == 0) {
+        /* an open curve's distance is unsigned: no inside, no sign change */
+        dfl_bspline c;
+        if ((st = dfl_curve_section_from_cfg(cfg, sec, &c, err))) return st;
+        const int closed = dfl_bspline_is_closed(&c, 1e-12);
+        dfl_bspline_free(&c);
+        if (!closed)
+            return dfl_cfg_reject(cfg, sec, "closed", err,
+                                  "PHT fits need a signed distance: an open curve's distance is "
+                                  "unsigned (set closed = true)");
+    }
+    if ((st = dfl_pht_source_new(shape, src, err))) return dfl_cfg_err_at(cfg, sec, "kind", st, err);
+    return DFL_OK;
+}
+
 void sjp10_cases_free(sjp10_case *c, int n)
 {
     for (int i = 0; i < n; i++) {
@@ -383,8 +405,7 @@ dfl_status sjp10_cases_from_cfg(const dfl_cfg *cfg, const char *sec, const char 
             return dfl_cfg_reject(cfg, sec, key, err, "no section [%s]", names[i]);
         if ((st = dfl_shape_from_cfg(cfg, names[i], &c[i].shape, err))) break;
         c[i].have_shape = 1;
-        if (want_src && (st = dfl_pht_source_new(&c[i].shape, &c[i].src, err)))
-            st = dfl_cfg_err_at(cfg, names[i], "kind", st, err);
+        if (want_src) st = sjp10_source_new(cfg, names[i], &c[i].shape, &c[i].src, err);
     }
     if (st) sjp10_cases_free(c, *n);
     return st;

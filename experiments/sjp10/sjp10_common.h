@@ -21,6 +21,7 @@
  *   sjp10_write_graph  the graph surface z = f(x, y) of a 2D field as a .vtp
  *   sjp10_shape_eval   batched exact SDF in fixed parallel chunks
  *   sjp10_cases_from_cfg / _free   the shape sections a study lists, with Hermite sources
+ *   sjp10_source_new   a Hermite source on a config's shape (open curves rejected)
  */
 #ifndef DFL_EXPERIMENTS_SJP10_COMMON_H
 #define DFL_EXPERIMENTS_SJP10_COMMON_H
@@ -73,6 +74,12 @@ typedef struct sjp10_case {
 dfl_status sjp10_cases_from_cfg(const dfl_cfg *cfg, const char *sec, const char *key, int want_src,
                                 sjp10_case *c, int *n, dfl_err *err);
 void sjp10_cases_free(sjp10_case *c, int n);
+
+/* A Hermite source on the shape of section sec: DFL_E_INPUT naming
+ * [sec] closed for an open B-spline curve (unsigned distance) and [sec]
+ * kind for a shape without SDF derivatives. */
+dfl_status sjp10_source_new(const dfl_cfg *cfg, const char *sec, const dfl_shape *shape,
+                            dfl_pht_source **src, dfl_err *err);
 
 /* The same statistics on the grid protocol without caching: points are
  * made, and the exact SDF evaluated, chunk by chunk (for grids too large

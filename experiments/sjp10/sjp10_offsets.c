@@ -173,8 +173,7 @@ static dfl_status read_case(const dfl_cfg *cfg, ocase *c, dfl_err *err)
     if ((st = dfl_shape_from_cfg(cfg, c->shape_sec, &c->shape, err))) return st;
     c->have_shape = 1;
     c->dim = c->shape.dim;
-    if ((st = dfl_pht_source_new(&c->shape, &c->src, err)))
-        return dfl_cfg_err_at(cfg, c->shape_sec, "kind", st, err);
+    if ((st = sjp10_source_new(cfg, c->shape_sec, &c->shape, &c->src, err))) return st;
     if ((st = dfl_cfg_doubles(cfg, sec, "deltas", 1, &c->deltas, &c->ndeltas, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, sec, "grid_n", c->dim == 2 ? 201 : 41, 3, 2001, &c->grid_n, err)))
         return st;
