@@ -11,7 +11,7 @@ _f = dflio.cell_nan
 ASSUMPTIONS = [
     "Curves (sjp10 shows its curves only as pictures): ours in configs/shapes/sjp10_*.ini, all "
     "periodic cubic B-splines in the unit square except the circle — a convex egg, a non-convex "
-    "peanut (waist with two dents), a teardrop whose curvature varies from ~3 to ~80 (sharp tip), "
+    "peanut (waist with two dents), a teardrop whose curvature varies from −1.3 to 82 (sharp tip), "
     "and the circle of the peers' protocol (centre (0.5, 0.5), r 0.3). Box: the unit square (sjp10 "
     "Fig. 2 caption).",
     "Fit: cross refinement (a cell into 4, the PHT default; sjp10 describes binary splits of a box "

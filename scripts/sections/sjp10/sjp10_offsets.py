@@ -8,7 +8,7 @@ from sections.sjp10 import sjp10_common as sc
 _f = dflio.cell_nan
 
 ASSUMPTIONS = [
-    "Offsets (sjp10 shows pictures only): δ from −0.25 to 0.15 per curve (dflab sign, δ < 0 inside); "
+    "Offsets (sjp10 shows pictures only): δ from −0.3 to 0.1 per curve (dflab sign, δ < 0 inside); "
     "level sets by marching squares on 201² nodes of the spline (fit eps 1e-4), each vertex then "
     "moved onto f = δ along its grid edge (40 Illinois steps), so the error is the spline's, not "
     "the contouring's. Error of a vertex x: |d(x) − δ| = its distance to the true trimmed offset "
