@@ -129,17 +129,13 @@ static dfl_status read_case(const dfl_cfg *cfg, case3 *c, dfl_err *err)
 static dfl_status read_keys(const dfl_cfg *cfg, keys3 *k, dfl_err *err)
 {
     char names[SJP10_MAX_CASES][DFL_SECTION_NAME_LEN];
-    const char *fsec;
     dfl_status st = dfl_section_names_from_cfg(cfg, "study", "cases", SJP10_MAX_CASES, names,
                                                &k->ncases, "case section", err);
     if (st) return st;
     for (int i = 0; i < k->ncases; i++) memcpy(k->c[i].name, names[i], DFL_SECTION_NAME_LEN);
     for (int i = 0; i < k->ncases; i++)
         if ((st = read_case(cfg, &k->c[i], err))) return st;
-    if ((st = dfl_cfg_string(cfg, "study", "fit", &fsec, err))) return st;
-    if (!dfl_cfg_has_section(cfg, fsec))
-        return dfl_cfg_reject(cfg, "study", "fit", err, "no section [%s]", fsec);
-    if ((st = dfl_pht_opts_from_cfg(cfg, fsec, 3, &k->fit, err))) return st;
+    if ((st = sjp10_fit_from_cfg(cfg, "fit", 3, &k->fit, err))) return st;
     if ((st = read_lists(cfg, "study", "eps", NULL, &k->eps, &k->neps, err))) return st;
     if ((st = read_lists(cfg, "study", NULL, "uniform_levels", &k->levels, &k->nlevels, err))) return st;
     return dfl_cfg_int_opt(cfg, "study", "uniform_samples", 1, 1, 4096, &k->uniform_samples, err);

@@ -51,16 +51,12 @@ static void keys_free(cells_keys *k)
 
 static dfl_status read_keys(const dfl_cfg *cfg, cells_keys *k, dfl_err *err)
 {
-    const char *fsec;
     dfl_status st = sjp10_cases_from_cfg(cfg, "study", "cases", 1, k->c, &k->ncases, err);
     if (st) return st;
     for (int i = 0; i < k->ncases; i++)
         if (k->c[i].shape.dim != 2)
             return dfl_cfg_reject(cfg, "study", "cases", err, "[%s] is not a planar shape", k->c[i].name);
-    if ((st = dfl_cfg_string(cfg, "study", "fit", &fsec, err))) return st;
-    if (!dfl_cfg_has_section(cfg, fsec))
-        return dfl_cfg_reject(cfg, "study", "fit", err, "no section [%s]", fsec);
-    if ((st = dfl_pht_opts_from_cfg(cfg, fsec, 2, &k->fit, err))) return st;
+    if ((st = sjp10_fit_from_cfg(cfg, "fit", 2, &k->fit, err))) return st;
     if ((st = dfl_cfg_doubles(cfg, "study", "eps", 1, &k->eps, &k->neps, err))) return st;
     for (size_t i = 0; i < k->neps; i++)
         if (!(k->eps[i] > 0.0))

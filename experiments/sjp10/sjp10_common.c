@@ -14,6 +14,7 @@
 #include "io/vtk.h"
 #include "cfg/curve_cfg.h"
 #include "cfg/list_cfg.h"
+#include "cfg/pht_cfg.h"
 #include "cfg/shape_cfg.h"
 #include "pht/spline.h"
 
@@ -63,6 +64,17 @@ void sjp10_ref_free(sjp10_ref *r)
     memset(r, 0, sizeof *r);
 }
 
+/* Nodes n^dim and midpoints (n-1)^dim (0 without midpoints) of the grid protocol. */
+static void grid_counts(int dim, int n, int midpoints, size_t *nn, size_t *nm)
+{
+    *nn = *nm = 1;
+    for (int j = 0; j < dim; j++) {
+        *nn *= (size_t)n;
+        *nm *= (size_t)(n - 1);
+    }
+    if (!midpoints) *nm = 0;
+}
+
 /* Node (or midpoint) i of the grid with n (or n - 1) points per axis. */
 static void grid_point(int dim, const double *lo, const double *hi, int n, int mid, size_t i,
                        double *x)
@@ -82,12 +94,8 @@ dfl_status sjp10_ref_grid(const dfl_shape *shape, const double *lo, const double
     memset(out, 0, sizeof *out);
     if (n < 2) return dfl_err_set(err, DFL_E_INPUT, "validation grid: n must be >= 2, got %d", n);
     const int dim = shape->dim;
-    size_t nn = 1, nm = 1;
-    for (int j = 0; j < dim; j++) {
-        nn *= (size_t)n;
-        nm *= (size_t)(n - 1);
-    }
-    if (!midpoints) nm = 0;
+    size_t nn, nm;
+    grid_counts(dim, n, midpoints, &nn, &nm);
     const size_t m = nn + nm;
     out->dim = dim;
     out->m = m;
@@ -360,6 +368,17 @@ dfl_status sjp10_write_graph(const dfl_study_ctx *ctx, const char *stem, const d
     return st;
 }
 
+dfl_status sjp10_fit_from_cfg(const dfl_cfg *cfg, const char *key, int dim, dfl_pht_fit_opts *o,
+                              dfl_err *err)
+{
+    const char *fsec;
+    dfl_status st = dfl_cfg_string(cfg, "study", key, &fsec, err);
+    if (st) return st;
+    if (!dfl_cfg_has_section(cfg, fsec))
+        return dfl_cfg_reject(cfg, "study", key, err, "no section [%s]", fsec);
+    return dfl_pht_opts_from_cfg(cfg, fsec, dim, o, err);
+}
+
 dfl_status sjp10_source_new(const dfl_cfg *cfg, const char *sec, const dfl_shape *shape,
                             dfl_pht_source **src, dfl_err *err)
 {
@@ -418,12 +437,8 @@ dfl_status sjp10_stream_errors(const dfl_field *f, const dfl_shape *shape, const
     memset(out, 0, sizeof *out);
     if (n < 2) return dfl_err_set(err, DFL_E_INPUT, "validation grid: n must be >= 2, got %d", n);
     const int dim = shape->dim;
-    size_t nn = 1, nm = 1;
-    for (int j = 0; j < dim; j++) {
-        nn *= (size_t)n;
-        nm *= (size_t)(n - 1);
-    }
-    if (!midpoints) nm = 0;
+    size_t nn, nm;
+    grid_counts(dim, n, midpoints, &nn, &nm);
     const size_t m = nn + nm, nc = nchunks(m);
     acc *pa = calloc(2 * (nc ? nc : 1), sizeof *pa);
     size_t *pband = calloc(nc ? nc : 1, sizeof *pband), *pskip = calloc(nc ? nc : 1, sizeof *pskip);

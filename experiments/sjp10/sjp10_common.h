@@ -21,6 +21,7 @@
  *   sjp10_write_graph  the graph surface z = f(x, y) of a 2D field as a .vtp
  *   sjp10_shape_eval   batched exact SDF in fixed parallel chunks
  *   sjp10_cases_from_cfg / _free   the shape sections a study lists, with Hermite sources
+ *   sjp10_fit_from_cfg the fit options of the section [study] <key> names
  *   sjp10_source_new   a Hermite source on a config's shape (open curves rejected)
  */
 #ifndef DFL_EXPERIMENTS_SJP10_COMMON_H
@@ -74,6 +75,11 @@ typedef struct sjp10_case {
 dfl_status sjp10_cases_from_cfg(const dfl_cfg *cfg, const char *sec, const char *key, int want_src,
                                 sjp10_case *c, int *n, dfl_err *err);
 void sjp10_cases_free(sjp10_case *c, int n);
+
+/* The fit options of the section [study] key names (pht_cfg.h), for dim;
+ * DFL_E_INPUT naming the key when the section is missing. */
+dfl_status sjp10_fit_from_cfg(const dfl_cfg *cfg, const char *key, int dim, dfl_pht_fit_opts *o,
+                              dfl_err *err);
 
 /* A Hermite source on the shape of section sec: DFL_E_INPUT naming
  * [sec] closed for an open B-spline curve (unsigned distance) and [sec]

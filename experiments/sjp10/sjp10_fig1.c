@@ -40,16 +40,12 @@ typedef struct fig1_keys {
 
 static dfl_status read_keys(const dfl_cfg *cfg, fig1_keys *k, dfl_err *err)
 {
-    const char *fsec;
     dfl_status st = sjp10_cases_from_cfg(cfg, "study", "cases", 1, k->c, &k->ncases, err);
     if (st) return st;
     for (int i = 0; i < k->ncases; i++)
         if (k->c[i].shape.dim != 2)
             return dfl_cfg_reject(cfg, "study", "cases", err, "[%s] is not a planar shape", k->c[i].name);
-    if ((st = dfl_cfg_string(cfg, "study", "fit", &fsec, err))) return st;
-    if (!dfl_cfg_has_section(cfg, fsec))
-        return dfl_cfg_reject(cfg, "study", "fit", err, "no section [%s]", fsec);
-    if ((st = dfl_pht_opts_from_cfg(cfg, fsec, 2, &k->fit, err))) return st;
+    if ((st = sjp10_fit_from_cfg(cfg, "fit", 2, &k->fit, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "val_n", 301, 2, 4001, &k->val_n, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.02, 0.0, 1e300, &k->band, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "image_n", 201, 2, 4001, &k->image_n, err))) return st;

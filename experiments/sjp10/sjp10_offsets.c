@@ -207,7 +207,6 @@ static dfl_status read_case(const dfl_cfg *cfg, ocase *c, dfl_err *err)
 static dfl_status read_keys(const dfl_cfg *cfg, okeys *k, dfl_err *err)
 {
     char names[SJP10_MAX_CASES][DFL_SECTION_NAME_LEN];
-    const char *f2, *f3;
     dfl_status st = dfl_section_names_from_cfg(cfg, "study", "cases", SJP10_MAX_CASES, names,
                                                &k->ncases, "case section", err);
     if (st) return st;
@@ -217,14 +216,10 @@ static dfl_status read_keys(const dfl_cfg *cfg, okeys *k, dfl_err *err)
     int need2 = 0, need3 = 0;
     for (int i = 0; i < k->ncases; i++) *(k->c[i].dim == 2 ? &need2 : &need3) = 1;
     if (need2) {
-        if ((st = dfl_cfg_string(cfg, "study", "fit", &f2, err))) return st;
-        if (!dfl_cfg_has_section(cfg, f2)) return dfl_cfg_reject(cfg, "study", "fit", err, "no section [%s]", f2);
-        if ((st = dfl_pht_opts_from_cfg(cfg, f2, 2, &k->fit2, err))) return st;
+        if ((st = sjp10_fit_from_cfg(cfg, "fit", 2, &k->fit2, err))) return st;
     }
     if (need3) {
-        if ((st = dfl_cfg_string(cfg, "study", "fit3", &f3, err))) return st;
-        if (!dfl_cfg_has_section(cfg, f3)) return dfl_cfg_reject(cfg, "study", "fit3", err, "no section [%s]", f3);
-        if ((st = dfl_pht_opts_from_cfg(cfg, f3, 3, &k->fit3, err))) return st;
+        if ((st = sjp10_fit_from_cfg(cfg, "fit3", 3, &k->fit3, err))) return st;
     }
     return dfl_cfg_int_opt(cfg, "study", "refine", 40, 0, 200, &k->refine, err);
 }

@@ -80,6 +80,26 @@ static dfl_status check_values(const dfl_grid *g, const double *val, double leve
     return DFL_OK;
 }
 
+/* Orders the edge (a, b) from below to above the level. */
+static void orient_edge(size_t *na, size_t *nb, double *va, double *vb, double level)
+{
+    if (*va >= level) {
+        const size_t tn = *na;
+        const double tv = *va;
+        *na = *nb, *nb = tn;
+        *va = *vb, *vb = tv;
+    }
+}
+
+/* Zeroes *out and checks the grid and the values. */
+static dfl_status iso_begin(const dfl_grid *g, const double *val, double level, dfl_iso *out,
+                            dfl_err *err)
+{
+    memset(out, 0, sizeof *out);
+    dfl_status st = dfl_grid_check(g, err);
+    return st ? st : check_values(g, val, level, err);
+}
+
 /* ---- marching squares ---- */
 
 /* Segment table: for each corner case (bit c set when corner c is above;
@@ -126,10 +146,7 @@ static size_t ms_edge_vertex(builder *b, ms_grid *m, size_t i, size_t j, int e)
     }
     if (m->vmap[id] != NONE) return m->vmap[id];
     double va = m->val[na], vb = m->val[nb];
-    if (va >= m->level) {  /* orient below -> above */
-        size_t tn = na; na = nb; nb = tn;
-        double tv = va; va = vb; vb = tv;
-    }
+    orient_edge(&na, &nb, &va, &vb, m->level);
     return m->vmap[id] = add_vertex(b, m->g, na, nb, va, vb, m->level);
 }
 
@@ -185,13 +202,11 @@ static dfl_status assemble(dfl_iso *iso, const size_t *seg, size_t nseg, dfl_err
 dfl_status dfl_iso_lines(const dfl_grid *g, const double *val, double level, dfl_iso *out,
                          dfl_err *err)
 {
-    memset(out, 0, sizeof *out);
-    dfl_status st = dfl_grid_check(g, err);
+    dfl_status st = iso_begin(g, val, level, out, err);
     if (st) return st;
     const int flat = dfl_grid_flat_axis(g);
     if (g->dim == 3 && flat < 0)
         return dfl_err_set(err, DFL_E_INPUT, "isoline: marching squares needs a 2D or a plane grid");
-    if ((st = check_values(g, val, level, err))) return st;
     ms_grid m = {.g = g, .val = val, .level = level};
     strides(g, m.st);
     m.p = flat == 0 ? 1 : 0;
@@ -277,10 +292,7 @@ static int mc_tri(mc_state *s, const size_t e[3][2], size_t lo, size_t hi)
     for (int v = 0; v < 3; v++) {
         size_t na = e[v][0], nb = e[v][1];
         double va = s->val[na], vb = s->val[nb], xa[3], xb[3];
-        if (va >= s->level) {
-            size_t t = na; na = nb; nb = t;
-            double tv = va; va = vb; vb = tv;
-        }
+        orient_edge(&na, &nb, &va, &vb, s->level);
         node_xyz(s->g, na, xa);
         node_xyz(s->g, nb, xb);
         const double t = vb > va ? (s->level - va) / (vb - va) : 0.5;
@@ -350,10 +362,7 @@ static dfl_status mc_vertices(mc_state *s, dfl_iso *out, dfl_err *err)
     for (size_t i = 0; i < nu; i++) {
         size_t na = (size_t)(keys[i] / s->nodes), nb = (size_t)(keys[i] % s->nodes);
         double va = s->val[na], vb = s->val[nb];
-        if (va >= s->level) {
-            size_t t = na; na = nb; nb = t;
-            double tv = va; va = vb; vb = tv;
-        }
+        orient_edge(&na, &nb, &va, &vb, s->level);
         if (add_vertex(&b, s->g, na, nb, va, vb, s->level) == NONE) {
             free(keys);
             return nomem(err);
@@ -374,12 +383,10 @@ static dfl_status mc_vertices(mc_state *s, dfl_iso *out, dfl_err *err)
 dfl_status dfl_iso_surface(const dfl_grid *g, const double *val, double level, dfl_iso *out,
                            dfl_err *err)
 {
-    memset(out, 0, sizeof *out);
-    dfl_status st = dfl_grid_check(g, err);
+    dfl_status st = iso_begin(g, val, level, out, err);
     if (st) return st;
     if (g->dim != 3 || dfl_grid_flat_axis(g) >= 0)
         return dfl_err_set(err, DFL_E_INPUT, "isosurface: marching cubes needs a 3D volume grid");
-    if ((st = check_values(g, val, level, err))) return st;
     mc_state s = {.g = g, .val = val, .level = level, .nodes = dfl_grid_size(g)};
     size_t sd[3];
     strides(g, sd);
