@@ -22,6 +22,7 @@
  *   cache     = false       true: exact values computed once and kept
  *                           (slow references, small grids); false: per chunk
  *   eps, uniform_levels     the case's own lists (default: the study's)
+ *   samples                 the case's estimator points per cell (default: the fit's)
  * Rows: one per case and fit.  Signs: negative inside (sjp10: positive).
  */
 #include <math.h>
@@ -49,6 +50,8 @@ typedef struct case3 {
     double band;
     double *eps, *levels;   /* the case's own lists (NULL: the study's) */
     size_t neps, nlevels;
+    int own_eps, own_levels; /* the case gives its own list */
+    long samples;           /* the case's estimator points per cell (0: the fit's) */
 } case3;
 
 typedef struct keys3 {
@@ -117,10 +120,11 @@ static dfl_status read_case(const dfl_cfg *cfg, case3 *c, dfl_err *err)
     if ((st = dfl_cfg_bool_opt(cfg, sec, "midpoints", false, &c->midpoints, err))) return st;
     if ((st = dfl_cfg_bool_opt(cfg, sec, "cache", false, &c->cache, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, sec, "band", 0.0, 0.0, 1e300, &c->band, err))) return st;
-    if (dfl_cfg_has(cfg, sec, "eps") &&
-        (st = read_lists(cfg, sec, "eps", NULL, &c->eps, &c->neps, err)))
-        return st;
-    if (dfl_cfg_has(cfg, sec, "uniform_levels") &&
+    if ((st = dfl_cfg_int_opt(cfg, sec, "samples", 0, 0, 4096, &c->samples, err))) return st;
+    c->own_eps = dfl_cfg_has(cfg, sec, "eps");
+    if (c->own_eps && (st = read_lists(cfg, sec, "eps", NULL, &c->eps, &c->neps, err))) return st;
+    c->own_levels = dfl_cfg_has(cfg, sec, "uniform_levels");
+    if (c->own_levels &&
         (st = read_lists(cfg, sec, NULL, "uniform_levels", &c->levels, &c->nlevels, err)))
         return st;
     return DFL_OK;
@@ -167,6 +171,7 @@ static dfl_status one_fit(const keys3 *k, const case3 *c, const sjp10_ref *ref, 
     dfl_pht_fit_opts o = k->fit;
     memcpy(o.lo, c->lo, sizeof o.lo);
     memcpy(o.hi, c->hi, sizeof o.hi);
+    if (c->samples > 0) o.samples = (int)c->samples;
     dfl_pht_fit fit;
     dfl_field f = {0};
     dfl_pht_val v;
@@ -202,8 +207,8 @@ static dfl_status run_case(const keys3 *k, const case3 *c, const dfl_study_ctx *
     if (c->cache)
         st = sjp10_ref_grid(&c->ref, c->lo, c->hi, (int)c->val_n, c->midpoints, c->band,
                             ctx->threads, &ref, err);
-    const double *eps = c->eps ? c->eps : k->eps, *lev = c->levels ? c->levels : k->levels;
-    const size_t neps = c->eps ? c->neps : k->neps, nlev = c->levels ? c->nlevels : k->nlevels;
+    const double *eps = c->own_eps ? c->eps : k->eps, *lev = c->own_levels ? c->levels : k->levels;
+    const size_t neps = c->own_eps ? c->neps : k->neps, nlev = c->own_levels ? c->nlevels : k->nlevels;
     for (size_t i = 0; i < neps && !st; i++)
         st = one_fit(k, c, c->cache ? &ref : NULL, eps[i], -1, ctx, t, err);
     for (size_t i = 0; i < nlev && !st; i++)

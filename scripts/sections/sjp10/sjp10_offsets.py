@@ -17,7 +17,7 @@ ASSUMPTIONS = [
     "cusps = sign changes of 1 + κδ, swallow-tails = arcs where 1 + κδ < 0, self-intersections = "
     "proper crossings of the sampled polyline; 'removed' = the share of its samples closer to the "
     "curve than |δ| — the part a trimmed offset drops.",
-    "3D (sjp10 Fig. 3: inner offsets cut by a plane): the implicit torus and the genus-2 tube, "
+    "3D (sjp10 Fig. 3: inner offsets cut by a plane): the torus of the 3D study (analytic SDF; a genus-2 case was dropped for run time), "
     "fit eps 1e-3, marching cubes (6-tetrahedron split) over the half z ≤ 0 on 41³ nodes and "
     "marching squares on the plane z = 0 (81² nodes), vertices refined onto f = δ.",
 ]
