@@ -14,7 +14,8 @@ ASSUMPTIONS = [
     "lemniscate (eps 0.1) in [−1.5, 1.5]³ and Goursat's tangle cube (x⁴+y⁴+z⁴−5|x|²+11.8 = 0) in "
     "[−3, 3]³; footpoints by geom's Riemannian Newton from several surface samples (not sjp10's "
     "polygon-mesh starts and tangent-plane projections) cost ~130–280 µs per point here, so these "
-    "run at eps = 3e-2 only (the analytic torus adds 3e-2 for the comparison) with 4 estimator "
+    "run at eps = 3e-2 only (Goursat, box side 6: 1e-1; the analytic torus adds 3e-2 for the "
+    "comparison) with 4 estimator "
     "points per cell; "
     "the implicit torus is validated against the analytic torus SDF on 217³ nodes, genus 2 and "
     "Goursat against their own implicit SDF on 21³ nodes + 20³ midpoints.",
