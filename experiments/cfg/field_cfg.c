@@ -2,6 +2,7 @@
 
 #include "cfg/proxy_cfg.h"
 #include "cfg/gridpeer_cfg.h"
+#include "cfg/pht_cfg.h"
 #include "cfg/rfunc_cfg.h"
 #include "cfg/shape_cfg.h"
 #include "field/exact.h"
@@ -28,6 +29,7 @@ static const dfl_field_kind kinds[] = {
     {"normalized", dfl_rfunc_normalized_from_cfg},
     {"proxy", dfl_proxy_field_from_cfg},
     {"gridpeer", dfl_gridpeer_field_from_cfg},
+    {"pht", dfl_pht_field_from_cfg},
 };
 #define NKINDS (sizeof kinds / sizeof kinds[0])
 

@@ -4,6 +4,7 @@
  *   kind = rfunc   a bs04 R-function field (experiments/cfg/rfunc_cfg.h)
  *   kind = proxy   an hvb25 proxy grid field (experiments/cfg/proxy_cfg.h)
  *   kind = gridpeer  a simple grid of [shape]'s SDF (experiments/cfg/gridpeer_cfg.h)
+ *   kind = pht     an sjp10 PHT spline fitted to [shape] (experiments/cfg/pht_cfg.h)
  *
  * Each kind is one row {name, factory} of the table in field_cfg.c; a
  * module that brings a new kind of field adds its row there and its

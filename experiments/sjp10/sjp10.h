@@ -9,6 +9,11 @@
 
 #include "harness/experiment.h"
 
+extern const dfl_study dfl_study_sjp10_fig1;
+extern const dfl_study dfl_study_sjp10_cells;
+extern const dfl_study dfl_study_sjp10_3d;
+extern const dfl_study dfl_study_sjp10_offsets;
+
 /* NULL-terminated. */
 extern const dfl_study *const dfl_sjp10_studies[];
 

@@ -26,5 +26,6 @@ void bench_rfunc(void);
 void bench_proxy(void);
 void bench_trace(void);
 void bench_proxy_input(void);
+void bench_pht(void);
 
 #endif

@@ -41,5 +41,6 @@ int main(void)
     bench_proxy();
     bench_trace();
     bench_proxy_input();
+    bench_pht();
     return 0;
 }

@@ -20,6 +20,10 @@ Test(field_cfg, table_rows)
     cr_expect_eq(kinds[1].build, dfl_rfunc_field_from_cfg);
     cr_expect_str_eq(kinds[2].name, "normalized");
     cr_expect_eq(kinds[2].build, dfl_rfunc_normalized_from_cfg);
+    int have_pht = 0;
+    for (size_t i = 0; i < n; i++)
+        if (strcmp(kinds[i].name, "pht") == 0) have_pht = 1;
+    cr_expect(have_pht, "the pht row");
     for (size_t i = 0; i < n; i++) {
         char text[64];
         snprintf(text, sizeof text, "[field]\nkind = %s\n", kinds[i].name);

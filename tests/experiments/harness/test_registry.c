@@ -6,6 +6,7 @@
 #include "bs04/bs04.h"
 #include "harness/experiment.h"
 #include "hvb25/hvb25.h"
+#include "sjp10/sjp10.h"
 #include "smoke/smoke.h"
 
 Test(registry, names_unique_and_found)
@@ -29,7 +30,8 @@ Test(registry, names_unique_and_found)
  * studies of the per-paper lists. */
 Test(registry, concatenates_paper_lists)
 {
-    const dfl_study *const *lists[] = {dfl_smoke_studies, dfl_bs04_studies, dfl_hvb25_studies};
+    const dfl_study *const *lists[] = {dfl_smoke_studies, dfl_bs04_studies, dfl_sjp10_studies,
+                                       dfl_hvb25_studies};
     size_t total = 0;
     for (size_t l = 0; l < sizeof lists / sizeof lists[0]; l++)
         for (const dfl_study *const *s = lists[l]; *s; s++) {
@@ -41,4 +43,6 @@ Test(registry, concatenates_paper_lists)
         cr_assert(strncmp((*s)->name, "bs04_", 5) == 0, "%s in the bs04 list", (*s)->name);
     for (const dfl_study *const *s = dfl_hvb25_studies; *s; s++)
         cr_assert(strncmp((*s)->name, "hvb25_", 6) == 0, "%s in the hvb25 list", (*s)->name);
+    for (const dfl_study *const *s = dfl_sjp10_studies; *s; s++)
+        cr_assert(strncmp((*s)->name, "sjp10_", 6) == 0, "%s in the sjp10 list", (*s)->name);
 }

@@ -1,0 +1,233 @@
+/* sjp10 in 3D: tricubic PHT fits (8 data per base vertex) of implicit
+ * surfaces and a sphere at a list of thresholds, beside the uniform
+ * tricubic Hermite grid, validated on a node grid of the box (the 217^3
+ * protocol of the peers' Discregrid figures) against a reference SDF
+ * (an analytic SDF of the same surface where one exists: the implicit
+ * torus is checked against the analytic torus).
+ *
+ * Keys.  [study]
+ *   cases           = <section> ...  case sections (below)
+ *   fit             = <section>      PHT fit options (pht_cfg.h, dim 3); eps
+ *                                    replaced by each entry of eps, lo/hi by the case's
+ *   eps             = e1 e2 ...      thresholds (> 0)
+ *   uniform_levels  = k1 ...         uniform grid levels (0..7)
+ *   uniform_samples = 1              estimator points per uniform cell
+ * A case section:
+ *   shape     = <section>   the surface fitted (its SDF needs derivatives)
+ *   ref       = <section>   the validation reference (default: shape)
+ *   lo, hi    = x y z       the box
+ *   val_n     = 217         validation nodes per axis
+ *   midpoints = false       add the (n-1)^3 cell midpoints
+ *   band      = 0           medial band width (0: every point counts)
+ *   cache     = false       true: exact values computed once and kept
+ *                           (slow references, small grids); false: per chunk
+ *   eps, uniform_levels     the case's own lists (default: the study's)
+ *   samples                 the case's estimator points per cell (default: the fit's)
+ * Rows: one per case and fit.  Signs: negative inside (sjp10: positive).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <omp.h>
+
+#include "cfg/pht_cfg.h"
+#include "cfg/shape_cfg.h"
+#include "cfg/list_cfg.h"
+#include "pht/pht_field.h"
+#include "sjp10/sjp10.h"
+#include "sjp10/sjp10_common.h"
+
+typedef struct case3 {
+    char name[DFL_SECTION_NAME_LEN];
+    dfl_shape shape, ref;
+    int have_shape, have_ref;
+    dfl_pht_source *src;
+    double lo[3], hi[3];
+    long val_n;
+    bool midpoints, cache;
+    double band;
+    double *eps, *levels;   /* the case's own lists (NULL: the study's) */
+    size_t neps, nlevels;
+    int own_eps, own_levels; /* the case gives its own list */
+    long samples;           /* the case's estimator points per cell (0: the fit's) */
+} case3;
+
+typedef struct keys3 {
+    case3 c[SJP10_MAX_CASES];
+    int ncases;
+    dfl_pht_fit_opts fit;
+    double *eps, *levels;
+    size_t neps, nlevels;
+    long uniform_samples;
+} keys3;
+
+static void keys_free(keys3 *k)
+{
+    for (int i = 0; i < k->ncases; i++) {
+        dfl_pht_source_free(k->c[i].src);
+        if (k->c[i].have_shape) dfl_shape_free(&k->c[i].shape);
+        if (k->c[i].have_ref) dfl_shape_free(&k->c[i].ref);
+        free(k->c[i].eps);
+        free(k->c[i].levels);
+    }
+    free(k->eps);
+    free(k->levels);
+}
+
+/* [sec] eps (thresholds > 0) or uniform_levels (integers 0..7), whichever key is given. */
+static dfl_status read_lists(const dfl_cfg *cfg, const char *sec, const char *eps_key,
+                             const char *lev_key, double **out, size_t *n, dfl_err *err)
+{
+    const char *key = eps_key ? eps_key : lev_key;
+    dfl_status st = dfl_cfg_doubles(cfg, sec, key, eps_key ? 1 : 0, out, n, err);
+    if (st) return st;
+    for (size_t i = 0; i < *n; i++) {
+        const double v = (*out)[i];
+        if (eps_key && !(v > 0.0))
+            return dfl_cfg_reject(cfg, sec, key, err, "expected thresholds > 0, got %g", v);
+        if (!eps_key && !(v >= 0 && v <= 7 && v == floor(v)))
+            return dfl_cfg_reject(cfg, sec, key, err, "expected integer levels in 0..7, got %g", v);
+    }
+    return DFL_OK;
+}
+
+static dfl_status read_case(const dfl_cfg *cfg, case3 *c, dfl_err *err)
+{
+    const char *sec = c->name, *ssec, *rsec;
+    dfl_status st;
+    if (!dfl_cfg_has_section(cfg, sec))
+        return dfl_cfg_reject(cfg, "study", "cases", err, "no section [%s]", sec);
+    if ((st = dfl_cfg_string(cfg, sec, "shape", &ssec, err))) return st;
+    if (!dfl_cfg_has_section(cfg, ssec))
+        return dfl_cfg_reject(cfg, sec, "shape", err, "no section [%s]", ssec);
+    if ((st = dfl_cfg_string_opt(cfg, sec, "ref", ssec, &rsec, err))) return st;
+    if (!dfl_cfg_has_section(cfg, rsec))
+        return dfl_cfg_reject(cfg, sec, "ref", err, "no section [%s]", rsec);
+    if ((st = dfl_shape_from_cfg(cfg, ssec, &c->shape, err))) return st;
+    c->have_shape = 1;
+    if (c->shape.dim != 3) return dfl_cfg_reject(cfg, sec, "shape", err, "expected a 3D shape");
+    if ((st = sjp10_source_new(cfg, ssec, &c->shape, &c->src, err))) return st;
+    if ((st = dfl_shape_from_cfg(cfg, rsec, &c->ref, err))) return st;
+    c->have_ref = 1;
+    if (c->ref.dim != 3) return dfl_cfg_reject(cfg, sec, "ref", err, "expected a 3D shape");
+    if ((st = dfl_cfg_vec(cfg, sec, "lo", 3, c->lo, err))) return st;
+    if ((st = dfl_cfg_vec(cfg, sec, "hi", 3, c->hi, err))) return st;
+    for (int j = 0; j < 3; j++)
+        if (!(c->lo[j] < c->hi[j])) return dfl_cfg_reject(cfg, sec, "hi", err, "expected hi > lo");
+    if ((st = dfl_cfg_int_opt(cfg, sec, "val_n", 217, 2, 1001, &c->val_n, err))) return st;
+    if ((st = dfl_cfg_bool_opt(cfg, sec, "midpoints", false, &c->midpoints, err))) return st;
+    if ((st = dfl_cfg_bool_opt(cfg, sec, "cache", false, &c->cache, err))) return st;
+    if ((st = dfl_cfg_double_opt(cfg, sec, "band", 0.0, 0.0, 1e300, &c->band, err))) return st;
+    if ((st = dfl_cfg_int_opt(cfg, sec, "samples", 0, 0, 4096, &c->samples, err))) return st;
+    c->own_eps = dfl_cfg_has(cfg, sec, "eps");
+    if (c->own_eps && (st = read_lists(cfg, sec, "eps", NULL, &c->eps, &c->neps, err))) return st;
+    c->own_levels = dfl_cfg_has(cfg, sec, "uniform_levels");
+    if (c->own_levels &&
+        (st = read_lists(cfg, sec, NULL, "uniform_levels", &c->levels, &c->nlevels, err)))
+        return st;
+    return DFL_OK;
+}
+
+static dfl_status read_keys(const dfl_cfg *cfg, keys3 *k, dfl_err *err)
+{
+    char names[SJP10_MAX_CASES][DFL_SECTION_NAME_LEN];
+    dfl_status st = dfl_section_names_from_cfg(cfg, "study", "cases", SJP10_MAX_CASES, names,
+                                               &k->ncases, "case section", err);
+    if (st) return st;
+    for (int i = 0; i < k->ncases; i++) memcpy(k->c[i].name, names[i], DFL_SECTION_NAME_LEN);
+    for (int i = 0; i < k->ncases; i++)
+        if ((st = read_case(cfg, &k->c[i], err))) return st;
+    if ((st = sjp10_fit_from_cfg(cfg, "fit", 3, &k->fit, err))) return st;
+    if ((st = read_lists(cfg, "study", "eps", NULL, &k->eps, &k->neps, err))) return st;
+    if ((st = read_lists(cfg, "study", NULL, "uniform_levels", &k->levels, &k->nlevels, err))) return st;
+    return dfl_cfg_int_opt(cfg, "study", "uniform_samples", 1, 1, 4096, &k->uniform_samples, err);
+}
+
+static dfl_status put_row(dfl_table *t, const case3 *c, const char *method, double eps, long level,
+                          const dfl_pht_fit_opts *o, const dfl_pht_fit *fit, const dfl_pht_val *v,
+                          double t_val, dfl_err *err)
+{
+    dfl_status st = dfl_table_row(t, err);
+    if (!st) st = dfl_table_set_string(t, "case", c->name, err);
+    if (!st) st = dfl_table_set_string(t, "method", method, err);
+    if (!st) st = dfl_table_set_double(t, "eps", eps, err);
+    if (!st) st = dfl_table_set_int(t, "uniform_level", level, err);
+    if (!st) st = dfl_table_set_int(t, "max_level", o->max_level, err);
+    if (!st) st = dfl_table_set_int(t, "samples", o->samples, err);
+    if (!st) st = sjp10_put_fit(t, fit, err);
+    if (!st) st = dfl_table_set_int(t, "val_n", c->val_n, err);
+    if (!st) st = dfl_table_set_int(t, "midpoints", c->midpoints, err);
+    if (!st) st = dfl_table_set_double(t, "band", c->band, err);
+    if (!st) st = sjp10_put_val(t, "val_", v, err);
+    if (!st) st = dfl_table_set_double(t, "t_val", t_val, err);
+    return st;
+}
+
+static dfl_status one_fit(const keys3 *k, const case3 *c, const sjp10_ref *ref, double eps,
+                          long level, const dfl_study_ctx *ctx, dfl_table *t, dfl_err *err)
+{
+    dfl_pht_fit_opts o = k->fit;
+    memcpy(o.lo, c->lo, sizeof o.lo);
+    memcpy(o.hi, c->hi, sizeof o.hi);
+    if (c->samples > 0) o.samples = (int)c->samples;
+    dfl_pht_fit fit;
+    dfl_field f = {0};
+    dfl_pht_val v;
+    dfl_status st;
+    if (level < 0) {
+        o.eps = eps;
+        st = dfl_pht_fit_run(c->src, &o, &fit, err);
+    } else {
+        o.samples = (int)k->uniform_samples;
+        st = dfl_pht_fit_uniform(c->src, &o, (int)level, &fit, err);
+    }
+    if (st) return dfl_err_prefix(err, "[%s]", c->name);
+    st = dfl_pht_field_new(&fit.spline, &f, err);
+    const double t0 = omp_get_wtime();
+    if (!st)
+        st = ref ? sjp10_ref_errors(&f, ref, ctx->threads, &v, err)
+                 : sjp10_stream_errors(&f, &c->ref, c->lo, c->hi, (int)c->val_n, c->midpoints,
+                                       c->band, ctx->threads, &v, err);
+    const double t_val = omp_get_wtime() - t0;
+    if (!st)
+        st = put_row(t, c, level < 0 ? "pht" : "uniform", level < 0 ? eps : NAN, level, &o, &fit,
+                     &v, t_val, err);
+    dfl_field_destroy(&f);
+    dfl_pht_fit_free(&fit);
+    return st;
+}
+
+static dfl_status run_case(const keys3 *k, const case3 *c, const dfl_study_ctx *ctx, dfl_table *t,
+                           dfl_err *err)
+{
+    sjp10_ref ref = {0};
+    dfl_status st = DFL_OK;
+    if (c->cache)
+        st = sjp10_ref_grid(&c->ref, c->lo, c->hi, (int)c->val_n, c->midpoints, c->band,
+                            ctx->threads, &ref, err);
+    const double *eps = c->own_eps ? c->eps : k->eps, *lev = c->own_levels ? c->levels : k->levels;
+    const size_t neps = c->own_eps ? c->neps : k->neps, nlev = c->own_levels ? c->nlevels : k->nlevels;
+    for (size_t i = 0; i < neps && !st; i++)
+        st = one_fit(k, c, c->cache ? &ref : NULL, eps[i], -1, ctx, t, err);
+    for (size_t i = 0; i < nlev && !st; i++)
+        st = one_fit(k, c, c->cache ? &ref : NULL, NAN, (long)lev[i], ctx, t, err);
+    sjp10_ref_free(&ref);
+    return st;
+}
+
+static dfl_status run3d(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
+                        dfl_err *err)
+{
+    keys3 k;
+    memset(&k, 0, sizeof k);
+    dfl_status st = read_keys(cfg, &k, err);
+    if (!st) st = dfl_cfg_check_used(cfg, err);
+    for (int i = 0; i < k.ncases && !st; i++) st = run_case(&k, &k.c[i], ctx, table, err);
+    keys_free(&k);
+    return st;
+}
+
+DFL_STUDY_DEFINE(sjp10_3d, run3d,
+                 "sjp10 3D: tricubic PHT fits of implicit surfaces and a sphere vs uniform grid and peers");

@@ -1,0 +1,149 @@
+/* sjp10 Fig. 2: cells (and degrees of freedom) against the error, per
+ * curve, for the adaptive PHT fit at a list of thresholds eps and for the
+ * uniform bicubic Hermite grid (every cell at level k: 2^k cells per axis,
+ * pht/fit.h's uniform mode) at a list of levels; validation errors on the
+ * same cached points for every fit of a case (sjp10_common.h).  A smooth
+ * case (a shape whose SDF has no medial axis in the box) shows the
+ * slope 1/2 of log cells vs log 1/error that sjp10 quotes for C4 functions
+ * on uniform grids.  Slopes are fitted in the report.
+ *
+ * Keys.  [study]
+ *   cases          = <section> ...    shape sections (planar, with derivatives)
+ *   fit            = <section>        PHT fit options (pht_cfg.h); its eps is
+ *                                     replaced by each entry of eps
+ *   eps            = e1 e2 ...        thresholds (> 0)
+ *   uniform_levels = k1 k2 ...        uniform grid levels (0..12)
+ *   uniform_samples = 1               estimator points per cell of the uniform
+ *                                     fits (only its column uses them)
+ *   val_n = 301, band = 0.02          validation grid (+ midpoints), medial band
+ * Rows: one per case and method (pht: per eps; uniform: per level).
+ * Signs: dflab's SDF is negative inside (sjp10: positive inside); errors
+ * are absolute values and do not depend on it.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cfg/pht_cfg.h"
+#include "pht/pht_field.h"
+#include "sjp10/sjp10.h"
+#include "sjp10/sjp10_common.h"
+
+typedef struct cells_keys {
+    sjp10_case c[SJP10_MAX_CASES];
+    int ncases;
+    dfl_pht_fit_opts fit;
+    double *eps;
+    size_t neps;
+    double *levels;
+    size_t nlevels;
+    long uniform_samples, val_n;
+    double band;
+} cells_keys;
+
+static void keys_free(cells_keys *k)
+{
+    sjp10_cases_free(k->c, k->ncases);
+    free(k->eps);
+    free(k->levels);
+}
+
+static dfl_status read_keys(const dfl_cfg *cfg, cells_keys *k, dfl_err *err)
+{
+    dfl_status st = sjp10_cases_from_cfg(cfg, "study", "cases", 1, k->c, &k->ncases, err);
+    if (st) return st;
+    for (int i = 0; i < k->ncases; i++)
+        if (k->c[i].shape.dim != 2)
+            return dfl_cfg_reject(cfg, "study", "cases", err, "[%s] is not a planar shape", k->c[i].name);
+    if ((st = sjp10_fit_from_cfg(cfg, "fit", 2, &k->fit, err))) return st;
+    if ((st = dfl_cfg_doubles(cfg, "study", "eps", 1, &k->eps, &k->neps, err))) return st;
+    for (size_t i = 0; i < k->neps; i++)
+        if (!(k->eps[i] > 0.0))
+            return dfl_cfg_reject(cfg, "study", "eps", err, "expected thresholds > 0, got %g", k->eps[i]);
+    if ((st = dfl_cfg_doubles(cfg, "study", "uniform_levels", 0, &k->levels, &k->nlevels, err)))
+        return st;
+    for (size_t i = 0; i < k->nlevels; i++)
+        if (!(k->levels[i] >= 0 && k->levels[i] <= 12 && k->levels[i] == floor(k->levels[i])))
+            return dfl_cfg_reject(cfg, "study", "uniform_levels", err,
+                                  "expected integer levels in 0..12, got %g", k->levels[i]);
+    if ((st = dfl_cfg_int_opt(cfg, "study", "uniform_samples", 1, 1, 4096, &k->uniform_samples, err)))
+        return st;
+    if ((st = dfl_cfg_int_opt(cfg, "study", "val_n", 301, 2, 4001, &k->val_n, err))) return st;
+    return dfl_cfg_double_opt(cfg, "study", "band", 0.02, 0.0, 1e300, &k->band, err);
+}
+
+static dfl_status put_row(dfl_table *t, const sjp10_case *c, const char *method, double eps,
+                          long level, const dfl_pht_fit_opts *o, const dfl_pht_fit *fit,
+                          const dfl_pht_val *v, double band, dfl_err *err)
+{
+    dfl_status st = dfl_table_row(t, err);
+    if (!st) st = dfl_table_set_string(t, "case", c->name, err);
+    if (!st) st = dfl_table_set_string(t, "kind", c->shape.ops->kind, err);
+    if (!st) st = dfl_table_set_string(t, "method", method, err);
+    if (!st) st = dfl_table_set_double(t, "eps", eps, err);
+    if (!st) st = dfl_table_set_int(t, "uniform_level", level, err);
+    if (!st) st = dfl_table_set_int(t, "max_level", o->max_level, err);
+    if (!st) st = dfl_table_set_int(t, "samples", o->samples, err);
+    if (!st) st = dfl_table_set_string(t, "split", dfl_pht_split_name(o->split), err);
+    if (!st) st = sjp10_put_fit(t, fit, err);
+    if (!st) st = dfl_table_set_double(t, "band", band, err);
+    if (!st) st = sjp10_put_val(t, "val_", v, err);
+    return st;
+}
+
+/* Fit (adaptive when level < 0, else uniform at level), validate, one row. */
+static dfl_status one_fit(const cells_keys *k, const sjp10_case *c, const sjp10_ref *ref,
+                          double eps, long level, const dfl_study_ctx *ctx, dfl_table *t,
+                          dfl_err *err)
+{
+    dfl_pht_fit_opts o = k->fit;
+    dfl_pht_fit fit;
+    dfl_field f = {0};
+    dfl_pht_val v;
+    dfl_status st;
+    if (level < 0) {
+        o.eps = eps;
+        st = dfl_pht_fit_run(c->src, &o, &fit, err);
+    } else {
+        o.samples = (int)k->uniform_samples;
+        st = dfl_pht_fit_uniform(c->src, &o, (int)level, &fit, err);
+    }
+    if (st) return dfl_err_prefix(err, "[%s]", c->name);
+    st = dfl_pht_field_new(&fit.spline, &f, err);
+    if (!st) st = sjp10_ref_errors(&f, ref, ctx->threads, &v, err);
+    if (!st)
+        st = put_row(t, c, level < 0 ? "pht" : "uniform", level < 0 ? eps : NAN, level, &o, &fit,
+                     &v, k->band, err);
+    dfl_field_destroy(&f);
+    dfl_pht_fit_free(&fit);
+    return st;
+}
+
+static dfl_status run_case(const cells_keys *k, const sjp10_case *c, const dfl_study_ctx *ctx,
+                           dfl_table *t, dfl_err *err)
+{
+    sjp10_ref ref;
+    dfl_status st = sjp10_ref_grid(&c->shape, k->fit.lo, k->fit.hi, (int)k->val_n, 1, k->band,
+                                   ctx->threads, &ref, err);
+    for (size_t i = 0; i < k->neps && !st; i++) st = one_fit(k, c, &ref, k->eps[i], -1, ctx, t, err);
+    for (size_t i = 0; i < k->nlevels && !st; i++)
+        st = one_fit(k, c, &ref, NAN, (long)k->levels[i], ctx, t, err);
+    sjp10_ref_free(&ref);
+    return st;
+}
+
+static dfl_status cells_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
+                            dfl_err *err)
+{
+    cells_keys k;
+    memset(&k, 0, sizeof k);
+    dfl_status st = read_keys(cfg, &k, err);
+    if (!st) st = dfl_cfg_check_used(cfg, err);
+    for (int i = 0; i < k.ncases && !st; i++) st = run_case(&k, &k.c[i], ctx, table, err);
+    keys_free(&k);
+    return st;
+}
+
+DFL_STUDY_DEFINE(sjp10_cells, cells_run,
+                 "sjp10 Fig. 2: cells and dofs vs validation error, adaptive PHT vs uniform Hermite grid");

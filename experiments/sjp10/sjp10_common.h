@@ -1,0 +1,118 @@
+/* Glue shared by the sjp10 studies: validation point sets whose exact
+ * distances are computed once and reused by every fit of a case, the table
+ * columns of a fit and of its validation, and the T-mesh / graph files.
+ *
+ * Why a cached reference: pht/validate.h's dfl_pht_validate_points
+ * evaluates the exact SDF (and the medial band's second SDF) at every call;
+ * a curve's footpoints cost ~10 us, and the cells-vs-error study validates
+ * a dozen fits per curve on the same points.  The band criterion is the
+ * library's (dfl_pht_medial_band) and the statistics are those of
+ * dfl_pht_val, so the numbers equal dfl_pht_validate_points' on the same
+ * points.
+ *
+ *   sjp10_ref_grid     points of the grid protocol (nodes [+ midpoints]), exact d, grad d, band
+ *   sjp10_ref_errors   errors of a field against a reference (deterministic, parallel)
+ *   sjp10_ref_free
+ *   sjp10_stream_errors  the same without a cache (points and exact values per chunk)
+ *   sjp10_put_fit      cells, base vertices, dofs, levels, times of a fit
+ *   sjp10_put_val      validation columns <prefix>max, mean, rms, gmax, off_max, ...
+ *   sjp10_eval         batched field evaluation in fixed parallel chunks
+ *   sjp10_write_mesh   the leaf cells of a spline: .vtp (cells as quads coloured by level) + .csv
+ *   sjp10_write_graph  the graph surface z = f(x, y) of a 2D field as a .vtp
+ *   sjp10_shape_eval   batched exact SDF in fixed parallel chunks
+ *   sjp10_cases_from_cfg / _free   the shape sections a study lists, with Hermite sources
+ *   sjp10_fit_from_cfg the fit options of the section [study] <key> names
+ *   sjp10_source_new   a Hermite source on a config's shape (open curves rejected)
+ */
+#ifndef DFL_EXPERIMENTS_SJP10_COMMON_H
+#define DFL_EXPERIMENTS_SJP10_COMMON_H
+
+#include <stddef.h>
+
+#include "field/field.h"
+#include "geom/shape.h"
+#include "harness/experiment.h"
+#include "pht/fit.h"
+#include "pht/validate.h"
+
+typedef struct sjp10_ref {
+    int dim;
+    size_t m;
+    double *pts;          /* m * dim */
+    double *d, *g;        /* exact SDF and gradient (m, m * dim) */
+    unsigned char *near;  /* medial band flags (m) */
+    double band;
+} sjp10_ref;
+
+/* n^dim nodes of [lo, hi] and, when midpoints != 0, the (n-1)^dim cell
+ * midpoints; exact values by the shape (parallel chunks), band of width
+ * band >= 0.  DFL_E_INPUT for n < 2, DFL_E_NOMEM. */
+dfl_status sjp10_ref_grid(const dfl_shape *shape, const double *lo, const double *hi, int n,
+                          int midpoints, double band, int threads, sjp10_ref *out, dfl_err *err);
+void sjp10_ref_free(sjp10_ref *r);
+
+/* Errors of f at r's points (points with a non-finite exact value are
+ * skipped).  DFL_E_NOMEM. */
+dfl_status sjp10_ref_errors(const dfl_field *f, const sjp10_ref *r, int threads, dfl_pht_val *out,
+                            dfl_err *err);
+
+/* The exact SDF (and gradient, m * dim) at m points, fixed parallel chunks. */
+void sjp10_shape_eval(const dfl_shape *s, size_t m, const double *pts, double *val, double *grad,
+                      int threads);
+
+#define SJP10_MAX_CASES 8
+/* One case: a shape section and (when asked for) its Hermite source. */
+typedef struct sjp10_case {
+    char name[64];
+    dfl_shape shape;
+    int have_shape;
+    dfl_pht_source *src;
+} sjp10_case;
+/* The blank-separated shape sections of [sec] key (at most SJP10_MAX_CASES)
+ * into c[0..*n-1]; with want_src a Hermite source for each (a shape without
+ * derivatives or an open curve: DFL_E_INPUT naming the section's kind).
+ * Everything built is freed on failure. */
+dfl_status sjp10_cases_from_cfg(const dfl_cfg *cfg, const char *sec, const char *key, int want_src,
+                                sjp10_case *c, int *n, dfl_err *err);
+void sjp10_cases_free(sjp10_case *c, int n);
+
+/* The fit options of the section [study] key names (pht_cfg.h), for dim;
+ * DFL_E_INPUT naming the key when the section is missing. */
+dfl_status sjp10_fit_from_cfg(const dfl_cfg *cfg, const char *key, int dim, dfl_pht_fit_opts *o,
+                              dfl_err *err);
+
+/* A Hermite source on the shape of section sec: DFL_E_INPUT naming
+ * [sec] closed for an open B-spline curve (unsigned distance) and [sec]
+ * kind for a shape without SDF derivatives. */
+dfl_status sjp10_source_new(const dfl_cfg *cfg, const char *sec, const dfl_shape *shape,
+                            dfl_pht_source **src, dfl_err *err);
+
+/* The same statistics on the grid protocol without caching: points are
+ * made, and the exact SDF evaluated, chunk by chunk (for grids too large
+ * to hold, e.g. the 217^3 protocol of fast analytic references).
+ * DFL_E_INPUT for n < 2, DFL_E_NOMEM. */
+dfl_status sjp10_stream_errors(const dfl_field *f, const dfl_shape *shape, const double *lo,
+                               const double *hi, int n, int midpoints, double band, int threads,
+                               dfl_pht_val *out, dfl_err *err);
+
+/* f at m points in chunks of fixed size, OpenMP over chunks. */
+void sjp10_eval(const dfl_field *f, size_t m, const double *pts, double *val, double *grad,
+                int threads);
+
+dfl_status sjp10_put_fit(dfl_table *t, const dfl_pht_fit *f, dfl_err *err);
+dfl_status sjp10_put_val(dfl_table *t, const char *prefix, const dfl_pht_val *v, dfl_err *err);
+
+/* <stem><tag>.vtp: every leaf cell as a quad (2D; 3D: its 6 faces) with
+ * its own corner points carrying point data "level", plus its outline as
+ * a closed polyline; and <stem><tag>.csv with lo_*, hi_*, level per cell. */
+dfl_status sjp10_write_mesh(const dfl_study_ctx *ctx, const char *stem,
+                            const dfl_pht_spline *s, dfl_err *err);
+
+/* <stem><tag>.vtp: the graph (x, y, f(x, y)) of a 2D field on an n x n grid
+ * of [lo, hi], triangulated, with point data "value" and, when ref is
+ * given (a shape), "error" = f - d. */
+dfl_status sjp10_write_graph(const dfl_study_ctx *ctx, const char *stem, const dfl_field *f,
+                             const dfl_shape *ref, const double lo[2], const double hi[2], int n,
+                             int threads, dfl_err *err);
+
+#endif

@@ -1,0 +1,92 @@
+/* `[field] kind = pht` (experiments/cfg/pht_cfg.c): a circle fit through the
+ * field table meets eps at points off its centre; every documented bad key
+ * exits with DFL_E_INPUT naming file:line and the key. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cfg_util.h"
+#include "cfg/field_cfg.h"
+#include "cfg/pht_cfg.h"
+#include "pht/pht_field.h"
+
+static const char *CIRCLE = "[shape]\nkind = circle\ncenter = 0.5 0.5\nradius = 0.3\n";
+
+Test(pht_cfg, circle_field_meets_eps)
+{
+    char text[512];
+    snprintf(text, sizeof text, "[field]\nkind = pht\neps = 1e-4\nmax_level = 16\n%s", CIRCLE);
+    dfl_cfg *cfg = tu_cfg("p.ini", text);
+    dfl_field f;
+    dfl_err err;
+    cr_assert_eq(dfl_field_from_cfg(cfg, "field", &f, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(dfl_cfg_check_used(cfg, &err), DFL_OK, "%s", err.msg);
+    cr_assert_not_null(dfl_pht_field_spline(&f));
+    const double pts[][2] = {{0.8, 0.5}, {0.1, 0.1}, {0.5, 0.65}, {0.95, 0.3}};
+    for (int i = 0; i < 4; i++) {
+        double g[2], v = dfl_field_eval1(&f, pts[i], g);
+        double r = hypot(pts[i][0] - 0.5, pts[i][1] - 0.5);
+        cr_expect(fabs(v - (r - 0.3)) <= 1e-4, "at %d: %g vs %g", i, v, r - 0.3);
+    }
+    dfl_field_destroy(&f);
+    dfl_cfg_free(cfg);
+}
+
+Test(pht_cfg, options_are_read)
+{
+    dfl_cfg *cfg = tu_cfg("p.ini", "[field]\nkind = pht\neps = 2e-3\nmax_level = 50\n"
+                                   "samples = 9\nsplit = binary\nestimator = grid\nseed = 5\n"
+                                   "lo = -1 -1\nhi = 2 1\ngrade = false\n");
+    dfl_pht_fit_opts o;
+    dfl_err err;
+    cr_assert_eq(dfl_pht_opts_from_cfg(cfg, "field", 2, &o, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(o.eps, 2e-3);
+    cr_expect_eq(o.max_level, 50);
+    cr_expect_eq(o.samples, 9);
+    cr_expect_eq(o.split, DFL_PHT_SPLIT_BINARY);
+    cr_expect_eq(o.estimator, DFL_PHT_EST_GRID);
+    cr_expect_eq(o.seed, 5);
+    cr_expect(o.lo[0] == -1 && o.hi[0] == 2 && o.hi[1] == 1);
+    cr_expect_eq(o.grade, 0);
+    cr_expect_eq(o.peaks, 1);
+    dfl_cfg_free(cfg);
+}
+
+/* The field section's extra lines, the shape section, and the key the
+ * error must name. */
+static void bad(const char *field_lines, const char *shape, const char *key, const char *line)
+{
+    char text[1024];
+    snprintf(text, sizeof text, "[field]\nkind = pht\n%s%s", field_lines, shape);
+    dfl_cfg *cfg = tu_cfg("p.ini", text);
+    dfl_field f;
+    dfl_err err;
+    cr_assert_eq(dfl_field_from_cfg(cfg, "field", &f, &err), DFL_E_INPUT, "%s", text);
+    cr_expect(strstr(err.msg, key) && strstr(err.msg, line), "expected %s at %s: %s", key, line,
+              err.msg);
+    dfl_cfg_free(cfg);
+}
+
+Test(pht_cfg, bad_keys_are_named)
+{
+    bad("eps = 0\n", CIRCLE, "eps", "p.ini:3");
+    bad("eps = -1e-3\n", CIRCLE, "eps", "p.ini:3");
+    bad("max_level = 31\n", CIRCLE, "max_level", "p.ini:3");
+    bad("max_level = -1\n", CIRCLE, "max_level", "p.ini:3");
+    bad("split = binary\nmax_level = 61\n", CIRCLE, "max_level", "p.ini:4");
+    bad("split = quad\n", CIRCLE, "split", "p.ini:3");
+    bad("estimator = sobol\n", CIRCLE, "estimator", "p.ini:3");
+    bad("samples = 0\n", CIRCLE, "samples", "p.ini:3");
+    bad("hi = 1 0\n", CIRCLE, "hi", "p.ini:3");
+    bad("shape = nowhere\n", CIRCLE, "shape", "p.ini:3");
+    /* an open curve: unsigned distance, no inside */
+    bad("", "[shape]\nkind = bspline_curve\norder = 4\ncontrol = 0.1 0.1; 0.5 0.9; 0.9 0.1; 0.9 0.5\n",
+        "closed", "[shape]");
+    bad("", "[shape]\nkind = bspline_curve\norder = 4\nclosed = false\n"
+            "control = 0.1 0.1; 0.5 0.9; 0.9 0.1; 0.9 0.5\n",
+        "closed", "p.ini:6");
+    /* shapes without SDF derivatives or without a sign */
+    bad("", "[shape]\nkind = ellipse\ncenter = 0.5 0.5\na = 0.3\nb = 0.2\n", "kind", "p.ini:4");
+    bad("", "[shape]\nkind = segment\na = 0 0\nb = 1 1\n", "kind", "p.ini:4");
+}

@@ -1,0 +1,189 @@
+/* Adaptive and uniform PHT fits (pht/fit.c): exactness for a linear SDF,
+ * convergence and consistent level records on the circle, both split
+ * rules and all estimators, bit-identical results at 1 and 2 threads,
+ * uniform grids' counts, option checks. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <omp.h>
+#include <string.h>
+
+#include "geom/shape.h"
+#include "pht/fit.h"
+
+static dfl_shape circle(void)
+{
+    dfl_shape s;
+    const double c[2] = {0.5, 0.5};
+    cr_assert_eq(dfl_shape_circle(c, 0.3, &s, NULL), DFL_OK);
+    return s;
+}
+
+static void fit(const dfl_shape *s, const dfl_pht_fit_opts *o, dfl_pht_fit *f)
+{
+    dfl_pht_source *src;
+    dfl_err err;
+    cr_assert_eq(dfl_pht_source_new(s, &src, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(dfl_pht_fit_run(src, o, f, &err), DFL_OK, "%s", err.msg);
+    dfl_pht_source_free(src);
+}
+
+Test(pht_fit, a_linear_sdf_is_exact_on_one_cell)
+{
+    dfl_shape s;
+    const double p[2] = {0.3, 0.4}, n[2] = {1, 2};
+    cr_assert_eq(dfl_shape_plane(2, p, n, &s, NULL), DFL_OK);
+    dfl_pht_fit_opts o;
+    dfl_pht_fit_opts_default(2, &o);
+    o.eps = 1e-13;
+    dfl_pht_fit f;
+    fit(&s, &o, &f);
+    cr_assert_eq(f.nlevels, 1);
+    cr_assert_eq(f.levels[0].cells, 1);
+    cr_assert_eq(f.levels[0].dofs, 16);
+    cr_assert(f.converged);
+    cr_assert(f.levels[0].max_err < 1e-14, "%g", f.levels[0].max_err);
+    dfl_pht_fit_free(&f);
+    dfl_shape_free(&s);
+}
+
+Test(pht_fit, circle_converges_with_consistent_records)
+{
+    dfl_shape s = circle();
+    for (int rule = 0; rule < DFL_PHT_SPLIT_COUNT; rule++)
+        for (int est = 0; est < DFL_PHT_EST_COUNT; est++) {
+            dfl_pht_fit_opts o;
+            dfl_pht_fit_opts_default(2, &o);
+            o.eps = 1e-4;
+            o.max_level = rule == DFL_PHT_SPLIT_BINARY ? 40 : 20;
+            o.split = (dfl_pht_split)rule;
+            o.estimator = (dfl_pht_estimator)est;
+            /* the gradient error at the circle's centre (a cone point) does
+             * not shrink with the cell: that estimator stops at max_level */
+            int grad = est == DFL_PHT_EST_GRADIENT;
+            if (grad) o.max_level = rule == DFL_PHT_SPLIT_BINARY ? 20 : 10;
+            dfl_pht_fit f;
+            fit(&s, &o, &f);
+            cr_assert_eq(f.converged, !grad, "%s/%s", dfl_pht_split_name(o.split),
+                         dfl_pht_estimator_name(o.estimator));
+            const dfl_pht_level *last = &f.levels[f.nlevels - 1];
+            cr_assert(grad || last->max_err <= o.eps);
+            cr_assert_eq(last->refined, 0);
+            cr_assert_eq(last->cells, dfl_pht_spline_ncells(f.spline));
+            cr_assert_eq(last->cells, dfl_tmesh_nleaves(f.mesh));
+            cr_assert_eq(last->dofs, 4 * dfl_tmesh_nbase(f.mesh));
+            cr_assert_eq(last->dofs, dfl_pht_spline_dofs(f.spline));
+            size_t base = 0;
+            for (int k = 0; k < f.nlevels; k++) {
+                const dfl_pht_level *r = &f.levels[k];
+                cr_assert_eq(r->level, k);
+                cr_assert(r->base_vertices >= base);
+                base += r->new_base;
+                cr_assert_eq(r->base_vertices, base);
+                if (k + 1 < f.nlevels) {
+                    /* splitting n cells adds n (binary) or 3n (cross) leaves */
+                    size_t add = rule == DFL_PHT_SPLIT_BINARY ? 1 : 3;
+                    cr_assert_eq(f.levels[k + 1].cells, r->cells + add * r->refined);
+                }
+            }
+            for (size_t i = 0; i < last->cells; i++) {
+                int level;
+                dfl_pht_spline_cell(f.spline, i, NULL, NULL, &level);
+                cr_assert(f.cell_err[i] <= o.eps || level == o.max_level);
+            }
+            dfl_pht_fit_free(&f);
+        }
+    dfl_shape_free(&s);
+}
+
+Test(pht_fit, bit_identical_at_one_and_two_threads)
+{
+    dfl_shape s = circle();
+    dfl_pht_fit_opts o;
+    dfl_pht_fit_opts_default(2, &o);
+    o.eps = 1e-5;
+    o.max_level = 20;
+    o.seed = 7;
+    dfl_pht_fit f1, f2;
+    omp_set_num_threads(1);
+    fit(&s, &o, &f1);
+    omp_set_num_threads(2);
+    fit(&s, &o, &f2);
+    cr_assert_eq(f1.nlevels, f2.nlevels);
+    for (int k = 0; k < f1.nlevels; k++) {
+        cr_assert_eq(f1.levels[k].cells, f2.levels[k].cells);
+        cr_assert(memcmp(&f1.levels[k].max_err, &f2.levels[k].max_err, sizeof(double)) == 0);
+        cr_assert(memcmp(&f1.levels[k].mean_err, &f2.levels[k].mean_err, sizeof(double)) == 0);
+    }
+    size_t n = dfl_pht_spline_ncells(f1.spline);
+    cr_assert_eq(n, dfl_pht_spline_ncells(f2.spline));
+    for (size_t i = 0; i < n; i++)
+        cr_assert(memcmp(dfl_pht_spline_cell(f1.spline, i, NULL, NULL, NULL),
+                         dfl_pht_spline_cell(f2.spline, i, NULL, NULL, NULL),
+                         16 * sizeof(double)) == 0);
+    /* another seed draws other points: the fit may differ, but stays valid */
+    dfl_pht_fit f3;
+    o.seed = 8;
+    fit(&s, &o, &f3);
+    cr_assert(f3.converged);
+    dfl_pht_fit_free(&f1);
+    dfl_pht_fit_free(&f2);
+    dfl_pht_fit_free(&f3);
+    dfl_shape_free(&s);
+}
+
+Test(pht_fit, uniform_grid_counts)
+{
+    dfl_shape s = circle();
+    dfl_pht_source *src;
+    cr_assert_eq(dfl_pht_source_new(&s, &src, NULL), DFL_OK);
+    dfl_pht_fit_opts o;
+    dfl_pht_fit_opts_default(2, &o);
+    dfl_pht_fit f;
+    cr_assert_eq(dfl_pht_fit_uniform(src, &o, 3, &f, NULL), DFL_OK);
+    cr_assert_eq(f.nlevels, 1);
+    cr_assert_eq(f.levels[0].level, 3);
+    cr_assert_eq(f.levels[0].cells, 64);
+    cr_assert_eq(f.levels[0].base_vertices, 81);
+    cr_assert_eq(f.levels[0].dofs, 324);
+    dfl_pht_fit_free(&f);
+    dfl_pht_source_free(src);
+    dfl_shape_free(&s);
+    /* 3D: 2^3k cells, (2^k + 1)^3 base vertices, 8 data each */
+    const double c[3] = {0.5, 0.5, 0.5};
+    cr_assert_eq(dfl_shape_sphere(c, 0.3, &s, NULL), DFL_OK);
+    cr_assert_eq(dfl_pht_source_new(&s, &src, NULL), DFL_OK);
+    dfl_pht_fit_opts_default(3, &o);
+    cr_assert_eq(dfl_pht_fit_uniform(src, &o, 2, &f, NULL), DFL_OK);
+    cr_assert_eq(f.levels[0].cells, 64);
+    cr_assert_eq(f.levels[0].base_vertices, 125);
+    cr_assert_eq(f.levels[0].dofs, 1000);
+    dfl_pht_fit_free(&f);
+    dfl_pht_source_free(src);
+    dfl_shape_free(&s);
+}
+
+Test(pht_fit, bad_options_name_the_option)
+{
+    dfl_pht_fit_opts o;
+    dfl_err err;
+    dfl_pht_fit_opts_default(2, &o);
+    cr_assert_eq(dfl_pht_fit_opts_check(2, &o, &err), DFL_OK);
+    o.eps = 0;
+    cr_assert_eq(dfl_pht_fit_opts_check(2, &o, &err), DFL_E_INPUT);
+    cr_assert(strstr(err.msg, "eps"), "%s", err.msg);
+    dfl_pht_fit_opts_default(2, &o);
+    o.max_level = 31;
+    cr_assert_eq(dfl_pht_fit_opts_check(2, &o, &err), DFL_E_INPUT);
+    cr_assert(strstr(err.msg, "max_level"), "%s", err.msg);
+    o.split = DFL_PHT_SPLIT_BINARY; /* binary allows 30 * dim */
+    cr_assert_eq(dfl_pht_fit_opts_check(2, &o, &err), DFL_OK);
+    o.max_level = -1;
+    cr_assert_eq(dfl_pht_fit_opts_check(2, &o, &err), DFL_E_INPUT);
+    dfl_pht_fit_opts_default(2, &o);
+    o.samples = 0;
+    cr_assert_eq(dfl_pht_fit_opts_check(2, &o, &err), DFL_E_INPUT);
+    cr_assert(strstr(err.msg, "samples"), "%s", err.msg);
+    cr_assert_str_eq(dfl_pht_estimator_name(DFL_PHT_EST_GRADIENT), "gradient");
+    cr_assert_eq(dfl_pht_estimator_from_name("grid"), DFL_PHT_EST_GRID);
+    cr_assert_eq(dfl_pht_estimator_from_name("sobol"), -1);
+}
