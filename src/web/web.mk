@@ -22,7 +22,10 @@ NPM      ?= npm
 # Debian's emscripten finds its node modules (acorn) under /usr/share/nodejs.
 WEB_ENV  := NODE_PATH=/usr/share/nodejs
 WEB_DIR  := $(BUILD)/web
-WEB_SRCS := $(shell find src/core src/geom src/field src/rfunc -name '*.c' | sort)
+# gridpeer.c stores half floats through the host's Imath, which emscripten's
+# sysroot lacks; the page does not use it.
+WEB_SKIP := src/field/gridpeer.c
+WEB_SRCS := $(filter-out $(WEB_SKIP),$(shell find src/core src/geom src/field src/rfunc -name '*.c' | sort))
 WEB_OBJ  := $(WEB_SRCS:%.c=$(WEB_DIR)/obj/%.o)
 WEB_API  := $(WEB_DIR)/obj/src/web/dflweb.o $(WEB_DIR)/obj/src/web/lsq_stub.o
 WEB_LIB  := $(WEB_DIR)/obj/libdfl-web.a
