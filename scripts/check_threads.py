@@ -2,7 +2,11 @@
 """Thread-count determinism: runs configs with `--threads 1`, `--threads 2`
 and with OMP_NUM_THREADS=1 (no --threads) and compares every output file
 byte for byte; in manifest.json only the wall times, the date, the
-thread count and the command line may differ.
+thread count and the command line may differ, and in CSV tables only the
+columns that hold wall-clock measurements (TIMING below: `seconds`,
+`*_seconds`, `*_ms`, `t_*`, `*ns_per_*` -- the timings of hvb25's Table 4 and of
+sjp10's fits), which no two runs share; a CSV's sha256 in the manifest is
+then checked through that comparison instead.
 
     check_threads.py DFLAB [--quick] [--keep DIR] [CONFIG.ini ...]
 
@@ -10,9 +14,12 @@ Without configs: every configs/paper/*/*.ini and configs/smoke/*.ini
 (`make check-threads`); --quick: the paper configs that run in about a
 second plus the smoke configs (part of `make test`).  Prints one line per
 difference and a summary; exit 0 when all agree."""
+import csv
 import glob
+import io
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -22,12 +29,26 @@ QUICK = ["bs04_hetero", "bs04_normalization", "bs04_polygonization", "smoke", "s
 VOLATILE = {"date", "wall_seconds", "total_wall_seconds", "threads", "omp_threads", "command_line"}
 
 
+TIMING = re.compile(r"^(seconds|.*_seconds|.*_ms|t_.*|.*ns_per_.*)$")
+
+
 def strip(o):
     if isinstance(o, dict):
+        if str(o.get("path", o.get("name", ""))).endswith(".csv"):
+            o = {k: v for k, v in o.items() if k not in ("sha256", "bytes")}
         return {k: strip(v) for k, v in o.items() if k not in VOLATILE}
     if isinstance(o, list):
         return [strip(v) for v in o]
     return o
+
+
+def csv_rows(path):
+    """The table without its wall-clock columns (TIMING)."""
+    rows = list(csv.reader(io.StringIO(open(path, encoding="utf-8").read())))
+    if not rows:
+        return rows
+    keep = [i for i, c in enumerate(rows[0]) if not TIMING.match(c)]
+    return [[r[i] for i in keep if i < len(r)] for r in rows]
 
 
 def run(dflab, cfg, out, threads, env_threads):
@@ -55,6 +76,9 @@ def compare(a, b, label):
             ma, mb = strip(json.load(open(pa))), strip(json.load(open(pb)))
             if ma != mb:
                 diffs.append("%s: manifest.json differs beyond wall times" % label)
+        elif n.endswith(".csv"):
+            if csv_rows(pa) != csv_rows(pb):
+                diffs.append("%s: %s differs" % (label, n))
         elif open(pa, "rb").read() != open(pb, "rb").read():
             diffs.append("%s: %s differs" % (label, n))
     return diffs
