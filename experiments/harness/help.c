@@ -7,6 +7,7 @@
 
 #include "harness/experiment.h"
 #include "harness/help.h"
+#include "harness/probe.h"
 #include "io/config.h"
 #include "io/table.h"
 
@@ -19,6 +20,7 @@ dfl_status dfl_study_help(const dfl_study *study, const char *config, FILE *out,
     if (st == DFL_OK && !t) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
     if (st == DFL_OK) {
         dfl_cfg_validate_only(pt);
+        dfl_probe_sections_defer(pt); /* the probe's, not the study's keys */
         const char *dummy;
         dfl_cfg_string(pt, "study", "name", &dummy, NULL);
         dfl_study_ctx ctx = {.stage_dir = "/nonexistent/dflab-help", .tag = "", .point = 0,

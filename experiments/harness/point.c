@@ -8,6 +8,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "harness/probe.h"
 #include "harness/sweep.h"
 #include "io/atomic.h"
 #include "io/dirs.h"
@@ -222,8 +223,10 @@ static dfl_status compute(const dfl_sweep *s, dfl_cfg *pt, size_t k, const char 
     dfl_study_ctx ctx = {.stage_dir = stage, .tag = tag, .point = k, .npoints = s->np,
                          .threads = s->threads};
     const double t0 = dfl_wall_seconds();
+    dfl_probe_sections_defer(pt);
     if (st == DFL_OK) st = s->study->run(pt, &ctx, t, err);
     if (st == DFL_OK) st = dfl_cfg_check_used(pt, err);
+    if (st == DFL_OK) st = dfl_probe_sections_check(pt, err);
     *seconds = dfl_wall_seconds() - t0;
     char name[600], path[8192];
     snprintf(name, sizeof name, "%s.csv", s->study->name);

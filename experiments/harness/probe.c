@@ -99,8 +99,14 @@ dfl_status dfl_probe(const dfl_probe_opts *o, FILE *out, dfl_err *err)
         st = dfl_err_set(err, DFL_E_INPUT, "--jet %d: expected an order in [0, %d]", o->jet, DFL_JET_MAX);
         goto done;
     }
-    st = dfl_field_from_cfg(cfg, "field", &f, err);
-    if (st == DFL_OK) st = dfl_cfg_check_used_in(cfg, "field", err);
+    const char *sec = o->field ? o->field : "field";
+    if (!dfl_cfg_has_section(cfg, sec)) {
+        st = dfl_err_set(err, DFL_E_INPUT, "%s: --field %s: the config has no section [%s]",
+                         o->config, sec, sec);
+        goto done;
+    }
+    st = dfl_field_from_cfg(cfg, sec, &f, err);
+    if (st == DFL_OK) st = dfl_cfg_check_used_in(cfg, sec, err);
     if (st == DFL_OK) st = dfl_cfg_check_used_in(cfg, "shape", err);
     if (st != DFL_OK) goto done;
     if (o->jet > 0 && !f.ops->jet) {
@@ -155,4 +161,22 @@ done:
     dfl_field_destroy(&f);
     dfl_cfg_free(cfg);
     return st;
+}
+
+void dfl_probe_sections_defer(dfl_cfg *c)
+{
+    dfl_cfg_defer_sections(c, "field");
+}
+
+dfl_status dfl_probe_sections_check(const dfl_cfg *c, dfl_err *err)
+{
+    /* each pass reads every key of one section or fails, so this ends */
+    for (const char *sec; (sec = dfl_cfg_unused_deferred(c)) != NULL;) {
+        dfl_field f = {0};
+        dfl_status st = dfl_field_from_cfg(c, sec, &f, err);
+        if (st == DFL_OK) dfl_field_destroy(&f);
+        if (st == DFL_OK) st = dfl_cfg_check_used_in(c, sec, err);
+        if (st != DFL_OK) return st;
+    }
+    return DFL_OK;
 }

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "core/sha256.h"
+#include "harness/probe.h"
 #include "harness/sweep.h"
 #include "io/dirs.h"
 #include "io/manifest.h"
@@ -81,6 +82,7 @@ static dfl_status validate_points(const dfl_sweep *s, dfl_err *err)
         st = dfl_cfg_sweep_point(s->cfg, i, &pt, err);
         if (st != DFL_OK) break;
         dfl_cfg_validate_only(pt);
+        dfl_probe_sections_defer(pt);
         const char *dummy;
         dfl_cfg_string(pt, "study", "name", &dummy, NULL); /* mark used */
         char tag[32], label[2048];
@@ -92,6 +94,7 @@ static dfl_status validate_points(const dfl_sweep *s, dfl_err *err)
         st = s->study->run(pt, &ctx, t, &e2);
         if (!dfl_cfg_validated(pt) && st == DFL_OK) st = dfl_cfg_check_used(pt, &e2);
         if (dfl_cfg_validated(pt)) st = DFL_OK;
+        if (st == DFL_OK) st = dfl_probe_sections_check(pt, &e2);
         if (st != DFL_OK) {
             *err = e2;
             if (s->np > 1) dfl_err_prefix(err, "sweep point %zu (%s)", i,

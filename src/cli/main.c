@@ -31,7 +31,7 @@ static const char *const usage_main =
     "  plan CONFIG.ini [--set ...]... [--out DIR] [--commands | --emit slurm|parallel] [-j M]\n"
     "        the sweep points, one command per point, or a Slurm array / GNU parallel job\n"
     "  merge DIR   assemble the points run with --point into what one run writes\n"
-    "  probe CONFIG.ini --points FILE.csv [--jet K] [--set section.key=value]...\n"
+    "  probe CONFIG.ini --points FILE.csv [--field SECTION] [--jet K] [--set ...]...\n"
     "        evaluate the config's [field] at points; CSV on stdout\n"
     "  list  studies and the configs that use them\n"
     "  help [COMMAND | STUDY]   this text, a command's help, or the keys a study reads\n"
@@ -86,12 +86,16 @@ static const char *const usage_merge =
     "is missing, claimed twice, or comes from another config or dflab binary.\n";
 
 static const char *const usage_probe =
-    "usage: dflab probe CONFIG.ini --points FILE.csv [--jet K] [--set section.key=value]...\n"
+    "usage: dflab probe CONFIG.ini --points FILE.csv [--field SECTION] [--jet K]\n"
+    "                  [--set section.key=value]...\n"
     "\n"
-    "Evaluates the field defined by the config's [field] section (and [shape]) at\n"
-    "the points of FILE.csv (header x,y[,z]; with --jet also dx,dy[,dz]).  Prints\n"
-    "CSV x,y,z,value,gx,gy,gz[,d1..dK] on stdout, where dk is the exact k-th\n"
-    "derivative of s -> u(x + s*dir) at s = 0+.  Exit 2 on bad input.\n";
+    "Evaluates the field defined by the config's [field] section (--field SECTION:\n"
+    "that section instead, e.g. field_alpha90; exit 2 when the config has none;\n"
+    "[shape] for kind = exact) at the points of FILE.csv (header x,y[,z]; with\n"
+    "--jet also dx,dy[,dz]).  Prints CSV x,y,z,value,gx,gy,gz[,d1..dK] on stdout,\n"
+    "where dk is the exact k-th derivative of s -> u(x + s*dir) at s = 0+.  Exit 2\n"
+    "on bad input.  Sections [field] (when the study does not read it) and\n"
+    "[field_NAME] are the probe's: the runner checks their keys, studies ignore them.\n";
 
 static const char *const usage_list =
     "usage: dflab list\n\nLists the studies and the configs that name them: those under ./configs/,\n"
@@ -246,6 +250,8 @@ static int take_probe(void *opts, const char *opt, const char *v)
     dfl_probe_opts *o = opts;
     if (strcmp(opt, "--points") == 0) {
         o->points = v;
+    } else if (strcmp(opt, "--field") == 0) {
+        o->field = v;
     } else { /* --jet */
         /* The range is core/jet.h's; the message is the CLI's, since it
          * also answers text that is not an integer. */
@@ -357,7 +363,7 @@ static int cmd_merge(int argc, char **argv, const char *cmdline)
 
 static int cmd_probe(int argc, char **argv)
 {
-    static const char *const valued[] = {"--points", "--jet", NULL};
+    static const char *const valued[] = {"--points", "--jet", "--field", NULL};
     static const char *const none[] = {NULL};
     static const cmd_spec spec = {usage_probe, valued, none, take_probe, exec_probe};
     dfl_probe_opts o = {0};

@@ -12,7 +12,8 @@
  *   typed getters  config_get.c      dfl_cfg_string/int/double/bool/enum/vec[_opt],
  *                                    dfl_cfg_points, dfl_cfg_doubles, dfl_cfg_point_dim
  *   locations      config_where.c    dfl_cfg_where, dfl_cfg_err_at, dfl_cfg_reject,
- *                                    dfl_cfg_check_used, dfl_cfg_check_used_in
+ *                                    dfl_cfg_check_used, dfl_cfg_check_used_in,
+ *                                    dfl_cfg_defer_sections, dfl_cfg_unused_deferred
  *   read record    config_log.c      dfl_cfg_reads, dfl_cfg_read_at,
  *                                    dfl_cfg_validate_only, dfl_cfg_validated
  *
@@ -198,6 +199,14 @@ dfl_status dfl_cfg_check_used(const dfl_cfg *c, dfl_err *err);
 /* Same, restricted to section sec (for commands that read only part of a
  * study config, such as `dflab probe` reading [field] and [shape]). */
 dfl_status dfl_cfg_check_used_in(const dfl_cfg *c, const char *sec, dfl_err *err);
+/* Defers the sections named `name` and `name_*` (name: at most 40 bytes;
+ * NULL or "" undoes it): dfl_cfg_check_used skips their keys, which another
+ * reader checks later (dflab's runner: the probe's [field] and [field_*]
+ * sections, experiments/harness/probe.h).  Not copied by sweep points. */
+void dfl_cfg_defer_sections(dfl_cfg *c, const char *name);
+/* The first deferred section, in entry order, holding a key nobody has read
+ * yet, or NULL. */
+const char *dfl_cfg_unused_deferred(const dfl_cfg *c);
 
 /* ---- read record ----------------------------------------------------- */
 /* Every getter records the key it reads (the first read counts), what it

@@ -71,6 +71,9 @@ struct dfl_cfg {
     char **axis_name; /* "section.key" of each axis */
     size_t naxes;
     int is_point; /* made by dfl_cfg_sweep_point: values are single */
+    /* dfl_cfg_defer_sections: sections NAME and NAME_* that dfl_cfg_check_used
+     * leaves to a later reader (empty: none) */
+    char defer[DFL_CFG_NAME_MAX + 1];
 };
 
 /* One `include = file` line seen while parsing (resolved after the parse). */

@@ -53,12 +53,33 @@ dfl_status dfl_cfgi_bad(const dfl_cfg_entry *en, const char *expect, dfl_err *er
     return dfl_err_set(err, DFL_E_INPUT, "%s: expected %s, got '%.200s'", w, expect, en->value);
 }
 
-/* The first unread key of section sec (any section when sec is NULL). */
+/* Section sec is deferred (dfl_cfg_defer_sections): NAME or NAME_*. */
+static bool deferred(const dfl_cfg *c, const char *sec)
+{
+    const size_t n = strlen(c->defer);
+    return n > 0 && strncmp(sec, c->defer, n) == 0 && (sec[n] == '\0' || sec[n] == '_');
+}
+
+void dfl_cfg_defer_sections(dfl_cfg *c, const char *name)
+{
+    snprintf(c->defer, sizeof c->defer, "%s", name ? name : "");
+}
+
+const char *dfl_cfg_unused_deferred(const dfl_cfg *c)
+{
+    for (size_t i = 0; i < c->n; i++)
+        if (!c->used[i] && deferred(c, c->e[i].sec)) return c->e[i].sec;
+    return NULL;
+}
+
+/* The first unread key of section sec (any section but the deferred ones
+ * when sec is NULL). */
 static dfl_status first_unused(const dfl_cfg *c, const char *sec, const char *what,
                                dfl_err *err)
 {
     for (size_t i = 0; i < c->n; i++) {
         if (c->used[i] || (sec && strcmp(c->e[i].sec, sec) != 0)) continue;
+        if (!sec && deferred(c, c->e[i].sec)) continue;
         char w[1024];
         dfl_cfgi_where(&c->e[i], w, sizeof w);
         return dfl_err_set(err, DFL_E_INPUT, "%s: %s", w, what);

@@ -50,3 +50,29 @@ Test(config, where_and_err_at)
     cr_assert(strstr(err.msg, "t.ini:5: [b] y: unknown key"), "%s", err.msg);
     dfl_cfg_free(c);
 }
+
+/* Deferred sections: NAME and NAME_* are skipped by dfl_cfg_check_used
+ * (not NAMEx), and dfl_cfg_unused_deferred names the first with an unread
+ * key. */
+Test(config, deferred_sections)
+{
+    dfl_cfg *c = cfgu_parse("[a]\nx = 1\n[field]\nk = 1\n[field_b]\nk = 2\n");
+    dfl_err err;
+    long i;
+    cr_assert_eq(dfl_cfg_int(c, "a", "x", 0, 9, &i, &err), DFL_OK);
+    cr_expect_eq(dfl_cfg_check_used(c, &err), DFL_E_INPUT);
+    dfl_cfg_defer_sections(c, "field");
+    cr_expect_eq(dfl_cfg_check_used(c, &err), DFL_OK, "%s", err.msg);
+    cr_expect_str_eq(dfl_cfg_unused_deferred(c), "field");
+    cr_assert_eq(dfl_cfg_int(c, "field", "k", 0, 9, &i, &err), DFL_OK);
+    cr_expect_str_eq(dfl_cfg_unused_deferred(c), "field_b");
+    cr_assert_eq(dfl_cfg_int(c, "field_b", "k", 0, 9, &i, &err), DFL_OK);
+    cr_expect_null(dfl_cfg_unused_deferred(c));
+    dfl_cfg_free(c);
+    c = cfgu_parse("[fieldx]\nk = 1\n");
+    dfl_cfg_defer_sections(c, "field");
+    cr_expect_eq(dfl_cfg_check_used(c, &err), DFL_E_INPUT);
+    cr_expect_null(dfl_cfg_unused_deferred(c));
+    dfl_cfg_defer_sections(c, NULL);
+    dfl_cfg_free(c);
+}
