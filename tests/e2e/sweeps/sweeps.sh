@@ -56,13 +56,18 @@ case $CASE in
 parallel)
     one_process "$W/one"
     # the plan's GNU parallel line, with a wrapper that SIGKILLs point 5's
-    # first attempt midway
+    # first attempt midway.  That attempt is made slow (a larger, unswept
+    # sample count: ~6 s on one core) so that the kill always lands before
+    # it could commit, however fast the machine; a kill that finds the
+    # process gone fails the wrapper loudly rather than passing by luck.
     cat > "$W/wrap.sh" <<WRAP
 #!/bin/bash
 if [[ " \$* " == *" --point 5 "* ]] && [ ! -e "$W/killed" ]; then
     touch "$W/killed"
-    "$DFLAB" "\$@" & pid=\$!
-    sleep 0.05; kill -9 \$pid; wait \$pid
+    "$DFLAB" "\$@" --set study.samples=3600000 & pid=\$!
+    sleep 0.3
+    kill -9 \$pid || { echo "wrap: point 5 ended before the kill" >&2; touch "$W/kill_missed"; }
+    wait \$pid
     exit \$?
 fi
 exec "$DFLAB" "\$@"
@@ -75,6 +80,7 @@ WRAP
     grep -q wrap.sh "$W/line.sh" || die "wrapper not in line: $(cat "$W/line.sh")"
     if bash "$W/line.sh" 2> "$W/first.err"; then die "the killed job did not fail the line"; fi
     [ -e "$W/killed" ] || die "point 5 was never started"
+    [ ! -e "$W/kill_missed" ] || die "point 5 ended before the wrapper's kill: $(cat "$W/first.err")"
     [ ! -e "$W/par" ] || die "a failed parallel run left a merged folder"
     [ "$(points_in "$W/par")" = 23 ] || die "expected 23 committed points, got $(points_in "$W/par")"
     bash "$W/line.sh" 2> "$W/second.err" || die "resumed line failed: $(cat "$W/second.err")"
