@@ -116,7 +116,7 @@ slurm)
     echo "slurm: 24 array tasks and the merge ran on $(hostname)"
     ;;
 sigkill)
-    big=(--set study.samples=18000)
+    big=(--set study.samples=36000)
     one_process "$W/ref" "${big[@]}"
     "$DFLAB" run "$CFG" "${SETS[@]}" "${big[@]}" --out "$W/k" --quiet & pid=$!
     for _ in $(seq 2000); do
