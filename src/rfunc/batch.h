@@ -52,6 +52,8 @@
 
 #include "core/status.h"
 #include "field/field.h"
+#include "rfunc/join.h"
+#include "rfunc/part.h"
 #include "rfunc/region.h"
 #include "rfunc/segment.h"
 #include "rfunc/tri3d.h"
@@ -90,6 +92,29 @@ dfl_status dfl_rfunc_batch_triangles(const dfl_rfunc_tri *t, size_t n, int p,
 dfl_status dfl_rfunc_batch_regions(const dfl_rfunc_region *r, size_t n, int p,
                                    dfl_rfunc_batch **out, dfl_err *err);
 void dfl_rfunc_batch_free(dfl_rfunc_batch *b);
+
+/* A finished rfunc field as the batch builder reads it (rfield.c fills it
+ * from its own state; everything is borrowed and must outlive the batch). */
+typedef struct dfl_rfunc_batch_desc {
+    int dim;                       /* 2 or 3 */
+    dfl_rfunc_join join;
+    int p;
+    dfl_rfunc_correction corr;     /* the corrected join's form */
+    const dfl_rfunc_part *parts;   /* n parts in the field's order */
+    size_t n;
+    const dfl_rfunc_vertex *verts; /* nv shared vertices, sorted by hi */
+    size_t nv;
+    const size_t *vstart;          /* n + 1 offsets into verts by hi */
+    const dfl_field *slow;         /* the field's per-point path (fallback, reference) */
+} dfl_rfunc_batch_desc;
+
+/* The batch that computes the field d describes, or *out = NULL (DFL_OK)
+ * when no kernel does (then the field stays on its per-point path).  The
+ * kinds are tried in order: the built-in kernels above, then eq. 5 trims,
+ * R-conjunction, the corrected join and mixed part kinds (batch_impl.h).
+ * Errors only for what the machine did (DFL_E_NOMEM); *out NULL then. */
+dfl_status dfl_rfunc_batch_build(const dfl_rfunc_batch_desc *d, dfl_rfunc_batch **out,
+                                 dfl_err *err);
 
 size_t dfl_rfunc_batch_segments(const dfl_rfunc_batch *b);
 int dfl_rfunc_batch_order(const dfl_rfunc_batch *b);

@@ -9,28 +9,12 @@
 #include "core/hypot.h"
 #include "rfunc/batch.h"
 #include "rfunc/domain.h"
+#include "rfunc/part.h"
 #include "rfunc/region.h"
 #include "rfunc/trim.h"
 
-typedef enum part_kind { PART_SEGMENT, PART_TRIANGLE, PART_POINT, PART_REGION } part_kind;
-
-typedef struct part {
-    part_kind kind;
-    union {
-        dfl_rfunc_seg seg;
-        dfl_rfunc_tri tri;
-        dfl_rfunc_point pt;
-        dfl_rfunc_region reg;
-    } u;
-} part;
-
-/* A shared vertex of the corrected join; lo < hi are its adjacent parts.
- * The eval loop handles it right after part hi, when h_hi is at hand and
- * h_lo is either the previous part, the first one, or re-evaluated. */
-typedef struct vertex {
-    double x[3];
-    size_t lo, hi;
-} vertex;
+typedef dfl_rfunc_part part;
+typedef dfl_rfunc_vertex vertex;
 
 struct dfl_rfield {
     int dim;
@@ -45,6 +29,8 @@ struct dfl_rfield {
     double span;           /* max |coordinate| of the parts (domain.h) */
     bool fast;             /* builder option: use the batch evaluator if eligible */
     dfl_rfunc_batch *batch; /* eval's fast path (after finish), or NULL */
+    dfl_field slow;         /* the per-point path as a field (ctx = this field, no destroy):
+                               the batch's fallback and reference */
 };
 
 dfl_status dfl_rfield_new(int dim, dfl_rfunc_join join, int p, dfl_rfield **out, dfl_err *err)
@@ -67,7 +53,7 @@ void dfl_rfield_free(dfl_rfield *r)
 {
     if (!r) return;
     for (size_t i = 0; i < r->n; i++)
-        if (r->parts[i].kind == PART_REGION) dfl_rfunc_region_free(&r->parts[i].u.reg);
+        if (r->parts[i].kind == DFL_RFUNC_PART_REGION) dfl_rfunc_region_free(&r->parts[i].u.reg);
     free(r->parts);
     free(r->verts);
     free(r->vstart);
@@ -120,7 +106,7 @@ dfl_status dfl_rfield_add_segment(dfl_rfield *r, const double *a, const double *
 {
     part pt;
     memset(&pt, 0, sizeof pt);
-    pt.kind = PART_SEGMENT;
+    pt.kind = DFL_RFUNC_PART_SEGMENT;
     dfl_status st = take_coords(r, a, 1, "segment end point", err);
     if (st == DFL_OK) st = take_coords(r, b, 1, "segment end point", err);
     if (st == DFL_OK) st = dfl_rfunc_seg_init(r->dim, a, b, trim, &pt.u.seg, err);
@@ -135,7 +121,7 @@ dfl_status dfl_rfield_add_triangle(dfl_rfield *r, const double *A, const double 
         return dfl_err_set(err, DFL_E_INPUT, "rfunc field: triangles need dimension 3");
     part pt;
     memset(&pt, 0, sizeof pt);
-    pt.kind = PART_TRIANGLE;
+    pt.kind = DFL_RFUNC_PART_TRIANGLE;
     dfl_status st = take_coords(r, A, 1, "triangle corner", err);
     if (st == DFL_OK) st = take_coords(r, B, 1, "triangle corner", err);
     if (st == DFL_OK) st = take_coords(r, C, 1, "triangle corner", err);
@@ -148,7 +134,7 @@ dfl_status dfl_rfield_add_point(dfl_rfield *r, const double *c, dfl_err *err)
 {
     part pt;
     memset(&pt, 0, sizeof pt);
-    pt.kind = PART_POINT;
+    pt.kind = DFL_RFUNC_PART_POINT;
     dfl_status st = take_coords(r, c, 1, "point part", err);
     if (st == DFL_OK) st = dfl_rfunc_point_init(r->dim, c, &pt.u.pt, err);
     if (st != DFL_OK) return st;
@@ -161,7 +147,7 @@ dfl_status dfl_rfield_add_region(dfl_rfield *r, const double *v, size_t n, dfl_e
         return dfl_err_set(err, DFL_E_INPUT, "rfunc field: polygon regions need dimension 2");
     part pt;
     memset(&pt, 0, sizeof pt);
-    pt.kind = PART_REGION;
+    pt.kind = DFL_RFUNC_PART_REGION;
     dfl_status st = take_coords(r, v, n, "region vertex", err);
     if (st != DFL_OK) return st;
     st = dfl_rfunc_region_init(v, n, &pt.u.reg, err);
@@ -195,10 +181,10 @@ dfl_status dfl_rfield_add_vertex(dfl_rfield *r, const double *v, size_t i, size_
 static double part_eval(const part *pt, const double *x, double *g)
 {
     switch (pt->kind) {
-    case PART_SEGMENT: return dfl_rfunc_seg_eval(&pt->u.seg, x, g);
-    case PART_TRIANGLE: return dfl_rfunc_tri_eval(&pt->u.tri, x, g);
-    case PART_POINT: return dfl_rfunc_point_eval(&pt->u.pt, x, g);
-    case PART_REGION: return dfl_rfunc_region_eval(&pt->u.reg, x, g);
+    case DFL_RFUNC_PART_SEGMENT: return dfl_rfunc_seg_eval(&pt->u.seg, x, g);
+    case DFL_RFUNC_PART_TRIANGLE: return dfl_rfunc_tri_eval(&pt->u.tri, x, g);
+    case DFL_RFUNC_PART_POINT: return dfl_rfunc_point_eval(&pt->u.pt, x, g);
+    case DFL_RFUNC_PART_REGION: return dfl_rfunc_region_eval(&pt->u.reg, x, g);
     }
     assert(0);
     return NAN;
@@ -208,10 +194,10 @@ static dfl_status part_jet(const part *pt, const double *x, const double *dir, i
                            dfl_jet *out, dfl_err *err)
 {
     switch (pt->kind) {
-    case PART_SEGMENT: return dfl_rfunc_seg_jet(&pt->u.seg, x, dir, K, out, err);
-    case PART_TRIANGLE: return dfl_rfunc_tri_jet(&pt->u.tri, x, dir, K, out, err);
-    case PART_POINT: return dfl_rfunc_point_jet(&pt->u.pt, x, dir, K, out, err);
-    case PART_REGION: return dfl_rfunc_region_jet(&pt->u.reg, x, dir, K, out, err);
+    case DFL_RFUNC_PART_SEGMENT: return dfl_rfunc_seg_jet(&pt->u.seg, x, dir, K, out, err);
+    case DFL_RFUNC_PART_TRIANGLE: return dfl_rfunc_tri_jet(&pt->u.tri, x, dir, K, out, err);
+    case DFL_RFUNC_PART_POINT: return dfl_rfunc_point_jet(&pt->u.pt, x, dir, K, out, err);
+    case DFL_RFUNC_PART_REGION: return dfl_rfunc_region_jet(&pt->u.reg, x, dir, K, out, err);
     }
     return dfl_err_set(err, DFL_E_INTERNAL, "rfunc field: unknown part kind");
 }
@@ -226,15 +212,11 @@ static double vertex_q(int dim, const vertex *v, const double *x, double *g)
     return q;
 }
 
-static void rfield_eval(const void *ctx, size_t m, const double *pts, double *val, double *grad)
+/* The per-point path: every part at every point, in part order. */
+static void rfield_eval_slow(const void *ctx, size_t m, const double *pts, double *val,
+                             double *grad)
 {
     const dfl_rfield *r = ctx;
-    if (r->batch) {
-        /* The whole chunk at once: the batch is read-only and allocates
-         * nothing (stack scratch), so concurrent calls are safe. */
-        dfl_rfunc_batch_eval(r->batch, m, pts, val, grad);
-        return;
-    }
     const int dim = r->dim, want = grad != NULL;
     const int corrected = r->join == DFL_RFUNC_REQUIV_CORRECTED;
     const int eq20 = corrected && r->corr == DFL_RFUNC_CORR_EQ20;
@@ -285,6 +267,18 @@ static void rfield_eval(const void *ctx, size_t m, const double *pts, double *va
         }
         val[i] = dfl_rfunc_acc_end(&acc, want ? grad + i * (size_t)dim : NULL);
     }
+}
+
+static void rfield_eval(const void *ctx, size_t m, const double *pts, double *val, double *grad)
+{
+    const dfl_rfield *r = ctx;
+    if (r->batch) {
+        /* The whole chunk at once: the batch is read-only and allocates
+         * nothing (stack scratch), so concurrent calls are safe. */
+        dfl_rfunc_batch_eval(r->batch, m, pts, val, grad);
+        return;
+    }
+    rfield_eval_slow(ctx, m, pts, val, grad);
 }
 
 static dfl_status domain_check(const dfl_rfield *r, const double *x, bool jet, dfl_err *err)
@@ -353,6 +347,8 @@ static void rfield_destroy(void *ctx) { dfl_rfield_free(ctx); }
 
 
 static const dfl_field_ops rfield_ops = {"rfunc", rfield_eval, rfield_jet, rfield_destroy};
+/* The per-point path of a finished field, borrowed by its batch. */
+static const dfl_field_ops rfield_slow_ops = {"rfunc_per_point", rfield_eval_slow, rfield_jet, NULL};
 
 dfl_status dfl_rfield_check_point(const dfl_field *f, const double *x, bool jet, dfl_err *err)
 {
@@ -368,92 +364,6 @@ bool dfl_rfield_nan_is_undefined(const dfl_field *f)
 bool dfl_rfield_is_fast(const dfl_field *f)
 {
     return f->ops == &rfield_ops && ((const dfl_rfield *)f->ctx)->batch != NULL;
-}
-
-/* The cases rfunc/batch.h computes: R-equivalence of point parts only, of
- * convex regions only, of triangles only (one eq. 4 trim), or
- * of 2D or 3D segments, all with the same eq. 4 trim (disk or strip), forming a chain (segment k
- * starts exactly where k-1 ends).  Then the segments are those of the open
- * polyline a_0, ..., a_{n-1}, b_{n-1} (a closed polyline is the open one
- * with b_{n-1} = a_0, and the R-equivalence ignores the vertices), which
- * the batch is built from: NULL (no error) when the field is not eligible,
- * or when the polyline checks of the batch's reference field reject the
- * chain (segments added one by one may backtrack). */
-static dfl_status build_batch(const dfl_rfield *f, dfl_rfunc_batch **out, dfl_err *err)
-{
-    *out = NULL;
-    /* One segment: the join is the identity, which the per-point path
-     * keeps exactly (u = h, tests/rfunc/test_segment.c) and the batch only
-     * to rounding; there is nothing to vectorize over either. */
-    if (!f->fast || f->join != DFL_RFUNC_REQUIV || f->n < 2) return DFL_OK;
-    const int dim = f->dim;
-    size_t npt = 0, ntri = 0, nreg = 0;
-    for (size_t k = 0; k < f->n; k++) {
-        npt += f->parts[k].kind == PART_POINT;
-        ntri += f->parts[k].kind == PART_TRIANGLE;
-        nreg += f->parts[k].kind == PART_REGION;
-    }
-    if (nreg == f->n) {
-        /* only convex regions: the region kernel */
-        dfl_rfunc_region *rg = malloc(f->n * sizeof *rg);
-        if (!rg) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-        for (size_t k = 0; k < f->n; k++) rg[k] = f->parts[k].u.reg;
-        dfl_status st = dfl_rfunc_batch_regions(rg, f->n, f->p, out, err);
-        free(rg);
-        return st;
-    }
-    if (ntri == f->n) {
-        /* only triangles: the triangle kernel, when their trims allow */
-        dfl_rfunc_tri *t = malloc(f->n * sizeof *t);
-        if (!t) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-        for (size_t k = 0; k < f->n; k++) t[k] = f->parts[k].u.tri;
-        dfl_err e2;
-        dfl_status st = dfl_rfunc_batch_triangles(t, f->n, f->p, out, &e2);
-        free(t);
-        if (st == DFL_E_INPUT) {
-            *out = NULL;
-            return DFL_OK;
-        }
-        if (st != DFL_OK) *err = e2;
-        return st;
-    }
-    if (npt == f->n) {
-        /* only points: the point kernel */
-        double *c = malloc((size_t)dim * f->n * sizeof *c);
-        if (!c) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-        for (size_t k = 0; k < f->n; k++)
-            memcpy(c + (size_t)dim * k, f->parts[k].u.pt.c, (size_t)dim * sizeof *c);
-        dfl_status st = dfl_rfunc_batch_points(dim, c, f->n, f->p, out, err);
-        free(c);
-        return st;
-    }
-    const dfl_rfunc_trim trim = f->parts[0].u.seg.trim;
-    if (f->parts[0].kind != PART_SEGMENT ||
-        (trim != DFL_RFUNC_TRIM_DISK && trim != DFL_RFUNC_TRIM_STRIP))
-        return DFL_OK;
-    for (size_t k = 0; k < f->n; k++) {
-        const part *pt = &f->parts[k];
-        if (pt->kind != PART_SEGMENT || pt->u.seg.trim != trim) return DFL_OK;
-        if (k > 0) {
-            const double *e = f->parts[k - 1].u.seg.b, *a = pt->u.seg.a;
-            for (int j = 0; j < dim; j++)
-                if (e[j] != a[j]) return DFL_OK;
-        }
-    }
-    const size_t d = (size_t)dim;
-    double *v = malloc(d * (f->n + 1) * sizeof *v);
-    if (!v) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-    for (size_t k = 0; k < f->n; k++) memcpy(v + d * k, f->parts[k].u.seg.a, d * sizeof *v);
-    memcpy(v + d * f->n, f->parts[f->n - 1].u.seg.b, d * sizeof *v);
-    dfl_err e2;
-    dfl_status st = dfl_rfunc_batch_new_opts(dim, v, f->n + 1, false, f->p, trim, out, &e2);
-    free(v);
-    if (st == DFL_E_INPUT) {
-        *out = NULL;
-        return DFL_OK;
-    }
-    if (st != DFL_OK) *err = e2;
-    return st;
 }
 
 dfl_status dfl_rfield_finish(dfl_rfield **r, dfl_field *out, dfl_err *err)
@@ -474,7 +384,6 @@ dfl_status dfl_rfield_finish(dfl_rfield **r, dfl_field *out, dfl_err *err)
         sorted = malloc((f->nv ? f->nv : 1) * sizeof *sorted);
         if (!f->vstart || !sorted) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
     }
-    if (st == DFL_OK) st = build_batch(f, &f->batch, err);
     if (st != DFL_OK) {
         free(sorted);
         dfl_rfield_free(f);
@@ -492,6 +401,21 @@ dfl_status dfl_rfield_finish(dfl_rfield **r, dfl_field *out, dfl_err *err)
     free(f->verts);
     f->verts = sorted;
     f->vcap = f->nv;
+    f->slow.dim = f->dim;
+    f->slow.ops = &rfield_slow_ops;
+    f->slow.ctx = f;
+    /* One part: the join is the identity, which the per-point path keeps
+     * exactly (u = h, tests/rfunc/test_segment.c) and a batch only to
+     * rounding; there is nothing to vectorize over either. */
+    if (f->fast && f->n >= 2) {
+        const dfl_rfunc_batch_desc d = {f->dim, f->join, f->p,     f->corr,  f->parts,
+                                        f->n,   f->verts, f->nv,   f->vstart, &f->slow};
+        st = dfl_rfunc_batch_build(&d, &f->batch, err);
+        if (st != DFL_OK) {
+            dfl_rfield_free(f);
+            return st;
+        }
+    }
     out->dim = f->dim;
     out->ops = &rfield_ops;
     out->ctx = f;

@@ -1,0 +1,267 @@
+/* The segment kernels: 2D disk (the reference kernel, see batch.c), 2D
+ * strip, 3D disk and strip trims of eq. 4, R-equivalence. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "rfunc/batch_impl.h"
+#include "rfunc/rfield.h"
+
+/* One segment at one point: adds h^-p to *S and h^-(p+2) h grad h to *Vx,
+ * *Vy.  Operation counts per line (mul, add; fabs is a logic op) are
+ * summed by the benchmark (tests/bench/bench_rfunc.c, kernel_ops): keep
+ * them in step with the code. */
+DFL_INLINE void seg_term(double x, double y, const dfl_rfunc_batch *b, size_t k, int p,
+                         double *S, double *Vx, double *Vy)
+{
+    const double wx = x - b->ax[k], wy = y - b->ay[k];   /* x - a       0, 2 */
+    const double vx = x - b->bx[k], vy = y - b->by[k];   /* x - b       0, 2 */
+    const double f = wx * b->nx[k] + wy * b->ny[k];      /* eq. 2       2, 1 */
+    const double m2 = wx * vx + wy * vy;                 /* -t d        2, 1 */
+    const double mp = m2 + fabs(m2);                     /* 2 max(.,0)  0, 1 */
+    const double mt = mp * b->hid[k];                    /* max(-t, 0)  1, 0 */
+    const double mi = mp * b->hid2[k];                   /* mt / d      1, 0 */
+    const double h2 = f * f + mt * mt;                   /* eq. 4^2     2, 1 */
+    const double gx = f * b->nx[k] + mi * (wx + vx);     /* h grad h    2, 2 */
+    const double gy = f * b->ny[k] + mi * (wy + vy);     /*             2, 2 */
+    double r2, w;
+    if (p & 1) {
+        const double r = rsqrt_newton(h2);                /* 13, 4 */
+        r2 = r * r;                                       /* 1, 0 */
+        w = p == 1 ? r : r * ipow_sq(r2, p / 2);          /* muls of ipow_sq(p/2) + 1, 0 */
+    } else {
+        r2 = 1.0 / h2;                                    /* 1 division */
+        w = ipow_sq(r2, p / 2);                           /* muls of ipow_sq(p/2), 0 */
+    }
+    const double q = w * r2;                             /* 1, 0 */
+    *S += w;                                             /* 0, 1 */
+    *Vx += q * gx;                                       /* 1, 1 */
+    *Vy += q * gy;                                       /* 1, 1 */
+}
+
+/* The strip trim of eq. 4 (rfunc/segment.h): p1 = (x - a).e, p2 = (b - x).e,
+ * t = 2 p1 p2 / (p1 + p2 + r), r = |(p1, p2)| (rfunc/trim.h's conjunction
+ * without cancellation; p1 + p2 = d > 0), grad t = (p2 - p1)/r e, so with
+ * mt = max(-t, 0): h grad h = f grad f - mt (p2 - p1)/r e.  Returns mt and
+ * the factor k = mt (p2 - p1)/r of -e. */
+DFL_INLINE double strip_mt(double p1, double p2, double *k)
+{
+    const double r2 = p1 * p1 + p2 * p2;
+    const double rr = rsqrt_newton(r2);
+    const double t = 2.0 * p1 * p2 / (p1 + p2 + r2 * rr);
+    const double mt = 0.5 * (fabs(t) - t);
+    *k = mt * (p2 - p1) * rr;
+    return mt;
+}
+
+/* 2D segment with the strip trim. */
+DFL_INLINE void seg_term_strip2(double x, double y, const dfl_rfunc_batch *b, size_t k, int p,
+                                double *S, double *Vx, double *Vy)
+{
+    const double wx = x - b->ax[k], wy = y - b->ay[k];
+    const double vx = x - b->bx[k], vy = y - b->by[k];
+    const double f = wx * b->nx[k] + wy * b->ny[k];
+    const double p1 = wx * b->ex[k] + wy * b->ey[k], p2 = -(vx * b->ex[k] + vy * b->ey[k]);
+    double kk;
+    const double mt = strip_mt(p1, p2, &kk);
+    const double q = pow_term(f * f + mt * mt, p, S);
+    *Vx += q * (f * b->nx[k] - kk * b->ex[k]);
+    *Vy += q * (f * b->ny[k] - kk * b->ey[k]);
+}
+
+/* 3D segment (space curves): f^2 = s1^2 + s2^2 with the two normals, the
+ * sphere (strip = 0) or slab (strip = 1) trim. */
+DFL_INLINE void seg_term3(double x, double y, double z, const dfl_rfunc_batch *b, size_t k,
+                          int p, int strip, double *S, double *Vx, double *Vy, double *Vz)
+{
+    const double wx = x - b->ax[k], wy = y - b->ay[k], wz = z - b->az[k];
+    const double vx = x - b->bx[k], vy = y - b->by[k], vz = z - b->bz[k];
+    const double s1 = wx * b->nx[k] + wy * b->ny[k] + wz * b->nz[k];
+    const double s2 = wx * b->mx[k] + wy * b->my[k] + wz * b->mz[k];
+    double gx = s1 * b->nx[k] + s2 * b->mx[k], gy = s1 * b->ny[k] + s2 * b->my[k],
+           gz = s1 * b->nz[k] + s2 * b->mz[k];
+    double mt;
+    if (strip) {
+        const double p1 = wx * b->ex[k] + wy * b->ey[k] + wz * b->ez[k];
+        const double p2 = -(vx * b->ex[k] + vy * b->ey[k] + vz * b->ez[k]);
+        double kk;
+        mt = strip_mt(p1, p2, &kk);
+        gx -= kk * b->ex[k];
+        gy -= kk * b->ey[k];
+        gz -= kk * b->ez[k];
+    } else {
+        const double m2 = wx * vx + wy * vy + wz * vz;
+        const double mp = m2 + fabs(m2);
+        mt = mp * b->hid[k];
+        const double mi = mp * b->hid2[k];
+        gx += mi * (wx + vx);
+        gy += mi * (wy + vy);
+        gz += mi * (wz + vz);
+    }
+    const double q = pow_term(s1 * s1 + s2 * s2 + mt * mt, p, S);
+    *Vx += q * gx;
+    *Vy += q * gy;
+    *Vz += q * gz;
+}
+
+/* The strip and 3D kernels' sums: 1 + dim doubles per point (S, V). */
+DFL_INLINE void sums_gen_p(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out,
+                           const int p, const int dim, const int strip)
+{
+    if (dim == 2)
+        DFL_BATCH_SUMS(b, m, pts, out, 2, seg_term_strip2(X[l], Y[l], b, k, p, &S[l], &Vx[l], &Vy[l]));
+    else
+        DFL_BATCH_SUMS(b, m, pts, out, 3,
+                       seg_term3(X[l], Y[l], Z[l], b, k, p, strip, &S[l], &Vx[l], &Vy[l], &Vz[l]));
+}
+
+#define DFL_GEN_CASES(dim, strip)                                  \
+    switch (b->p) {                                                \
+    case 1: sums_gen_p(b, m, pts, out, 1, dim, strip); break;      \
+    case 2: sums_gen_p(b, m, pts, out, 2, dim, strip); break;      \
+    case 3: sums_gen_p(b, m, pts, out, 3, dim, strip); break;      \
+    case 4: sums_gen_p(b, m, pts, out, 4, dim, strip); break;      \
+    case 7: sums_gen_p(b, m, pts, out, 7, dim, strip); break;      \
+    case 12: sums_gen_p(b, m, pts, out, 12, dim, strip); break;    \
+    default: sums_gen_p(b, m, pts, out, b->p, dim, strip); break;  \
+    }
+
+DFL_CLONES
+static void sums_strip2(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+{
+    DFL_GEN_CASES(2, 1)
+}
+
+DFL_CLONES
+static void sums_disk3(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+{
+    DFL_GEN_CASES(3, 0)
+}
+
+DFL_CLONES
+static void sums_strip3(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+{
+    DFL_GEN_CASES(3, 1)
+}
+
+/* Sums S and V (3 doubles per point) for m points. */
+DFL_INLINE void sums_p(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out,
+                       const int p)
+{
+    const size_t n = b->n;
+    for (size_t i0 = 0; i0 < m; i0 += LANES) {
+        const size_t c = m - i0 < LANES ? m - i0 : LANES;
+        double X[LANES], Y[LANES], S[LANES] = {0}, Vx[LANES] = {0}, Vy[LANES] = {0};
+        /* a short last block repeats its last point in the spare lanes */
+        for (size_t l = 0; l < LANES; l++) {
+            const size_t i = i0 + (l < c ? l : c - 1);
+            X[l] = pts[2 * i];
+            Y[l] = pts[2 * i + 1];
+        }
+        for (size_t k = 0; k < n; k++) {
+#pragma omp simd
+            for (int l = 0; l < LANES; l++)
+                seg_term(X[l], Y[l], b, k, p, &S[l], &Vx[l], &Vy[l]);
+        }
+        for (size_t l = 0; l < c; l++) {
+            out[3 * (i0 + l)] = S[l];
+            out[3 * (i0 + l) + 1] = Vx[l];
+            out[3 * (i0 + l) + 2] = Vy[l];
+        }
+    }
+}
+
+DFL_CLONES
+static void sums_disk2(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+{
+    switch (b->p) {
+    case 1: sums_p(b, m, pts, out, 1); break;
+    case 2: sums_p(b, m, pts, out, 2); break;
+    case 3: sums_p(b, m, pts, out, 3); break;
+    case 4: sums_p(b, m, pts, out, 4); break;
+    case 5: sums_p(b, m, pts, out, 5); break;
+    case 6: sums_p(b, m, pts, out, 6); break;
+    case 7: sums_p(b, m, pts, out, 7); break;
+    case 8: sums_p(b, m, pts, out, 8); break;
+    case 12: sums_p(b, m, pts, out, 12); break;
+    default: sums_p(b, m, pts, out, b->p); break;
+    }
+}
+
+void dfl_rfunc_batch_sums_seg(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+{
+    if (b->dim == 3) {
+        if (b->strip) sums_strip3(b, m, pts, out);
+        else sums_disk3(b, m, pts, out);
+    } else if (b->strip) {
+        sums_strip2(b, m, pts, out);
+    } else {
+        sums_disk2(b, m, pts, out);
+    }
+}
+
+dfl_status dfl_rfunc_batch_new(const double *v, size_t n, bool closed, int p,
+                               dfl_rfunc_batch **out, dfl_err *err)
+{
+    return dfl_rfunc_batch_new_opts(2, v, n, closed, p, DFL_RFUNC_TRIM_DISK, out, err);
+}
+
+dfl_status dfl_rfunc_batch_new_opts(int dim, const double *v, size_t n, bool closed, int p,
+                                    dfl_rfunc_trim trim, dfl_rfunc_batch **out, dfl_err *err)
+{
+    dfl_field ref = {0};
+    if (trim != DFL_RFUNC_TRIM_DISK && trim != DFL_RFUNC_TRIM_STRIP)
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "batch: trim '%s' has no batched kernel (disk and strip only)",
+                           dfl_rfunc_trim_name(trim));
+    /* The library validates everything (counts, p, degenerate segments). */
+    dfl_status st = dfl_rfield_polyline_opts(dim, v, n, closed, DFL_RFUNC_REQUIV, p, trim, false,
+                                             &ref, err);
+    if (st != DFL_OK) return st;
+    const size_t ns = closed ? n : n - 1;
+    dfl_rfunc_batch *b;
+    if ((st = dfl_rfunc_batch_alloc(dim, p, ns, &ref, &b, err)) != DFL_OK) return st;
+    b->strip = trim == DFL_RFUNC_TRIM_STRIP;
+    if (dim == 3 || b->strip) {
+        /* the library's own segment frames (rfunc/segment.c): the same n1,
+         * n2, e as the per-point path */
+        for (size_t k = 0; k < ns; k++) {
+            dfl_rfunc_seg sg;
+            const double *a = v + (size_t)dim * k, *e = v + (size_t)dim * ((k + 1) % n);
+            st = dfl_rfunc_seg_init(dim, a, e, trim, &sg, err);
+            if (st != DFL_OK) {
+                dfl_rfunc_batch_free(b);
+                return st;
+            }
+            b->ax[k] = sg.a[0], b->ay[k] = sg.a[1], b->az[k] = sg.a[2];
+            b->bx[k] = sg.b[0], b->by[k] = sg.b[1], b->bz[k] = sg.b[2];
+            b->nx[k] = sg.n1[0], b->ny[k] = sg.n1[1], b->nz[k] = sg.n1[2];
+            b->mx[k] = sg.n2[0], b->my[k] = sg.n2[1], b->mz[k] = sg.n2[2];
+            b->ex[k] = sg.e[0], b->ey[k] = sg.e[1], b->ez[k] = sg.e[2];
+            b->hid[k] = 0.5 / sg.d;
+            b->hid2[k] = 0.5 / (sg.d * sg.d);
+        }
+        *out = b;
+        return DFL_OK;
+    }
+    for (size_t k = 0; k < ns; k++) {
+        const double *a = v + 2 * k, *e = v + 2 * ((k + 1) % n);
+        /* d and the normal exactly as rfunc/segment.c computes them (not
+         * hypot): then f = (x - a) . n is bitwise the library's, and u
+         * agrees with rfield's per-point path to rounding even where f is
+         * itself a rounding residue (points on a segment up to the
+         * rounding of their coordinates, 1e-9 off it). */
+        const double dx = e[0] - a[0], dy = e[1] - a[1];
+        const double d = sqrt(dx * dx + dy * dy);
+        b->ax[k] = a[0];
+        b->ay[k] = a[1];
+        b->bx[k] = e[0];
+        b->by[k] = e[1];
+        b->nx[k] = (e[1] - a[1]) / d;
+        b->ny[k] = -(e[0] - a[0]) / d;
+        b->hid[k] = 0.5 / d;
+        b->hid2[k] = 0.5 / (d * d);
+    }
+    *out = b;
+    return DFL_OK;
+}
+
