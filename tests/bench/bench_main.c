@@ -2,6 +2,7 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "io/manifest.h"
 
@@ -33,14 +34,30 @@ void bench_pair(const char *name, double rate, double naive_rate, const char *un
     bench_report(buf, rate / naive_rate, "x");
 }
 
-int main(void)
+/* dflab-bench [GROUP...]: every group, or only those named (field,
+ * footpoint, rfunc, proxy, trace, proxy_input, pht). */
+int main(int argc, char **argv)
 {
-    bench_field();
-    bench_footpoint();
-    bench_rfunc();
-    bench_proxy();
-    bench_trace();
-    bench_proxy_input();
-    bench_pht();
+    static const struct {
+        const char *name;
+        void (*run)(void);
+    } groups[] = {{"field", bench_field}, {"footpoint", bench_footpoint}, {"rfunc", bench_rfunc},
+                  {"proxy", bench_proxy}, {"trace", bench_trace},
+                  {"proxy_input", bench_proxy_input}, {"pht", bench_pht}};
+    const size_t ng = sizeof groups / sizeof groups[0];
+    for (int a = 1; a < argc; a++) {
+        size_t g = 0;
+        while (g < ng && strcmp(argv[a], groups[g].name) != 0) g++;
+        if (g == ng) {
+            fprintf(stderr, "dflab-bench: no group '%s' (field footpoint rfunc proxy trace "
+                            "proxy_input pht)\n", argv[a]);
+            return 2;
+        }
+    }
+    for (size_t g = 0; g < ng; g++) {
+        int on = argc == 1;
+        for (int a = 1; a < argc; a++) on |= strcmp(argv[a], groups[g].name) == 0;
+        if (on) groups[g].run();
+    }
     return 0;
 }
