@@ -53,7 +53,7 @@ LIB     := $(BUILD)/libdfl.a
 EXPLIB  := $(BUILD)/libdflexp.a
 DFLAB   := $(BUILD)/dflab
 TESTS   := $(BUILD)/dflab-tests
-BENCH   := $(BUILD)/dflab-bench
+BENCH_BIN := $(BUILD)/dflab-bench
 
 APT_PKGS := libinih-dev libceres-dev libopenexr-dev libimath-dev libcriterion-dev zlib1g-dev \
             python3-matplotlib python3-numpy python3-vtk9 openexr pkg-config \
@@ -87,7 +87,7 @@ WEB_API_OBJ := $(BUILD)/src/web/dflweb.o
 $(TESTS): $(TEST_OBJ) $(WEB_API_OBJ) $(EXPLIB) $(LIB)
 	$(CXX) $(LDFLAGS) -o $@ $(TEST_OBJ) $(WEB_API_OBJ) $(EXPLIB) $(LIB) $(LDLIBS) -lcriterion
 
-$(BENCH): $(BENCH_OBJ) $(EXPLIB) $(LIB)
+$(BENCH_BIN): $(BENCH_OBJ) $(EXPLIB) $(LIB)
 	$(CXX) $(LDFLAGS) -o $@ $(BENCH_OBJ) $(EXPLIB) $(LIB) $(LDLIBS)
 
 # Installs the Debian packages dflab needs; a no-op when all are present.
@@ -131,8 +131,8 @@ include tests/fuzz/fuzz.mk
 
 bench: deps
 	$(MAKE) --no-print-directory OPT=-O3 BUILD=build-bench build-bench/dflab-bench
-	DFL_PYTHON=$(PYTHON) build-bench/dflab-bench
-	$(MAKE) --no-print-directory web-bench
+	DFL_PYTHON=$(PYTHON) build-bench/dflab-bench $(BENCH)
+	$(if $(BENCH),,$(MAKE) --no-print-directory web-bench)
 
 # One folder per paper under configs/paper/; results/<config name>/ each.
 # Then every peer script scripts/peers/*.py (baselines from other libraries)
