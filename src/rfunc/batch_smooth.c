@@ -8,15 +8,19 @@
  * w = x - a, v = x - b; strip: t = 2 p1 p2 / (p1 + p2 + |(p1, p2)|),
  * grad t = (p2 - p1)/|(p1, p2)| e, as the eq. 4 strip kernel), then eq. 5
  *     r = sqrt(t^2 + F^2),  s = r + |t|,
- *     g = sqrt(t^2 + F^2) - t = F^2 / s  (t > 0, no cancellation),  s  (t <= 0),
+ *     g = sqrt(t^2 + F^2) - t = F^2/s + (|t| - t),
  *     h^2 = F + g^2/4,
  * and, with grad g = (-g grad t + 2 F f grad f)/r (trim.c),
  *     h grad h = f grad f + (g/4) grad g
  *              = A (f grad f) - B grad t,   c = g/(4r), A = 1 + 2 F c, B = c g,
  * the same terms as dfl_rfunc_compose grouped so that the per-component
- * work is two multiplications.  Both branches of g are computed and one is
- * selected (the lane loop stays branch-free; F^2/s is NaN only where s = 0,
- * i.e. t = F = 0, where the other branch is taken).
+ * work is two multiplications.  The form of g needs no select: for t > 0
+ * it is F^2/(r + t), the library's cancellation-free form; for t <= 0,
+ * F^2/(r - t) = r + t and |t| - t = -2t give r - t as a sum of two terms
+ * >= 0.  (A select between F^2/s and s would not do: gcc sinks the
+ * division into the arm that uses it, and that branch keeps it from
+ * vectorizing the lane loop without AVX-512 masks.)  F^2/s is NaN only
+ * where s = 0, i.e. t = F = 0, which falls back (Range).
  *
  * Range.  1/r comes from rsqrt_newton (batch_impl.h), valid for normal
  * arguments; the forms above need no scaling while t^2 + F^2 (and, for the
@@ -64,7 +68,8 @@ DFL_INLINE void smooth_term(double x, double y, double z, const dfl_rfunc_batch 
         F = f1 * f1 + f2 * f2;
     }
     /* trim: t, and grad t = kt * (ux, uy, uz) */
-    double t, kt, ux, uy, uz, okq = 1.0;
+    double t, kt, ux, uy, uz;
+    int okq = 1;
     if (strip) {
         const double p1 = wx * b->ex[k] + wy * b->ey[k] + (dim == 3 ? wz * b->ez[k] : 0.0);
         const double p2 = -(vx * b->ex[k] + vy * b->ey[k] + (dim == 3 ? vz * b->ez[k] : 0.0));
@@ -73,7 +78,7 @@ DFL_INLINE void smooth_term(double x, double y, double z, const dfl_rfunc_batch 
         t = 2.0 * p1 * p2 / (p1 + p2 + q2 * rq);
         kt = (p2 - p1) * rq;
         ux = b->ex[k], uy = b->ey[k], uz = dim == 3 ? b->ez[k] : 0.0;
-        okq = q2 <= SM_HI ? 1.0 : 0.0;
+        okq = q2 <= SM_HI;
     } else {
         const double m2 = wx * vx + wy * vy + (dim == 3 ? wz * vz : 0.0);
         t = m2 * b->hid[k]; /* hid holds -1/d here */
@@ -85,8 +90,8 @@ DFL_INLINE void smooth_term(double x, double y, double z, const dfl_rfunc_batch 
     const double r2 = t * t + F2;
     const double rr = rsqrt_newton(r2);
     const double sg = r2 * rr + fabs(t);
-    const double gd = F2 / sg;
-    const double g = t > 0.0 ? gd : sg;
+    /* g = F^2/s + (|t| - t): no select (see the top of the file) */
+    const double g = F2 / sg + (fabs(t) - t);
     const double qg = 0.25 * g;
     const double h2 = F + qg * g;
     const double c = qg * rr;
@@ -103,7 +108,8 @@ DFL_INLINE void smooth_term(double x, double y, double z, const dfl_rfunc_batch 
     }
     const double q = w * rh2;
     /* q below the normal range would lose V while S is still accepted */
-    const int ok = r2 >= SM_LO && r2 <= SM_HI && okq > 0.0 && q >= SM_LO;
+    /* (& rather than &&: no control flow in the lane loop) */
+    const int ok = (r2 >= SM_LO) & (r2 <= SM_HI) & okq & (q >= SM_LO);
     *S += ok ? w : NAN;
     const double a1 = A * f1;
     if (dim == 2) {
