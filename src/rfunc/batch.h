@@ -5,8 +5,9 @@
  * rfunc/segment.h does (t = 2 p1 p2 / (p1 + p2 + |(p1, p2)|), one
  * reciprocal square root by Newton steps and one division more), and the
  * 3D kernels the carrier f^2 = s1^2 + s2^2 with the library's two normals
- * (dfl_rfunc_batch_new_opts).  Not batched (per-point path): the smooth
- * trims of eq. 5 (a second root and division per segment), R-conjunction
+ * (dfl_rfunc_batch_new_opts).  The smooth trims of eq. 5 (segments, 2D and
+ * 3D; a second root and division per segment) have their kernel in
+ * batch_smooth.c.  Not batched (per-point path): R-conjunction
  * (a sequential fold with a root per part), the corrected join (vertex
  * terms and their guards) and mixed part kinds.  Point parts, triangles
  * and convex regions have kernels of their own (dfl_rfunc_batch_points,

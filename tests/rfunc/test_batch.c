@@ -359,8 +359,8 @@ Test(rfunc_batch, rfield_uses_every_eq4_kernel)
             cr_assert_eq(dfl_rfield_polyline_opts(dim, v, 20, false, DFL_RFUNC_REQUIV, 2,
                                                   (dfl_rfunc_trim)t, false, &fs, NULL),
                          DFL_OK);
-            const bool eq4 = !dfl_rfunc_trim_smooth((dfl_rfunc_trim)t);
-            cr_expect_eq(dfl_rfield_is_fast(&ff), eq4, "dim %d trim %d", dim, t);
+            /* eq. 4: the built-in kernels; eq. 5: batch_smooth.c */
+            cr_expect(dfl_rfield_is_fast(&ff), "dim %d trim %d", dim, t);
             cr_expect(!dfl_rfield_is_fast(&fs));
             const double x[3] = {0.61, 0.37, 0.2};
             double ga[3], gb[3];

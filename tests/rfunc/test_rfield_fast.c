@@ -239,10 +239,10 @@ Test(rfield_fast, eligibility)
         {2, v, 12, DFL_RFUNC_RCONJ, DFL_RFUNC_TRIM_DISK, false},
         {2, v, 12, DFL_RFUNC_REQUIV_CORRECTED, DFL_RFUNC_TRIM_DISK, false},
         {2, v, 12, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_STRIP, true},
-        {2, v, 12, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_DISK_SMOOTH, false},
+        {2, v, 12, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_DISK_SMOOTH, true},
         {3, v3, 3, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_DISK, true},
         {3, v3, 3, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_STRIP, true},
-        {3, v3, 3, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_STRIP_SMOOTH, false},
+        {3, v3, 3, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_STRIP_SMOOTH, true},
         {2, v, 3, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_DISK, true},
         {2, v, 2, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_DISK, false}, /* one segment: u = h exactly */
     };
