@@ -6,9 +6,10 @@
  * reciprocal square root by Newton steps and one division more), and the
  * 3D kernels the carrier f^2 = s1^2 + s2^2 with the library's two normals
  * (dfl_rfunc_batch_new_opts).  Not batched (per-point path): the smooth
- * trims of eq. 5 (a second root and division per segment), R-conjunction
- * (a sequential fold with a root per part), the corrected join (vertex
- * terms and their guards) and mixed part kinds.  Point parts, triangles
+ * trims of eq. 5 (a second root and division per segment), the corrected join (vertex
+ * terms and their guards) and mixed part kinds.  R-conjunction (eq. 7) of
+ * disk- or strip-trimmed segments, 2D or 3D, has a kernel of its own
+ * (batch_rconj.c: the fold runs across points, a root per part).  Point parts, triangles
  * and convex regions have kernels of their own (dfl_rfunc_batch_points,
  * dfl_rfunc_batch_triangles, dfl_rfunc_batch_regions).  It computes the same function as
  * rfunc/rfield.h's dfl_rfield_polyline(2, ..., DFL_RFUNC_REQUIV, p,

@@ -48,7 +48,9 @@
  * the fold's root 13 + 1, partials and F 4, one division, the gradient
  * update 4: 50 multiplications and one division. */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "rfunc/batch_impl.h"
 
@@ -59,12 +61,13 @@ typedef struct rconj_kd {
     double a[NCOEF];
 } rconj_kd;
 
-/* h^2 and h grad h (into g[0..dim-1]) of segment k at (x, y, z): the
+/* h^2 and h grad h (into *g0, *g1, *g2; scalars, so that the lane loop
+ * vectorizes) of segment k at (x, y, z): the
  * carrier f^2 (2D: f = (x - a).n; 3D: s1^2 + s2^2 with the library's two
  * normals) plus mt^2, mt = max(-t, 0) of the disk trim -t = (w.v)/d or the
  * strip trim t = 2 p1 p2 / (p1 + p2 + |(p1, p2)|) (rfunc/segment.c). */
 DFL_INLINE double seg_h2(double x, double y, double z, const dfl_rfunc_batch *b, size_t k,
-                         int dim, int strip, double *g)
+                         int dim, int strip, double *g0, double *g1, double *g2)
 {
     const double wx = x - b->ax[k], wy = y - b->ay[k], wz = dim == 3 ? z - b->az[k] : 0.0;
     const double vx = x - b->bx[k], vy = y - b->by[k], vz = dim == 3 ? z - b->bz[k] : 0.0;
@@ -73,12 +76,11 @@ DFL_INLINE double seg_h2(double x, double y, double z, const dfl_rfunc_batch *b,
         s1 += wz * b->nz[k];
         s2 = wx * b->mx[k] + wy * b->my[k] + wz * b->mz[k];
     }
-    g[0] = s1 * b->nx[k];
-    g[1] = s1 * b->ny[k];
+    double gx = s1 * b->nx[k], gy = s1 * b->ny[k], gz = 0.0;
     if (dim == 3) {
-        g[0] += s2 * b->mx[k];
-        g[1] += s2 * b->my[k];
-        g[2] = s1 * b->nz[k] + s2 * b->mz[k];
+        gx += s2 * b->mx[k];
+        gy += s2 * b->my[k];
+        gz = s1 * b->nz[k] + s2 * b->mz[k];
     }
     double mt;
     if (strip) {
@@ -90,18 +92,21 @@ DFL_INLINE double seg_h2(double x, double y, double z, const dfl_rfunc_batch *b,
         mt = 0.5 * (fabs(t) - t);
         /* grad t = (p2 - p1)/r e, grad mt = -grad t where t < 0 */
         const double kk = mt * (p2 - p1) * rq;
-        g[0] -= kk * b->ex[k];
-        g[1] -= kk * b->ey[k];
-        if (dim == 3) g[2] -= kk * b->ez[k];
+        gx -= kk * b->ex[k];
+        gy -= kk * b->ey[k];
+        if (dim == 3) gz -= kk * b->ez[k];
     } else {
         const double m2 = wx * vx + wy * vy + wz * vz;
         const double mp = m2 + fabs(m2);
         mt = mp * b->hid[k];
         const double mi = mp * b->hid2[k];
-        g[0] += mi * (wx + vx);
-        g[1] += mi * (wy + vy);
-        if (dim == 3) g[2] += mi * (wz + vz);
+        gx += mi * (wx + vx);
+        gy += mi * (wy + vy);
+        if (dim == 3) gz += mi * (wz + vz);
     }
+    *g0 = gx;
+    *g1 = gy;
+    *g2 = gz;
     return s1 * s1 + s2 * s2 + mt * mt;
 }
 
@@ -118,6 +123,46 @@ DFL_INLINE double g_poly(const double *a, double x)
     return s;
 }
 
+/* x^k, 1 <= k <= 127, as straight-line code: squarings and selects by
+ * the bits of k.  With k a compile-time constant the selects fold and
+ * the unused squarings vanish (floor(log2 k) + popcount(k) - 1
+ * multiplications, as ipow_sq); with k at run time there is no loop whose
+ * trip count depends on k, which would keep the lane loop from
+ * vectorizing (gcc -O2 does not peel such loops, not even ipow_sq's with
+ * a constant k). */
+DFL_INLINE double pick(int bit, double x)
+{
+    /* bit ? x : 1.0 by masks: a select gcc keeps as a branch when bit is
+     * not a compile-time constant */
+    const double one = 1.0;
+    uint64_t xb, ob;
+    memcpy(&xb, &x, sizeof xb);
+    memcpy(&ob, &one, sizeof ob);
+    const uint64_t m = (uint64_t)0 - (uint64_t)(bit != 0);
+    const uint64_t rb = (xb & m) | (ob & ~m);
+    double r;
+    memcpy(&r, &rb, sizeof r);
+    return r;
+}
+
+DFL_INLINE double ipow_k(double x, int k)
+{
+    double r = pick(k & 1, x);
+    x *= x;
+    r *= pick(k & 2, x);
+    x *= x;
+    r *= pick(k & 4, x);
+    x *= x;
+    r *= pick(k & 8, x);
+    x *= x;
+    r *= pick(k & 16, x);
+    x *= x;
+    r *= pick(k & 32, x);
+    x *= x;
+    r *= pick(k & 64, x);
+    return r;
+}
+
 /* One fold step u ^ h at one lane: the new u, and the partials F_u, F_h. */
 DFL_INLINE double fold(double u, double h, double uu, double hh, int p, const double *a,
                        double *Fu, double *Fh)
@@ -125,7 +170,7 @@ DFL_INLINE double fold(double u, double h, double uu, double hh, int p, const do
     const int u_hi = u >= h;
     const double hi = u_hi ? u : h, lo = u_hi ? h : u;
     double F, d_hi, d_lo;
-    if (p == 2) {
+    if (__builtin_constant_p(p) && p == 2) { /* p = 2 has its case (RCONJ_CASES) */
         const double rn = rsqrt_newton(uu + hh); /* 1/N */
         const double ih = hi * rn, il = lo * rn; /* hi/N, lo/N */
         F = lo - lo * il / (1.0 + ih);
@@ -133,12 +178,12 @@ DFL_INLINE double fold(double u, double h, double uu, double hh, int p, const do
         d_lo = 1.0 - il;
     } else {
         const double r = lo / hi;
-        const double x = ipow_sq(r, p);
+        const double x = ipow_k(r, p);
         const double wm1 = x * g_poly(a, x);
         F = lo - hi * wm1;
         const double iw = 1.0 / (1.0 + wm1);
-        d_hi = 1.0 - ipow_sq(iw, p - 1);
-        d_lo = 1.0 - ipow_sq(r * iw, p - 1);
+        d_hi = 1.0 - ipow_k(iw, p - 1);
+        d_lo = 1.0 - ipow_k(r * iw, p - 1);
     }
     *Fu = u_hi ? d_hi : d_lo;
     *Fh = u_hi ? d_lo : d_hi;
@@ -166,27 +211,28 @@ DFL_INLINE void run_p(const dfl_rfunc_batch *b, size_t m, const double *pts, dou
         }
 #pragma omp simd
         for (int l = 0; l < LANES; l++) {
-            double g[3] = {0, 0, 0};
-            const double h2 = seg_h2(X[l], Y[l], Z[l], b, 0, dim, strip, g);
+            double g0, g1, g2;
+            const double h2 = seg_h2(X[l], Y[l], Z[l], b, 0, dim, strip, &g0, &g1, &g2);
             const double rh = rsqrt_newton(h2);
-            bad[l] |= !(h2 >= 1e-280 && h2 <= 1e280);
+            bad[l] |= !(h2 >= 1e-280) | !(h2 <= 1e280);
             U[l] = h2 * rh;
-            G0[l] = g[0] * rh;
-            G1[l] = g[1] * rh;
-            if (dim == 3) G2[l] = g[2] * rh;
+            G0[l] = g0 * rh;
+            G1[l] = g1 * rh;
+            if (dim == 3) G2[l] = g2 * rh;
         }
         for (size_t k = 1; k < n; k++) {
 #pragma omp simd
             for (int l = 0; l < LANES; l++) {
-                double g[3] = {0, 0, 0}, Fu, Fh;
-                const double h2 = seg_h2(X[l], Y[l], Z[l], b, k, dim, strip, g);
+                double g0, g1, g2, Fu, Fh;
+                const double h2 = seg_h2(X[l], Y[l], Z[l], b, k, dim, strip, &g0, &g1, &g2);
                 const double rh = rsqrt_newton(h2);
-                bad[l] |= !(h2 >= 1e-280 && h2 <= 1e280);
+                bad[l] |= !(h2 >= 1e-280) | !(h2 <= 1e280);
                 const double h = h2 * rh, u = U[l];
                 U[l] = fold(u, h, u * u, h2, p, kd->a, &Fu, &Fh);
-                G0[l] = Fu * G0[l] + Fh * (g[0] * rh);
-                G1[l] = Fu * G1[l] + Fh * (g[1] * rh);
-                if (dim == 3) G2[l] = Fu * G2[l] + Fh * (g[2] * rh);
+                const double c = Fh * rh; /* F_h / h: grad h = (h grad h) / h */
+                G0[l] = Fu * G0[l] + c * g0;
+                G1[l] = Fu * G1[l] + c * g1;
+                if (dim == 3) G2[l] = Fu * G2[l] + c * g2;
             }
         }
         for (size_t l = 0; l < c; l++) {
@@ -336,8 +382,9 @@ dfl_status dfl_rfunc_batch_try_rconj(const dfl_rfunc_batch_desc *d, dfl_rfunc_ba
         free(kd);
         return st;
     }
-    if (d->p >= 3) g_coeffs(d->p, kd->a);
-    else memset(kd->a, 0, sizeof kd->a);
+    /* p = 2 too: the general step is its fallback where p is not known
+     * to be a compile-time constant (unoptimized builds) */
+    g_coeffs(d->p, kd->a);
     b->kd = kd;
     b->kd_free = free;
     b->fb = d->slow;
