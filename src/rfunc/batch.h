@@ -5,11 +5,13 @@
  * rfunc/segment.h does (t = 2 p1 p2 / (p1 + p2 + |(p1, p2)|), one
  * reciprocal square root by Newton steps and one division more), and the
  * 3D kernels the carrier f^2 = s1^2 + s2^2 with the library's two normals
- * (dfl_rfunc_batch_new_opts).  The smooth trims of eq. 5 (segments, 2D and
- * 3D; a second root and division per segment) have their kernel in
- * batch_smooth.c.  Not batched (per-point path): R-conjunction
- * (a sequential fold with a root per part), the corrected join (vertex
- * terms and their guards) and mixed part kinds.  Point parts, triangles
+ * (dfl_rfunc_batch_new_opts).  Other kinds have kernels of their own,
+ * found by dfl_rfunc_batch_build (batch_impl.h): the smooth trims of
+ * eq. 5 (batch_smooth.c: a second root and division per segment),
+ * R-conjunction (eq. 7) of disk- or strip-trimmed segments, 2D or 3D
+ * (batch_rconj.c: the fold runs across points, a root per part), the
+ * corrected join (batch_corrected.c) and mixed part kinds
+ * (batch_mixed.c).  Point parts, triangles
  * and convex regions have kernels of their own (dfl_rfunc_batch_points,
  * dfl_rfunc_batch_triangles, dfl_rfunc_batch_regions).  It computes the same function as
  * rfunc/rfield.h's dfl_rfield_polyline(2, ..., DFL_RFUNC_REQUIV, p,
