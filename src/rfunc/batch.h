@@ -8,9 +8,11 @@
  * (dfl_rfunc_batch_new_opts).  Not batched (per-point path): the smooth
  * trims of eq. 5 (a second root and division per segment), R-conjunction
  * (a sequential fold with a root per part), the corrected join (vertex
- * terms and their guards) and mixed part kinds.  Point parts, triangles
+ * terms and their guards).  Point parts, triangles
  * and convex regions have kernels of their own (dfl_rfunc_batch_points,
- * dfl_rfunc_batch_triangles, dfl_rfunc_batch_regions).  It computes the same function as
+ * dfl_rfunc_batch_triangles, dfl_rfunc_batch_regions); mixed part kinds
+ * and segments that are not one chain are the sum of those kernels over
+ * groups of parts (batch_mixed.c).  It computes the same function as
  * rfunc/rfield.h's dfl_rfield_polyline(2, ..., DFL_RFUNC_REQUIV, p,
  * DFL_RFUNC_TRIM_DISK) (to rounding, ~1e-13 relative) and exists for
  * throughput: `make bench` measures it against a naive scalar loop and
