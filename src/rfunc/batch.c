@@ -82,6 +82,11 @@ static int accept(int p, int dim, const double *s, double *u, double *g)
     return 1;
 }
 
+int dfl_rfunc_batch_accept(int p, int dim, const double *s, double *u, double *g)
+{
+    return accept(p, dim, s, u, g);
+}
+
 static void eval_block(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
                        double *grad)
 {

@@ -15,8 +15,9 @@
  * point's sums depend neither on how points are chunked nor on threads.
  * It is not the per-point path's order (part by part), which changes the
  * sums by rounding only (tests/rfunc/test_batch_mixed.c: 1e-12).  Points
- * the kernels do not trust (on a part, inside a region, overflowing sums)
- * fall back to the field's per-point path as for every sums kind.
+ * the kernels do not trust (on a part, overflowing sums) fall back to the
+ * field's per-point path as for every sums kind (batch.c's test), except
+ * points inside a region, where u = 0 exactly (mixed_kernel).
  *
  * Not taken (NULL): other joins (R-conjunction, the corrected join),
  * eq. 5 trims of segments or triangles (their own kind), conditional
@@ -37,6 +38,8 @@ typedef struct group_key {
 typedef struct mixed_kd {
     size_t ng;
     dfl_rfunc_batch **g; /* ng sub-batches, in the order of their first part */
+    size_t nreg;
+    const dfl_rfunc_region **reg; /* the region parts (borrowed from the field) */
 } mixed_kd;
 
 static void mixed_free(void *p)
@@ -45,6 +48,7 @@ static void mixed_free(void *p)
     if (!kd) return;
     for (size_t i = 0; i < kd->ng; i++) dfl_rfunc_batch_free(kd->g[i]);
     free(kd->g);
+    free(kd->reg);
     free(kd);
 }
 
@@ -180,6 +184,59 @@ static void mixed_sums(const dfl_rfunc_batch *b, size_t m, const double *pts, do
     }
 }
 
+/* 1 when x is inside (or on) a region part: there the per-point path's
+ * accumulator sees h = 0 and returns u = 0 with a zero gradient whatever
+ * the other parts are (rfunc/join.h), so the point needs no fallback.
+ * Regions are the parts whose zero sets have area: a grid puts many
+ * points there (bs04 Fig. 13a: a tenth of the nodes). */
+static int in_region(const mixed_kd *kd, const double *x)
+{
+    for (size_t i = 0; i < kd->nreg; i++)
+        if (!(dfl_rfunc_region_eval(kd->reg[i], x, NULL) > 0.0)) return 1;
+    return 0;
+}
+
+/* u and grad u: the sums, batch.c's test, then zero inside a region or
+ * the per-point path. */
+static void mixed_kernel(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
+                         double *grad)
+{
+    const mixed_kd *kd = b->kd;
+    const size_t dim = (size_t)b->dim;
+    double s[4 * SCRATCH];
+    for (size_t i0 = 0; i0 < m; i0 += SCRATCH) {
+        const size_t c = m - i0 < SCRATCH ? m - i0 : SCRATCH;
+        mixed_sums(b, c, pts + dim * i0, s);
+        for (size_t i = 0; i < c; i++) {
+            const double *x = pts + dim * (i0 + i);
+            double u, g[3] = {0, 0, 0};
+            if (!dfl_rfunc_batch_accept(b->p, b->dim, s + (dim + 1) * i, &u, g))
+                u = in_region(kd, x) ? 0.0 : dfl_field_eval1(b->fb, x, g);
+            val[i0 + i] = u;
+            if (grad) memcpy(grad + dim * (i0 + i), g, dim * sizeof *g);
+        }
+    }
+}
+
+/* Points of m that mixed_kernel hands to the per-point path. */
+static size_t mixed_count_fb(const dfl_rfunc_batch *b, size_t m, const double *pts)
+{
+    const mixed_kd *kd = b->kd;
+    const size_t dim = (size_t)b->dim;
+    double s[4 * SCRATCH];
+    size_t cnt = 0;
+    for (size_t i0 = 0; i0 < m; i0 += SCRATCH) {
+        const size_t c = m - i0 < SCRATCH ? m - i0 : SCRATCH;
+        mixed_sums(b, c, pts + dim * i0, s);
+        for (size_t i = 0; i < c; i++) {
+            double u, g[3];
+            cnt += !dfl_rfunc_batch_accept(b->p, b->dim, s + (dim + 1) * i, &u, g) &&
+                   !in_region(kd, pts + dim * (i0 + i));
+        }
+    }
+    return cnt;
+}
+
 dfl_status dfl_rfunc_batch_try_mixed(const dfl_rfunc_batch_desc *d, dfl_rfunc_batch **out,
                                      dfl_err *err)
 {
@@ -203,7 +260,8 @@ dfl_status dfl_rfunc_batch_try_mixed(const dfl_rfunc_batch_desc *d, dfl_rfunc_ba
         cnt[g]++;
     }
     kd->g = calloc(ng, sizeof *kd->g);
-    if (!kd->g) {
+    kd->reg = malloc(d->n * sizeof *kd->reg);
+    if (!kd->g || !kd->reg) {
         st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
         goto done;
     }
@@ -212,12 +270,15 @@ dfl_status dfl_rfunc_batch_try_mixed(const dfl_rfunc_batch_desc *d, dfl_rfunc_ba
         if (st == DFL_OK) kd->ng++;
     }
     if (st != DFL_OK) goto done;
+    for (size_t i = 0; i < d->n; i++)
+        if (d->parts[i].kind == DFL_RFUNC_PART_REGION) kd->reg[kd->nreg++] = &d->parts[i].u.reg;
     dfl_field zero = {0};
     dfl_rfunc_batch *b;
     if ((st = dfl_rfunc_batch_alloc(d->dim, d->p, 0, &zero, &b, err)) != DFL_OK) goto done;
     b->n = d->n;
     b->fb = d->slow;
-    b->sums_fn = mixed_sums;
+    b->kernel = mixed_kernel;
+    b->count_fb = mixed_count_fb;
     b->kd = kd;
     b->kd_free = mixed_free;
     kd = NULL;

@@ -367,7 +367,8 @@ Test(batch_mixed, threads_and_chunks)
 }
 
 /* Built from a description, the kind computes random points around the
- * parts with its kernels, not its fallback. */
+ * parts with its kernels, not its fallback (points inside a region, where
+ * u = 0 exactly, need none either). */
 Test(batch_mixed, kernels_not_fallback)
 {
     scene s;
@@ -385,13 +386,19 @@ Test(batch_mixed, kernels_not_fallback)
     double x[2 * 150];
     uint64_t rng = 5;
     for (int i = 0; i < 2 * 150; i++) x[i] = dfl_rng_splitmix(&rng, -0.3, 1.3);
-    /* none of them inside a region */
+    /* some of them inside a region */
     size_t inside = 0;
     for (int i = 0; i < 150; i++)
         for (size_t k = 0; k < s.n; k++)
             inside += s.parts[k].kind == DFL_RFUNC_PART_REGION &&
                       dfl_rfunc_region_eval(&s.parts[k].u.reg, x + 2 * i, NULL) == 0.0;
-    cr_assert_eq(dfl_rfunc_batch_fallbacks(b, 150, x), inside);
+    cr_assert(inside > 0);
+    cr_assert_eq(dfl_rfunc_batch_fallbacks(b, 150, x), 0);
+    /* on a point part and on a segment: those fall back */
+    const double y[4] = {s.parts[11].u.pt.c[0], s.parts[11].u.pt.c[1], s.parts[0].u.seg.a[0],
+                         s.parts[0].u.seg.a[1]};
+    cr_assert_eq(s.parts[11].kind, DFL_RFUNC_PART_POINT);
+    cr_assert_eq(dfl_rfunc_batch_fallbacks(b, 2, y), 2);
     dfl_rfunc_batch_free(b);
     dfl_field_destroy(&slow);
     scene_free(&s);
