@@ -68,6 +68,10 @@ static int accept(int p, int dim, const double *s, double *u, double *g)
     for (int j = 1; j <= dim; j++)
         if (!isfinite(s[j])) return 0;
     const double w = p == 1 ? 1.0 / S : p == 2 ? 1.0 / sqrt(S) : pow(S, -1.0 / p);
+    /* V's terms h^-(p+2) h grad h: the significant ones (h near u) are
+     * about u^-(p+2) = S / u^2, which must not underflow (far away, e.g.
+     * |x| ~ 1e50 for p = 2, V would be 0 while S is fine). */
+    if (!(S / (w * w) >= 1e-290)) return 0;
     const double wp1 = dfl_rfunc_ipow(w, p + 1);
     if (!(wp1 >= 1e-290) || !isfinite(wp1)) return 0;
     for (int j = 0; j < dim; j++) {
@@ -76,6 +80,11 @@ static int accept(int p, int dim, const double *s, double *u, double *g)
     }
     *u = w;
     return 1;
+}
+
+int dfl_rfunc_batch_accept(int p, int dim, const double *s, double *u, double *g)
+{
+    return accept(p, dim, s, u, g);
 }
 
 static void eval_block(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,

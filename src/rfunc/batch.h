@@ -10,10 +10,11 @@
  * eq. 5 (batch_smooth.c: a second root and division per segment),
  * R-conjunction (eq. 7) of disk- or strip-trimmed segments, 2D or 3D
  * (batch_rconj.c: the fold runs across points, a root per part), the
- * corrected join (batch_corrected.c) and mixed part kinds
- * (batch_mixed.c).  Point parts, triangles
+ * corrected join (batch_corrected.c).  Point parts, triangles
  * and convex regions have kernels of their own (dfl_rfunc_batch_points,
- * dfl_rfunc_batch_triangles, dfl_rfunc_batch_regions).  It computes the same function as
+ * dfl_rfunc_batch_triangles, dfl_rfunc_batch_regions); mixed part kinds
+ * and segments that are not one chain are the sum of those kernels over
+ * groups of parts (batch_mixed.c).  It computes the same function as
  * rfunc/rfield.h's dfl_rfield_polyline(2, ..., DFL_RFUNC_REQUIV, p,
  * DFL_RFUNC_TRIM_DISK) (to rounding, ~1e-13 relative) and exists for
  * throughput: `make bench` measures it against a naive scalar loop and

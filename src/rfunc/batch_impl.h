@@ -9,6 +9,7 @@
  *   pow_term                     h^-p and h^-(p+2) from h^2
  *   DFL_BATCH_SUMS               the lane loop of the R-equivalence kernels
  *   dfl_rfunc_batch_alloc        a batch with its arrays
+ *   dfl_rfunc_batch_accept       u, grad u from the sums, or fall back
  *   dfl_rfunc_batch_sums_*       the built-in kernels' sums (one file each)
  *   dfl_rfunc_batch_try_*        the kinds dfl_rfunc_batch_build tries
  */
@@ -169,6 +170,11 @@ DFL_INLINE double pow_term(double h2, int p, double *S)
  * destroyed on failure.  DFL_E_NOMEM. */
 dfl_status dfl_rfunc_batch_alloc(int dim, int p, size_t n, dfl_field *ref, dfl_rfunc_batch **out,
                                  dfl_err *err);
+
+/* u and grad u (dim entries) from the sums s (1 + dim doubles) of an
+ * R-equivalence of order p, or 0 when they are not trustworthy (then the
+ * point falls back): the test the sums path applies (batch.c). */
+int dfl_rfunc_batch_accept(int p, int dim, const double *s, double *u, double *g);
 
 /* The built-in kernels' sums, 1 + dim doubles (S, V) per point. */
 void dfl_rfunc_batch_sums_seg(const dfl_rfunc_batch *b, size_t m, const double *pts,
