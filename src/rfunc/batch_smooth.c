@@ -25,12 +25,14 @@
  * Range.  1/r comes from rsqrt_newton (batch_impl.h), valid for normal
  * arguments; the forms above need no scaling while t^2 + F^2 (and, for the
  * strip, p1^2 + p2^2) lie in [1e-290, 1e290] (dfl_hypot2's safe range,
- * which the per-point path also uses unscaled there), and while
- * q = h^-(p+2) >= 1e-290 (far away eq. 5 grows like f^2 / 2, and an
- * underflowing q would lose V while S = sum h^-p is still accepted).
- * Outside (points within ~1e-145 of an end point, or very far away) the
- * part adds NaN to S, and accept() (batch.c) recomputes the point through
- * the per-point path.  h^2 = 0 (on a segment) or subnormal overflows h^-p as
+ * which the per-point path also uses unscaled there), and while the
+ * largest q = h^-(p+2) over the parts is >= 1e-290 (far away eq. 5 grows
+ * like f^2 / 2, and an underflowing q would lose V while S = sum h^-p is
+ * still accepted).
+ * Outside (points within ~1e-145 of an end point, or very far away) S is
+ * set to NaN, and accept() (batch.c) recomputes the point through the
+ * per-point path.  (p1^2 + p2^2 <= 1e201 within the domain, rfunc/domain.h,
+ * needs no check.)  h^2 = 0 (on a segment) or subnormal overflows h^-p as
  * in the eq. 4 kernels and falls back the same way.
  *
  * Operation counts per segment at p = 2 (2D disk, value and gradient):
@@ -53,7 +55,7 @@
  * to *Vx, *Vy (*Vz in 3D).  dim, strip and p are compile-time constants. */
 DFL_INLINE void smooth_term(double x, double y, double z, const dfl_rfunc_batch *b, size_t k,
                             int p, int dim, int strip, double *S, double *Vx, double *Vy,
-                            double *Vz)
+                            double *Vz, double *r2lo, double *r2hi, double *qhi)
 {
     const double wx = x - b->ax[k], wy = y - b->ay[k], wz = dim == 3 ? z - b->az[k] : 0.0;
     const double vx = x - b->bx[k], vy = y - b->by[k], vz = dim == 3 ? z - b->bz[k] : 0.0;
@@ -69,7 +71,6 @@ DFL_INLINE void smooth_term(double x, double y, double z, const dfl_rfunc_batch 
     }
     /* trim: t, and grad t = kt * (ux, uy, uz) */
     double t, kt, ux, uy, uz;
-    int okq = 1;
     if (strip) {
         const double p1 = wx * b->ex[k] + wy * b->ey[k] + (dim == 3 ? wz * b->ez[k] : 0.0);
         const double p2 = -(vx * b->ex[k] + vy * b->ey[k] + (dim == 3 ? vz * b->ez[k] : 0.0));
@@ -78,7 +79,6 @@ DFL_INLINE void smooth_term(double x, double y, double z, const dfl_rfunc_batch 
         t = 2.0 * p1 * p2 / (p1 + p2 + q2 * rq);
         kt = (p2 - p1) * rq;
         ux = b->ex[k], uy = b->ey[k], uz = dim == 3 ? b->ez[k] : 0.0;
-        okq = q2 <= SM_HI;
     } else {
         const double m2 = wx * vx + wy * vy + (dim == 3 ? wz * vz : 0.0);
         t = m2 * b->hid[k]; /* hid holds -1/d here */
@@ -97,20 +97,11 @@ DFL_INLINE void smooth_term(double x, double y, double z, const dfl_rfunc_batch 
     const double c = qg * rr;
     const double A = 1.0 + (F + F) * c;
     const double Bk = c * g * kt;
-    double rh2, w;
-    if (p & 1) {
-        const double rh = rsqrt_newton(h2);
-        rh2 = rh * rh;
-        w = p == 1 ? rh : rh * ipow_sq(rh2, p / 2);
-    } else {
-        rh2 = 1.0 / h2;
-        w = ipow_sq(rh2, p / 2);
-    }
-    const double q = w * rh2;
-    /* q below the normal range would lose V while S is still accepted */
-    /* (& rather than &&: no control flow in the lane loop) */
-    const int ok = (r2 >= SM_LO) & (r2 <= SM_HI) & okq & (q >= SM_LO);
-    *S += ok ? w : NAN;
+    const double q = pow_term(h2, p, S);
+    /* the range (top of the file), checked once per point after the loop */
+    *r2lo = r2 < *r2lo ? r2 : *r2lo;
+    *r2hi = r2 > *r2hi ? r2 : *r2hi;
+    *qhi = q > *qhi ? q : *qhi;
     const double a1 = A * f1;
     if (dim == 2) {
         *Vx += q * (a1 * b->nx[k] - Bk * ux);
@@ -123,17 +114,42 @@ DFL_INLINE void smooth_term(double x, double y, double z, const dfl_rfunc_batch 
     }
 }
 
+/* The lane loop of DFL_BATCH_SUMS (batch_impl.h) with three more per-lane
+ * accumulators: the smallest and largest t^2 + F^2 and the largest
+ * h^-(p+2) over the parts.  A point outside the range of the top of the
+ * file gets S = NaN, which accept() (batch.c) sends to the per-point path;
+ * checking once per point rather than per part keeps selects out of the
+ * part loop, and asks only that the largest h^-(p+2) be normal (the
+ * parts that dominate V), not every one. */
 DFL_INLINE void sums_sm_p(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out,
                           const int p, const int dim, const int strip)
 {
-    if (dim == 2)
-        DFL_BATCH_SUMS(b, m, pts, out, 2,
-                       smooth_term(X[l], Y[l], 0.0, b, k, p, 2, strip, &S[l], &Vx[l], &Vy[l],
-                                   &Vz[l]));
-    else
-        DFL_BATCH_SUMS(b, m, pts, out, 3,
-                       smooth_term(X[l], Y[l], Z[l], b, k, p, 3, strip, &S[l], &Vx[l], &Vy[l],
-                                   &Vz[l]));
+    const size_t n = b->n, w = (size_t)dim + 1;
+    for (size_t i0 = 0; i0 < m; i0 += LANES) {
+        const size_t c = m - i0 < LANES ? m - i0 : LANES;
+        double X[LANES], Y[LANES], Z[LANES] = {0}, S[LANES] = {0}, Vx[LANES] = {0},
+               Vy[LANES] = {0}, Vz[LANES] = {0}, lo[LANES], hi[LANES], qh[LANES];
+        for (size_t l = 0; l < LANES; l++) {
+            const size_t i = i0 + (l < c ? l : c - 1);
+            X[l] = pts[(size_t)dim * i];
+            Y[l] = pts[(size_t)dim * i + 1];
+            if (dim == 3) Z[l] = pts[3 * i + 2];
+            lo[l] = INFINITY, hi[l] = 0.0, qh[l] = 0.0;
+        }
+        for (size_t k = 0; k < n; k++) {
+#pragma omp simd
+            for (int l = 0; l < LANES; l++)
+                smooth_term(X[l], Y[l], Z[l], b, k, p, dim, strip, &S[l], &Vx[l], &Vy[l], &Vz[l],
+                            &lo[l], &hi[l], &qh[l]);
+        }
+        for (size_t l = 0; l < c; l++) {
+            const int ok = lo[l] >= SM_LO && hi[l] <= SM_HI && qh[l] >= SM_LO;
+            out[w * (i0 + l)] = ok ? S[l] : NAN;
+            out[w * (i0 + l) + 1] = Vx[l];
+            out[w * (i0 + l) + 2] = Vy[l];
+            if (dim == 3) out[w * (i0 + l) + 3] = Vz[l];
+        }
+    }
 }
 
 #define SM_CASES(dim, strip)                                      \
