@@ -62,6 +62,10 @@ APT_PKGS := libinih-dev libceres-dev libopenexr-dev libimath-dev libcriterion-de
 .PHONY: all deps test sanitize bench reproduce figures clean check-layout web web-test web-bench check-threads
 all: $(DFLAB) $(LIB)
 
+# The strip kernels take r = sqrt() on the divider, which gcc vectorizes only
+# without errno semantics (rfunc/batch_seg.c, strip_term).
+$(BUILD)/src/rfunc/batch_seg.o: CFLAGS += -fno-math-errno
+
 $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) $(DEPFLAGS) -c $< -o $@

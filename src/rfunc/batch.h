@@ -2,8 +2,8 @@
  * polyline of segments with the disk or strip trim of eq. 4, joined by
  * R-equivalence of order p (eq. 6), value and gradient.  The 2D disk
  * kernel is described below; the strip kernel computes the trim as
- * rfunc/segment.h does (t = 2 p1 p2 / (p1 + p2 + |(p1, p2)|), one
- * reciprocal square root by Newton steps and one division more), and the
+ * rfunc/segment.h does (t = 2 p1 p2 / (p1 + p2 + |(p1, p2)|): a vector
+ * sqrt, t's division and one reciprocal for 1/r and 1/h^2), and the
  * 3D kernels the carrier f^2 = s1^2 + s2^2 with the library's two normals
  * (dfl_rfunc_batch_new_opts).  Other kinds have kernels of their own,
  * found by dfl_rfunc_batch_build (batch_impl.h): the smooth trims of

@@ -38,34 +38,69 @@ DFL_INLINE void seg_term(double x, double y, const dfl_rfunc_batch *b, size_t k,
     *Vy += q * gy;                                       /* 1, 1 */
 }
 
-/* The strip trim of eq. 4 (rfunc/segment.h): p1 = (x - a).e, p2 = (b - x).e,
- * t = 2 p1 p2 / (p1 + p2 + r), r = |(p1, p2)| (rfunc/trim.h's conjunction
- * without cancellation; p1 + p2 = d > 0), grad t = (p2 - p1)/r e, so with
- * mt = max(-t, 0): h grad h = f grad f - mt (p2 - p1)/r e.  Returns mt and
- * the factor k = mt (p2 - p1)/r of -e. */
-DFL_INLINE double strip_mt(double p1, double p2, double *k)
+/* The strip trim of eq. 4 (rfunc/segment.h) and the power terms, for a
+ * carrier F2 = f^2 (3D: s1^2 + s2^2): p1 = (x - a).e, p2 = (b - x).e,
+ * r = |(p1, p2)|, t = 2 p1 p2 / (p1 + p2 + r) (trim.h's conjunction
+ * without cancellation), mt = max(-t, 0), grad t = (p2 - p1)/r e.
+ *
+ * Why it looks like this.  Newton steps for 1/sqrt (batch.c) cost 13
+ * multiplications, a third of the kernel's, on the multiply pipes while
+ * the divider idles; so r comes from sqrt() (vectorized: this file is
+ * compiled with -fno-math-errno, see the Makefile), and 1/r and 1/h^2
+ * share one division, R = 1/(r h^2): 1/r = h^2 R, 1/h^2 = r R (odd p:
+ * R = 1/(r h), 1/h = r R).  r, t and mt are the per-point path's own
+ * expressions (the same roundings; merging t's division into R as well
+ * rounds mt differently and made u exceed min h by an ulp at a node of
+ * tests/e2e/bs04/test_bs04_fields.c, which checks u <= min h).
+ * r h^2 below 1e-300 (a point on the segment, h^2 near the double range)
+ * poisons *S with NaN so that the point falls back.
+ * Adds h^-p to *S; returns q = h^-(p+2) (the factor of the carrier's
+ * f grad f) and *qe (the factor of -e).  Counts (mul, add; div, sqrt). */
+DFL_INLINE double strip_term(double F2, double p1, double p2, int p, double *S, double *qe)
 {
-    const double r2 = p1 * p1 + p2 * p2;
-    const double rr = rsqrt_newton(r2);
-    const double t = 2.0 * p1 * p2 / (p1 + p2 + r2 * rr);
-    const double mt = 0.5 * (fabs(t) - t);
-    *k = mt * (p2 - p1) * rr;
-    return mt;
+    const double r = sqrt(p1 * p1 + p2 * p2);     /* 2, 1; sqrt */
+    const double P = p1 * p2;                     /* 1, 0 */
+    const double t = (P + P) / ((p1 + p2) + r);   /* 0, 3; div */
+    const double mt = 0.5 * (fabs(t) - t);        /* 1, 1: max(-t, 0) exactly */
+    const double h2 = F2 + mt * mt;               /* 1, 1 */
+    double rr, r2i, w;
+    if (p & 1) {
+        const double h = sqrt(h2);                /* odd p: sqrt */
+        const double rh = r * h;
+        const double R = 1.0 / rh;                /* div */
+        *S += rh >= 1e-300 ? 0.0 : NAN;
+        const double hm1 = r * R;                 /* 1/h */
+        rr = h * R;
+        r2i = hm1 * hm1;
+        w = p == 1 ? hm1 : hm1 * ipow_sq(r2i, p / 2);
+    } else {
+        const double rh2 = r * h2;                /* 1, 0 */
+        const double R = 1.0 / rh2;               /* div */
+        *S += rh2 >= 1e-300 ? 0.0 : NAN;          /* 0, 1; compare */
+        rr = h2 * R;                              /* 1, 0 */
+        r2i = r * R;                              /* 1, 0 */
+        w = ipow_sq(r2i, p / 2);                  /* muls of ipow_sq(p/2) */
+    }
+    const double q = w * r2i;                     /* 1, 0 */
+    *S += w;                                      /* 0, 1 */
+    *qe = q * (mt * (p2 - p1) * rr);              /* 3, 1 */
+    return q;
 }
 
 /* 2D segment with the strip trim. */
 DFL_INLINE void seg_term_strip2(double x, double y, const dfl_rfunc_batch *b, size_t k, int p,
                                 double *S, double *Vx, double *Vy)
 {
-    const double wx = x - b->ax[k], wy = y - b->ay[k];
-    const double vx = x - b->bx[k], vy = y - b->by[k];
-    const double f = wx * b->nx[k] + wy * b->ny[k];
-    const double p1 = wx * b->ex[k] + wy * b->ey[k], p2 = -(vx * b->ex[k] + vy * b->ey[k]);
-    double kk;
-    const double mt = strip_mt(p1, p2, &kk);
-    const double q = pow_term(f * f + mt * mt, p, S);
-    *Vx += q * (f * b->nx[k] - kk * b->ex[k]);
-    *Vy += q * (f * b->ny[k] - kk * b->ey[k]);
+    const double wx = x - b->ax[k], wy = y - b->ay[k];                   /* 0, 2 */
+    const double vx = x - b->bx[k], vy = y - b->by[k];                   /* 0, 2 */
+    const double f = wx * b->nx[k] + wy * b->ny[k];                      /* 2, 1 */
+    const double p1 = wx * b->ex[k] + wy * b->ey[k];                     /* 2, 1 */
+    const double p2 = -(vx * b->ex[k] + vy * b->ey[k]);                  /* 2, 1 */
+    double qe;
+    const double q = strip_term(f * f, p1, p2, p, S, &qe);               /* 1 + above */
+    const double qf = q * f;                                             /* 1, 0 */
+    *Vx += qf * b->nx[k] - qe * b->ex[k];                                /* 2, 2 */
+    *Vy += qf * b->ny[k] - qe * b->ey[k];                                /* 2, 2 */
 }
 
 /* 3D segment (space curves): f^2 = s1^2 + s2^2 with the two normals, the
@@ -79,24 +114,23 @@ DFL_INLINE void seg_term3(double x, double y, double z, const dfl_rfunc_batch *b
     const double s2 = wx * b->mx[k] + wy * b->my[k] + wz * b->mz[k];
     double gx = s1 * b->nx[k] + s2 * b->mx[k], gy = s1 * b->ny[k] + s2 * b->my[k],
            gz = s1 * b->nz[k] + s2 * b->mz[k];
-    double mt;
     if (strip) {
         const double p1 = wx * b->ex[k] + wy * b->ey[k] + wz * b->ez[k];
         const double p2 = -(vx * b->ex[k] + vy * b->ey[k] + vz * b->ez[k]);
-        double kk;
-        mt = strip_mt(p1, p2, &kk);
-        gx -= kk * b->ex[k];
-        gy -= kk * b->ey[k];
-        gz -= kk * b->ez[k];
-    } else {
-        const double m2 = wx * vx + wy * vy + wz * vz;
-        const double mp = m2 + fabs(m2);
-        mt = mp * b->hid[k];
-        const double mi = mp * b->hid2[k];
-        gx += mi * (wx + vx);
-        gy += mi * (wy + vy);
-        gz += mi * (wz + vz);
+        double qe;
+        const double q = strip_term(s1 * s1 + s2 * s2, p1, p2, p, S, &qe);
+        *Vx += q * gx - qe * b->ex[k];
+        *Vy += q * gy - qe * b->ey[k];
+        *Vz += q * gz - qe * b->ez[k];
+        return;
     }
+    const double m2 = wx * vx + wy * vy + wz * vz;
+    const double mp = m2 + fabs(m2);
+    const double mt = mp * b->hid[k];
+    const double mi = mp * b->hid2[k];
+    gx += mi * (wx + vx);
+    gy += mi * (wy + vy);
+    gz += mi * (wz + vz);
     const double q = pow_term(s1 * s1 + s2 * s2 + mt * mt, p, S);
     *Vx += q * gx;
     *Vy += q * gy;
