@@ -48,6 +48,9 @@ BENCH_OBJ := $(BENCH_C:%.c=$(BUILD)/%.o)
 # Study-level code may include experiments/ headers; the library may not.
 $(EXP_OBJ) $(CLI_OBJ): CPPFLAGS += -Iexperiments
 $(TEST_OBJ) $(BENCH_OBJ): CPPFLAGS += -Iexperiments -Itests
+# The triangle and region kernels vectorize sqrt and selects (hardware roots, IEEE
+# results unchanged; src/rfunc/batch_tri.c).
+$(BUILD)/src/rfunc/batch_tri.o $(BUILD)/src/rfunc/batch_region.o: CFLAGS += -fno-math-errno -fno-trapping-math
 
 LIB     := $(BUILD)/libdfl.a
 EXPLIB  := $(BUILD)/libdflexp.a
