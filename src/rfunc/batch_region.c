@@ -15,12 +15,17 @@
  * in order, each in the field's order (rounding differs from the field's
  * order only in the last bits).
  *
- * Points inside a region (h = 0) make h^-p infinite and fall back (u = 0
- * there); so do points within ~1e-140 of a region (see pow_term). */
+ * Points inside a region get u = 0 and grad u = 0 directly (the per-point
+ * path's value; a third of the benchmark's grid lies inside its squares),
+ * recognised exactly by sum_i min(p_i, 0) = 0 (h^2 may underflow), so the
+ * kind uses the kernel hook (batch_impl.h) rather than the sums path.
+ * Points within ~1e-140 of a region fall back (h^-p overflows, see
+ * pow_term). */
 #include <math.h>
 #include <stdlib.h>
 
 #include "rfunc/batch_impl.h"
+#include "rfunc/join.h"
 #include "rfunc/rfield.h"
 
 /* Regions with e edges: for edge j the arrays V_x, V_y, m_x, m_y of nr
@@ -50,31 +55,35 @@ static void reg_kd_free(void *p)
 
 /* h^2 and h grad h of region k of a group at one point (e edges). */
 DFL_INLINE void reg_edges(double x, double y, const double *d, size_t nr, size_t k,
-                          const size_t e, double *h2o, double *gxo, double *gyo)
+                          const size_t e, double *h2o, double *gxo, double *gyo, double *zo)
 {
-    double h2 = 0.0, gx = 0.0, gy = 0.0;
+    double h2 = 0.0, gx = 0.0, gy = 0.0, z = 0.0;
     for (size_t j = 0; j < e; j++) {
         const double *dj = d + 4 * j * nr;
         const double mx = dj[2 * nr + k], my = dj[3 * nr + k];
-        const double q = -((x - dj[k]) * mx + (y - dj[nr + k]) * my);  /* 2 */
-        const double mq = q > 0.0 ? q : 0.0;
-        h2 += mq * mq;                                                  /* 1 */
-        gx -= mq * mx;                                                  /* 1 */
-        gy -= mq * my;                                                  /* 1 */
+        /* s = -q of region.c, ms = min(s, 0) = -max(q, 0) (no negation) */
+        const double s = (x - dj[k]) * mx + (y - dj[nr + k]) * my;      /* 2 */
+        const double ms = s < 0.0 ? s : 0.0;
+        z += ms;     /* 0 exactly when the point is inside (h^2 may underflow) */
+        h2 += ms * ms;                                                  /* 1 */
+        gx += ms * mx;                                                  /* 1 */
+        gy += ms * my;                                                  /* 1 */
     }
     *h2o = h2;
     *gxo = gx;
     *gyo = gy;
+    *zo = z;
 }
 
 DFL_INLINE void edges_e(const reg_group *g, size_t k0, size_t kc, const double *X,
                         const double *Y, double (*H)[LANES], double (*GX)[LANES],
-                        double (*GY)[LANES], const size_t e)
+                        double (*GY)[LANES], double (*ZS)[LANES], const size_t e)
 {
     for (size_t j = 0; j < kc; j++) {
 #pragma omp simd
         for (int l = 0; l < LANES; l++)
-            reg_edges(X[l], Y[l], g->d, g->nr, k0 + j, e, &H[j][l], &GX[j][l], &GY[j][l]);
+            reg_edges(X[l], Y[l], g->d, g->nr, k0 + j, e, &H[j][l], &GX[j][l], &GY[j][l],
+                      &ZS[j][l]);
     }
 }
 
@@ -82,21 +91,22 @@ DFL_INLINE void edges_e(const reg_group *g, size_t k0, size_t kc, const double *
 DFL_CLONES
 static void reg_phase_edges(const reg_group *g, size_t k0, size_t kc, const double *X,
                             const double *Y, double (*H)[LANES], double (*GX)[LANES],
-                            double (*GY)[LANES])
+                            double (*GY)[LANES], double (*ZS)[LANES])
 {
     switch (g->e) {
-    case 3: edges_e(g, k0, kc, X, Y, H, GX, GY, 3); break;
-    case 4: edges_e(g, k0, kc, X, Y, H, GX, GY, 4); break;
-    case 5: edges_e(g, k0, kc, X, Y, H, GX, GY, 5); break;
-    case 6: edges_e(g, k0, kc, X, Y, H, GX, GY, 6); break;
-    case 7: edges_e(g, k0, kc, X, Y, H, GX, GY, 7); break;
-    case 8: edges_e(g, k0, kc, X, Y, H, GX, GY, 8); break;
-    default: edges_e(g, k0, kc, X, Y, H, GX, GY, g->e); break;
+    case 3: edges_e(g, k0, kc, X, Y, H, GX, GY, ZS, 3); break;
+    case 4: edges_e(g, k0, kc, X, Y, H, GX, GY, ZS, 4); break;
+    case 5: edges_e(g, k0, kc, X, Y, H, GX, GY, ZS, 5); break;
+    case 6: edges_e(g, k0, kc, X, Y, H, GX, GY, ZS, 6); break;
+    case 7: edges_e(g, k0, kc, X, Y, H, GX, GY, ZS, 7); break;
+    case 8: edges_e(g, k0, kc, X, Y, H, GX, GY, ZS, 8); break;
+    default: edges_e(g, k0, kc, X, Y, H, GX, GY, ZS, g->e); break;
     }
 }
 
 DFL_INLINE void join_p(size_t kc, double (*H)[LANES], double (*GX)[LANES], double (*GY)[LANES],
-                       double *S, double *Vx, double *Vy, const int p)
+                       double (*ZS)[LANES], double *S, double *Vx, double *Vy, double *I,
+                       const int p)
 {
     for (size_t j = 0; j < kc; j++) {
 #pragma omp simd
@@ -104,6 +114,7 @@ DFL_INLINE void join_p(size_t kc, double (*H)[LANES], double (*GX)[LANES], doubl
             const double q = pow_term(H[j][l], p, &S[l]);  /* p = 2: 1 division, 1 */
             Vx[l] += q * GX[j][l];                          /* 1 */
             Vy[l] += q * GY[j][l];                          /* 1 */
+            I[l] += ZS[j][l] == 0.0 ? 1.0 : 0.0;
         }
     }
 }
@@ -111,29 +122,32 @@ DFL_INLINE void join_p(size_t kc, double (*H)[LANES], double (*GX)[LANES], doubl
 /* The join loop of a chunk: adds h^-p to S, h^-(p+2) h grad h to V. */
 DFL_CLONES
 static void reg_phase_join(int p, size_t kc, double (*H)[LANES], double (*GX)[LANES],
-                           double (*GY)[LANES], double *S, double *Vx, double *Vy)
+                           double (*GY)[LANES], double (*ZS)[LANES], double *S, double *Vx,
+                           double *Vy, double *I)
 {
     switch (p) {
-    case 1: join_p(kc, H, GX, GY, S, Vx, Vy, 1); break;
-    case 2: join_p(kc, H, GX, GY, S, Vx, Vy, 2); break;
-    case 3: join_p(kc, H, GX, GY, S, Vx, Vy, 3); break;
-    case 4: join_p(kc, H, GX, GY, S, Vx, Vy, 4); break;
-    case 5: join_p(kc, H, GX, GY, S, Vx, Vy, 5); break;
-    case 6: join_p(kc, H, GX, GY, S, Vx, Vy, 6); break;
-    case 7: join_p(kc, H, GX, GY, S, Vx, Vy, 7); break;
-    case 8: join_p(kc, H, GX, GY, S, Vx, Vy, 8); break;
-    case 12: join_p(kc, H, GX, GY, S, Vx, Vy, 12); break;
-    default: join_p(kc, H, GX, GY, S, Vx, Vy, p); break;
+    case 1: join_p(kc, H, GX, GY, ZS, S, Vx, Vy, I, 1); break;
+    case 2: join_p(kc, H, GX, GY, ZS, S, Vx, Vy, I, 2); break;
+    case 3: join_p(kc, H, GX, GY, ZS, S, Vx, Vy, I, 3); break;
+    case 4: join_p(kc, H, GX, GY, ZS, S, Vx, Vy, I, 4); break;
+    case 5: join_p(kc, H, GX, GY, ZS, S, Vx, Vy, I, 5); break;
+    case 6: join_p(kc, H, GX, GY, ZS, S, Vx, Vy, I, 6); break;
+    case 7: join_p(kc, H, GX, GY, ZS, S, Vx, Vy, I, 7); break;
+    case 8: join_p(kc, H, GX, GY, ZS, S, Vx, Vy, I, 8); break;
+    case 12: join_p(kc, H, GX, GY, ZS, S, Vx, Vy, I, 12); break;
+    default: join_p(kc, H, GX, GY, ZS, S, Vx, Vy, I, p); break;
     }
 }
 
-void dfl_rfunc_batch_sums_reg(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+/* S, V and the number of regions containing the point (4 doubles per point). */
+static void reg_sums(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {
     const reg_kd *kd = b->kd;
-    double H[KR][LANES], GX[KR][LANES], GY[KR][LANES];
+    double H[KR][LANES], GX[KR][LANES], GY[KR][LANES], ZS[KR][LANES];
     for (size_t i0 = 0; i0 < m; i0 += LANES) {
         const size_t c = m - i0 < LANES ? m - i0 : LANES;
-        double X[LANES], Y[LANES], S[LANES] = {0}, Vx[LANES] = {0}, Vy[LANES] = {0};
+        double X[LANES], Y[LANES], S[LANES] = {0}, Vx[LANES] = {0}, Vy[LANES] = {0},
+                                   I[LANES] = {0};
         for (size_t l = 0; l < LANES; l++) {
             const size_t i = i0 + (l < c ? l : c - 1);
             X[l] = pts[2 * i];
@@ -143,15 +157,79 @@ void dfl_rfunc_batch_sums_reg(const dfl_rfunc_batch *b, size_t m, const double *
             const reg_group *g = &kd->g[ig];
             for (size_t k0 = 0; k0 < g->nr; k0 += KR) {
                 const size_t kc = g->nr - k0 < KR ? g->nr - k0 : KR;
-                reg_phase_edges(g, k0, kc, X, Y, H, GX, GY);
-                reg_phase_join(b->p, kc, H, GX, GY, S, Vx, Vy);
+                reg_phase_edges(g, k0, kc, X, Y, H, GX, GY, ZS);
+                reg_phase_join(b->p, kc, H, GX, GY, ZS, S, Vx, Vy, I);
             }
         }
         for (size_t l = 0; l < c; l++) {
-            out[3 * (i0 + l)] = S[l];
-            out[3 * (i0 + l) + 1] = Vx[l];
-            out[3 * (i0 + l) + 2] = Vy[l];
+            out[4 * (i0 + l)] = S[l];
+            out[4 * (i0 + l) + 1] = Vx[l];
+            out[4 * (i0 + l) + 2] = Vy[l];
+            out[4 * (i0 + l) + 3] = I[l];
         }
+    }
+}
+
+/* u and grad u from the sums s (S, V), or 0 when they are not trustworthy:
+ * the rules of batch.c's accept (the same ranges, the same roots). */
+static int reg_accept(int p, const double *s, double *u, double *g)
+{
+    const double S = s[0];
+    if (!(S >= 1e-140 && S <= 1e280) || !isfinite(s[1]) || !isfinite(s[2])) return 0;
+    const double w = p == 1 ? 1.0 / S : p == 2 ? 1.0 / sqrt(S) : pow(S, -1.0 / p);
+    const double wp1 = dfl_rfunc_ipow(w, p + 1);
+    if (!(wp1 >= 1e-290) || !isfinite(wp1)) return 0;
+    g[0] = wp1 * s[1];
+    g[1] = wp1 * s[2];
+    if (!isfinite(g[0]) || !isfinite(g[1])) return 0;
+    *u = w;
+    return 1;
+}
+
+/* The kind's kernel (batch_impl.h): a point inside a region has u = 0 and
+ * grad u = 0, as the per-point path's accumulator gives (join.c), without
+ * the fallback; the rest as the sums kernels. */
+static void reg_kernel(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
+                       double *grad)
+{
+    double s[4 * SCRATCH];
+    for (size_t i0 = 0; i0 < m; i0 += SCRATCH) {
+        const size_t c = m - i0 < SCRATCH ? m - i0 : SCRATCH;
+        reg_sums(b, c, pts + 2 * i0, s);
+        for (size_t i = 0; i < c; i++) {
+            double u = 0.0, g[2] = {0.0, 0.0};
+            if (!(s[4 * i + 3] > 0.0) && !reg_accept(b->p, s + 4 * i, &u, g))
+                u = dfl_field_eval1(b->fb, pts + 2 * (i0 + i), g);
+            val[i0 + i] = u;
+            if (grad) grad[2 * (i0 + i)] = g[0], grad[2 * (i0 + i) + 1] = g[1];
+        }
+    }
+}
+
+static size_t reg_count_fb(const dfl_rfunc_batch *b, size_t m, const double *pts)
+{
+    double s[4 * SCRATCH];
+    size_t cnt = 0;
+    for (size_t i0 = 0; i0 < m; i0 += SCRATCH) {
+        const size_t c = m - i0 < SCRATCH ? m - i0 : SCRATCH;
+        reg_sums(b, c, pts + 2 * i0, s);
+        for (size_t i = 0; i < c; i++) {
+            double u, g[2];
+            cnt += !(s[4 * i + 3] > 0.0) && !reg_accept(b->p, s + 4 * i, &u, g);
+        }
+    }
+    return cnt;
+}
+
+void dfl_rfunc_batch_sums_reg(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+{
+    /* S and V only (3 doubles per point), for callers of the sums interface */
+    double s[4 * SCRATCH];
+    for (size_t i0 = 0; i0 < m; i0 += SCRATCH) {
+        const size_t c = m - i0 < SCRATCH ? m - i0 : SCRATCH;
+        reg_sums(b, c, pts + 2 * i0, s);
+        for (size_t i = 0; i < c; i++)
+            for (int j = 0; j < 3; j++) out[3 * (i0 + i) + j] = s[4 * i + j];
     }
 }
 
@@ -230,6 +308,8 @@ dfl_status dfl_rfunc_batch_regions(const dfl_rfunc_region *r, size_t n, int p,
     b->regions = 1;
     b->kd = kd;
     b->kd_free = reg_kd_free;
+    b->kernel = reg_kernel;
+    b->count_fb = reg_count_fb;
     *out = b;
     return DFL_OK;
 }

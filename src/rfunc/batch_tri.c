@@ -23,11 +23,11 @@
  *     R1 RQ grad t = (RQ - N1)(R1 - p0) m0 + (RQ - N1)(R1 - p1) m1
  *                    + R1 (RQ - p2 D1) m2 - a f ((RQ - N1) + D1 R1) n
  * (from dx = 1 - x/r, dc = -1/(2r) of trim.h and dc/df = 2 a f), so with
- * E = 1/(Hd R1 RQ) (the one division):
- *     1/h^2 = D^2 R1 RQ E,  1/h = D sqrt(Hd) R1 RQ E  (odd p: a third root),
- *     w = h^-p,  and h^-(p+2) h grad h = w h^-2 f n - w D M E (R1 RQ grad t).
- * Operations per triangle at p = 2 (prism): 53 multiplications, 47
- * additions, 2 square roots, 1 division (conditional: 61, 53, 2, 1; odd p
+ * E = 1/(Hd R1 RQ) (the one division), 1/Hd = R1 RQ E, 1/(R1 RQ) = Hd E:
+ *     1/h^2 = D^2/Hd,  1/h = D sqrt(Hd)/Hd  (odd p: a third root),
+ *     w = h^-p,  and h^-(p+2) h grad h = w h^-2 f n - w (M D/Hd) grad t.
+ * Operations per triangle at p = 2 (prism): 57 multiplications, 47
+ * additions, 2 square roots, 1 division (conditional: 66, 53, 2, 1; odd p
  * a third root); the benchmark quotes them.
  *
  * The roots are the hardware's (correctly rounded, like the per-point
@@ -41,7 +41,8 @@
  * Q and Hd in [1e-140, 1e140] (then R1 RQ Hd is a normal number and no
  * intermediate under- or overflows); otherwise (a vertex line, where R1 or
  * RQ is 0 and trim.c takes its special partials; points within ~1e-70 of
- * a part; |x| beyond ~1e20) S is NaN and the point falls back. */
+ * a part; |x| beyond ~1e20), or when S < 1e-140 (V would underflow; far
+ * points at large p), S is NaN and the point falls back. */
 #include <math.h>
 #include <stdlib.h>
 
@@ -75,6 +76,9 @@ static void tri_kd_free(void *p)
 /* The trusted range of the guarded quantities (see the top). */
 #define T_LO 1e-140
 #define T_HI 1e140
+/* The smallest S whose V = sum h^-(p+2) h grad h (~ S^((p+1)/p)) stays a
+ * normal number for every p >= 1 (accept() of batch.c allows 1e-280). */
+#define T_SMIN 1e-140
 
 /* Triangles per phase chunk: the kernel runs a chunk of KC triangles for a
  * block of TLANES points in three loops (phases), which pass their results
@@ -141,25 +145,30 @@ DFL_INLINE void tri_b(const double *in, double ca, int cond, double *o, double *
     *hi = g > *hi ? g : *hi;
 }
 
-/* Phase C: the one division, h^-p and the sums. */
+/* Phase C: the one division, h^-p and the sums.  The factors are grouped
+ * by scale (1/(R1 RQ) with the partials, mt h^-2 = M D / Hd with h^-p) so
+ * that no product under- or overflows before the term itself does. */
 DFL_INLINE void tri_c(const double *in, double f, const double *const *T, size_t k, int p,
                       int cond, double *S, double *Vx, double *Vy, double *Vz)
 {
-    const double Z = in[0], RR = in[TLANES], D = in[2 * TLANES], M = in[3 * TLANES];
+    const double Z = in[0], RR = in[TLANES], D = in[2 * TLANES], M = in[3 * TLANES],
+                 Hd = in[8 * TLANES];
     const double E = 1.0 / Z;                                                    /* 1 div */
-    const double r2 = (D * D) * (RR * E);                                        /* 3: h^-2 */
+    const double iHd = RR * E, iRR = Hd * E;                                     /* 2 */
+    const double r2 = (D * D) * iHd;                                             /* 2: h^-2 */
     double w;
     if (p & 1) {
-        const double ih = D * sqrt(in[8 * TLANES]) * (RR * E);                           /* h^-1 */
+        const double ih = D * sqrt(Hd) * iHd;                                    /* h^-1 */
         w = p == 1 ? ih : ih * ipow_sq(r2, p / 2);
     } else {
         w = ipow_sq(r2, p / 2);                                                  /* 0 at p = 2 */
     }
     *S += w;
-    const double qf = w * r2 * f;                                                /* 2 */
-    const double kap = w * D * M * E;                                            /* 3 */
-    const double b0 = kap * in[4 * TLANES], b1 = kap * in[5 * TLANES], b2 = kap * in[6 * TLANES];           /* 3 */
-    const double bn = cond ? qf + kap * in[7 * TLANES] : qf;
+    const double qf = w * (r2 * f);                                              /* 2 */
+    const double wm = w * (M * D * iHd);                                         /* 3: h^-(p+2) mt */
+    const double b0 = wm * (in[4 * TLANES] * iRR), b1 = wm * (in[5 * TLANES] * iRR),
+                 b2 = wm * (in[6 * TLANES] * iRR);                               /* 6 */
+    const double bn = cond ? qf + wm * (in[7 * TLANES] * iRR) : qf;
     *Vx += bn * T[T_NX][k] - b0 * T[T_M0X][k] - b1 * T[T_M1X][k] - b2 * T[T_M2X][k]; /* 4 */
     *Vy += bn * T[T_NY][k] - b0 * T[T_M0Y][k] - b1 * T[T_M1Y][k] - b2 * T[T_M2Y][k]; /* 4 */
     *Vz += bn * T[T_NZ][k] - b0 * T[T_M0Z][k] - b1 * T[T_M1Z][k] - b2 * T[T_M2Z][k]; /* 4 */
@@ -208,7 +217,7 @@ DFL_INLINE void sums_tri_p(const dfl_rfunc_batch *b, size_t m, const double *pts
             }
         }
         for (size_t l = 0; l < c; l++) {
-            const int ok = lo[l] >= T_LO && hi[l] <= T_HI;
+            const int ok = lo[l] >= T_LO && hi[l] <= T_HI && S[l] >= T_SMIN;
             out[4 * (i0 + l)] = ok ? S[l] : NAN;
             out[4 * (i0 + l) + 1] = Vx[l];
             out[4 * (i0 + l) + 2] = Vy[l];
