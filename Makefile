@@ -48,6 +48,11 @@ BENCH_OBJ := $(BENCH_C:%.c=$(BUILD)/%.o)
 # Study-level code may include experiments/ headers; the library may not.
 $(EXP_OBJ) $(CLI_OBJ): CPPFLAGS += -Iexperiments
 $(TEST_OBJ) $(BENCH_OBJ): CPPFLAGS += -Iexperiments -Itests
+# Batched rfunc kernels: gcc vectorizes sqrt() only without errno semantics and
+# the triangle/region selects only without trapping math; both leave IEEE results
+# unchanged (src/rfunc/batch_seg.c strip_term, batch_tri.c).
+$(BUILD)/src/rfunc/batch_seg.o: CFLAGS += -fno-math-errno
+$(BUILD)/src/rfunc/batch_tri.o $(BUILD)/src/rfunc/batch_region.o: CFLAGS += -fno-math-errno -fno-trapping-math
 
 LIB     := $(BUILD)/libdfl.a
 EXPLIB  := $(BUILD)/libdflexp.a
@@ -61,10 +66,6 @@ APT_PKGS := libinih-dev libceres-dev libopenexr-dev libimath-dev libcriterion-de
 
 .PHONY: all deps test sanitize bench reproduce figures clean check-layout web web-test web-bench check-threads
 all: $(DFLAB) $(LIB)
-
-# The strip kernels take r = sqrt() on the divider, which gcc vectorizes only
-# without errno semantics (rfunc/batch_seg.c, strip_term).
-$(BUILD)/src/rfunc/batch_seg.o: CFLAGS += -fno-math-errno
 
 $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)

@@ -85,14 +85,15 @@ dfl_status dfl_rfunc_batch_points(int dim, const double *c, size_t n, int p,
                                   dfl_rfunc_batch **out, dfl_err *err);
 /* R-equivalence of n >= 2 triangles t[0..n-1] (rfunc/tri3d.h) with one
  * eq. 4 trim for all: prism, or conditional with k = 2 and one weight a.
- * The prism's R0-conjunctions take one reciprocal square root (Newton
- * steps) and one division each.  DFL_E_INPUT for other options or bad p;
- * DFL_E_NOMEM. */
+ * Per triangle two square roots (the R0-conjunctions) and one division
+ * (the fold kept as fractions; batch_tri.c).  DFL_E_INPUT for other
+ * options or bad p; DFL_E_NOMEM. */
 dfl_status dfl_rfunc_batch_triangles(const dfl_rfunc_tri *t, size_t n, int p,
                                      dfl_rfunc_batch **out, dfl_err *err);
-/* R-equivalence of n >= 2 convex regions r[0..n-1] (rfunc/region.h; 2D).
- * Points inside a region fall back (u = 0 there).  DFL_E_INPUT for bad p;
- * DFL_E_NOMEM. */
+/* R-equivalence of n >= 2 convex regions r[0..n-1] (rfunc/region.h; 2D),
+ * grouped by edge count.  Points inside a region get u = 0, grad u = 0
+ * (the per-point path's values) without the fallback.  DFL_E_INPUT for
+ * bad p; DFL_E_NOMEM. */
 dfl_status dfl_rfunc_batch_regions(const dfl_rfunc_region *r, size_t n, int p,
                                    dfl_rfunc_batch **out, dfl_err *err);
 void dfl_rfunc_batch_free(dfl_rfunc_batch *b);
