@@ -7,8 +7,11 @@
  * 3D kernels the carrier f^2 = s1^2 + s2^2 with the library's two normals
  * (dfl_rfunc_batch_new_opts).  Not batched (per-point path): the smooth
  * trims of eq. 5 (a second root and division per segment), R-conjunction
- * (a sequential fold with a root per part), the corrected join (vertex
- * terms and their guards) and mixed part kinds.  Point parts, triangles
+ * (a sequential fold with a root per part) and mixed part kinds.  The
+ * corrected join of such segments (eq. 20, guarded and literal, vertex
+ * terms with their guards) has a kernel of its own (batch_corrected.c;
+ * vertex layouts whose guard reads other than the previous part or one of
+ * 4 kept parts stay per point).  Point parts, triangles
  * and convex regions have kernels of their own (dfl_rfunc_batch_points,
  * dfl_rfunc_batch_triangles, dfl_rfunc_batch_regions).  It computes the same function as
  * rfunc/rfield.h's dfl_rfield_polyline(2, ..., DFL_RFUNC_REQUIV, p,
