@@ -10,7 +10,9 @@
  * eq. 5 (batch_smooth.c: a second root and division per segment),
  * R-conjunction (eq. 7) of disk- or strip-trimmed segments, 2D or 3D
  * (batch_rconj.c: the fold runs across points, a root per part), the
- * corrected join (batch_corrected.c).  Point parts, triangles
+ * corrected join, guarded and literal (batch_corrected.c; vertex layouts
+ * whose guard reads other than the previous part or one of 4 kept parts
+ * stay per point).  Point parts, triangles
  * and convex regions have kernels of their own (dfl_rfunc_batch_points,
  * dfl_rfunc_batch_triangles, dfl_rfunc_batch_regions); mixed part kinds
  * and segments that are not one chain are the sum of those kernels over

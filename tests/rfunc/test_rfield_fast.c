@@ -237,7 +237,7 @@ Test(rfield_fast, eligibility)
     } cases[] = {
         {2, v, 12, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_DISK, true},
         {2, v, 12, DFL_RFUNC_RCONJ, DFL_RFUNC_TRIM_DISK, true},
-        {2, v, 12, DFL_RFUNC_REQUIV_CORRECTED, DFL_RFUNC_TRIM_DISK, false},
+        {2, v, 12, DFL_RFUNC_REQUIV_CORRECTED, DFL_RFUNC_TRIM_DISK, true},
         {2, v, 12, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_STRIP, true},
         {2, v, 12, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_DISK_SMOOTH, true},
         {3, v3, 3, DFL_RFUNC_REQUIV, DFL_RFUNC_TRIM_DISK, true},
