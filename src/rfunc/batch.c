@@ -276,9 +276,6 @@ dfl_status dfl_rfunc_batch_build(const dfl_rfunc_batch_desc *d, dfl_rfunc_batch 
 void dfl_rfunc_batch_free(dfl_rfunc_batch *b)
 {
     if (!b) return;
-    free(b->tri);
-    free(b->roff);
-    free(b->rv);
     if (b->kd_free) b->kd_free(b->kd);
     dfl_field_destroy(&b->ref);
     free(b->mem);

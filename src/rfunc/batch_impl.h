@@ -30,13 +30,10 @@ struct dfl_rfunc_batch {
     int dim;            /* 2 or 3 */
     int strip;          /* 1: strip (slab) trims, 0: disk (sphere) trims; eq. 4 */
     int points;         /* 1: the parts are points c = (ax, ay[, az]) */
-    int tris;           /* 1: the parts are triangles (tri below) */
+    int tris;           /* 1: the parts are triangles (data in kd: batch_tri.c) */
     int cond;           /* triangles: 1 conditional trim (a f^2), 0 prism */
     double ca;          /* triangles: the conditional weight a */
-    double *tri;        /* triangles: 24 doubles each: n, then V_i, m_i (i = 0..2) */
-    int regions;        /* 1: the parts are convex regions (2D) */
-    size_t *roff;       /* regions: n + 1 offsets into rv/rm (edges) */
-    double *rv, *rm;    /* regions: edge start points and inward normals, 2 each */
+    int regions;        /* 1: the parts are convex regions (2D; data in kd: batch_region.c) */
     size_t n;           /* segments */
     double *ax, *ay;    /* start points a */
     double *bx, *by;    /* end points b */
@@ -185,6 +182,17 @@ void dfl_rfunc_batch_sums_reg(const dfl_rfunc_batch *b, size_t m, const double *
                               double *out);                         /* batch_region.c */
 void dfl_rfunc_batch_sums_pts(const dfl_rfunc_batch *b, size_t m, const double *pts,
                               double *out);                         /* batch_point.c */
+
+/* The triangle and region kernels' data for t[0..n-1] (one eq. 4 trim,
+ * conditional with k = 2: the caller checks) or the convex regions
+ * r[0..n-1] (copied), attached to b as its kind data (tris/regions, kd,
+ * kd_free; regions also set kernel and count_fb, which answer points
+ * inside a region with u = 0).  b's own arrays are not used.  DFL_E_NOMEM
+ * (b unchanged). */
+dfl_status dfl_rfunc_batch_tri_attach(dfl_rfunc_batch *b, const dfl_rfunc_tri *t, size_t n,
+                                      dfl_err *err); /* batch_tri.c */
+dfl_status dfl_rfunc_batch_reg_attach(dfl_rfunc_batch *b, const dfl_rfunc_region *r, size_t n,
+                                      dfl_err *err); /* batch_region.c */
 
 /* The kinds dfl_rfunc_batch_build tries after the built-in ones, each in
  * its own file: DFL_OK with *out NULL when the field is not one it

@@ -94,34 +94,34 @@ static dfl_status build_group(const dfl_rfunc_batch_desc *d, const group_key *k,
     dfl_status st = dfl_rfunc_batch_alloc(d->dim, d->p, cnt, &zero, &b, err);
     if (st != DFL_OK) return st;
     b->fb = d->slow;
-    size_t ne = 0, j = 0;
-    for (size_t i = 0; i < d->n; i++) {
-        group_key ki;
-        if (part_key(&d->parts[i], &ki) && key_eq(&ki, k) && k->kind == DFL_RFUNC_PART_REGION)
-            ne += d->parts[i].u.reg.n;
+    if (k->kind == DFL_RFUNC_PART_TRIANGLE || k->kind == DFL_RFUNC_PART_REGION) {
+        /* the kernels' own layouts (batch_tri.c, batch_region.c) */
+        const int tri = k->kind == DFL_RFUNC_PART_TRIANGLE;
+        void *arr = malloc(cnt * (tri ? sizeof(dfl_rfunc_tri) : sizeof(dfl_rfunc_region)));
+        if (!arr) {
+            dfl_rfunc_batch_free(b);
+            return dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu parts", cnt);
+        }
+        size_t j = 0;
+        for (size_t i = 0; i < d->n; i++) {
+            group_key ki;
+            if (!part_key(&d->parts[i], &ki) || !key_eq(&ki, k)) continue;
+            if (tri) ((dfl_rfunc_tri *)arr)[j++] = d->parts[i].u.tri;
+            else ((dfl_rfunc_region *)arr)[j++] = d->parts[i].u.reg; /* shallow: read only */
+        }
+        st = tri ? dfl_rfunc_batch_tri_attach(b, arr, cnt, err)
+                 : dfl_rfunc_batch_reg_attach(b, arr, cnt, err);
+        free(arr);
+        if (st != DFL_OK) {
+            dfl_rfunc_batch_free(b);
+            return st;
+        }
+        *out = b;
+        return DFL_OK;
     }
-    switch (k->kind) {
-    case DFL_RFUNC_PART_SEGMENT: b->strip = k->trim == DFL_RFUNC_TRIM_STRIP; break;
-    case DFL_RFUNC_PART_POINT: b->points = 1; break;
-    case DFL_RFUNC_PART_TRIANGLE:
-        b->tris = 1;
-        b->cond = k->trim;
-        b->ca = k->a;
-        b->tri = malloc(24 * cnt * sizeof *b->tri);
-        if (!b->tri) st = DFL_E_NOMEM;
-        break;
-    case DFL_RFUNC_PART_REGION:
-        b->regions = 1;
-        b->roff = malloc((cnt + 1) * sizeof *b->roff);
-        b->rv = malloc(4 * (ne ? ne : 1) * sizeof *b->rv);
-        if (!b->roff || !b->rv) st = DFL_E_NOMEM;
-        else b->rm = b->rv + 2 * ne, b->roff[0] = 0;
-        break;
-    }
-    if (st != DFL_OK) {
-        dfl_rfunc_batch_free(b);
-        return dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu parts", cnt);
-    }
+    b->strip = k->kind == DFL_RFUNC_PART_SEGMENT && k->trim == DFL_RFUNC_TRIM_STRIP;
+    b->points = k->kind == DFL_RFUNC_PART_POINT;
+    size_t j = 0;
     for (size_t i = 0; i < d->n; i++) {
         const dfl_rfunc_part *pt = &d->parts[i];
         group_key ki;
@@ -135,22 +135,10 @@ static dfl_status build_group(const dfl_rfunc_batch_desc *d, const group_key *k,
             b->ex[j] = sg->e[0], b->ey[j] = sg->e[1], b->ez[j] = sg->e[2];
             b->hid[j] = 0.5 / sg->d;
             b->hid2[j] = 0.5 / (sg->d * sg->d);
-        } else if (k->kind == DFL_RFUNC_PART_POINT) {
+        } else {
             b->ax[j] = pt->u.pt.c[0];
             b->ay[j] = pt->u.pt.c[1];
             b->az[j] = d->dim == 3 ? pt->u.pt.c[2] : 0.0;
-        } else if (k->kind == DFL_RFUNC_PART_TRIANGLE) {
-            double *T = b->tri + 24 * j;
-            memcpy(T, pt->u.tri.n, 3 * sizeof *T);
-            for (int v = 0; v < 3; v++) {
-                memcpy(T + 3 + 6 * v, pt->u.tri.v[v], 3 * sizeof *T);
-                memcpy(T + 6 + 6 * v, pt->u.tri.m[v], 3 * sizeof *T);
-            }
-        } else {
-            const dfl_rfunc_region *r = &pt->u.reg;
-            memcpy(b->rv + 2 * b->roff[j], r->v, 2 * r->n * sizeof *b->rv);
-            memcpy(b->rm + 2 * b->roff[j], r->m, 2 * r->n * sizeof *b->rm);
-            b->roff[j + 1] = b->roff[j] + r->n;
         }
         j++;
     }

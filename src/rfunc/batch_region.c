@@ -282,6 +282,20 @@ static dfl_status reg_kd_new(const dfl_rfunc_region *r, size_t n, reg_kd **out, 
     return DFL_OK;
 }
 
+dfl_status dfl_rfunc_batch_reg_attach(dfl_rfunc_batch *b, const dfl_rfunc_region *r, size_t n,
+                                      dfl_err *err)
+{
+    reg_kd *kd = NULL;
+    dfl_status st = reg_kd_new(r, n, &kd, err);
+    if (st != DFL_OK) return st;
+    b->regions = 1;
+    b->kd = kd;
+    b->kd_free = reg_kd_free;
+    b->kernel = reg_kernel;
+    b->count_fb = reg_count_fb;
+    return DFL_OK;
+}
+
 dfl_status dfl_rfunc_batch_regions(const dfl_rfunc_region *r, size_t n, int p,
                                    dfl_rfunc_batch **out, dfl_err *err)
 {
@@ -295,21 +309,12 @@ dfl_status dfl_rfunc_batch_regions(const dfl_rfunc_region *r, size_t n, int p,
     if (st == DFL_OK) st = dfl_rfield_finish(&rf, &ref, err);
     else dfl_rfield_free(rf);
     if (st != DFL_OK) return st;
-    reg_kd *kd = NULL;
-    if ((st = reg_kd_new(r, n, &kd, err)) != DFL_OK) {
-        dfl_field_destroy(&ref);
-        return st;
-    }
     dfl_rfunc_batch *b;
-    if ((st = dfl_rfunc_batch_alloc(2, p, n, &ref, &b, err)) != DFL_OK) {
-        reg_kd_free(kd);
+    if ((st = dfl_rfunc_batch_alloc(2, p, n, &ref, &b, err)) != DFL_OK) return st;
+    if ((st = dfl_rfunc_batch_reg_attach(b, r, n, err)) != DFL_OK) {
+        dfl_rfunc_batch_free(b);
         return st;
     }
-    b->regions = 1;
-    b->kd = kd;
-    b->kd_free = reg_kd_free;
-    b->kernel = reg_kernel;
-    b->count_fb = reg_count_fb;
     *out = b;
     return DFL_OK;
 }

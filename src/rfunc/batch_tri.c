@@ -258,6 +258,33 @@ void dfl_rfunc_batch_sums_tri(const dfl_rfunc_batch *b, size_t m, const double *
     else sums_prism(b, m, pts, out);
 }
 
+dfl_status dfl_rfunc_batch_tri_attach(dfl_rfunc_batch *b, const dfl_rfunc_tri *t, size_t n,
+                                      dfl_err *err)
+{
+    tri_kd *kd = calloc(1, sizeof *kd);
+    double *mem = malloc(T_NARR * (n ? n : 1) * sizeof *mem);
+    if (!kd || !mem) {
+        free(kd), free(mem);
+        return dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu triangles", n);
+    }
+    kd->mem = mem;
+    for (int j = 0; j < T_NARR; j++) kd->a[j] = mem + (size_t)j * n;
+    for (size_t k = 0; k < n; k++)
+        for (int j = 0; j < 3; j++) {
+            mem[(size_t)(T_NX + j) * n + k] = t[k].n[j];
+            for (int i = 0; i < 3; i++) {
+                mem[(size_t)(T_V0X + 6 * i + j) * n + k] = t[k].v[i][j];
+                mem[(size_t)(T_M0X + 6 * i + j) * n + k] = t[k].m[i][j];
+            }
+        }
+    b->tris = 1;
+    b->cond = t[0].o.trim == DFL_RFUNC_TRI_CONDITIONAL;
+    b->ca = t[0].o.a;
+    b->kd = kd;
+    b->kd_free = tri_kd_free;
+    return DFL_OK;
+}
+
 dfl_status dfl_rfunc_batch_triangles(const dfl_rfunc_tri *t, size_t n, int p,
                                      dfl_rfunc_batch **out, dfl_err *err)
 {
@@ -278,33 +305,12 @@ dfl_status dfl_rfunc_batch_triangles(const dfl_rfunc_tri *t, size_t n, int p,
     if (st == DFL_OK) st = dfl_rfield_finish(&r, &ref, err);
     else dfl_rfield_free(r);
     if (st != DFL_OK) return st;
-    tri_kd *kd = calloc(1, sizeof *kd);
-    double *mem = malloc(T_NARR * n * sizeof *mem);
-    if (!kd || !mem) {
-        free(kd), free(mem);
-        dfl_field_destroy(&ref);
-        return dfl_err_set(err, DFL_E_NOMEM, "out of memory for %zu triangles", n);
-    }
-    kd->mem = mem;
-    for (int j = 0; j < T_NARR; j++) kd->a[j] = mem + (size_t)j * n;
-    for (size_t k = 0; k < n; k++)
-        for (int j = 0; j < 3; j++) {
-            mem[(size_t)(T_NX + j) * n + k] = t[k].n[j];
-            for (int i = 0; i < 3; i++) {
-                mem[(size_t)(T_V0X + 6 * i + j) * n + k] = t[k].v[i][j];
-                mem[(size_t)(T_M0X + 6 * i + j) * n + k] = t[k].m[i][j];
-            }
-        }
     dfl_rfunc_batch *b;
-    if ((st = dfl_rfunc_batch_alloc(3, p, n, &ref, &b, err)) != DFL_OK) {
-        tri_kd_free(kd);
+    if ((st = dfl_rfunc_batch_alloc(3, p, n, &ref, &b, err)) != DFL_OK) return st;
+    if ((st = dfl_rfunc_batch_tri_attach(b, t, n, err)) != DFL_OK) {
+        dfl_rfunc_batch_free(b);
         return st;
     }
-    b->tris = 1;
-    b->cond = o.trim == DFL_RFUNC_TRI_CONDITIONAL;
-    b->ca = o.a;
-    b->kd = kd;
-    b->kd_free = tri_kd_free;
     *out = b;
     return DFL_OK;
 }
