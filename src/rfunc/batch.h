@@ -1,28 +1,46 @@
-/* A fast, vectorized evaluator for the commonest bs04 fields: a 2D or 3D
- * polyline of segments with the disk or strip trim of eq. 4, joined by
- * R-equivalence of order p (eq. 6), value and gradient.  The 2D disk
- * kernel is described below; the strip kernel computes the trim as
- * rfunc/segment.h does (t = 2 p1 p2 / (p1 + p2 + |(p1, p2)|): a vector
- * sqrt, t's division and one reciprocal for 1/r and 1/h^2), and the
- * 3D kernels the carrier f^2 = s1^2 + s2^2 with the library's two normals
- * (dfl_rfunc_batch_new_opts).  Other kinds have kernels of their own,
- * found by dfl_rfunc_batch_build (batch_impl.h): the smooth trims of
- * eq. 5 (batch_smooth.c: a second root and division per segment),
- * R-conjunction (eq. 7) of disk- or strip-trimmed segments, 2D or 3D
- * (batch_rconj.c: the fold runs across points, a root per part), the
- * corrected join, guarded and literal (batch_corrected.c; vertex layouts
- * whose guard reads other than the previous part or one of 4 kept parts
- * stay per point).  Point parts, triangles
- * and convex regions have kernels of their own (dfl_rfunc_batch_points,
- * dfl_rfunc_batch_triangles, dfl_rfunc_batch_regions); mixed part kinds
- * and segments that are not one chain are the sum of those kernels over
- * groups of parts (batch_mixed.c).  It computes the same function as
- * rfunc/rfield.h's dfl_rfield_polyline(2, ..., DFL_RFUNC_REQUIV, p,
- * DFL_RFUNC_TRIM_DISK) (to rounding, ~1e-13 relative) and exists for
- * throughput: `make bench` measures it against a naive scalar loop and
- * numpy (tests/bench/bench_rfunc.c, which also counts its operations).  rfield.h's fields use it as their
- * eval whenever they are exactly such a polyline (rfield.c), so the
- * studies and `dflab probe` sample through it.
+/* Vectorized evaluators (value and gradient) for every kind of bs04 field
+ * rfield.h builds: rfield.c hands each finished field to
+ * dfl_rfunc_batch_build, which finds the kernel that computes it, and the
+ * field then evaluates through it (one call per block of points), so the
+ * studies and `dflab probe` sample through the kernels.  What computes what:
+ *
+ *   R-equivalence (eq. 6) of
+ *     a chain of segments, eq. 4 disk or strip trim, 2D or 3D
+ *                                   batch_seg.c (the 2D disk kernel is the
+ *                                   model, formulas below; the strip trim
+ *                                   t = 2 p1 p2 / (p1 + p2 + |(p1, p2)|)
+ *                                   takes a vector sqrt, t's division and
+ *                                   one reciprocal for 1/r and 1/h^2; 3D the
+ *                                   carrier f^2 = s1^2 + s2^2 with the
+ *                                   library's two normals)
+ *     points                        batch_point.c
+ *     triangles, one eq. 4 trim     batch_tri.c (three phases through stack
+ *                                   scratch; hardware roots, one division)
+ *     convex regions                batch_region.c (grouped by edge count;
+ *                                   u = 0 inside without a fallback)
+ *     segments with an eq. 5 trim   batch_smooth.c (a second root and
+ *                                   division per segment)
+ *     mixed kinds, or segments that are not one chain
+ *                                   batch_mixed.c (the sum of the kernels
+ *                                   above over groups of parts, in a fixed
+ *                                   order)
+ *   R-conjunction (eq. 7) of disk- or strip-trimmed segments, 2D or 3D
+ *                                   batch_rconj.c (the fold runs across
+ *                                   points: a root per part)
+ *   the corrected join (eq. 20), guarded and literal, of disk- or
+ *   strip-trimmed segments          batch_corrected.c (vertex layouts
+ *                                   whose guard reads other than the
+ *                                   previous part or one of 4 kept parts
+ *                                   stay per point)
+ *
+ * Per-point path (rfield.c) for the rest: one part (u = h exactly),
+ * triangles with eq. 5 trims or conditional exponent k != 2, eq. 5 trims
+ * mixed with other parts or joins.  Every kernel agrees with the per-point
+ * path to rounding (tested to 1e-12 relative: tests/rfunc/test_batch*.c)
+ * and falls back to it point by point where its arithmetic is not
+ * trustworthy; `make bench` measures each kind against that path, a naive
+ * scalar loop and numpy (tests/bench/bench_rfunc.c, which also counts the
+ * operations).
  *
  * Formulas (per segment a-b, d = |b - a|, unit normal
  * n = (b_y - a_y, -(b_x - a_x))/d, w = x - a, v = x - b):
