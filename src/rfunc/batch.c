@@ -139,6 +139,18 @@ size_t dfl_rfunc_batch_fallbacks(const dfl_rfunc_batch *b, size_t m, const doubl
 
 /* A batch of n parts of order p and dimension dim with its arrays (one
  * allocation) and the reference field ref (moved in; destroyed on failure). */
+void dfl_rfunc_batch_put_seg(dfl_rfunc_batch *b, size_t k, const dfl_rfunc_seg *sg)
+{
+    assert(k < b->n);
+    b->ax[k] = sg->a[0], b->ay[k] = sg->a[1], b->az[k] = sg->a[2];
+    b->bx[k] = sg->b[0], b->by[k] = sg->b[1], b->bz[k] = sg->b[2];
+    b->nx[k] = sg->n1[0], b->ny[k] = sg->n1[1], b->nz[k] = sg->n1[2];
+    b->mx[k] = sg->n2[0], b->my[k] = sg->n2[1], b->mz[k] = sg->n2[2];
+    b->ex[k] = sg->e[0], b->ey[k] = sg->e[1], b->ez[k] = sg->e[2];
+    b->hid[k] = 0.5 / sg->d;
+    b->hid2[k] = 0.5 / (sg->d * sg->d);
+}
+
 dfl_status dfl_rfunc_batch_alloc(int dim, int p, size_t n, dfl_field *ref, dfl_rfunc_batch **out,
                                  dfl_err *err)
 {

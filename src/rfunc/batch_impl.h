@@ -8,7 +8,9 @@
  *   rsqrt_newton, ipow_sq        1/sqrt without libm, x^k by squaring
  *   pow_term                     h^-p and h^-(p+2) from h^2
  *   DFL_BATCH_SUMS               the lane loop of the R-equivalence kernels
+ *   DFL_GEN_CASES                p as a constant for the common orders
  *   dfl_rfunc_batch_alloc        a batch with its arrays
+ *   dfl_rfunc_batch_put_seg      a segment into the arrays
  *   dfl_rfunc_batch_accept       u, grad u from the sums, or fall back
  *   dfl_rfunc_batch_sums_*       the built-in kernels' sums (one file each)
  *   dfl_rfunc_batch_try_*        the kinds dfl_rfunc_batch_build tries
@@ -160,6 +162,26 @@ DFL_INLINE double pow_term(double h2, int p, double *S)
             }                                                                                  \
         }                                                                                      \
     } while (0)
+
+/* The order p as a compile-time constant for the common orders (1-4, 7,
+ * 12), else the generic loop: calls sums_gen_p(b, m, pts, out, p, dim,
+ * strip), which the including file defines. */
+#define DFL_GEN_CASES(dim, strip)                                  \
+    switch (b->p) {                                                \
+    case 1: sums_gen_p(b, m, pts, out, 1, dim, strip); break;      \
+    case 2: sums_gen_p(b, m, pts, out, 2, dim, strip); break;      \
+    case 3: sums_gen_p(b, m, pts, out, 3, dim, strip); break;      \
+    case 4: sums_gen_p(b, m, pts, out, 4, dim, strip); break;      \
+    case 7: sums_gen_p(b, m, pts, out, 7, dim, strip); break;      \
+    case 12: sums_gen_p(b, m, pts, out, 12, dim, strip); break;    \
+    default: sums_gen_p(b, m, pts, out, b->p, dim, strip); break;  \
+    }
+
+/* Part k of b's segment arrays from the library's own segment (its frames
+ * n1, n2, e from rfunc/segment.c, so that f and the trims' dot products are
+ * bitwise the per-point path's), with the disk kernel's hid = 1/(2d) and
+ * hid2 = 1/(2d^2). */
+void dfl_rfunc_batch_put_seg(dfl_rfunc_batch *b, size_t k, const dfl_rfunc_seg *sg);
 
 /* A batch of n parts of order p and dimension dim with its NARR arrays of
  * n doubles (one allocation), the reference field ref moved in (may be a

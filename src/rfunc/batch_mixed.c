@@ -127,14 +127,7 @@ static dfl_status build_group(const dfl_rfunc_batch_desc *d, const group_key *k,
         group_key ki;
         if (!part_key(pt, &ki) || !key_eq(&ki, k)) continue;
         if (k->kind == DFL_RFUNC_PART_SEGMENT) {
-            const dfl_rfunc_seg *sg = &pt->u.seg;
-            b->ax[j] = sg->a[0], b->ay[j] = sg->a[1], b->az[j] = sg->a[2];
-            b->bx[j] = sg->b[0], b->by[j] = sg->b[1], b->bz[j] = sg->b[2];
-            b->nx[j] = sg->n1[0], b->ny[j] = sg->n1[1], b->nz[j] = sg->n1[2];
-            b->mx[j] = sg->n2[0], b->my[j] = sg->n2[1], b->mz[j] = sg->n2[2];
-            b->ex[j] = sg->e[0], b->ey[j] = sg->e[1], b->ez[j] = sg->e[2];
-            b->hid[j] = 0.5 / sg->d;
-            b->hid2[j] = 0.5 / (sg->d * sg->d);
+            dfl_rfunc_batch_put_seg(b, j, &pt->u.seg);
         } else {
             b->ax[j] = pt->u.pt.c[0];
             b->ay[j] = pt->u.pt.c[1];

@@ -28,17 +28,6 @@ DFL_INLINE void sums_gen_p(const dfl_rfunc_batch *b, size_t m, const double *pts
                        point_term(X[l], Y[l], Z[l], b, k, p, 3, &S[l], &Vx[l], &Vy[l], &Vz[l]));
 }
 
-#define DFL_GEN_CASES(dim, strip)                                  \
-    switch (b->p) {                                                \
-    case 1: sums_gen_p(b, m, pts, out, 1, dim, strip); break;      \
-    case 2: sums_gen_p(b, m, pts, out, 2, dim, strip); break;      \
-    case 3: sums_gen_p(b, m, pts, out, 3, dim, strip); break;      \
-    case 4: sums_gen_p(b, m, pts, out, 4, dim, strip); break;      \
-    case 7: sums_gen_p(b, m, pts, out, 7, dim, strip); break;      \
-    case 12: sums_gen_p(b, m, pts, out, 12, dim, strip); break;    \
-    default: sums_gen_p(b, m, pts, out, b->p, dim, strip); break;  \
-    }
-
 DFL_CLONES
 static void sums_points2(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {

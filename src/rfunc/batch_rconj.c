@@ -416,14 +416,7 @@ dfl_status dfl_rfunc_batch_try_rconj(const dfl_rfunc_batch_desc *d, dfl_rfunc_ba
     b->kernel = kernel;
     b->count_fb = count_fb;
     for (size_t k = 0; k < d->n; k++) {
-        const dfl_rfunc_seg *sg = &d->parts[k].u.seg;
-        b->ax[k] = sg->a[0], b->ay[k] = sg->a[1], b->az[k] = sg->a[2];
-        b->bx[k] = sg->b[0], b->by[k] = sg->b[1], b->bz[k] = sg->b[2];
-        b->nx[k] = sg->n1[0], b->ny[k] = sg->n1[1], b->nz[k] = sg->n1[2];
-        b->mx[k] = sg->n2[0], b->my[k] = sg->n2[1], b->mz[k] = sg->n2[2];
-        b->ex[k] = sg->e[0], b->ey[k] = sg->e[1], b->ez[k] = sg->e[2];
-        b->hid[k] = 0.5 / sg->d;
-        b->hid2[k] = 0.5 / (sg->d * sg->d);
+        dfl_rfunc_batch_put_seg(b, k, &d->parts[k].u.seg);
     }
     *out = b;
     return DFL_OK;

@@ -148,17 +148,6 @@ DFL_INLINE void sums_gen_p(const dfl_rfunc_batch *b, size_t m, const double *pts
                        seg_term3(X[l], Y[l], Z[l], b, k, p, strip, &S[l], &Vx[l], &Vy[l], &Vz[l]));
 }
 
-#define DFL_GEN_CASES(dim, strip)                                  \
-    switch (b->p) {                                                \
-    case 1: sums_gen_p(b, m, pts, out, 1, dim, strip); break;      \
-    case 2: sums_gen_p(b, m, pts, out, 2, dim, strip); break;      \
-    case 3: sums_gen_p(b, m, pts, out, 3, dim, strip); break;      \
-    case 4: sums_gen_p(b, m, pts, out, 4, dim, strip); break;      \
-    case 7: sums_gen_p(b, m, pts, out, 7, dim, strip); break;      \
-    case 12: sums_gen_p(b, m, pts, out, 12, dim, strip); break;    \
-    default: sums_gen_p(b, m, pts, out, b->p, dim, strip); break;  \
-    }
-
 DFL_CLONES
 static void sums_strip2(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {
@@ -266,13 +255,7 @@ dfl_status dfl_rfunc_batch_new_opts(int dim, const double *v, size_t n, bool clo
                 dfl_rfunc_batch_free(b);
                 return st;
             }
-            b->ax[k] = sg.a[0], b->ay[k] = sg.a[1], b->az[k] = sg.a[2];
-            b->bx[k] = sg.b[0], b->by[k] = sg.b[1], b->bz[k] = sg.b[2];
-            b->nx[k] = sg.n1[0], b->ny[k] = sg.n1[1], b->nz[k] = sg.n1[2];
-            b->mx[k] = sg.n2[0], b->my[k] = sg.n2[1], b->mz[k] = sg.n2[2];
-            b->ex[k] = sg.e[0], b->ey[k] = sg.e[1], b->ez[k] = sg.e[2];
-            b->hid[k] = 0.5 / sg.d;
-            b->hid2[k] = 0.5 / (sg.d * sg.d);
+            dfl_rfunc_batch_put_seg(b, k, &sg);
         }
         *out = b;
         return DFL_OK;

@@ -209,12 +209,8 @@ dfl_status dfl_rfunc_batch_try_smooth(const dfl_rfunc_batch_desc *d, dfl_rfunc_b
         /* the library's own frames (segment.c): the same f and t bitwise
          * up to the reciprocal of d */
         const dfl_rfunc_seg *sg = &d->parts[k].u.seg;
-        b->ax[k] = sg->a[0], b->ay[k] = sg->a[1], b->az[k] = sg->a[2];
-        b->bx[k] = sg->b[0], b->by[k] = sg->b[1], b->bz[k] = sg->b[2];
-        b->nx[k] = sg->n1[0], b->ny[k] = sg->n1[1], b->nz[k] = sg->n1[2];
-        b->mx[k] = sg->n2[0], b->my[k] = sg->n2[1], b->mz[k] = sg->n2[2];
-        b->ex[k] = sg->e[0], b->ey[k] = sg->e[1], b->ez[k] = sg->e[2];
-        b->hid[k] = -1.0 / sg->d;
+        dfl_rfunc_batch_put_seg(b, k, sg);
+        b->hid[k] = -1.0 / sg->d; /* this kernel's own scale of the trim */
         b->hid2[k] = 0.0;
     }
     if (d->dim == 3) b->sums_fn = b->strip ? sums_strip_sm3 : sums_disk_sm3;
