@@ -11,8 +11,42 @@ import dflio
 
 ASSUMPTIONS = C.ASSUMPTIONS
 
-METRIC_NOTE = ("Cells: ours (paper; ×ours/paper). L1 = mean |e|; \"L2\" = MSE (mean e², which is "
-               "what the paper's \"L2\" is); L∞ = max |e|; over the evaluation grid.")
+METRIC_NOTE = ("Cells: ours (paper; ×ours/paper). L1 = mean |e|; L2 row: our MSE = mean e² beside "
+               "the paper's undefined \"L2\", with a ratio only where the paper's value can be an "
+               "MSE (L1² ≤ MSE ≤ L1·L∞); \"not an MSE\" marks the others; L∞ = max |e|; over the "
+               "evaluation grid.")
+PAPER_GRID = 217 ** 3  # the paper's error grid (hvb25 Sec. 8)
+
+
+def _raw(rows, match, col):
+    """The paper's cells as printed: {norm: string} of the row set matching."""
+    return {r["norm"]: r.get(col, "") for r in rows if match(r)}
+
+
+def _vs_norm(ours, norm, raw):
+    """vs() for one table cell; the L2 row compares only with a paper value
+    that a mean of squared errors can take."""
+    paper = dflio.num(raw.get(norm, ""))
+    if norm == "L2" and paper is not None and paper != 0 and all(raw.get(k) for k in ("L1", "Linf")):
+        if not C.l2_is_mse(raw["L1"], raw["L2"], raw["Linf"]):
+            return f"{g(ours)} ({raw['L2']}: not an MSE)"
+    return vs(ours, paper)
+
+
+def _l2_note(rows, cols, key, what):
+    body, head, bad = C.l2_reading_table(rows, cols, key, PAPER_GRID)
+    if not body:
+        return ""
+    fits = [rd for i, rd in enumerate(C.L2_READINGS) if all(b[2 + i] == b[1] for b in body)]
+    verdict = (f"Every cell admits: {', '.join(fits)}." if fits else
+               "No one reading fits every column.")
+    return "\n".join([
+        f"**Which reading of the paper's \"L2\" fits ({what})**: for each paper cell, whether its "
+        "printed \"L2\" can be an MSE (L1² ≤ MSE ≤ L1·L∞), an RMS (L1 ≤ RMS ≤ √(L1·L∞)) or the "
+        "error vector's norm over the N = 217³ points divided by N (RMS/√N), given the printed "
+        "digits of L1, L2 and L∞ of the same cell. " + verdict + " Ratios against impossible "
+        "values are not printed.", "", dflio.md_table(head, body), "",
+        ("Cells that no MSE can be: " + "; ".join(bad) + ".") if bad else "", ""])
 
 
 def _paper1(ctx, shape, order, res, norm, col):
@@ -49,10 +83,15 @@ def _table1(ctx, shape):
                         if inp != "implicit":
                             sel = pick(sel, input=inp)
                         ours = _cell(sel, m)
-                        line.append(vs(ours, _paper1(ctx, shape, order, res, norm,
-                                                     f"{inp}_{pc}")))
+                        raw = _raw(C.paper_rows(ctx, "hvb25_table1.csv"),
+                                   lambda r: (r["shape"] == shape and int(r["order"]) == order
+                                              and int(r["res"]) == res), f"{inp}_{pc}")
+                        line.append(_vs_norm(ours, norm, raw))
                 body.append(line)
     out += [dflio.md_table(head, body), ""]
+    prow = [r for r in C.paper_rows(ctx, "hvb25_table1.csv") if r["shape"] == shape]
+    pcols = [k for k in (prow[0] if prow else {}) if k.endswith(("_nearest", "_hermite"))]
+    out.append(_l2_note(prow, pcols, lambda r: f"{r['order']}/{r['res']}³", f"Table 1, {shape}"))
     out.append(_worst(rows, shape))
     return "\n".join(out)
 
@@ -313,13 +352,6 @@ def _generic(ctx):
     return dflio.md_table(head, body) + "\n"
 
 
-def _paper3(ctx, res, norm, col):
-    for r in C.paper_rows(ctx, "hvb25_table3.csv"):
-        if int(r["res"]) == res and r["norm"] == norm:
-            return dflio.num(r[col])
-    return None
-
-
 def _table3(ctx):
     rows = ctx.csv()
     fit = C.sibling(ctx, "hvb25_table3_fit")
@@ -336,7 +368,8 @@ def _table3(ctx):
                                         (fit, 2, "nearest", "g2_nearest"),
                                         (fit, 2, "hermite", "g2_quintic_hermite")):
                 sel = pick(src, order=order, res=res, filter=flt)
-                line.append(vs(_cell(sel, m), _paper3(ctx, res, norm, pc)))
+                raw = _raw(C.paper_rows(ctx, "hvb25_table3.csv"), lambda r: int(r["res"]) == res, pc)
+                line.append(_vs_norm(_cell(sel, m), norm, raw))
             body.append(line)
     fails = ", ".join(f"{C.col(r, 'field.res')}³: {r['failed']} cells, {r['nonfinite']} "
                       f"{r['filter']} evaluation points" for r in fit)
@@ -345,7 +378,11 @@ def _table3(ctx):
         f"ratios compare two different scenes of the same kind). {METRIC_NOTE} G2 uses the SDF's "
         "Hessian; the 'fit' columns the paper's fitted curvature (hvb25_table3_fit; cells whose "
         f"fit gave no finite curvature (the builder's failed cells; where they lie we did not map) and the points they decode to NaN, left out of the metrics: {fails or '—'}; compare those columns with that in mind).", "",
-        dflio.md_table(head, body), "", _worst(rows, "Scene 2, Hessian curvature")])
+        dflio.md_table(head, body), "",
+        _l2_note(C.paper_rows(ctx, "hvb25_table3.csv"),
+                 ["g1_nearest", "g1_cubic_hermite", "g2_nearest", "g2_quintic_hermite"],
+                 lambda r: f"{r['res']}³", "Table 3"),
+        _worst(rows, "Scene 2, Hessian curvature")])
 
 
 def _table2(ctx):

@@ -16,3 +16,16 @@ Test(e2e_report, sections_by_folder_generic_table_and_failures, .timeout = 60)
     free(py);
     cr_expect_eq(e2e_rmtree(dir), 0);
 }
+
+/* The reading of hvb25's "L2": printed intervals and the bounds of MSE, RMS
+ * and norm/N, on hand-derived cells (check_l2_reading.py). */
+Test(e2e_report, hvb25_l2_reading_bounds, .timeout = 60)
+{
+    char dir[256], *py;
+    e2e_tmpdir(dir, sizeof dir);
+    cr_assert(dir[0], "no temporary directory");
+    const int rc = e2e_python_run(dir, &py, "tests/e2e/common/check_l2_reading.py");
+    cr_expect_eq(rc, 0, "%s", py);
+    free(py);
+    cr_expect_eq(e2e_rmtree(dir), 0);
+}
