@@ -64,7 +64,7 @@ APT_PKGS := libinih-dev libceres-dev libopenexr-dev libimath-dev libcriterion-de
             python3-matplotlib python3-numpy python3-vtk9 openexr pkg-config \
             emscripten chromium python3-scipy parallel slurm-wlm munge clang-14 libomp-14-dev
 
-.PHONY: all deps test sanitize bench reproduce figures clean check-layout web web-test web-bench check-threads
+.PHONY: all deps test sanitize bench reproduce figures clean check-layout web web-test web-bench check-threads mutate
 all: $(DFLAB) $(LIB)
 
 $(BUILD)/%.o: %.c
@@ -163,7 +163,13 @@ figures:
 	@test -n "$(STUDY)" || { echo "usage: make figures STUDY=<results folder or study name>"; exit 2; }
 	$(PYTHON) scripts/report.py --results results --only $(STUDY)
 
+# Mutation testing: tests/mutate/mutants/$(MODULE).ini applied one at a time
+# to a private copy of the tree (build-mutate/), each with its suites.
+mutate: deps
+	@test -n "$(MODULE)" || { echo "usage: make mutate MODULE=<name of tests/mutate/mutants/*.ini>"; exit 2; }
+	$(PYTHON) tests/mutate/mutate.py $(MODULE)
+
 clean:
-	rm -rf build build-san build-bench build-fuzz
+	rm -rf build build-san build-bench build-fuzz build-mutate
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
