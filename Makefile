@@ -96,8 +96,11 @@ $(BENCH_BIN): $(BENCH_OBJ) $(EXPLIB) $(LIB)
 	$(CXX) $(LDFLAGS) -o $@ $(BENCH_OBJ) $(EXPLIB) $(LIB) $(LDLIBS)
 
 # Installs the Debian packages dflab needs; a no-op when all are present.
+# python3-paraview conflicts with python3-vtk9 and ships the same vtkmodules
+# package (what dflab's VTK checks import), so either satisfies dflab.
 deps:
 	@missing=""; for p in $(APT_PKGS); do \
+	  if [ $$p = python3-vtk9 ] && dpkg-query -W -f='$${Status}' python3-paraview 2>/dev/null | grep -q 'install ok installed'; then continue; fi; \
 	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'install ok installed' || missing="$$missing $$p"; \
 	done; \
 	if [ -z "$$missing" ]; then echo "deps: all packages present"; \

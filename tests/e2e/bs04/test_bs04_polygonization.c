@@ -71,7 +71,7 @@ Test(e2e_bs04_poly, study_rows_files_and_growth, .timeout = 300)
         const int prc = e2e_python_run(
             dir, &py,
             "-c \"import sys, vtk\n"
-            "from vtk.util.numpy_support import vtk_to_numpy as v\n"
+            "from vtkmodules.util.numpy_support import vtk_to_numpy as v\n"
             "r = vtk.vtkXMLPolyDataReader(); r.SetFileName(sys.argv[1]); r.Update()\n"
             "d = r.GetOutput(); P = v(d.GetPoints().GetData())\n"
             "t = v(d.GetPointData().GetArray('t'))\n"
