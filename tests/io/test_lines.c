@@ -105,3 +105,34 @@ Test(lines, escape)
     cr_expect_eq(dfl_text_utf8_bad("ab\xc3", 3), 2);
     cr_expect_eq(dfl_text_utf8_bad("ab", 2), 2);
 }
+
+/* The rules' edges, one assertion per sentence of lines.h: the BOM's three
+ * bytes are allowed beyond max on the first line only and only as a BOM (a
+ * BOM line of max + 1 characters is still too long); a BOM is skipped on the
+ * first line and kept as text elsewhere; the C1 range ends at U+009F. */
+Test(lines, rule_edges)
+{
+    dfl_err err;
+    long n;
+    cr_expect_eq(read_all("\xef\xbb\xbf" "abcd", 7, 3, 10, &n, &err), DFL_E_INPUT,
+                 "a BOM line of max + 1 characters");
+    cr_expect(strstr(err.msg, "t.txt:1: line longer than 3 characters"), "%s", err.msg);
+    cr_expect_eq(read_all("\xef\xbb\xbf" "abcd\n", 8, 3, 10, &n, &err), DFL_E_INPUT);
+
+    dfl_lines r;
+    char buf[64];
+    size_t len;
+    dfl_lines_open_text(&r, "\xef\xbb\xbf" "a\n\xef\xbb\xbf" "b\n", "t.txt", 32, 10);
+    cr_assert_eq(dfl_lines_next(&r, buf, sizeof buf, &len, &err), DFL_OK);
+    cr_expect_eq(len, 1);
+    cr_expect_str_eq(buf, "a");
+    cr_assert_eq(dfl_lines_next(&r, buf, sizeof buf, &len, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(len, 4, "a BOM on line 2 is text, not skipped");
+    cr_expect_str_eq(buf, "\xef\xbb\xbf" "b");
+
+    cr_expect_eq(read_all("a\xc2\x9f", 3, 8, 10, &n, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "U+009F"), "%s", err.msg);
+    cr_expect_eq(read_all("a\xc2\x80", 3, 8, 10, &n, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "U+0080"), "%s", err.msg);
+    cr_expect_eq(read_all("a\xc2\xa0", 3, 8, 10, &n, &err), DFL_OK, "U+00A0 is text");
+}
