@@ -91,7 +91,8 @@ static dfl_status validate_points(const dfl_sweep *s, dfl_err *err)
                              .npoints = s->np, .threads = s->threads};
         dfl_err e2;
         dfl_err_clear(&e2);
-        st = s->study->run(pt, &ctx, t, &e2);
+        st = dfl_sweep_check_budget(s, pt, &ctx, &e2); /* before anything is built */
+        if (st == DFL_OK) st = s->study->run(pt, &ctx, t, &e2);
         if (!dfl_cfg_validated(pt) && st == DFL_OK) st = dfl_cfg_check_used(pt, &e2);
         if (dfl_cfg_validated(pt)) st = DFL_OK;
         if (st == DFL_OK) st = dfl_probe_sections_check(pt, &e2);
