@@ -69,11 +69,35 @@ const char *dfl_point_dir(const dfl_sweep *s, size_t k, char *buf, size_t size)
     return buf;
 }
 
+/* Every point's estimate against the budgets (sweep.h), all before the
+ * first point's validation pass may build anything. */
+static dfl_status estimate_points(const dfl_sweep *s, dfl_err *err)
+{
+    dfl_status st = DFL_OK;
+    for (size_t i = 0; i < s->np && st == DFL_OK; i++) {
+        dfl_cfg *pt = NULL;
+        st = dfl_cfg_sweep_point(s->cfg, i, &pt, err);
+        if (st != DFL_OK) break;
+        char tag[32], label[2048];
+        dfl_study_tag(i, s->np, tag, sizeof tag);
+        dfl_study_ctx ctx = {.stage_dir = "/nonexistent/dflab-validation", .tag = tag, .point = i,
+                             .npoints = s->np, .threads = s->threads};
+        st = dfl_sweep_check_budget(s, pt, &ctx, err);
+        if (st != DFL_OK && s->np > 1)
+            dfl_err_prefix(err, "sweep point %zu (%s)", i,
+                           dfl_sweep_label(s, pt, label, sizeof label));
+        dfl_cfg_free(pt);
+    }
+    return st;
+}
+
 /* Runs every point's study with a validation-only config: the getters and
  * dfl_cfg_check_used run, nothing computes, so a bad value at point 17
  * fails at once, named by point and key. */
 static dfl_status validate_points(const dfl_sweep *s, dfl_err *err)
 {
+    dfl_status est = estimate_points(s, err);
+    if (est != DFL_OK) return est;
     dfl_table *t = dfl_table_new();
     if (!t) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
     dfl_status st = DFL_OK;
@@ -91,8 +115,7 @@ static dfl_status validate_points(const dfl_sweep *s, dfl_err *err)
                              .npoints = s->np, .threads = s->threads};
         dfl_err e2;
         dfl_err_clear(&e2);
-        st = dfl_sweep_check_budget(s, pt, &ctx, &e2); /* before anything is built */
-        if (st == DFL_OK) st = s->study->run(pt, &ctx, t, &e2);
+        st = s->study->run(pt, &ctx, t, &e2);
         if (!dfl_cfg_validated(pt) && st == DFL_OK) st = dfl_cfg_check_used(pt, &e2);
         if (dfl_cfg_validated(pt)) st = DFL_OK;
         if (st == DFL_OK) st = dfl_probe_sections_check(pt, &e2);
