@@ -20,9 +20,11 @@ static const char *kind_of(const dfl_cfg *cfg, const char *sec)
     return k;
 }
 
-dfl_cost_class dfl_shape_cost_class(const dfl_cfg *cfg, const char *sec)
+/* depth bounds CSG nesting (and ends a cycle, which the shape reader
+ * reports): beyond it a shape counts as the dearest class */
+static dfl_cost_class shape_class(const dfl_cfg *cfg, const char *sec, int depth)
 {
-    for (int depth = 0; depth < 8 && sec && dfl_cfg_has_section(cfg, sec); depth++) {
+    for (; depth < 8 && sec && dfl_cfg_has_section(cfg, sec); depth++) {
         const char *k = kind_of(cfg, sec);
         if (!strcmp(k, "implicit") || !strcmp(k, "bezier_surface") ||
             !strcmp(k, "bspline_surface"))
@@ -33,11 +35,15 @@ dfl_cost_class dfl_shape_cost_class(const dfl_cfg *cfg, const char *sec)
         const char *a = NULL, *b = NULL;
         if (dfl_cfg_string(cfg, sec, "a", &a, NULL) || dfl_cfg_string(cfg, sec, "b", &b, NULL))
             return DFL_COST_EXACT;
-        const dfl_cost_class cb = depth < 7 ? dfl_shape_cost_class(cfg, b) : DFL_COST_FOOTPOINT;
-        if (cb == DFL_COST_FOOTPOINT) return cb;
+        if (shape_class(cfg, b, depth + 1) == DFL_COST_FOOTPOINT) return DFL_COST_FOOTPOINT;
         sec = a;
     }
-    return DFL_COST_EXACT;
+    return depth >= 8 ? DFL_COST_FOOTPOINT : DFL_COST_EXACT;
+}
+
+dfl_cost_class dfl_shape_cost_class(const dfl_cfg *cfg, const char *sec)
+{
+    return shape_class(cfg, sec, 0);
 }
 
 int dfl_shape_dim_guess(const dfl_cfg *cfg, const char *sec)

@@ -35,7 +35,8 @@ dfl_status dfl_field_cost_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_cost
 
 /* FOOTPOINT for implicit and parametric surfaces (bezier_surface,
  * bspline_surface) and CSG containing them, EXACT for curves and meshes,
- * CHEAP for the analytic kinds.  An absent or unreadable section: EXACT. */
+ * CHEAP for the analytic kinds.  An absent or unreadable section: EXACT;
+ * CSG nested deeper than 8 (or a cycle): FOOTPOINT. */
 dfl_cost_class dfl_shape_cost_class(const dfl_cfg *cfg, const char *sec);
 
 /* 2 or 3: circle, ellipse, bspline_curve 2; plane, box, segment their `dim`

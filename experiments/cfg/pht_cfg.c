@@ -131,7 +131,7 @@ dfl_status dfl_pht_source_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_shap
     if (!has_inside(&s, lo, hi)) {
         int curve = strcmp(s.ops->kind, "bspline_curve") == 0;
         st = dfl_cfg_reject(cfg, shsec, curve ? "closed" : "kind", err,
-                            "the shape has no inside in the box (d >= 0 on a 33-point grid): "
+                            "the shape has no inside in the box (d >= 0 past its nearest point to the box centre): "
                             "PHT fits need a signed distance of a closed curve or surface%s",
                             curve ? " (an open curve's distance is unsigned: set closed = true)"
                                   : "");
