@@ -101,7 +101,15 @@ static dfl_status validate_points(const dfl_sweep *s, dfl_err *err)
     dfl_table *t = dfl_table_new();
     if (!t) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
     dfl_status st = DFL_OK;
+    const double t0 = dfl_wall_seconds();
+    double last = t0;
     for (size_t i = 0; i < s->np && st == DFL_OK; i++) {
+        const double now = dfl_wall_seconds();
+        if (!s->o->quiet && now - last >= 2.0) { /* a slow validation is not silent */
+            fprintf(stderr, "dflab: %s: validating point %zu/%zu (%.1f s elapsed)\n",
+                    s->study->name, i + 1, s->np, now - t0);
+            last = now;
+        }
         dfl_cfg *pt = NULL;
         st = dfl_cfg_sweep_point(s->cfg, i, &pt, err);
         if (st != DFL_OK) break;
