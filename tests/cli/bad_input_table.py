@@ -132,6 +132,10 @@ runc("renderer max_steps = 1e6 over the work budget",
 runc("eval.n = 1024 over a small work budget",
      ACC + b"work_budget = 0.1\n" + SPHERE + b"[field]\nkind = proxy\n[eval]\nn = 1024\n",
      "bad.ini:11", "[eval] n", "1.07e+09 nodes", "work budget of 6 min", extra=["--threads", "1"])
+runc("sjp10_3d validation cache of 1001^3 over the memory budget",
+     b"[study]\nname = sjp10_3d\ncases = c\nmemory_budget = 10\n[c]\nshape = s\nlo = -1 -1 -1\n"
+     b"hi = 1 1 1\nval_n = 1001\ncache = true\nmidpoints = true\n" + SPHERE.replace(b"[shape]", b"[s]"),
+     "bad.ini:9", "[c] val_n", "needs about 128 GB", "1001^3 nodes")
 runc("study memory_budget zero", ACC + b"memory_budget = 0\n" + SPHERE + b"[field]\nkind = proxy\n",
      "bad.ini:3", "memory_budget")
 runc("study work_budget negative", ACC + b"work_budget = -1\n" + SPHERE + b"[field]\nkind = proxy\n",
