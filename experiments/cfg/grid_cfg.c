@@ -4,18 +4,18 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "core/budget.h"
+
 /* Bytes a study holds per grid node: values, dim gradient components and
  * the reference (8 bytes each), and about as much again for the output
  * files' buffers (issue 11 measured 13.6 GB at 512^3), an estimate that errs
  * high so that a run is refused before it allocates, not after. */
 static double bytes_per_node(int dim) { return 24.0 * (dim + 2); }
 
-double dfl_grid_memory_default(void)
-{
-    const long pages = sysconf(_SC_PHYS_PAGES), psize = sysconf(_SC_PAGESIZE);
-    if (pages <= 0 || psize <= 0) return 4e9; /* unknown: 4 GB */
-    return 0.5 * (double)pages * (double)psize;
-}
+/* The machine's default (core/budget.h): half of physical memory or of the
+ * cgroup limit, whichever is smaller, so a run inside a small cgroup is
+ * refused instead of killed by the kernel. */
+double dfl_grid_memory_default(void) { return dfl_budget_memory_default(); }
 
 /* The grid's memory against [sec] memory_budget (GB; default half the
  * machine's memory). */
@@ -35,7 +35,8 @@ static dfl_status check_memory(const dfl_cfg *cfg, const char *sec, const dfl_gr
                               "budget of %.3g GB (%s; set [%s] memory_budget = <GB> to change it)",
                               nodes, need, budget,
                               dfl_cfg_has(cfg, sec, "memory_budget") ? "memory_budget"
-                                                                     : "half the machine's memory",
+                                                                     : "the default: half the "
+                                                                       "machine's or cgroup's memory",
                               sec);
     return DFL_OK;
 }

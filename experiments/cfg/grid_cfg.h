@@ -4,7 +4,8 @@
  *   lo = x y [z]                 lower corner (default 0 0 [0])
  *   hi = x y [z]                 upper corner (default 1 1 [1]); hi > lo
  *   memory_budget = <GB>         most memory the grid's buffers may take
- *                                (default: half the machine's memory)
+ *                                (default: half the machine's memory or of its
+ *                                cgroup limit, core/budget.h)
  *
  * Resource guard: the memory a study holds for the grid (about 24 (dim + 2)
  * bytes per node: values, gradients, reference and the output buffers) is

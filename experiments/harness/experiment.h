@@ -17,6 +17,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "core/budget.h"
 #include "core/status.h"
 #include "io/config.h"
 #include "io/table.h"
@@ -34,7 +35,22 @@ typedef struct dfl_study {
     const char *summary;     /* one line for `dflab list` */
     dfl_status (*run)(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
                       dfl_err *err);
+    /* Optional (NULL: dfl_study_estimate_default).  Reads the keys that set
+     * the point's size (getters, so bad values fail as in run()) and adds
+     * to *cost (zeroed by the caller) the bytes the point holds at its peak
+     * and its evaluations by cost class (core/budget.h).  It must not build,
+     * fit or allocate anything in proportion to the estimate; it runs before
+     * run()'s validation pass, and the runner refuses a point above
+     * [study] memory_budget or work_budget before anything computes. */
+    dfl_status (*estimate)(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *cost,
+                           dfl_err *err);
 } dfl_study;
+
+/* The estimate of a study without its own: the [field] section's field
+ * (experiments/cfg/field_cost.h), if there is one; [grid] has its own guard
+ * (cfg/grid_cfg.h). */
+dfl_status dfl_study_estimate_default(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
+                                      dfl_cost *cost, dfl_err *err);
 
 /* Defines `const dfl_study dfl_study_<id>` named "<id>" (the config's
  * [study] name), so the symbol and the name cannot drift apart:
@@ -42,6 +58,10 @@ typedef struct dfl_study {
  * Declare it in the paper's header and list it there (bs04/bs04.h). */
 #define DFL_STUDY_DEFINE(id, run_fn, summary_text) \
     const dfl_study dfl_study_##id = {.name = #id, .summary = summary_text, .run = run_fn}
+/* The same with an estimate function (see dfl_study.estimate). */
+#define DFL_STUDY_DEFINE_ESTIMATED(id, run_fn, estimate_fn, summary_text)                    \
+    const dfl_study dfl_study_##id = {.name = #id, .summary = summary_text, .run = run_fn, \
+                                      .estimate = estimate_fn}
 
 /* "<stage_dir>/<stem><tag>.<ext>" into buf; returns buf. */
 const char *dfl_study_path(const dfl_study_ctx *ctx, const char *stem, const char *ext, char *buf,

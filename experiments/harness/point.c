@@ -218,6 +218,8 @@ static dfl_status compute(const dfl_sweep *s, dfl_cfg *pt, size_t k, const char 
         st = dfl_table_prefix_string(t, p.cols[i], p.vals[i], err);
     const char *dummy;
     dfl_cfg_string(pt, "study", "name", &dummy, NULL); /* mark used */
+    double mem_budget, work_budget; /* the runner's keys; validation checked them */
+    dfl_sweep_budgets(pt, &mem_budget, &work_budget, NULL);
     char tag[32];
     dfl_study_tag(k, s->np, tag, sizeof tag);
     dfl_study_ctx ctx = {.stage_dir = stage, .tag = tag, .point = k, .npoints = s->np,

@@ -69,15 +69,47 @@ const char *dfl_point_dir(const dfl_sweep *s, size_t k, char *buf, size_t size)
     return buf;
 }
 
+/* Every point's estimate against the budgets (sweep.h), all before the
+ * first point's validation pass may build anything. */
+static dfl_status estimate_points(const dfl_sweep *s, dfl_err *err)
+{
+    dfl_status st = DFL_OK;
+    for (size_t i = 0; i < s->np && st == DFL_OK; i++) {
+        dfl_cfg *pt = NULL;
+        st = dfl_cfg_sweep_point(s->cfg, i, &pt, err);
+        if (st != DFL_OK) break;
+        char tag[32], label[2048];
+        dfl_study_tag(i, s->np, tag, sizeof tag);
+        dfl_study_ctx ctx = {.stage_dir = "/nonexistent/dflab-validation", .tag = tag, .point = i,
+                             .npoints = s->np, .threads = s->threads};
+        st = dfl_sweep_check_budget(s, pt, &ctx, err);
+        if (st != DFL_OK && s->np > 1)
+            dfl_err_prefix(err, "sweep point %zu (%s)", i,
+                           dfl_sweep_label(s, pt, label, sizeof label));
+        dfl_cfg_free(pt);
+    }
+    return st;
+}
+
 /* Runs every point's study with a validation-only config: the getters and
  * dfl_cfg_check_used run, nothing computes, so a bad value at point 17
  * fails at once, named by point and key. */
 static dfl_status validate_points(const dfl_sweep *s, dfl_err *err)
 {
+    dfl_status est = estimate_points(s, err);
+    if (est != DFL_OK) return est;
     dfl_table *t = dfl_table_new();
     if (!t) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
     dfl_status st = DFL_OK;
+    const double t0 = dfl_wall_seconds();
+    double last = t0;
     for (size_t i = 0; i < s->np && st == DFL_OK; i++) {
+        const double now = dfl_wall_seconds();
+        if (!s->o->quiet && now - last >= 2.0) { /* a slow validation is not silent */
+            fprintf(stderr, "dflab: %s: validating point %zu/%zu (%.1f s elapsed)\n",
+                    s->study->name, i + 1, s->np, now - t0);
+            last = now;
+        }
         dfl_cfg *pt = NULL;
         st = dfl_cfg_sweep_point(s->cfg, i, &pt, err);
         if (st != DFL_OK) break;

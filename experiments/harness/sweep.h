@@ -9,6 +9,8 @@
  *   dfl_point_current  whether OUT.points/ptNNN is up to date (point.c)
  *   dfl_merge_into     assemble OUT from its points (merge.c)
  *   dfl_sweep_clean_stale  remove dead runs' stage folders of OUT (merge.c)
+ *   dfl_sweep_budgets      [study] memory_budget (GB) and work_budget (hours)
+ *   dfl_sweep_check_budget a point's estimate against them (budget_check.c)
  */
 #ifndef DFL_EXPERIMENTS_SWEEP_H
 #define DFL_EXPERIMENTS_SWEEP_H
@@ -45,5 +47,17 @@ bool dfl_point_current(const dfl_sweep *s, size_t k);
 dfl_status dfl_merge_into(const char *dir, const dfl_sweep *expect, int quiet,
                           const char *cmdline, dfl_err *err);
 void dfl_sweep_clean_stale(const char *outdir);
+
+/* [study] memory_budget = <GB> (1e-3 .. 1e6; default core/budget.h's
+ * dfl_budget_memory_default) and work_budget = <hours> (1e-6 .. 1e6;
+ * default 24) of point pt, in bytes and seconds (marks both used). */
+dfl_status dfl_sweep_budgets(const dfl_cfg *pt, double *mem_bytes, double *work_seconds,
+                             dfl_err *err);
+/* The study's estimate of point pt (its hook or dfl_study_estimate_default)
+ * against the budgets: DFL_E_INPUT naming the key that dominates, the
+ * estimate and the budget, when the point's peak memory or its time on
+ * ctx->threads cores is above them.  Builds nothing. */
+dfl_status dfl_sweep_check_budget(const dfl_sweep *s, const dfl_cfg *pt, const dfl_study_ctx *ctx,
+                                  dfl_err *err);
 
 #endif

@@ -33,6 +33,7 @@
 #include <string.h>
 
 #include "cfg/field_cfg.h"
+#include "cfg/field_cost.h"
 #include "cfg/proxy_input_cfg.h"
 #include "field/gridpeer.h"
 #include "harness/experiment.h"
@@ -181,5 +182,26 @@ static dfl_status acc_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
     return st;
 }
 
-DFL_STUDY_DEFINE(hvb25_accuracy, acc_run,
+/* Peak memory: the field ([field]'s cost) and the evaluation's slab
+ * buffers (hvb25_eval.c: about 83 bytes per node of one z-slab, doubled for
+ * slack).  Work: every node of the [eval] grid decoded once per decoding,
+ * and its reference distance at the reference shape's cost class. */
+static dfl_status acc_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                               dfl_err *err)
+{
+    acc_keys k;
+    dfl_status st = read_keys(cfg, &k, err);
+    if (!st) st = dfl_study_estimate_default(cfg, ctx, c, err);
+    if (st) return st;
+    const double n = k.eval.n[0], nodes = n * n * n;
+    dfl_cost_add_bytes(c, "eval", "n", 2 * 83 * n * n, "evaluation slabs of %.0f^2 nodes", n);
+    const int dec = k.nfilters ? k.nfilters : 1;
+    dfl_cost_add_work(c, "eval", "n", DFL_COST_DECODE, nodes * dec, "%.3g nodes x %d decodings",
+                      nodes, dec);
+    dfl_cost_add_work(c, "eval", "n", dfl_shape_cost_class(cfg, k.ref_sec), nodes,
+                      "%.3g reference distances", nodes);
+    return DFL_OK;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(hvb25_accuracy, acc_run, acc_estimate,
                  "hvb25 Tables 1-3: a proxy grid (or a grid peer) vs the exact SDF on 217^3 nodes");

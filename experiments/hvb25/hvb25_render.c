@@ -166,5 +166,27 @@ static dfl_status render_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
     return st;
 }
 
-DFL_STUDY_DEFINE(hvb25_render, render_run,
+/* Peak memory: the field ([field]'s cost) and one frame with the tracer's
+ * per-pixel state (about 200 bytes: rays, positions, values, gradients,
+ * flags, the frame's depth and normals and the EXR's channels).  Work: every
+ * pixel may march max_steps decodes in each of reps frames per filter. */
+static dfl_status render_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                                  dfl_err *err)
+{
+    render_keys k;
+    dfl_status st = read_keys(cfg, &k, err);
+    if (!st) st = dfl_study_estimate_default(cfg, ctx, c, err);
+    if (st) return st;
+    const double px = (double)k.cam.width * k.cam.height;
+    const int frames = k.nfilters ? k.nfilters : 1;
+    dfl_cost_add_bytes(c, "camera", k.cam.width >= k.cam.height ? "width" : "height", 200 * px,
+                       "a frame of %dx%d pixels", k.cam.width, k.cam.height);
+    const double n = px * k.tr.max_steps * (double)k.reps * frames;
+    dfl_cost_add_work(c, "trace", "max_steps", DFL_COST_DECODE, n,
+                      "%.3g pixels x %d steps x %ld reps x %d filters", px, k.tr.max_steps,
+                      k.reps, frames);
+    return DFL_OK;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(hvb25_render, render_run, render_estimate,
                  "hvb25 Table 4: one sphere-traced frame of a proxy field per filter (EXR, time)");

@@ -32,6 +32,7 @@
 
 #include <omp.h>
 
+#include "cfg/field_cost.h"
 #include "cfg/pht_cfg.h"
 #include "cfg/shape_cfg.h"
 #include "cfg/list_cfg.h"
@@ -229,5 +230,56 @@ static dfl_status run3d(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table 
     return st;
 }
 
-DFL_STUDY_DEFINE(sjp10_3d, run3d,
+/* Peak memory: a case with cache = true keeps its validation points
+ * (val_n^3 nodes, plus (val_n - 1)^3 midpoints) with exact d, grad d and a
+ * band flag: 57 bytes each, counted as 64; the cases run one after another,
+ * so the largest counts.  Work: each case's points once at its reference
+ * shape's cost class (a lower bound: without the cache every fit computes
+ * them again).  The fits themselves are not estimated yet. */
+/* The config's own copy of section name sec (one of its keys was read), so
+ * that a dfl_cost may keep it; "study" if none. */
+static const char *cfg_sec(const dfl_cfg *cfg, const char *sec)
+{
+    for (size_t k = 0; k < dfl_cfg_reads(cfg); k++) {
+        dfl_cfg_read r;
+        if (dfl_cfg_read_at(cfg, k, &r) && strcmp(r.sec, sec) == 0) return r.sec;
+    }
+    return "study";
+}
+
+static dfl_status estimate3d(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                             dfl_err *err)
+{
+    (void)ctx;
+    char names[SJP10_MAX_CASES][DFL_SECTION_NAME_LEN];
+    int n = 0;
+    dfl_status st = dfl_section_names_from_cfg(cfg, "study", "cases", SJP10_MAX_CASES, names, &n,
+                                               "case section", err);
+    double big = 0;
+    const char *big_sec = NULL;
+    long big_n = 0;
+    for (int i = 0; !st && i < n; i++) {
+        const char *sec = names[i], *ssec = "shape", *rsec;
+        long vn;
+        bool mid, cache;
+        if (!dfl_cfg_has_section(cfg, sec)) continue; /* run3d names it */
+        if ((st = dfl_cfg_string(cfg, sec, "shape", &ssec, err))) break;
+        if ((st = dfl_cfg_string_opt(cfg, sec, "ref", ssec, &rsec, err))) break;
+        if ((st = dfl_cfg_int_opt(cfg, sec, "val_n", 217, 2, 1001, &vn, err))) break;
+        if ((st = dfl_cfg_bool_opt(cfg, sec, "midpoints", false, &mid, err))) break;
+        if ((st = dfl_cfg_bool_opt(cfg, sec, "cache", false, &cache, err))) break;
+        const double m = (double)vn * vn * vn + (mid ? (double)(vn - 1) * (vn - 1) * (vn - 1) : 0);
+        if (cache && 64 * m > big) big = 64 * m, big_sec = sec, big_n = vn;
+        dfl_cost_add_work(c, cfg_sec(cfg, sec), "val_n", dfl_shape_cost_class(cfg, rsec), m,
+                          "%.3g validation points of [%s]", m, sec);
+    }
+    if (!st && big_sec) {
+        const char *ks = cfg_sec(cfg, big_sec);
+        dfl_cost_add_bytes(c, ks, strcmp(ks, "study") ? "val_n" : "cases", big,
+                           "a validation cache of %ld^3 nodes in [%s]", big_n, big_sec);
+    }
+    return st;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(sjp10_3d, run3d, estimate3d,
                  "sjp10 3D: tricubic PHT fits of implicit surfaces and a sphere vs uniform grid and peers");

@@ -106,6 +106,40 @@ runc("lo beyond the domain", GOOD + b"lo = -1e200 0\n", "bad.ini:11", "1e150")
 runc("3D grid over the memory budget", HEAD + SPHERE + FIELD + b"[grid]\nn = 512\n", "[grid] n", "memory budget")
 runc("small memory budget", HEAD + SHAPE + FIELD + b"[grid]\nn = 4096\nmemory_budget = 0.01\n", "[grid] n", "memory_budget")
 runc("memory budget zero", GOOD + b"memory_budget = 0\n", "bad.ini:11", "memory_budget")
+# every study's estimate against [study] memory_budget / work_budget (issue 21),
+# refused before anything is built: the dominating key, the estimate, the budget
+ACC = b"[study]\nname = hvb25_accuracy\n"
+REN = b"[study]\nname = hvb25_render\n"
+runc("proxy grid 2048^3 order 2 over the memory budget",
+     ACC + b"memory_budget = 100\n" + SPHERE + b"[field]\nkind = proxy\norder = 2\nres = 2048\nstorage = double\n",
+     "bad.ini:11", "[field] res", "needs about 558 GB", "2048^3 cells", "memory budget of 100 GB")
+runc("proxy grid over the default memory budget",
+     ACC + SPHERE + b"[field]\nkind = proxy\norder = 2\nres = 2048\nstorage = double\n",
+     "bad.ini:10", "needs about 558 GB", "the default")
+runc("grid peer 1024^3 over the memory budget",
+     ACC + b"memory_budget = 10\n" + SPHERE + b"[field]\nkind = gridpeer\nres = 1024\n",
+     "bad.ini:10", "[field] res", "needs about 34.4 GB", "memory budget of 10 GB")
+runc("pht mesh at max_level 30 over the memory budget",
+     HEAD + SHAPE + b"[field]\nkind = pht\neps = 1e-300\nmax_level = 30\n" + GRID,
+     "bad.ini:10", "[field] max_level", "1.15e+18 cells", "memory budget")
+runc("frame of 268 Mpixel over the memory budget",
+     REN + b"memory_budget = 10\n" + SPHERE + b"[field]\nkind = proxy\n[camera]\nwidth = 16384\nheight = 16384\n",
+     "bad.ini:11", "[camera] width", "needs about 53.7 GB", "16384x16384")
+runc("renderer max_steps = 1e6 over the work budget",
+     REN + SPHERE + b"[field]\nkind = proxy\n[trace]\nmax_steps = 1000000\n",
+     "bad.ini:10", "[trace] max_steps", "54.6 h on 1 thread", "work budget of 24 h",
+     extra=["--threads", "1"])
+runc("eval.n = 1024 over a small work budget",
+     ACC + b"work_budget = 0.1\n" + SPHERE + b"[field]\nkind = proxy\n[eval]\nn = 1024\n",
+     "bad.ini:11", "[eval] n", "1.07e+09 nodes", "work budget of 6 min", extra=["--threads", "1"])
+runc("sjp10_3d validation cache of 1001^3 over the memory budget",
+     b"[study]\nname = sjp10_3d\ncases = c\nmemory_budget = 10\n[c]\nshape = s\nlo = -1 -1 -1\n"
+     b"hi = 1 1 1\nval_n = 1001\ncache = true\nmidpoints = true\n" + SPHERE.replace(b"[shape]", b"[s]"),
+     "bad.ini:9", "[c] val_n", "needs about 128 GB", "1001^3 nodes")
+runc("study memory_budget zero", ACC + b"memory_budget = 0\n" + SPHERE + b"[field]\nkind = proxy\n",
+     "bad.ini:3", "memory_budget")
+runc("study work_budget negative", ACC + b"work_budget = -1\n" + SPHERE + b"[field]\nkind = proxy\n",
+     "bad.ini:3", "work_budget")
 runc("perturb scale out of range", GOOD + b"[perturb]\nscale = 2\n", "bad.ini:12", "[perturb] scale")
 runc("metrics band nan", GOOD + b"[metrics]\nband = nan\n", "bad.ini:12", "band")
 runc("grid too large 3D", HEAD + SPHERE + FIELD + b"[grid]\nn = 100000\n", "[grid] n", "[2, 512]")

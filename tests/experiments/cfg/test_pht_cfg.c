@@ -90,3 +90,44 @@ Test(pht_cfg, bad_keys_are_named)
     bad("", "[shape]\nkind = ellipse\ncenter = 0.5 0.5\na = 0.3\nb = 0.2\n", "kind", "p.ini:4");
     bad("", "[shape]\nkind = segment\na = 0 0\nb = 1 1\n", "kind", "p.ini:4");
 }
+
+/* The inside test takes the shape's nearest point from the box centre, so a
+ * closed shape in the box is accepted whatever its size or the box's (a
+ * 33-point probe grid missed a 1e-3 circle between its points and a unit
+ * circle in a +-1e150 box); a box the shape stays away from is refused. */
+static dfl_status source_of(const char *field, const char *shape, dfl_err *err)
+{
+    char text[1024];
+    snprintf(text, sizeof text, "[field]\nkind = pht\n%s%s", field, shape);
+    dfl_cfg *cfg = tu_cfg("p.ini", text);
+    dfl_shape s;
+    dfl_pht_source *src = NULL;
+    dfl_status st = dfl_pht_source_from_cfg(cfg, "field", &s, &src, err);
+    if (st == DFL_OK) {
+        dfl_pht_source_free(src);
+        dfl_shape_free(&s);
+    }
+    dfl_cfg_free(cfg);
+    return st;
+}
+
+Test(pht_cfg, inside_test_cannot_miss_a_closed_shape)
+{
+    dfl_err err;
+    /* 1e-3 circle off the old probe grid (spacing 1/32): no grid node inside */
+    const char *tiny = "[shape]\nkind = circle\ncenter = 0.515625 0.2\nradius = 1e-3\n";
+    cr_expect_eq(source_of("", tiny, &err), DFL_OK, "%s", err.msg);
+    /* a unit circle in a +-1e150 box (the largest the config accepts) */
+    const char *unit = "[shape]\nkind = circle\ncenter = 0 0\nradius = 1\n";
+    cr_expect_eq(source_of("lo = -1e150 -1e150\nhi = 1e150 1e150\n", unit, &err), DFL_OK, "%s",
+                 err.msg);
+    /* the box inside the circle: the centre is inside */
+    cr_expect_eq(source_of("lo = -0.1 -0.1\nhi = 0.1 0.1\n", unit, &err), DFL_OK, "%s", err.msg);
+    /* a sphere off the corner of the unit cube, away from its centre */
+    const char *sph = "[shape]\nkind = sphere\ncenter = 0.9 0.95 0.9\nradius = 0.01\n";
+    cr_expect_eq(source_of("lo = 0 0 0\nhi = 1 1 1\n", sph, &err), DFL_OK, "%s", err.msg);
+    /* a circle far from the box: refused, naming the shape's kind */
+    const char *far = "[shape]\nkind = circle\ncenter = 5 5\nradius = 0.1\n";
+    cr_expect_eq(source_of("", far, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "no inside") != NULL, "%s", err.msg);
+}

@@ -1,0 +1,137 @@
+/* Field costs from keys (field_cost.h).  Kept apart from the factories so
+ * that estimating never builds: the runner calls this before any field
+ * exists. */
+#include "cfg/field_cost.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "cfg/field_cfg.h"
+#include "cfg/pht_cfg.h"
+#include "cfg/proxy_cfg.h"
+#include "field/gridpeer.h"
+#include "proxy/decode.h"
+#include "proxy/store.h"
+
+static const char *kind_of(const dfl_cfg *cfg, const char *sec)
+{
+    const char *k = NULL;
+    if (!dfl_cfg_has(cfg, sec, "kind") || dfl_cfg_string(cfg, sec, "kind", &k, NULL)) return "";
+    return k;
+}
+
+/* depth bounds CSG nesting (and ends a cycle, which the shape reader
+ * reports): beyond it a shape counts as the dearest class */
+static dfl_cost_class shape_class(const dfl_cfg *cfg, const char *sec, int depth)
+{
+    for (; depth < 8 && sec && dfl_cfg_has_section(cfg, sec); depth++) {
+        const char *k = kind_of(cfg, sec);
+        if (!strcmp(k, "implicit") || !strcmp(k, "bezier_surface") ||
+            !strcmp(k, "bspline_surface"))
+            return DFL_COST_FOOTPOINT;
+        if (!strcmp(k, "bspline_curve")) return DFL_COST_EXACT;
+        if (strcmp(k, "csg") != 0) return *k ? DFL_COST_CHEAP : DFL_COST_EXACT;
+        /* csg: the dearer of its operands, bounded by the depth */
+        const char *a = NULL, *b = NULL;
+        if (dfl_cfg_string(cfg, sec, "a", &a, NULL) || dfl_cfg_string(cfg, sec, "b", &b, NULL))
+            return DFL_COST_EXACT;
+        if (shape_class(cfg, b, depth + 1) == DFL_COST_FOOTPOINT) return DFL_COST_FOOTPOINT;
+        sec = a;
+    }
+    return depth >= 8 ? DFL_COST_FOOTPOINT : DFL_COST_EXACT;
+}
+
+dfl_cost_class dfl_shape_cost_class(const dfl_cfg *cfg, const char *sec)
+{
+    return shape_class(cfg, sec, 0);
+}
+
+int dfl_shape_dim_guess(const dfl_cfg *cfg, const char *sec)
+{
+    for (int depth = 0; depth < 8 && sec && dfl_cfg_has_section(cfg, sec); depth++) {
+        const char *k = kind_of(cfg, sec);
+        if (!strcmp(k, "circle") || !strcmp(k, "ellipse") || !strcmp(k, "bspline_curve"))
+            return 2;
+        if (!strcmp(k, "plane") || !strcmp(k, "box") || !strcmp(k, "segment")) {
+            long d = !strcmp(k, "segment") ? 2 : 3;
+            if (dfl_cfg_has(cfg, sec, "dim") && dfl_cfg_int(cfg, sec, "dim", 2, 3, &d, NULL))
+                d = 3;
+            return (int)d;
+        }
+        if (strcmp(k, "csg") != 0 || dfl_cfg_string(cfg, sec, "a", &sec, NULL)) return 3;
+    }
+    return 3;
+}
+
+static dfl_status proxy_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c, dfl_err *err)
+{
+    dfl_proxy_cfg p;
+    dfl_status st = dfl_proxy_cfg_read(cfg, sec, &p, err);
+    if (st) return st;
+    const double r = p.build.res, cells = r * r * r;
+    const int ns = DFL_PROXY_NSCALAR(p.build.order);
+    dfl_cost_add_bytes(c, sec, "res", cells * (ns * (double)dfl_proxy_storage_size(p.build.storage) + 1),
+                       "a proxy grid of %.0f^3 cells, order %d, %s", r, p.build.order,
+                       dfl_proxy_storage_name(p.build.storage));
+    const char *input = "sdf";
+    if (dfl_cfg_has(cfg, sec, "input")) dfl_cfg_string(cfg, sec, "input", &input, NULL);
+    const dfl_cost_class cls =
+        strcmp(input, "sdf") ? DFL_COST_FOOTPOINT : dfl_shape_cost_class(cfg, "shape");
+    dfl_cost_add_work(c, sec, "res", cls, cells * (p.build.order == 2 ? 2 : 1),
+                      "%.3g %s footpoints", cells, input);
+    return DFL_OK;
+}
+
+static dfl_status gridpeer_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c, dfl_err *err)
+{
+    int kind = DFL_GRIDPEER_TAYLOR1, storage = DFL_GRIDPEER_FLOAT64;
+    long n = 16;
+    const char *shape = "shape";
+    dfl_status st = dfl_cfg_enum_opt(cfg, sec, "method", dfl_gridpeer_kind_names,
+                                     DFL_GRIDPEER_KIND_COUNT, kind, &kind, err);
+    if (!st) st = dfl_cfg_enum_opt(cfg, sec, "storage", dfl_gridpeer_storage_names,
+                                   DFL_GRIDPEER_STORAGE_COUNT, storage, &storage, err);
+    if (!st) st = dfl_cfg_int_opt(cfg, sec, "res", 16, 1, 1024, &n, err);
+    if (!st) st = dfl_cfg_string_opt(cfg, sec, "shape", "shape", &shape, err);
+    if (st) return st;
+    const double scalars = (double)dfl_gridpeer_scalars((dfl_gridpeer_kind)kind, (int)n);
+    /* the build keeps float64 values before a float16 grid is packed */
+    dfl_cost_add_bytes(c, sec, "res", scalars * (storage == DFL_GRIDPEER_FLOAT64 ? 8 : 10),
+                       "a grid peer of %ld^3 cells (%.3g scalars)", n, scalars);
+    const double nodes = (double)(n + 1) * (n + 1) * (n + 1);
+    dfl_cost_add_work(c, sec, "res", dfl_shape_cost_class(cfg, shape), nodes,
+                      "%.3g distances", nodes);
+    return DFL_OK;
+}
+
+static dfl_status pht_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c, dfl_err *err)
+{
+    const char *shape = "shape";
+    dfl_status st = dfl_cfg_string_opt(cfg, sec, "shape", "shape", &shape, err);
+    if (st) return st;
+    const int dim = dfl_shape_dim_guess(cfg, shape);
+    dfl_pht_fit_opts o;
+    if ((st = dfl_pht_opts_from_cfg(cfg, sec, dim, &o, err))) return st;
+    const double leaves = ldexp(1.0, o.split == DFL_PHT_SPLIT_BINARY ? o.max_level
+                                                                     : dim * o.max_level);
+    const double fan = ldexp(1.0, dim);
+    dfl_cost_add_bytes(c, sec, "max_level", leaves * fan / (fan - 1) * DFL_PHT_CELL_BYTES(dim),
+                       "a PHT mesh of up to %.3g cells (max_level = %d in %dD)", leaves,
+                       o.max_level, dim);
+    dfl_cost_add_work(c, sec, "max_level", dfl_shape_cost_class(cfg, shape),
+                      leaves * (o.samples + 1), "%.3g estimator points and footpoints",
+                      leaves * (o.samples + 1));
+    return DFL_OK;
+}
+
+dfl_status dfl_field_cost_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_cost *cost,
+                                   dfl_err *err)
+{
+    const dfl_field_kind *kind;
+    dfl_status st = dfl_field_kind_from_cfg(cfg, sec, &kind, err);
+    if (st) return st;
+    if (!strcmp(kind->name, "proxy")) return proxy_cost(cfg, sec, cost, err);
+    if (!strcmp(kind->name, "gridpeer")) return gridpeer_cost(cfg, sec, cost, err);
+    if (!strcmp(kind->name, "pht")) return pht_cost(cfg, sec, cost, err);
+    return DFL_OK;
+}
