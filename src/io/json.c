@@ -357,6 +357,21 @@ int dfl_json_member(const char *text, const char *key, const char **val, size_t 
     return 0;
 }
 
+int dfl_json_each(const char **it, const char **val, size_t *vlen)
+{
+    if (**it == ']') return 0; /* after the last */
+    const char *s = skip_ws(*it + 1); /* past '[' at the start, ',' later */
+    if (*s == ']') {
+        *it = s; /* stays at the end */
+        return 0;
+    }
+    *val = s;
+    s = skip_value(s);
+    *vlen = (size_t)(s - *val);
+    *it = skip_ws(s); /* at ',' or ']' */
+    return 1;
+}
+
 static dfl_status bad(const char *text, const char *v, const char *key, const char *name,
                       const char *what, dfl_err *err)
 {

@@ -3,6 +3,7 @@
  * Function index
  *   dfl_json_check          text is exactly one JSON object
  *   dfl_json_member         the raw text of a top-level member's value
+ *   dfl_json_each           the elements of an array value, in order
  *   dfl_json_get_string     a top-level string member, unescaped
  *   dfl_json_get_long       a top-level integer member within [lo, hi]
  *   dfl_json_get_double     a top-level finite number member
@@ -37,6 +38,11 @@ dfl_status dfl_json_check(const char *text, size_t len, const char *name, dfl_er
 /* 1 and *val (into text), *vlen (bytes) for the top-level member key of
  * checked text; 0 when there is none. */
 int dfl_json_member(const char *text, const char *key, const char **val, size_t *vlen);
+
+/* Iterates the array value of checked text that starts at *it (the '['):
+ * each call puts the next element into *val, *vlen and returns 1; returns
+ * 0 after the last.  *it is the iterator's state (advanced by each call). */
+int dfl_json_each(const char **it, const char **val, size_t *vlen);
 
 /* The string member key unescaped into buf (size bytes with the NUL);
  * DFL_E_INPUT when missing, not a string, holding \u0000 or longer than
