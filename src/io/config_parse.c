@@ -253,7 +253,7 @@ dfl_status dfl_cfgi_load(const char *path, bool allow_include, dfl_cfg **out, df
     *out = NULL;
     FILE *fp;
     if (!allow_include) { /* an included file: never a FIFO that blocks */
-        dfl_status st = dfl_rfile_open(path, "included config", &fp, err);
+        dfl_status st = dfl_rfile_open(path, "config", &fp, err);
         if (st != DFL_OK) return st;
     } else if (!(fp = fopen(path, "r")))
         return dfl_err_set(err, DFL_E_INPUT, "%s: cannot open config: %s", path, strerror(errno));

@@ -21,19 +21,20 @@ dfl_status dfl_rfile_open(const char *path, const char *what, FILE **fp, dfl_err
     *fp = NULL;
     const char *sp = what && *what ? " " : "";
     if (!what) what = "";
+    /* "PATH: cannot open config: ..." reads as the callers' other messages */
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
     if (fd < 0)
-        return dfl_err_set(err, DFL_E_INPUT, "%s%s%s: cannot open: %s", what, sp, path,
+        return dfl_err_set(err, DFL_E_INPUT, "%s: cannot open%s%s: %s", path, sp, what,
                            strerror(errno));
     struct stat sb;
     if (fstat(fd, &sb) != 0) {
         const int e = errno;
         close(fd);
-        return dfl_err_set(err, DFL_E_IO, "%s%s%s: cannot stat: %s", what, sp, path, strerror(e));
+        return dfl_err_set(err, DFL_E_IO, "%s: cannot stat: %s", path, strerror(e));
     }
     if (!S_ISREG(sb.st_mode)) {
         close(fd);
-        return dfl_err_set(err, DFL_E_INPUT, "%s%s%s: not a regular file (%s)", what, sp, path,
+        return dfl_err_set(err, DFL_E_INPUT, "%s: not a regular file (%s)", path,
                            kind(sb.st_mode));
     }
     const int fl = fcntl(fd, F_GETFL);

@@ -18,10 +18,10 @@
 
 #include "core/status.h"
 
-/* *fp open for reading (caller fcloses).  DFL_E_INPUT "what PATH: cannot
- * open: <strerror>" or "what PATH: not a regular file (a FIFO|a
- * directory|a device|a socket)"; what may be "" (then just "PATH: ...").
- * *fp is NULL on failure. */
+/* *fp open for reading (caller fcloses).  DFL_E_INPUT "PATH: cannot open
+ * WHAT: <strerror>" (what: "config", ...; "" or NULL: "PATH: cannot open:
+ * ...") or "PATH: not a regular file (a FIFO|a directory|a device|a
+ * socket)".  *fp is NULL on failure. */
 dfl_status dfl_rfile_open(const char *path, const char *what, FILE **fp, dfl_err *err);
 
 /* The bytes of the regular file path plus a terminating NUL, malloc'ed
