@@ -15,18 +15,16 @@
 #include "harness/sweep.h"
 #include "io/atomic.h"
 #include "io/dirs.h"
+#include "io/json.h"
 #include "io/manifest.h"
 #include "io/table.h"
 
 #include "dfl_version.h"
 
 typedef struct pt_rec {
-    char *json;        /* point.json */
+    dfl_point_rec rec; /* rec.json NULL: no point */
     char dir[8192];
-    long index, np;
     long named; /* the folder's number */
-    char study[256], sweep[80], binary[80], config[4096];
-    double wall;
 } pt_rec;
 
 /* "ptNNN" -> NNN, else -1 (stage folders and other names). */
@@ -38,31 +36,16 @@ static long point_name(const char *name)
     return strtol(name + 2, NULL, 10);
 }
 
+/* point.json of dir, strictly parsed (malformed: exit 2 naming the byte). */
 static dfl_status load_rec(const char *dir, pt_rec *r, dfl_err *err)
 {
-    char path[8300];
     snprintf(r->dir, sizeof r->dir, "%s", dir);
-    snprintf(path, sizeof path, "%s/point.json", dir);
-    r->json = dfl_file_read_all(path, NULL);
-    double idx, np;
-    if (!r->json || !dfl_json_find_number(r->json, "index", &idx) ||
-        !dfl_json_find_number(r->json, "npoints", &np) ||
-        !dfl_json_find_string(r->json, "study", r->study, sizeof r->study) ||
-        !dfl_json_find_string(r->json, "sweep_sha256", r->sweep, sizeof r->sweep) ||
-        !dfl_json_find_string(r->json, "binary_sha256", r->binary, sizeof r->binary))
-        return dfl_err_set(err, DFL_E_INPUT, "%s: not a dflab sweep point (no readable point.json)",
-                           dir);
-    dfl_json_find_string(r->json, "config", r->config, sizeof r->config);
-    r->wall = 0;
-    dfl_json_find_number(r->json, "wall_seconds", &r->wall);
-    r->index = (long)idx;
-    r->np = (long)np;
-    return DFL_OK;
+    return dfl_point_load(dir, &r->rec, err);
 }
 
 static void free_recs(pt_rec *r, size_t n)
 {
-    for (size_t i = 0; r && i < n; i++) free(r[i].json);
+    for (size_t i = 0; r && i < n; i++) dfl_point_rec_free(&r[i].rec);
     free(r);
 }
 
@@ -73,8 +56,9 @@ static int by_name(const void *a, const void *b)
 }
 
 /* Whether r belongs to the sweep `expect` (or, without one, to ref). */
-static const char *foreign(const pt_rec *r, const pt_rec *ref, const dfl_sweep *expect)
+static const char *foreign(const pt_rec *pr, const pt_rec *pref, const dfl_sweep *expect)
 {
+    const dfl_point_rec *r = &pr->rec, *ref = &pref->rec;
     if (expect) {
         if (strcmp(r->sweep, expect->sweep_sha) != 0) return "another config";
         if (strcmp(r->binary, expect->binary_sha) != 0) return "another dflab binary";
@@ -86,6 +70,26 @@ static const char *foreign(const pt_rec *r, const pt_rec *ref, const dfl_sweep *
     if (strcmp(r->binary, ref->binary) != 0) return "another dflab binary";
     if (r->np != ref->np) return "a sweep of another size";
     return NULL;
+}
+
+/* DFL_E_INPUT naming the first missing indices of 0..np-1, given the n
+ * folders of all sorted by number. */
+static dfl_status missing(const char *pdir, const pt_rec *all, size_t n, size_t np, dfl_err *err)
+{
+    char miss[512] = "";
+    size_t nm = 0, ml = 0, j = 0;
+    for (size_t k = 0; k < np; k++) {
+        while (j < n && all[j].named < (long)k) j++;
+        if (j < n && all[j].named == (long)k) continue;
+        if (nm++ < 12) ml += (size_t)snprintf(miss + ml, sizeof miss - ml, "%s%zu", ml ? ", " : "", k);
+        else if (j >= n) { /* the rest are all missing */
+            nm += np - k - 1;
+            break;
+        }
+    }
+    return dfl_err_set(err, DFL_E_INPUT, "%s: %zu of %zu sweep points missing: %s%s (run them "
+                                         "with `dflab run CONFIG --point K`)", pdir, nm, np, miss,
+                       nm > 12 ? ", ..." : "");
 }
 
 /* The committed points of dir/points in index order, checked: complete,
@@ -120,7 +124,10 @@ static dfl_status collect(const char *dir, const dfl_sweep *expect, pt_rec **out
     }
     closedir(d);
     if (n > 1) qsort(all, n, sizeof *all, by_name);
-    size_t np = expect ? expect->np : (n ? (size_t)all[0].np : 0);
+    size_t np = expect ? expect->np : (n ? (size_t)all[0].rec.np : 0);
+    /* fewer folders than points: say which are missing before allocating
+     * np records (np may be up to DFL_POINT_NP_MAX) */
+    if (st == DFL_OK && n && n < np) st = missing(pdir, all, n, np, err);
     pt_rec *ord = st == DFL_OK ? calloc(np ? np : 1, sizeof *ord) : NULL;
     if (st == DFL_OK && !ord) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
     if (st == DFL_OK && n == 0)
@@ -131,26 +138,26 @@ static dfl_status collect(const char *dir, const dfl_sweep *expect, pt_rec **out
         if (why)
             st = dfl_err_set(err, DFL_E_INPUT, "%s: a point of %s than %s (merge only the points "
                                                "of one sweep)", all[i].dir, why, all[0].dir);
-        else if (all[i].index != all[i].named)
+        else if (all[i].rec.index != all[i].named)
             st = dfl_err_set(err, DFL_E_INPUT, "%s: holds point %ld (a copied or renamed folder: "
                                                "each point must be merged once)", all[i].dir,
-                             all[i].index);
-        else if (all[i].index < 0 || (size_t)all[i].index >= np)
+                             all[i].rec.index);
+        else if ((size_t)all[i].rec.index >= np) /* index < its own np <= the sweep's */
             st = dfl_err_set(err, DFL_E_INPUT, "%s: point %ld outside the sweep's 0..%zu",
-                             all[i].dir, all[i].index, np - 1);
-        else if (ord[all[i].index].json)
+                             all[i].dir, all[i].rec.index, np - 1);
+        else if (ord[all[i].rec.index].rec.json)
             st = dfl_err_set(err, DFL_E_INPUT, "%s: duplicate of point %ld (%s)", all[i].dir,
-                             all[i].index, ord[all[i].index].dir);
-        else {
-            ord[all[i].index] = all[i];
-            all[i].json = NULL;
+                             all[i].rec.index, ord[all[i].rec.index].dir);
+        else if ((st = dfl_point_verify(all[i].dir, &all[i].rec, NULL, err)) == DFL_OK) {
+            ord[all[i].rec.index] = all[i];
+            all[i].rec.json = NULL;
         }
     }
     if (st == DFL_OK) {
         char miss[512] = "";
         size_t nm = 0, ml = 0;
         for (size_t k = 0; k < np; k++)
-            if (!ord[k].json && nm++ < 12 && ml < sizeof miss)
+            if (!ord[k].rec.json && nm++ < 12 && ml < sizeof miss)
                 ml += (size_t)snprintf(miss + ml, sizeof miss - ml, "%s%zu", ml ? ", " : "", k);
         if (nm)
             st = dfl_err_set(err, DFL_E_INPUT, "%s: %zu of %zu sweep points missing: %s%s (run them "
@@ -286,39 +293,36 @@ static dfl_status write_manifest(const pt_rec *r, size_t n, const char *stage,
     dfl_manifest_put_string(m, "version", DFL_VERSION);
     dfl_manifest_put_string(m, "git_revision", DFL_GIT_REV);
     dfl_manifest_put_string(m, "date", date);
-    dfl_manifest_put_string(m, "config", r[0].config);
-    dfl_manifest_put_string(m, "study", r[0].study);
-    /* the overrides, sweep and binary are the points' (all equal) */
-    const char *ov = strstr(r[0].json, "\n  \"overrides\": ");
-    if (ov) {
-        ov += strlen("\n  \"overrides\": ");
-        size_t len = strcspn(ov, "\n");
-        if (len && ov[len - 1] == ',') len--;
-        char *raw = strndup(ov, len);
+    dfl_manifest_put_string(m, "config", r[0].rec.config);
+    dfl_manifest_put_string(m, "study", r[0].rec.study);
+    /* the overrides, sweep and binary are the points' (all equal); the
+     * record passed the strict reader, so its text is JSON to embed */
+    const char *ov;
+    size_t ovl;
+    if (dfl_json_member(r[0].rec.json, "overrides", &ov, &ovl)) {
+        char *raw = strndup(ov, ovl);
         if (raw) dfl_manifest_put_raw(m, "overrides", raw);
         free(raw);
     }
-    dfl_manifest_put_string(m, "sweep_sha256", r[0].sweep);
-    dfl_manifest_put_string(m, "binary_sha256", r[0].binary);
+    dfl_manifest_put_string(m, "sweep_sha256", r[0].rec.sweep);
+    dfl_manifest_put_string(m, "binary_sha256", r[0].rec.binary);
     dfl_manifest_put_int(m, "npoints", (long)n);
     /* the command that assembled the folder: the run itself, or merge */
     dfl_manifest_put_string(m, "command_line", cmdline ? cmdline : "");
-    double threads = 0;
-    if (dfl_json_find_number(r[0].json, "threads", &threads))
-        dfl_manifest_put_int(m, "threads", (long)threads);
+    if (r[0].rec.threads > 0) dfl_manifest_put_int(m, "threads", r[0].rec.threads);
     dfl_manifest_put_string(m, "host", host);
     dfl_manifest_put_raw(m, "libraries", dfl_manifest_libraries(libs, sizeof libs));
     double total = 0;
     size_t cap = 8;
-    for (size_t k = 0; k < n; k++) total += r[k].wall, cap += strlen(r[k].json) + 4;
+    for (size_t k = 0; k < n; k++) total += r[k].rec.wall, cap += strlen(r[k].rec.json) + 4;
     char *pts = malloc(cap);
     if (pts) {
         size_t len = (size_t)snprintf(pts, cap, "[");
         for (size_t k = 0; k < n; k++) {
-            size_t jl = strlen(r[k].json);
-            while (jl && (r[k].json[jl - 1] == '\n')) jl--;
-            len += (size_t)snprintf(pts + len, cap - len, "%s%.*s", k ? ", " : "", (int)jl,
-                                    r[k].json);
+            const char *j = r[k].rec.json;
+            size_t jl = strlen(j);
+            while (jl && strchr(" \t\r\n", j[jl - 1])) jl--;
+            len += (size_t)snprintf(pts + len, cap - len, "%s%.*s", k ? ", " : "", (int)jl, j);
         }
         snprintf(pts + len, cap - len, "]");
         dfl_manifest_put_raw(m, "points", pts);
@@ -387,7 +391,7 @@ dfl_status dfl_merge_into(const char *dir, const dfl_sweep *expect, int quiet,
     if (st != DFL_OK) return st;
     char stage[4400], table[600], path[9000], pdir[4600];
     dfl_dir_owned_name(dir, "stage", stage, sizeof stage);
-    snprintf(table, sizeof table, "%s.csv", r[0].study);
+    snprintf(table, sizeof table, "%s.csv", r[0].rec.study);
     dfl_table *t = dfl_table_new();
     if (!t) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
     if (st == DFL_OK) st = dfl_mkdir_p(stage, err);

@@ -2,37 +2,256 @@
  * the point and swept-key columns, its record (point.json) written last,
  * then renamed into OUT.points/ptNNN as a whole. */
 #include <dirent.h>
+#include <errno.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
+#include "core/sha256.h"
 #include "harness/probe.h"
 #include "harness/sweep.h"
 #include "io/atomic.h"
 #include "io/dirs.h"
+#include "io/json.h"
 #include "io/manifest.h"
 #include "io/meta_attrs.h"
+#include "io/rfile.h"
 #include "io/table.h"
 
 #include "dfl_version.h"
 
-bool dfl_point_current(const dfl_sweep *s, size_t k)
+/* ---- committed points: reading and verifying ------------------------ */
+
+void dfl_point_rec_free(dfl_point_rec *r)
 {
+    free(r->json);
+    r->json = NULL;
+}
+
+/* A file name a point may list: one path component, not point.json. */
+static bool plain_name(const char *n)
+{
+    return n[0] && strcmp(n, ".") != 0 && strcmp(n, "..") != 0 && !strchr(n, '/') &&
+           strcmp(n, "point.json") != 0;
+}
+
+static bool is_hex64(const char *h)
+{
+    size_t i = 0;
+    for (; h[i]; i++)
+        if (!((h[i] >= '0' && h[i] <= '9') || (h[i] >= 'a' && h[i] <= 'f'))) return false;
+    return i == 64;
+}
+
+/* One element of "files" (checked JSON text at e): its name, bytes, sha256. */
+static dfl_status file_entry(const char *text, const char *e, const char *name, char *fname,
+                             size_t fsize, long *bytes, char *sha, dfl_err *err)
+{
+    if (*e != '{')
+        return dfl_err_set(err, DFL_E_INPUT, "%s: byte %zu: files: expected an object {\"name\", "
+                                             "\"bytes\", \"sha256\"}", name, (size_t)(e - text));
+    char where[4200];
+    snprintf(where, sizeof where, "%s: byte %zu: files", name, (size_t)(e - text));
+    dfl_status st = dfl_json_get_string(e, "name", where, fname, fsize, err);
+    if (st == DFL_OK && !plain_name(fname))
+        st = dfl_err_set(err, DFL_E_INPUT, "%s: name: expected a file name of the point folder, "
+                                           "got '%.80s'", where, fname);
+    if (st == DFL_OK) st = dfl_json_get_long(e, "bytes", where, 0, LONG_MAX, bytes, err);
+    if (st == DFL_OK) st = dfl_json_get_string(e, "sha256", where, sha, 65, err);
+    if (st == DFL_OK && !is_hex64(sha))
+        st = dfl_err_set(err, DFL_E_INPUT, "%s: sha256: expected 64 lower-case hex digits", where);
+    return st;
+}
+
+/* Calls fn for each element of the files array of r (stops at a failure). */
+typedef dfl_status (*file_fn)(void *ctx, const char *fname, long bytes, const char *sha,
+                              dfl_err *err);
+
+static dfl_status each_file(const dfl_point_rec *r, const char *name, file_fn fn, void *ctx,
+                            dfl_err *err)
+{
+    const char *v, *e;
+    size_t vl, el;
+    if (!dfl_json_member(r->json, "files", &v, &vl))
+        return dfl_err_set(err, DFL_E_INPUT, "%s: files: missing", name);
+    if (*v != '[')
+        return dfl_err_set(err, DFL_E_INPUT, "%s: byte %zu: files: expected an array", name,
+                           (size_t)(v - r->json));
+    dfl_status st = DFL_OK;
+    for (const char *it = v; st == DFL_OK && dfl_json_each(&it, &e, &el);) {
+        char fname[1024], sha[65];
+        long bytes = 0;
+        st = file_entry(r->json, e, name, fname, sizeof fname, &bytes, sha, err);
+        if (st == DFL_OK && fn) st = fn(ctx, fname, bytes, sha, err);
+    }
+    return st;
+}
+
+dfl_status dfl_point_parse(char *text, size_t len, const char *name, dfl_point_rec *r,
+                           dfl_err *err)
+{
+    *r = (dfl_point_rec){.threads = -1};
+    dfl_status st = dfl_json_check(text, len, name, err);
+    if (st == DFL_OK) st = dfl_json_get_long(text, "npoints", name, 1, DFL_POINT_NP_MAX, &r->np, err);
+    if (st == DFL_OK) st = dfl_json_get_long(text, "index", name, 0, r->np - 1, &r->index, err);
+    if (st == DFL_OK) st = dfl_json_get_string(text, "study", name, r->study, sizeof r->study, err);
+    if (st == DFL_OK)
+        st = dfl_json_get_string(text, "sweep_sha256", name, r->sweep, sizeof r->sweep, err);
+    if (st == DFL_OK)
+        st = dfl_json_get_string(text, "binary_sha256", name, r->binary, sizeof r->binary, err);
+    const char *v;
+    size_t vl;
+    if (st == DFL_OK && dfl_json_member(text, "config", &v, &vl))
+        st = dfl_json_get_string(text, "config", name, r->config, sizeof r->config, err);
+    if (st == DFL_OK && dfl_json_member(text, "threads", &v, &vl))
+        st = dfl_json_get_long(text, "threads", name, 1, 1L << 20, &r->threads, err);
+    if (st == DFL_OK && dfl_json_member(text, "wall_seconds", &v, &vl))
+        st = dfl_json_get_double(text, "wall_seconds", name, &r->wall, err);
+    if (st == DFL_OK && dfl_json_member(text, "overrides", &v, &vl) && *v != '[')
+        st = dfl_err_set(err, DFL_E_INPUT, "%s: byte %zu: overrides: expected an array of "
+                                           "strings", name, (size_t)(v - text));
+    r->json = text;
+    if (st == DFL_OK) st = each_file(r, name, NULL, NULL, err);
+    if (st != DFL_OK) {
+        dfl_point_rec_free(r);
+        *r = (dfl_point_rec){.threads = -1};
+    }
+    return st;
+}
+
+dfl_status dfl_point_load(const char *dir, dfl_point_rec *r, dfl_err *err)
+{
+    *r = (dfl_point_rec){.threads = -1};
+    char path[8300];
+    snprintf(path, sizeof path, "%s/point.json", dir);
+    char *text;
+    size_t len;
+    dfl_status st = dfl_rfile_read(path, "", (size_t)16 << 20, &text, &len, err);
+    if (st != DFL_OK) return st;
+    return dfl_point_parse(text, len, path, r, err);
+}
+
+typedef struct verify_ctx {
+    const char *dir;
+    bool *changed;
+    char **listed;
+    size_t n;
+} verify_ctx;
+
+static dfl_status verify_one(void *vc, const char *fname, long bytes, const char *sha,
+                             dfl_err *err)
+{
+    verify_ctx *c = vc;
+    char path[8300], hex[65];
+    snprintf(path, sizeof path, "%s/%s", c->dir, fname);
+    char **nw = realloc(c->listed, (c->n + 1) * sizeof *nw);
+    if (!nw) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    c->listed = nw;
+    if (!(c->listed[c->n] = strdup(fname))) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    c->n++;
+    struct stat sb;
+    if (lstat(path, &sb) != 0) {
+        *c->changed = true;
+        return dfl_err_set(err, DFL_E_INPUT, "%s: missing (its point.json lists it)", path);
+    }
+    if (!S_ISREG(sb.st_mode))
+        return dfl_err_set(err, DFL_E_INPUT, "%s: not a regular file (sweep points hold only "
+                                             "the files dflab wrote)", path);
+    dfl_status st = DFL_OK;
+    if ((long long)sb.st_size != (long long)bytes) {
+        *c->changed = true;
+        return dfl_err_set(err, DFL_E_INPUT, "%s: %lld bytes, its point.json records %ld (changed "
+                                             "after the point was computed)", path,
+                           (long long)sb.st_size, bytes);
+    }
+    st = dfl_sha256_file(path, hex, err);
+    if (st != DFL_OK) return st;
+    if (strcmp(hex, sha) != 0) {
+        *c->changed = true;
+        return dfl_err_set(err, DFL_E_INPUT, "%s: sha256 differs from the one its point.json "
+                                             "records (changed after the point was computed)",
+                           path);
+    }
+    return DFL_OK;
+}
+
+dfl_status dfl_point_verify(const char *dir, const dfl_point_rec *r, bool *changed, dfl_err *err)
+{
+    bool ch = false;
+    verify_ctx c = {.dir = dir, .changed = &ch};
+    char name[8300];
+    snprintf(name, sizeof name, "%s/point.json", dir);
+    /* the entries first: a FIFO or folder is refused before any hashing */
+    DIR *d = opendir(dir);
+    if (!d) return dfl_err_set(err, DFL_E_INPUT, "%s: cannot list: %s", dir, strerror(errno));
+    dfl_status st = DFL_OK;
+    struct dirent *de;
+    while (st == DFL_OK && (de = readdir(d))) {
+        if (strcmp(de->d_name, ".") == 0 || strcmp(de->d_name, "..") == 0) continue;
+        char p[8300];
+        snprintf(p, sizeof p, "%s/%s", dir, de->d_name);
+        struct stat sb;
+        if (lstat(p, &sb) != 0) st = dfl_err_set(err, DFL_E_IO, "%s: cannot stat: %s", p, strerror(errno));
+        else if (!S_ISREG(sb.st_mode))
+            st = dfl_err_set(err, DFL_E_INPUT, "%s: not a regular file (%s; sweep points hold "
+                                               "only the files dflab wrote)", p,
+                             S_ISDIR(sb.st_mode) ? "a folder" : S_ISFIFO(sb.st_mode) ? "a FIFO"
+                             : S_ISLNK(sb.st_mode) ? "a symbolic link" : "a device or socket");
+    }
+    closedir(d);
+    if (st == DFL_OK) st = each_file(r, name, verify_one, &c, err);
+    /* then nothing unlisted: a file put into the point would be merged */
+    d = st == DFL_OK ? opendir(dir) : NULL;
+    while (d && st == DFL_OK && (de = readdir(d))) {
+        if (strcmp(de->d_name, ".") == 0 || strcmp(de->d_name, "..") == 0 ||
+            strcmp(de->d_name, "point.json") == 0)
+            continue;
+        bool found = false;
+        for (size_t i = 0; i < c.n && !found; i++) found = strcmp(c.listed[i], de->d_name) == 0;
+        if (!found)
+            st = dfl_err_set(err, DFL_E_INPUT, "%s/%s: not listed in its point.json (sweep points "
+                                               "hold only the files dflab wrote)", dir, de->d_name);
+    }
+    if (d) closedir(d);
+    for (size_t i = 0; i < c.n; i++) free(c.listed[i]);
+    free(c.listed);
+    if (changed) *changed = st != DFL_OK && ch;
+    return st;
+}
+
+dfl_status dfl_point_check(const dfl_sweep *s, size_t k, int quiet, bool *current, dfl_err *err)
+{
+    *current = false;
     char dir[4400], path[4500];
-    snprintf(path, sizeof path, "%s/point.json", dfl_point_dir(s, k, dir, sizeof dir));
-    char *j = dfl_file_read_all(path, NULL);
-    if (!j) return false;
-    char sw[80], bin[80];
-    double idx = -1, np = -1;
-    bool ok = dfl_json_find_string(j, "sweep_sha256", sw, sizeof sw) &&
-              dfl_json_find_string(j, "binary_sha256", bin, sizeof bin) &&
-              dfl_json_find_number(j, "index", &idx) && dfl_json_find_number(j, "npoints", &np) &&
-              strcmp(sw, s->sweep_sha) == 0 && strcmp(bin, s->binary_sha) == 0 &&
-              (size_t)idx == k && (size_t)np == s->np;
-    free(j);
-    return ok;
+    dfl_point_dir(s, k, dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/point.json", dir);
+    struct stat sb;
+    if (lstat(dir, &sb) != 0) return DFL_OK; /* not run yet */
+    if (!S_ISDIR(sb.st_mode))
+        return dfl_err_set(err, DFL_E_INPUT, "%s: not a folder (a sweep point is one)", dir);
+    if (lstat(path, &sb) != 0) return DFL_OK; /* no record: recomputed */
+    dfl_point_rec r;
+    dfl_status st = dfl_point_load(dir, &r, err);
+    if (st != DFL_OK) return st;
+    if (strcmp(r.sweep, s->sweep_sha) == 0 && strcmp(r.binary, s->binary_sha) == 0 &&
+        r.index == (long)k && r.np == (long)s->np) {
+        bool changed = false;
+        dfl_err e2 = {0};
+        st = dfl_point_verify(dir, &r, &changed, &e2);
+        if (st == DFL_OK) *current = true;
+        else if (changed) { /* recomputed: the files are dflab's to replace */
+            if (!quiet) fprintf(stderr, "dflab: %s; recomputing point %zu\n", e2.msg, k);
+            st = DFL_OK;
+        } else if (err) {
+            *err = e2;
+        }
+    }
+    dfl_point_rec_free(&r);
+    return st;
 }
 
 /* "point" and the swept keys, for the study's table and every other CSV. */

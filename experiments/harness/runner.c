@@ -266,7 +266,9 @@ dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
     bool *skip = calloc(s.np, sizeof *skip);
     if (!skip) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
     for (size_t k = lo; k < hi && st == DFL_OK; k++) {
-        skip[k] = !o->force && dfl_point_current(&s, k);
+        bool cur = false;
+        if (!o->force) st = dfl_point_check(&s, k, o->quiet, &cur, err);
+        skip[k] = cur;
         p.todo += !skip[k];
     }
     /* a large sweep says what it is about to do, even with --quiet */

@@ -6,7 +6,9 @@
  *   dfl_sweep_label    "sec.key=value ..." of a point
  *   dfl_sweep_outdir   the default output folder of a config and overrides
  *   dfl_point_run      compute one point into OUT.points/ptNNN (point.c)
- *   dfl_point_current  whether OUT.points/ptNNN is up to date (point.c)
+ *   dfl_point_check    whether OUT.points/ptNNN is up to date (point.c)
+ *   dfl_point_parse, _load, _verify, _rec_free   a committed point's record
+ *                      (point.json) and its files (point.c)
  *   dfl_merge_into     assemble OUT from its points (merge.c)
  *   dfl_sweep_clean_stale  remove dead runs' stage folders of OUT (merge.c)
  *   dfl_sweep_budgets      [study] memory_budget (GB) and work_budget (hours)
@@ -42,7 +44,45 @@ void dfl_sweep_outdir(const dfl_run_opts *o, char *buf, size_t size);
 const char *dfl_point_dir(const dfl_sweep *s, size_t k, char *buf, size_t size);
 
 dfl_status dfl_point_run(const dfl_sweep *s, size_t k, double *seconds, dfl_err *err);
-bool dfl_point_current(const dfl_sweep *s, size_t k);
+
+/* *current: OUT.points/ptNNN exists and is point k of this very sweep and
+ * binary, with every file its point.json lists unchanged (size and
+ * sha256).  A point of another sweep, or one whose files changed (a note
+ * on stderr names the file unless quiet), is not current: it is
+ * recomputed.  DFL_E_INPUT (exit 2) for what dflab never writes there: a
+ * malformed point.json (file and byte named), a non-regular entry (FIFO,
+ * folder, device, link), a file that point.json does not list. */
+dfl_status dfl_point_check(const dfl_sweep *s, size_t k, int quiet, bool *current, dfl_err *err);
+
+/* A committed point's record. */
+typedef struct dfl_point_rec {
+    char *json;      /* the whole point.json, checked strict JSON; malloc'ed */
+    long index, np;  /* 0 <= index < np <= DFL_POINT_NP_MAX */
+    long threads;    /* -1 when not recorded */
+    double wall;     /* wall_seconds, 0 when not recorded */
+    char study[256], sweep[80], binary[80], config[4096];
+} dfl_point_rec;
+
+#define DFL_POINT_NP_MAX 100000000L
+
+/* Parses text (len bytes, NUL-terminated; ownership passes to r->json on
+ * success, text is freed on failure) as the point.json at name.
+ * DFL_E_INPUT "NAME: byte N: key: expected ..." for anything but strict
+ * JSON with index, npoints, study, sweep_sha256, binary_sha256 (and
+ * config, threads, wall_seconds when present) of the right types and
+ * ranges, and a "files" array of {"name", "bytes", "sha256"}. */
+dfl_status dfl_point_parse(char *text, size_t len, const char *name, dfl_point_rec *r,
+                           dfl_err *err);
+/* Reads dir/point.json (a regular file of at most 16 MiB) and parses it. */
+dfl_status dfl_point_load(const char *dir, dfl_point_rec *r, dfl_err *err);
+/* Checks dir against its record r: every entry is a regular file listed
+ * in r's "files" (or point.json itself), every listed file exists with the
+ * recorded bytes and sha256.  DFL_E_INPUT naming the first entry that
+ * fails; *changed (may be NULL) is set when the failure is a missing or
+ * changed listed file (what a resume recomputes), cleared otherwise. */
+dfl_status dfl_point_verify(const char *dir, const dfl_point_rec *r, bool *changed,
+                            dfl_err *err);
+void dfl_point_rec_free(dfl_point_rec *r);
 
 dfl_status dfl_merge_into(const char *dir, const dfl_sweep *expect, int quiet,
                           const char *cmdline, dfl_err *err);

@@ -19,6 +19,7 @@
 #include <sys/stat.h>
 
 #include "io/config_impl.h"
+#include "io/rfile.h"
 #include "io/lines.h"
 
 typedef struct section_seen {
@@ -250,8 +251,12 @@ static dfl_status parse_common(parse_state *ps, dfl_cfg **out)
 dfl_status dfl_cfgi_load(const char *path, bool allow_include, dfl_cfg **out, dfl_err *err)
 {
     *out = NULL;
-    FILE *fp = fopen(path, "r");
-    if (!fp) return dfl_err_set(err, DFL_E_INPUT, "%s: cannot open config: %s", path, strerror(errno));
+    FILE *fp;
+    if (!allow_include) { /* an included file: never a FIFO that blocks */
+        dfl_status st = dfl_rfile_open(path, "config", &fp, err);
+        if (st != DFL_OK) return st;
+    } else if (!(fp = fopen(path, "r")))
+        return dfl_err_set(err, DFL_E_INPUT, "%s: cannot open config: %s", path, strerror(errno));
     struct stat sb;
     if (fstat(fileno(fp), &sb) == 0 && S_ISDIR(sb.st_mode)) {
         fclose(fp);

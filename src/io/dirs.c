@@ -9,10 +9,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <linux/fs.h>
+#include <sys/ioctl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include "io/atomic.h"
+#include "io/rfile.h"
 
 static void host_name(char *buf, size_t size)
 {
@@ -88,26 +91,39 @@ dfl_status dfl_dir_replace(const char *fresh, const char *dst, dfl_err *err)
     return had ? dfl_dir_remove_tree(old, err) : DFL_OK;
 }
 
+/* Not link(2): a hard link shares the inode, so an edit of the merged
+ * file in place would change the committed point too (and its sha256
+ * would then refuse it).  A reflink shares the blocks copy-on-write where
+ * the file system can (Btrfs, XFS); elsewhere the bytes are copied. */
 dfl_status dfl_dir_link_or_copy(const char *src, const char *dst, dfl_err *err)
 {
-    unlink(dst);
-    if (link(src, dst) == 0) return DFL_OK;
-    FILE *in = fopen(src, "rb");
-    if (!in) return dfl_err_set(err, DFL_E_IO, "%s: cannot read: %s", src, strerror(errno));
+    FILE *in;
+    dfl_status st = dfl_rfile_open(src, "", &in, err);
+    if (st != DFL_OK) return st;
     dfl_atomic_file af;
-    dfl_status st = dfl_atomic_open(dst, &af, err);
+    st = dfl_atomic_open(dst, &af, err);
     if (st != DFL_OK) {
         fclose(in);
         return st;
     }
+    fflush(af.fp);
+    if (ioctl(fileno(af.fp), FICLONE, fileno(in)) == 0) {
+        fclose(in);
+        return dfl_atomic_commit(&af, err);
+    }
     char buf[65536];
     size_t n;
-    while ((n = fread(buf, 1, sizeof buf, in)) > 0) fwrite(buf, 1, n, af.fp);
+    int wbad = 0;
+    while ((n = fread(buf, 1, sizeof buf, in)) > 0)
+        if (fwrite(buf, 1, n, af.fp) != n) {
+            wbad = 1;
+            break;
+        }
     const int bad = ferror(in);
     fclose(in);
-    if (bad) {
+    if (bad || wbad) {
         dfl_atomic_abort(&af);
-        return dfl_err_set(err, DFL_E_IO, "%s: read error", src);
+        return dfl_err_set(err, DFL_E_IO, "%s: %s error", bad ? src : dst, bad ? "read" : "write");
     }
     return dfl_atomic_commit(&af, err);
 }

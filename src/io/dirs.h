@@ -6,7 +6,7 @@
  *   dfl_dir_owner_dead      whether such a name's process is gone
  *   dfl_dir_remove_tree     rm -r
  *   dfl_dir_replace         put a finished directory in place of another
- *   dfl_dir_link_or_copy    a file's bytes under a new name
+ *   dfl_dir_link_or_copy    a file's bytes under a new name (a copy)
  *   dfl_dir_check_writable  whether a directory (or its nearest existing
  *                           ancestor) accepts new entries
  *   dfl_file_read_all       a whole (small) file as a string
@@ -37,8 +37,11 @@ dfl_status dfl_dir_remove_tree(const char *path, dfl_err *err);
  * (to "<dst>.old.<host>.<pid>") and removed after fresh took its name.
  * Readers see either the old or the new directory, never a mix. */
 dfl_status dfl_dir_replace(const char *fresh, const char *dst, dfl_err *err);
-/* Hard-links src to dst (replacing dst), copying when linking fails (other
- * file system). */
+/* A copy of the regular file src at dst (replacing dst through a
+ * temporary file): never a hard link, so writing to one file leaves the
+ * other as it was.  A reflink (FICLONE) where the file system has it,
+ * else the bytes.  DFL_E_INPUT when src is not a regular file, DFL_E_IO
+ * naming the file on a read or write failure (no dst is left then). */
 dfl_status dfl_dir_link_or_copy(const char *src, const char *dst, dfl_err *err);
 /* DFL_OK when dir exists and is a writable directory, or does not exist
  * and its nearest existing ancestor is a writable directory; else

@@ -141,25 +141,45 @@ static const char *find_key(const char *json, const char *key)
     return NULL;
 }
 
+/* Reads only up to the closing quote: an escape is taken only when all of
+ * its bytes are there, so a \u near the end of the text stops at the NUL. */
 int dfl_json_find_string(const char *json, const char *key, char *buf, size_t size)
 {
     if (size) buf[0] = '\0';
     const char *v = find_key(json, key);
     if (!v || *v != '"') return 0;
     size_t k = 0;
-    for (v++; *v && *v != '"' && k + 1 < size; v++) {
-        if (*v == '\\' && v[1]) {
-            v++;
-            if (*v == 'u') {
-                buf[k++] = (char)strtol((char[]){v[1], v[2], v[3], v[4], 0}, NULL, 16);
+    for (v++; *v != '"'; v++) {
+        if (*v == '\0') goto bad; /* no closing quote */
+        char c = *v;
+        if (c == '\\') {
+            c = *++v;
+            if (c == 'u') {
+                unsigned u = 0;
+                for (int i = 1; i <= 4; i++) { /* stops at the NUL: not a hex digit */
+                    const char h = v[i];
+                    const int d = h >= '0' && h <= '9' ? h - '0'
+                                : h >= 'a' && h <= 'f' ? h - 'a' + 10
+                                : h >= 'A' && h <= 'F' ? h - 'A' + 10 : -1;
+                    if (d < 0) goto bad;
+                    u = 16 * u + (unsigned)d;
+                }
                 v += 4;
-                continue;
-            }
+                c = (char)u; /* dflab escapes only control characters */
+            } else if (c == 'n') c = '\n';
+            else if (c == 't') c = '\t';
+            else if (c == 'r') c = '\r';
+            else if (c == 'b') c = '\b';
+            else if (c == 'f') c = '\f';
+            else if (c != '"' && c != '\\' && c != '/') goto bad;
         }
-        buf[k++] = *v;
+        if (k + 1 < size) buf[k++] = c;
     }
     if (size) buf[k] = '\0';
     return 1;
+bad:
+    if (size) buf[0] = '\0';
+    return 0;
 }
 
 int dfl_json_find_number(const char *json, const char *key, double *out)

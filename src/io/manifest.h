@@ -53,8 +53,10 @@ const char *dfl_manifest_libraries(char *buf, size_t size);
 /* s as a quoted JSON string (escapes ", \ and control characters), malloc'ed
  * (caller frees); NULL when out of memory. */
 char *dfl_json_quote(const char *s);
-/* The value of the first `"key": "..."` in json (unescaped) into buf;
- * returns 0 when absent (buf is "" then). */
+/* The value of the first `"key": "..."` in json (unescaped, cut to
+ * size - 1 bytes) into buf; returns 0 when absent or not a whole JSON
+ * string (no closing quote, an unknown escape, \u without 4 hex digits;
+ * buf is "" then).  Reads nothing past json's terminating NUL. */
 int dfl_json_find_string(const char *json, const char *key, char *buf, size_t size);
 /* The value of the first `"key": <number>`; returns 0 when absent. */
 int dfl_json_find_number(const char *json, const char *key, double *out);

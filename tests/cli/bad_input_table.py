@@ -89,7 +89,8 @@ runc("bad sweep point", HEAD + SHAPE + FIELD + b"[grid]\nn = 8, 1\n", "sweep poi
 runc("sweep too large", GOOD + b"[perturb]\nscale = " + b",".join([b"0.01"] * 1000) + b"\noffset = " + b",".join([b"0"] * 1000) + b"\n[metrics]\nband = " + b",".join([b"0.1"] * 1000) + b"\n",
      "more than 100000000 points")
 runc("include a directory", GOOD.replace(SHAPE, b"") + b"[shape]\ninclude = .\n", "include", "a directory")
-runc("include /dev/zero", GOOD.replace(SHAPE, b"") + b"[shape]\ninclude = /dev/zero\n", "/dev/zero:1", "NUL")
+runc("include /dev/zero", GOOD.replace(SHAPE, b"") + b"[shape]\ninclude = /dev/zero\n", "bad.ini:8", "/dev/zero", "not a regular file (a device)")
+runc("include /dev/stdin", GOOD.replace(SHAPE, b"") + b"[shape]\ninclude = /dev/stdin\n", "bad.ini:8", "/dev/stdin", "not a regular file")
 runc("include missing", GOOD.replace(SHAPE, b"") + b"[shape]\ninclude = nope.ini\n", "bad.ini:8", "nope.ini")
 # ---- typed values --------------------------------------------------------
 for v in [b"abc", b"1.5", b"0x10", b"99999999999999999999", b"8 8", b"-3", b"1", b"5000", b"1e3"]:

@@ -7,15 +7,17 @@
 #                      FUZZ_SHORT seconds (default 30); part of make test
 #
 # The library is built a second time with clang into build-fuzz/.  Seeds:
-# configs/**/*.ini (config, sweep, field) and tests/fuzz/seeds/<name>/;
+# configs/**/*.ini (config, sweep, field) and tests/fuzz/seeds/<name>/
+# (points; record: point.json records, fuzz_record.c merges each);
 # every input that ever crashed a harness is kept in
 # tests/fuzz/regress/<name>/ and run first, so a regression fails at once.
 
 FUZZ_BUILD   := build-fuzz
 FUZZ_SAN     := -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
-FUZZERS      := config sweep points field
+FUZZERS      := config sweep points field record
 FUZZ_SECONDS ?= 300
 FUZZ_SHORT   ?= 30
+FUZZ_SHORT_RECORD ?= 10
 FUZZ_BINS    := $(FUZZERS:%=$(FUZZ_BUILD)/fuzz_%)
 FUZZ_ENV     := ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 OMP_NUM_THREADS=1 \
                 UBSAN_OPTIONS=print_stacktrace=1
@@ -36,7 +38,7 @@ $(FUZZ_BUILD)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_util.h $(FUZZ_BUILD)/l
 # corpus/<name>: seeds copied in once; libFuzzer adds what it finds
 $(FUZZ_BUILD)/corpus/%/.seeded:
 	@mkdir -p $(dir $@)
-	@if [ "$*" = points ]; then cp tests/fuzz/seeds/points/* $(dir $@); \
+	@if [ -d tests/fuzz/seeds/$* ]; then cp tests/fuzz/seeds/$*/* $(dir $@); \
 	 else for f in $$(find configs -name '*.ini'); do cp $$f $(dir $@)/$$(echo $$f | tr / _); done; fi
 	@touch $@
 
@@ -57,6 +59,7 @@ fuzz_run = ( $(FUZZ_ENV) $(FUZZ_BUILD)/fuzz_$(2) $(FUZZ_FLAGS) -max_total_time=$
 fuzz-short: fuzz-regress $(FUZZERS:%=$(FUZZ_BUILD)/corpus/%/.seeded)
 	@set -e; $(call fuzz_run,$(FUZZ_SHORT),config) & p1=$$!; $(call fuzz_run,$(FUZZ_SHORT),points) & p2=$$!; \
 	  wait $$p1 && wait $$p2; \
+	  $(call fuzz_run,$(FUZZ_SHORT_RECORD),record); \
 	  $(call fuzz_run,$(FUZZ_SHORT),sweep) & p1=$$!; $(call fuzz_run,$(FUZZ_SHORT),field) & p2=$$!; \
 	  wait $$p1 && wait $$p2
 

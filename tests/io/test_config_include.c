@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "io/config.h"
 #include "util/config_util.h"
@@ -277,4 +278,22 @@ Test(config_include, errors_name_file_line_and_key)
             cr_assert(strstr(msg, sh), "case %zu: '%s'", i, msg);
     }
     tree_end(&t, NULL);
+}
+
+/* A FIFO named by include (nobody writes it) is refused at once, naming
+ * the include line, instead of blocking the run forever. */
+Test(config_include, fifo_include_is_refused_at_once, .timeout = 10)
+{
+    char dir[64], fifo[128], path[128];
+    tmpdir_file(dir, sizeof dir, "shape.ini", fifo, sizeof fifo);
+    cr_assert_eq(mkfifo(fifo, 0600), 0);
+    tmpdir_write(dir, "main.ini", "[study]\nname = smoke\n[shape]\ninclude = shape.ini\n", path,
+                 sizeof path);
+    dfl_cfg *c = NULL;
+    dfl_err err = {0};
+    cr_expect_eq(dfl_cfg_load(path, &c, &err), DFL_E_INPUT);
+    cr_expect_null(c);
+    cr_expect(strstr(err.msg, "main.ini:4"), "%s", err.msg);
+    cr_expect(strstr(err.msg, "not a regular file (a FIFO)"), "%s", err.msg);
+    tmpdir_remove(dir);
 }

@@ -8,6 +8,8 @@
 #
 #   tests/e2e/sweeps/sweeps.sh DFLAB WORKDIR CASE
 #   CASE: parallel | slurm | sigkill | stale | merge_refusals | provenance
+#         | verify (committed points checked against their point.json)
+#         | bad_records (malformed point.json, non-regular entries)
 # Run from the repository root.  Prints what differs; exit 0 when all holds.
 set -euo pipefail
 DFLAB=$1
@@ -216,6 +218,98 @@ import json, sys
 p = json.load(open('$W/nofd/manifest.json'))['points'][0]
 assert p['resolved']['study.fd_rel'] == '1e-05' and 'study.fd_rel' in p['defaults'], p
 " || die "default not recorded"
+    ;;
+verify)
+    one_process "$W/one"
+    one_process "$W/v"
+    P=$W/v.points
+    T=bs04_gradbounds.csv
+    refuses() { # cmd... : exit 2, one error line naming $want
+        local rc=0
+        timeout 60 "$@" 2> "$W/err" || rc=$?
+        [ "$rc" = 2 ] || die "exit $rc, not 2: $* ($(cat "$W/err"))"
+        [ "$(grep -c '^dflab: error: ' "$W/err")" = 1 ] || die "not one error line: $(cat "$W/err")"
+        grep -qF -- "$want" "$W/err" || die "message lacks '$want': $(cat "$W/err")"
+    }
+    # a merged file is a copy: editing it in place leaves the point alone
+    [ "$(stat -c %h "$W/v/$T")" = 1 ] || die "merged $T has $(stat -c %h "$W/v/$T") links"
+    before=$(sha256sum < "$P/pt001/$T")
+    printf 'edited\n' >> "$W/v/$T"
+    [ "$(sha256sum < "$P/pt001/$T")" = "$before" ] || die "editing the merged $T changed pt001"
+    "$DFLAB" merge "$W/v" --quiet || die "merge of untouched points refused"
+    same_csvs "$W/one" "$W/v"
+    # a number edited in a point's CSV: merge refuses, a rerun recomputes it
+    "$PY" -c "
+import re, sys; p = sys.argv[1]; t = open(p).read().split('\n')
+t[1] = re.sub('[0-9]', lambda m: str((int(m.group()) + 1) % 10), t[1], count=1)
+open(p, 'w').write('\n'.join(t))" "$P/pt001/$T" # same size, other bytes
+    want="pt001/$T: sha256 differs"; refuses "$DFLAB" merge "$W/v"
+    [ -e "$W/v/manifest.json" ] || die "a refused merge removed the folder"
+    one_process "$W/v" 2> /dev/null
+    same_csvs "$W/one" "$W/v"
+    # a deleted and a truncated file: both recomputed, only those
+    rm "$P/pt006/profile_pt006.csv"
+    want="pt006/profile_pt006.csv: missing"; refuses "$DFLAB" merge "$W/v"
+    truncate -s 10 "$P/pt005/$T"
+    "$DFLAB" run "$CFG" "${SETS[@]}" --out "$W/v" 2> "$W/run.err" || die "resume failed: $(cat "$W/run.err")"
+    grep -q "22 of 24 points up to date" "$W/run.err" || die "not 2 recomputed: $(cat "$W/run.err")"
+    grep -q "pt006/profile_pt006.csv: missing.*recomputing point 6" "$W/run.err" || die "no note: $(cat "$W/run.err")"
+    grep -q "pt005/$T: 10 bytes.*recomputing point 5" "$W/run.err" || die "no note: $(cat "$W/run.err")"
+    same_csvs "$W/one" "$W/v"
+    # a file put into a point would be merged: refused by both
+    echo x > "$P/pt003/extra.csv"
+    want="pt003/extra.csv: not listed in its point.json"; refuses "$DFLAB" merge "$W/v"
+    refuses "$DFLAB" run "$CFG" "${SETS[@]}" --out "$W/v" --quiet
+    rm "$P/pt003/extra.csv"
+    "$DFLAB" merge "$W/v" --quiet || die "merge refused after the clean-up"
+    same_csvs "$W/one" "$W/v"
+    ;;
+bad_records)
+    one_process "$W/b"
+    P=$W/b.points/pt001
+    cp "$P/point.json" "$W/good.json"
+    refuses() { # cmd... : exit 2 within the timeout, one error line naming $want
+        local rc=0
+        timeout 60 "$@" 2> "$W/err" || rc=$?
+        [ "$rc" = 2 ] || die "exit $rc, not 2: $* ($(cat "$W/err"))"
+        [ "$(grep -c '^dflab: error: ' "$W/err")" = 1 ] || die "not one error line: $(cat "$W/err")"
+        grep -qF -- "$want" "$W/err" || die "message lacks '$want': $(cat "$W/err")"
+    }
+    both() { # the edit already made: merge and resume refuse it alike
+        refuses "$DFLAB" merge "$W/b"
+        refuses "$DFLAB" run "$CFG" "${SETS[@]}" --out "$W/b" --quiet
+        "$PY" -c "import json,sys; json.load(open(sys.argv[1]))" "$W/b/manifest.json" \
+            || die "manifest.json no longer JSON after: $want"
+    }
+    # every byte offset below is found in the file the way a reader counts
+    off() { "$PY" -c "import sys; t=open(sys.argv[1],'rb').read(); print(t.index(sys.argv[2].encode()))" "$P/point.json" "$1"; }
+    edit() { cp "$W/good.json" "$P/point.json"; "$PY" -c "
+import sys; p=sys.argv[1]; t=open(p,'rb').read(); a,b=sys.argv[2].encode(),sys.argv[3].encode()
+assert a in t, a; open(p,'wb').write(t.replace(a,b,1))" "$P/point.json" "$1" "$2"; }
+    edit '"npoints": 24' '"npoints": 1000000000000000000'
+    want="pt001/point.json: byte $(off 1000000000000000000): npoints: expected an integer in 1..100000000"; both
+    edit '"npoints": 24' '"npoints": -5'
+    want="pt001/point.json: byte $(off '-5'): npoints: expected an integer"; both
+    edit '"index": 1,' '"index": 1e300,'
+    want="pt001/point.json: byte $(off 1e300): index: expected an integer in 0..23"; both
+    edit '"index": 1,' '"index": 1.5,'
+    want="byte $(off 1.5): index: expected an integer"; both
+    cp "$W/good.json" "$P/point.json"; printf 'junk\n' >> "$P/point.json"
+    want="pt001/point.json: byte $(off junk): expected nothing after the object"; both
+    edit '"overrides": [' '"overrides": [,'
+    want="pt001/point.json: byte $(( $(off '"overrides": [,') + 14 )): expected a JSON value"; both
+    edit '"study": "' '"study": "\u00'
+    want="pt001/point.json: byte"; both
+    # non-regular entries: refused at once, never waited on
+    rm "$P/point.json"; mkfifo "$P/point.json"
+    want="pt001/point.json: not a regular file (a FIFO)"; both
+    rm "$P/point.json"; cp "$W/good.json" "$P/point.json"
+    mkdir "$P/sub"
+    want="pt001/sub: not a regular file (a folder"; both
+    rmdir "$P/sub"; mkfifo "$P/fifo"
+    want="pt001/fifo: not a regular file (a FIFO"; both
+    rm "$P/fifo"
+    "$DFLAB" merge "$W/b" --quiet || die "merge refused after the clean-up"
     ;;
 *)
     die "unknown case $CASE"

@@ -55,3 +55,13 @@ Test(e2e_sweeps, manifest_loads_with_json_and_records_everything, .timeout = 120
 {
     run_case("provenance");
 }
+
+Test(e2e_sweeps, committed_points_are_verified_on_merge_and_resume, .timeout = 300)
+{
+    run_case("verify");
+}
+
+Test(e2e_sweeps, malformed_point_records_are_refused_naming_file_and_byte, .timeout = 300)
+{
+    run_case("bad_records");
+}
