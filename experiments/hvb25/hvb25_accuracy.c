@@ -20,7 +20,8 @@
  *   medial    = 1           medial threshold in cell sizes (hvb25_eval.h)
  * [eval] n = 217, lo = -1 -1 -1, hi = 1 1 1: the node grid.
  * Rows: one per decoding: what was built (field kind, order, res, storage,
- * stored scalars and bytes, build time, uncertified / failed footpoints),
+ * stored scalars and bytes, build time, uncertified / failed / moved
+ * footpoints, cells with a scalar clamped to the storage range),
  * the decoding (filter, clip, signed) and the metrics of hvb25_eval.h:
  * l1, mse (the paper's "L2"), rms, linf over the grid, *_band in the band,
  * *_off off the medial region, the worst point and its footpoint jump.
@@ -127,6 +128,7 @@ static dfl_status put_build(dfl_table *t, const dfl_field *f, const build_info *
     if (!st) st = dfl_table_set_int(t, "uncertified", (long)b->ps.uncertified, err);
     if (!st) st = dfl_table_set_int(t, "failed", (long)b->ps.failed, err);
     if (!st) st = dfl_table_set_int(t, "moved", (long)b->ps.moved, err);
+    if (!st) st = dfl_table_set_int(t, "clamped", (long)b->ps.clamped, err);
     return st;
 }
 
