@@ -13,7 +13,8 @@
  *                           footpoints on implicit ones)
  *   filters   = nearest hermite ...   proxy fields only: decode the one
  *                           grid with each of these filters (each with its
- *                           default clip, proxy/filter.h; signedness of
+ *                           default clip, proxy/filter.h, or [field]
+ *                           clip_radius when given; signedness of
  *                           [field]), one row each; absent: the field as
  *                           [field] configures it, one row
  *   band      = 0.05        the band |d| <= band of the *_band metrics
@@ -158,6 +159,8 @@ static dfl_status acc_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
     for (int i = 0; !st && i < k.nfilters; i++) {
         dfl_proxy_filter_opts_default(k.filters[i], grid, &s.dec[i]);
         s.dec[i].is_signed = fo->is_signed;
+        /* [field] clip_radius, when given, is every filter's clip */
+        if (dfl_cfg_has(cfg, "field", "clip_radius")) s.dec[i].clip = fo->clip;
     }
     hvb25_acc_result res[HVB25_MAX_DECODINGS];
     build_info bi;
