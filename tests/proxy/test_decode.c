@@ -31,7 +31,9 @@ static double max_err(int order, const ta_shape *s, double h, uint64_t seed)
     double worst = 0;
     for (int k = 0; k < 200; k++) {
         double xc[3], x[3];
+        int tries = 0; /* bounded: a bug that rejects every centre fails, not hangs */
         do {
+            cr_assert_lt(tries++, 100000, "no centre within %g of the surface", h);
             for (int j = 0; j < 3; j++) xc[j] = dfl_rng_splitmix(&seed, -1, 1);
         } while (fabs(ta_sdf(s, xc)) > h);
         dfl_proxy_geom g;
