@@ -13,14 +13,16 @@
  *                           footpoints on implicit ones)
  *   filters   = nearest hermite ...   proxy fields only: decode the one
  *                           grid with each of these filters (each with its
- *                           default clip, proxy/filter.h; signedness of
+ *                           default clip, proxy/filter.h, or [field]
+ *                           clip_radius when given; signedness of
  *                           [field]), one row each; absent: the field as
  *                           [field] configures it, one row
  *   band      = 0.05        the band |d| <= band of the *_band metrics
  *   medial    = 1           medial threshold in cell sizes (hvb25_eval.h)
  * [eval] n = 217, lo = -1 -1 -1, hi = 1 1 1: the node grid.
  * Rows: one per decoding: what was built (field kind, order, res, storage,
- * stored scalars and bytes, build time, uncertified / failed footpoints),
+ * stored scalars and bytes, build time, uncertified / failed / moved
+ * footpoints, cells with a scalar clamped to the storage range),
  * the decoding (filter, clip, signed) and the metrics of hvb25_eval.h:
  * l1, mse (the paper's "L2"), rms, linf over the grid, *_band in the band,
  * *_off off the medial region, the worst point and its footpoint jump.
@@ -128,6 +130,7 @@ static dfl_status put_build(dfl_table *t, const dfl_field *f, const build_info *
     if (!st) st = dfl_table_set_int(t, "uncertified", (long)b->ps.uncertified, err);
     if (!st) st = dfl_table_set_int(t, "failed", (long)b->ps.failed, err);
     if (!st) st = dfl_table_set_int(t, "moved", (long)b->ps.moved, err);
+    if (!st) st = dfl_table_set_int(t, "clamped", (long)b->ps.clamped, err);
     return st;
 }
 
@@ -157,6 +160,8 @@ static dfl_status acc_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
     for (int i = 0; !st && i < k.nfilters; i++) {
         dfl_proxy_filter_opts_default(k.filters[i], grid, &s.dec[i]);
         s.dec[i].is_signed = fo->is_signed;
+        /* [field] clip_radius, when given, is every filter's clip */
+        if (dfl_cfg_has(cfg, "field", "clip_radius")) s.dec[i].clip = fo->clip;
     }
     hvb25_acc_result res[HVB25_MAX_DECODINGS];
     build_info bi;

@@ -4,7 +4,8 @@
  *
  * Keys.  [study]
  *   filters = nearest trilinear hermite   proxy fields: one frame per filter
- *             (each with its default clip, proxy/filter.h); absent: one
+ *             (each with its default clip, proxy/filter.h, or [field]
+ *             clip_radius when given); absent: one
  *             frame of the field as [field] configures it
  *   reps    = 3          frames traced per filter; the best time is kept
  * [camera] eye = 1.6 -2.2 1.4, target = 0 0 0, up = 0 0 1, fov = 40,
@@ -149,6 +150,8 @@ static dfl_status render_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_t
         if (k.nfilters) {
             dfl_proxy_filter_opts_default(k.filters[i], g, &v.o);
             v.o.is_signed = op->is_signed;
+            /* [field] clip_radius, when given, is every filter's clip */
+            if (dfl_cfg_has(cfg, "field", "clip_radius")) v.o.clip = op->clip;
             op = &v.o;
             hvb25_view_field(&v, &view);
             use = &view;

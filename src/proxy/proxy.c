@@ -3,6 +3,7 @@
  * input's order-1 grid costs little more than the SDF evaluations. */
 #include "proxy/proxy.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -83,12 +84,42 @@ void dfl_proxy_grid_free(dfl_proxy_grid *g)
     memset(g, 0, sizeof *g);
 }
 
-static double moved_delta(const dfl_proxy_grid *g)
+/* The storage's largest finite value, its relative spacing (ulp of 1) and
+ * its smallest normal value. */
+static double storage_max(dfl_proxy_storage s)
 {
-    const double e = g->storage == DFL_PROXY_DOUBLE  ? 0x1p-40
-                     : g->storage == DFL_PROXY_FLOAT ? 0x1p-20
-                                                     : 0x1p-10;
-    return e * dfl_proxy_cell_size(g);
+    return s == DFL_PROXY_DOUBLE ? DBL_MAX : s == DFL_PROXY_FLOAT ? FLT_MAX : 65504.0;
+}
+
+static double storage_eps(dfl_proxy_storage s)
+{
+    return s == DFL_PROXY_DOUBLE ? 0x1p-52 : s == DFL_PROXY_FLOAT ? 0x1p-23 : 0x1p-10;
+}
+
+static double storage_tiny(dfl_proxy_storage s)
+{
+    return s == DFL_PROXY_DOUBLE ? DBL_MIN : s == DFL_PROXY_FLOAT ? FLT_MIN : 0x1p-14;
+}
+
+/* The first move length of cell centre xc (proxy.h): delta_0 = h 2^-40 |
+ * 2^-20 | 2^-10, at least the smallest normal value of the storage (a
+ * shorter displacement loses its direction in subnormals) and, for
+ * absolute footpoints, 2 ulp of the largest coordinate of xc (a shorter
+ * move rounds back onto the centre).  Rounding then shortens a move of
+ * this length by less than half, so the first try normally survives. */
+static double moved_delta(const dfl_proxy_grid *g, const double xc[3])
+{
+    const dfl_proxy_storage s = g->storage;
+    const double e = s == DFL_PROXY_DOUBLE ? 0x1p-40 : s == DFL_PROXY_FLOAT ? 0x1p-20 : 0x1p-10;
+    double d = e * dfl_proxy_cell_size(g);
+    if (d < storage_tiny(s)) d = storage_tiny(s);
+    if (g->position == DFL_PROXY_ABSOLUTE) {
+        double m = 0;
+        for (int j = 0; j < 3; j++)
+            if (fabs(xc[j]) > m) m = fabs(xc[j]);
+        if (2.0 * storage_eps(s) * m > d) d = 2.0 * storage_eps(s) * m;
+    }
+    return d;
 }
 
 /* Uniform on the unit sphere (Archimedes: z uniform, angle uniform). */
@@ -132,18 +163,59 @@ static int finite_answer(int order, const dfl_surfpoint *sp)
     return ok;
 }
 
+/* Caps the logical scalars s (footpoint already as stored: displacement
+ * or absolute) to what the storage keeps finite (store.h); returns 1 when
+ * a value changed.  A displacement is shortened along itself (the normal it
+ * carries survives); absolute coordinates are clamped one by one. */
+static int clamp_scalars(const dfl_proxy_grid *g, double *s)
+{
+    const double fmax = storage_max(g->storage);
+    int clamped = 0;
+    if (g->position == DFL_PROXY_DISPLACEMENT) {
+        double m = 0;
+        for (int j = 0; j < 3; j++)
+            if (fabs(s[j]) > m) m = fabs(s[j]);
+        if (m > fmax) {
+            /* 1 - 2^-12 keeps the largest component below fmax after the
+             * multiplication's rounding in every storage */
+            const double f = fmax / m * (1.0 - 0x1p-12);
+            for (int j = 0; j < 3; j++) s[j] *= f;
+            clamped = 1;
+        }
+    } else {
+        for (int j = 0; j < 3; j++)
+            if (fabs(s[j]) > fmax) s[j] = copysign(fmax, s[j]), clamped = 1;
+    }
+    if (g->order == 2) {
+        double kmax = 0x1p64 / dfl_proxy_cell_size(g);
+        if (kmax > fmax) kmax = fmax;
+        for (int q = 3; q < 5; q++)
+            if (fabs(s[q]) > kmax) s[q] = copysign(kmax, s[q]), clamped = 1;
+    }
+    return clamped;
+}
+
+/* Tries of the move length: delta_0, 2 delta_0, ..., 2^8 delta_0 (for a
+ * half grid's delta_0 = h 2^-10 a quarter cell; in practice the first try
+ * survives, see moved_delta). */
+#define MOVE_TRIES 9
+
+static void store_failed(const dfl_proxy_grid *g, void *base, dfl_proxy_stats *cnt)
+{
+    cnt->failed++;
+    for (int q = 0; q < g->nscalar; q++) dfl_proxy_store_put(g->storage, base, (size_t)q, NAN);
+}
+
 /* Encodes and stores cell c from its answer; updates the chunk's counts. */
 static void store_cell(dfl_proxy_grid *g, const dfl_proxy_build_opts *o, size_t c,
-                       const double xc[3], const dfl_surfpoint *sp, double delta,
-                       dfl_proxy_stats *cnt)
+                       const double xc[3], const dfl_surfpoint *sp, dfl_proxy_stats *cnt)
 {
     double s[DFL_PROXY_NSCALAR_MAX];
     const int ns = g->nscalar;
     void *base = (char *)g->data + c * (size_t)ns * dfl_proxy_storage_size(g->storage);
     if (!sp->certified) cnt->uncertified++;
     if (!finite_answer(g->order, sp)) {
-        cnt->failed++;
-        for (int q = 0; q < ns; q++) dfl_proxy_store_put(g->storage, base, (size_t)q, NAN);
+        store_failed(g, base, cnt);
         return;
     }
     double w[3];
@@ -151,22 +223,34 @@ static void store_cell(dfl_proxy_grid *g, const dfl_proxy_build_opts *o, size_t 
         noise_dir(o->seed, c, w);
         for (int j = 0; j < 3; j++) w[j] *= o->noise;
     }
-    /* The normal is decoded from the stored footpoint, so the centre must
-     * stay delta away from it after rounding (absolute half footpoints can
-     * round onto the centre): move it further out until it does. */
-    int side, moved = 0;
-    for (int it = 0; it < 40; it++, delta *= 2) {
-        moved |= dfl_proxy_encode(g->order, xc, sp, o->noise > 0 ? w : NULL, delta, s, &side);
+    /* The normal is decoded from the stored footpoint, so the stored
+     * (rounded) displacement from the centre must keep at least half the
+     * move length delta: when it does not, delta doubles, at most
+     * MOVE_TRIES times; a cell that still fails is counted as failed. */
+    double delta = moved_delta(g, xc);
+    int side = 1, moved = 0, clamped = 0, ok = 0;
+    for (int it = 0; it < MOVE_TRIES && !ok; it++, delta *= 2) {
+        moved = dfl_proxy_encode(g->order, xc, sp, o->noise > 0 ? w : NULL, delta, s, &side);
+        /* a moved displacement is -delta n itself: through x_c - delta n
+         * and back it would keep only delta / ulp(x_c) of n's direction */
         if (g->position == DFL_PROXY_DISPLACEMENT)
-            for (int j = 0; j < 3; j++) s[j] -= xc[j];
+            for (int j = 0; j < 3; j++) s[j] = moved ? -delta * sp->n[j] : s[j] - xc[j];
+        clamped = clamp_scalars(g, s);
         double dd[3];
         for (int j = 0; j < 3; j++) {
             const double r = dfl_proxy_store_round(g->storage, s[j]);
             dd[j] = g->position == DFL_PROXY_DISPLACEMENT ? r : r - xc[j];
         }
-        if (dd[0] * dd[0] + dd[1] * dd[1] + dd[2] * dd[2] >= delta * delta) break;
+        const double l2 = dd[0] * dd[0] + dd[1] * dd[1] + dd[2] * dd[2];
+        ok = isfinite(l2) && l2 >= 0.25 * delta * delta;
+    }
+    for (int q = 0; q < ns && ok; q++) ok = isfinite(dfl_proxy_store_round(g->storage, s[q]));
+    if (!ok) {
+        store_failed(g, base, cnt);
+        return;
     }
     cnt->moved += (size_t)moved;
+    cnt->clamped += (size_t)clamped;
     for (int q = 0; q < ns; q++) dfl_proxy_store_put(g->storage, base, (size_t)q, s[q]);
     if (g->side) g->side[c] = (signed char)side;
 }
@@ -181,13 +265,12 @@ dfl_status dfl_proxy_grid_build(const dfl_proxy_input *in, const dfl_proxy_build
     dfl_status st = dfl_proxy_grid_alloc(o, in->has_inside, with_side, &g, err);
     if (st) return st;
     const size_t nchunk = (g.ncells + CHUNK - 1) / CHUNK;
-    const double delta = moved_delta(&g);
     const int need_curv = g.order == 2;
     dfl_status first_st = DFL_OK;
     size_t first_bad = nchunk;
     dfl_err first_err;
     dfl_err_clear(&first_err);
-    dfl_proxy_stats tot = {0, 0, 0};
+    dfl_proxy_stats tot = {0, 0, 0, 0};
     dfl_proxy_stats *per = calloc(nchunk, sizeof *per);
     if (!per) {
         dfl_proxy_grid_free(&g);
@@ -220,7 +303,7 @@ dfl_status dfl_proxy_grid_build(const dfl_proxy_input *in, const dfl_proxy_build
                 continue;
             }
             for (size_t i = 0; i < m; i++)
-                store_cell(&g, o, c0 + i, x + 3 * i, &sp[i], delta, &per[k]);
+                store_cell(&g, o, c0 + i, x + 3 * i, &sp[i], &per[k]);
         }
         free(x);
         free(sp);
@@ -230,6 +313,7 @@ dfl_status dfl_proxy_grid_build(const dfl_proxy_input *in, const dfl_proxy_build
         tot.uncertified += per[k].uncertified;
         tot.failed += per[k].failed;
         tot.moved += per[k].moved;
+        tot.clamped += per[k].clamped;
     }
     free(per);
     if (first_st != DFL_OK) {

@@ -25,11 +25,20 @@
  * order 2 carries it in t's length (decode.h).
  *
  * Cell centres on the surface: the normal of a proxy is p - x_c, so a
- * footpoint whose stored (rounded) displacement from x_c is shorter than
- * delta = h * 2^-40 | 2^-20 | 2^-10 (double, float, half) moves to
- * x_c - delta' n (decode.h), delta' the first of delta, 2 delta, 4 delta,
- * ... that survives the rounding (absolute half footpoints can round onto
- * x_c); such cells are counted in stats.moved.
+ * footpoint closer to x_c than delta moves to x_c - delta n (decode.h),
+ * n the input's normal, an error of at most 2 delta in that cell.  delta
+ * is scale-aware: delta_0 = h * 2^-40 | 2^-20 | 2^-10 (double, float,
+ * half), at least the storage's smallest normal value, and for absolute
+ * footpoints at least 2 ulp (in the storage) of max_j |x_c,j|; when the
+ * stored (rounded) displacement is shorter than delta / 2, delta doubles,
+ * at most 8 times (2^8 delta_0).  Such cells are counted in stats.moved;
+ * a cell whose displacement does not survive any try is stored as NaN and
+ * counted in stats.failed.  Every other cell decodes to a finite proxy.
+ *
+ * Range (store.h): scalars beyond what the storage keeps finite are capped
+ * and the cell is counted in stats.clamped: a displacement is shortened
+ * along itself, an absolute coordinate clamped to the largest finite value
+ * F_s, a curvature to +-min(F_s, 2^64 / h).
  *
  * Noise (the footpoint-noise study): with noise > 0 each footpoint moves by
  * noise * w, w uniform on the unit sphere from SplitMix64 seeded by
@@ -62,6 +71,7 @@ typedef struct dfl_proxy_stats {
     size_t uncertified;  /* cells whose footpoint the input did not certify */
     size_t failed;       /* cells the input gave no finite answer (stored NaN) */
     size_t moved;        /* cell centres on the surface (see above) */
+    size_t clamped;      /* cells with a scalar capped to the storage's range */
 } dfl_proxy_stats;
 
 typedef struct dfl_proxy_grid {

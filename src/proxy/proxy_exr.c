@@ -108,6 +108,7 @@ static exr_result_t put_attrs(exr_context_t x, const dfl_proxy_grid *g)
     if (!rv) rv = exr_attr_set_double(x, 0, "dflab.proxy.uncertified", (double)g->stats.uncertified);
     if (!rv) rv = exr_attr_set_double(x, 0, "dflab.proxy.failed", (double)g->stats.failed);
     if (!rv) rv = exr_attr_set_double(x, 0, "dflab.proxy.moved", (double)g->stats.moved);
+    if (!rv) rv = exr_attr_set_double(x, 0, "dflab.proxy.clamped", (double)g->stats.clamped);
     return rv;
 }
 
@@ -252,6 +253,10 @@ static dfl_status get_attrs(exr_context_t x, const char *path, dfl_proxy_build_o
     stats->uncertified = (size_t)u;
     stats->failed = (size_t)f;
     stats->moved = (size_t)m;
+    /* absent from grids written before the count existed: none clamped */
+    double cl = 0;
+    if (exr_attr_get_double(x, 0, "dflab.proxy.clamped", &cl) != EXR_ERR_SUCCESS) cl = 0;
+    stats->clamped = (size_t)cl;
     return DFL_OK;
 }
 

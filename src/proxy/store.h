@@ -26,6 +26,20 @@
  * (absolute), Hermite 8.3e-5 vs 2.7e-3; at 64^3 nearest 4.3e-5 vs 1.2e-2;
  * order 1 at 64^3 nearest 1.6e-3 vs 1.2e-2.  In float and double the two
  * agree to the digits shown.  Hence displacement is the default.
+ *
+ * Range: no stored proxy may decode to a non-finite value, so the grid
+ * builder (proxy.c) caps what the storage cannot hold finite, with F_s the
+ * largest finite value (DBL_MAX, FLT_MAX, 65504): a displacement longer
+ * than F_s in some component is shortened along itself (its direction, the
+ * normal, survives; the footpoint moves along its ray), an absolute
+ * coordinate is clamped to +-F_s, and each curvature to +-min(F_s, 2^64/h)
+ * (h the cell size; 2^64/h keeps every product in the decoding finite for
+ * points of the box).  kappa_r and kappa_R share the cap, so |kappa_r| >=
+ * |kappa_R| still holds.  A half curvature above 65504 is a radius below
+ * 1.5e-5: the capped proxy is a sphere or torus of that radius, not inf.
+ * Each capped cell is counted in the grid's stats.clamped (proxy.h).
+ * Displacements shorter than the storage's smallest normal value (half:
+ * 2^-14) count as centres on the surface (proxy.h) and move.
  */
 #ifndef DFL_PROXY_STORE_H
 #define DFL_PROXY_STORE_H

@@ -49,7 +49,9 @@ static void check_shape(const dfl_shape *s, double lo, double hi, double dmin, d
     cr_assert_eq(dfl_pht_source_dim(src), s->dim);
     int nd = DFL_PHT_NDATA(s->dim), got = 0;
     uint64_t seed = 99;
-    while (got < m) {
+    /* bounded: a bug that rejects every point fails below, not hangs */
+    for (long tries = 0; got < m; tries++) {
+        cr_assert_lt(tries, 100000L * m, "%s: only %d of %d points accepted", s->ops->kind, got, m);
         double x[3];
         for (int j = 0; j < s->dim; j++) x[j] = dfl_rng_splitmix(&seed, lo, hi);
         double d = sd(s, x), r = 0;
@@ -101,7 +103,9 @@ Test(pht_hermite, closed_bspline_curve_matches_finite_differences)
     cr_assert_eq(dfl_pht_source_new(&s, &src, NULL), DFL_OK);
     int got = 0;
     uint64_t seed = 3;
-    while (got < 25) {
+    /* bounded: a bug that rejects every point fails, not hangs */
+    for (long tries = 0; got < 25; tries++) {
+        cr_assert_lt(tries, 100000L, "blob: only %d of 25 points accepted", got);
         double x[2] = {dfl_rng_splitmix(&seed, -2, 2), dfl_rng_splitmix(&seed, -2, 2)};
         double d = sd(&s, x);
         if (fabs(x[1]) < 0.15 || fabs(d) < 0.02 || d < -0.5 || d > 0.3) continue;

@@ -4,6 +4,7 @@
  * osculating torus grows like rho^3. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <string.h>
 
 #include "core/fit.h"
 #include "core/rng.h"
@@ -31,7 +32,9 @@ static double max_err(int order, const ta_shape *s, double h, uint64_t seed)
     double worst = 0;
     for (int k = 0; k < 200; k++) {
         double xc[3], x[3];
+        int tries = 0; /* bounded: a bug that rejects every centre fails, not hangs */
         do {
+            cr_assert_lt(tries++, 100000, "no centre within %g of the surface", h);
             for (int j = 0; j < 3; j++) xc[j] = dfl_rng_splitmix(&seed, -1, 1);
         } while (fabs(ta_sdf(s, xc)) > h);
         dfl_proxy_geom g;
@@ -182,4 +185,49 @@ Test(proxy_decode, centre_on_surface_moves)
     for (int j = 0; j < 3; j++) cr_expect_float_eq(g.n[j], sp.n[j], 1e-12);
     const double x[3] = {0.7, 0.1, 0.0};
     cr_expect_lt(fabs(dfl_proxy_geom_eval(&g, 2, x, NULL) - ta_sdf(&sphere, x)), 2.1e-9);
+}
+
+/* decode.h: the stored t is orthogonal to n only up to the storage's
+ * rounding, and decoding projects it back, so (n, t, b) is orthonormal and
+ * right-handed (b = n x t) for any stored L t not along n: here L t is the
+ * true direction tilted towards n by up to 0.3 (far more than half
+ * rounding), for both signs L = 1, 2, both positions. */
+Test(proxy_decode, frame_orthonormal_after_tilt)
+{
+    static const double tilts[] = {0, 1e-3, -0x1p-11, 0.05, -0.3};
+    uint64_t seed = 21;
+    for (int k = 0; k < 100; k++) {
+        double xc[3];
+        for (int j = 0; j < 3; j++) xc[j] = dfl_rng_splitmix(&seed, -1, 1);
+        dfl_surfpoint sp;
+        ta_answer(&torus, xc, &sp);
+        double sc[8];
+        int side;
+        cr_assert_eq(dfl_proxy_encode(2, xc, &sp, NULL, 1e-14, sc, &side), 0);
+        /* n as decoded: along +-(p - x_c) */
+        double d[3], n[3];
+        for (int j = 0; j < 3; j++) d[j] = sc[j] - xc[j];
+        const double dl = dfl_vec3_norm(d), L = dfl_vec3_norm(sc + 5);
+        const double sgn = L > 1.5 ? -1 : 1;
+        for (int j = 0; j < 3; j++) n[j] = sgn * d[j] / dl;
+        const double tilt = tilts[k % 5];
+        for (int j = 0; j < 3; j++) sc[5 + j] += L * tilt * n[j];
+        for (int pos = 0; pos < 2; pos++) {
+            double s2[8];
+            memcpy(s2, sc, sizeof s2);
+            if (pos == DFL_PROXY_DISPLACEMENT)
+                for (int j = 0; j < 3; j++) s2[j] -= xc[j];
+            dfl_proxy_geom g;
+            dfl_proxy_decode(2, (dfl_proxy_position)pos, xc, s2, side, &g);
+            const double *v[3] = {g.n, g.t, g.b};
+            for (int a = 0; a < 3; a++)
+                for (int b = a; b < 3; b++)
+                    cr_expect(fabs(dfl_vec3_dot(v[a], v[b]) - (a == b)) < 1e-14,
+                              "k %d tilt %g pos %d: <%d,%d> = %.17g", k, tilt, pos, a, b,
+                              dfl_vec3_dot(v[a], v[b]));
+            double nt[3];
+            dfl_vec3_cross(g.n, g.t, nt);
+            for (int j = 0; j < 3; j++) cr_expect(fabs(nt[j] - g.b[j]) < 1e-14);
+        }
+    }
 }

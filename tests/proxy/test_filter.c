@@ -119,8 +119,9 @@ Test(proxy_filter, gradients_match_differences)
         dfl_proxy_filter_opts o;
         dfl_proxy_filter_opts_default((dfl_proxy_filter)f, &g, &o);
         o.is_signed = 1;
-        int n = 0;
-        while (n < 200) {
+        int n = 0, tries = 0;
+        /* bounded: a bug that rejects every point fails below, not hangs */
+        while (n < 200 && tries++ < 200000) {
             double x[3], gr[3];
             for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(&seed, -1.1, 1.1);
             const double v = eval1(&g, &o, x, gr);
@@ -141,6 +142,8 @@ Test(proxy_filter, gradients_match_differences)
                 cr_expect_float_eq(gr[j], fd[j], 1e-6, "%s at %g %g %g", dfl_proxy_filter_name(f),
                                    x[0], x[1], x[2]);
         }
+        cr_expect_eq(n, 200, "%s: %d points away from kinks in %d tries",
+                     dfl_proxy_filter_name(f), n, tries);
     }
     dfl_proxy_grid_free(&g);
 }

@@ -4,6 +4,7 @@
  * tube angle of the footpoint, outward normal). */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdlib.h>
 
 #include "core/rng.h"
 #include "core/vec.h"
@@ -121,4 +122,49 @@ Test(input_sdf, rejects_2d_shapes)
     cr_assert_eq(dfl_proxy_input_sdf(&s, DFL_PROXY_CURV_ANALYTIC, NULL, &in, &err), DFL_E_INPUT);
     cr_assert_null(s.impl);
     cr_assert_eq(dfl_proxy_input_query(&in, 0, NULL, 0, NULL, &err), DFL_E_INPUT);
+}
+
+/* A field that is not an SDF: k (|x - c| - r), |grad| = k.  The header's
+ * rule: certified exactly when ||grad f| - 1| <= 1e-6. */
+typedef struct scaled_sphere {
+    double c[3], r, k;
+} scaled_sphere;
+
+static void scaled_eval(const void *impl, size_t m, const double *pts, double *val, double *grad)
+{
+    const scaled_sphere *s = impl;
+    for (size_t i = 0; i < m; i++) {
+        double v[3], l = 0;
+        for (int j = 0; j < 3; j++) v[j] = pts[3 * i + j] - s->c[j], l += v[j] * v[j];
+        l = sqrt(l);
+        val[i] = s->k * (l - s->r);
+        if (grad)
+            for (int j = 0; j < 3; j++) grad[3 * i + j] = s->k * v[j] / l;
+    }
+}
+
+static void scaled_free(void *impl) { free(impl); }
+
+static const dfl_shape_ops scaled_ops = {"scaled_sphere", scaled_eval, NULL, scaled_free};
+
+Test(input_sdf, non_sdf_is_not_certified)
+{
+    static const double ks[] = {1.0, 1 + 5e-7, 1 - 5e-7, 1 + 2e-6, 1 - 2e-6, 1 + 1e-3, 0.5, 2};
+    static const int want[] = {1, 1, 1, 0, 0, 0, 0, 0};
+    for (int q = 0; q < 8; q++) {
+        scaled_sphere *ss = malloc(sizeof *ss);
+        cr_assert_not_null(ss);
+        *ss = (scaled_sphere){{0.1, -0.05, 0.02}, 0.5, ks[q]};
+        dfl_shape s = {3, &scaled_ops, ss};
+        dfl_proxy_input in = make(&s, DFL_PROXY_CURV_ANALYTIC);
+        enum { M = 50 };
+        double x[3 * M];
+        dfl_surfpoint o[M];
+        random_points(11, M, -1, 1, x);
+        cr_assert_eq(dfl_proxy_input_query(&in, M, x, 0, o, NULL), DFL_OK);
+        int n = 0;
+        for (int i = 0; i < M; i++) n += o[i].certified;
+        cr_expect_eq(n, want[q] ? M : 0, "|grad f| = %.9g: %d of %d certified", ks[q], n, M);
+        dfl_proxy_input_free(&in);
+    }
 }

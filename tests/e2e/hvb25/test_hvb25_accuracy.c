@@ -120,3 +120,77 @@ Test(e2e_hvb25_accuracy, bad_keys_exit_2, .timeout = 60)
                           "[field]\nkind = exact\n",
                           "reference", "nope");
 }
+
+/* [field] clip_radius with [study] filters: every filter's clip is
+ * clip_radius cell sizes (0.5 * h, h = 0.25), not its default. */
+Test(e2e_hvb25_accuracy, clip_radius_with_filters, .timeout = 60)
+{
+    char csv[1400];
+    run_text("[study]\nname = hvb25_accuracy\nfilters = nearest trilinear hermite\n" SPHERE
+             "[field]\nkind = proxy\norder = 1\nres = 8\ninput = sdf\nstorage = double\n"
+             "clip_radius = 0.5\n[eval]\nn = 9\n",
+             3, csv, sizeof csv);
+    for (long r = 0; r < 3; r++)
+        cr_expect_eq(e2e_csv_get(csv, r, "clip"), 0.125, "row %ld: clip %g", r,
+                     e2e_csv_get(csv, r, "clip"));
+}
+
+#define CONE "[shape]\nkind = cone\na = 0 0 -0.6\nb = 0 0 0.6\nra = 0.5\nrb = 0.1\n"
+
+/* A proxy is exact along its footpoint's normal line up to the focal point
+ * (decode.h: v = x_c - p is along n, so v_t = v_b = 0, a = v_n and phi =
+ * v_n), and a cell centre lies before it (its nearest point is p).  So on
+ * the nodes = the 8^3 cell centres, nearest decoding (its clip h is never
+ * active there: |x_c - p| - h < |phi|) reproduces the exact SDF of any shape
+ * whose footpoints are exact: torus and capped cone, SDF input, order 1 and
+ * 2, double storage, to rounding. */
+Test(e2e_hvb25_accuracy, torus_and_cone_exact_at_cell_centres, .timeout = 120)
+{
+    const char *shapes[2] = {TORUS, CONE};
+    for (int s = 0; s < 2; s++)
+        for (int order = 1; order <= 2; order++) {
+            char ini[1024], csv[700];
+            snprintf(ini, sizeof ini,
+                     "[study]\nname = hvb25_accuracy\nfilters = nearest\n%s"
+                     "[field]\nkind = proxy\norder = %d\nres = 8\ninput = sdf\nstorage = double\n"
+                     "[eval]\nn = 8\nlo = -0.875 -0.875 -0.875\nhi = 0.875 0.875 0.875\n",
+                     shapes[s], order);
+            run_text(ini, 1, csv, sizeof csv);
+            cr_expect(e2e_csv_get(csv, 0, "linf") < 1e-12, "%s order %d: linf %g",
+                      s ? "cone" : "torus", order, e2e_csv_get(csv, 0, "linf"));
+            cr_expect_eq(e2e_csv_get(csv, 0, "count"), 512.0);
+        }
+}
+
+/* The order-2 proxy of a cell centred in the torus's equator plane has its
+ * footpoint on the inner or outer equator, where the osculating torus is
+ * the torus itself (decode.h 2., DESIGN "Exactness invariants"): with the
+ * clip off (a radius of 100 cells never binds inside the box), nearest
+ * decoding is exact at every point of those cells, here a 33 x 33 x 33
+ * node slab |z| <= h/4 (N = 9, the centre layer k = 4 is z = 0). */
+Test(e2e_hvb25_accuracy, torus_order2_exact_in_equator_cells, .timeout = 120)
+{
+    char csv[700];
+    const double h = 2.0 / 9;
+    char ini[1024];
+    snprintf(ini, sizeof ini,
+             "[study]\nname = hvb25_accuracy\n" TORUS
+             "[field]\nkind = proxy\norder = 2\nres = 9\ninput = sdf\ncurvature = analytic\n"
+             "storage = double\nfilter = nearest\nclip_radius = 100\n"
+             "[eval]\nn = 33\nlo = -1 -1 %.17g\nhi = 1 1 %.17g\n",
+             -h / 4, h / 4);
+    run_text(ini, 1, csv, sizeof csv);
+    cr_expect(e2e_csv_get(csv, 0, "linf") < 1e-10, "linf %g", e2e_csv_get(csv, 0, "linf"));
+    cr_expect_eq(e2e_csv_get(csv, 0, "count"), 33.0 * 33 * 33);
+    /* the same slab one layer up (z = h, cells k = 5) is not exact: the
+     * tilted osculating tori err like rho^3 */
+    snprintf(ini, sizeof ini,
+             "[study]\nname = hvb25_accuracy\n" TORUS
+             "[field]\nkind = proxy\norder = 2\nres = 9\ninput = sdf\ncurvature = analytic\n"
+             "storage = double\nfilter = nearest\nclip_radius = 100\n"
+             "[eval]\nn = 33\nlo = -1 -1 %.17g\nhi = 1 1 %.17g\n",
+             h - h / 4, h + h / 4);
+    run_text(ini, 1, csv, sizeof csv);
+    cr_expect(e2e_csv_get(csv, 0, "linf") > 1e-6, "off the equator: linf %g",
+              e2e_csv_get(csv, 0, "linf"));
+}

@@ -45,3 +45,23 @@ Test(e2e_hvb25_render, sphere_depth_per_filter, .timeout = 60)
         free(depth);
     }
 }
+
+/* [field] clip_radius with [study] filters: every frame's clip is
+ * clip_radius cell sizes (0.5 * h, h = 0.25), not the filter's default. */
+Test(e2e_hvb25_render, clip_radius_with_filters, .timeout = 60)
+{
+    char dir[256], cfg[512], out[512], csv[700];
+    e2e_tmpdir(dir, sizeof dir);
+    e2e_write(dir, "t.ini",
+              "[study]\nname = hvb25_render\nfilters = nearest hermite\nreps = 1\n"
+              "[shape]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\n"
+              "[field]\nkind = proxy\norder = 1\nres = 8\ninput = sdf\nstorage = double\n"
+              "clip_radius = 0.5\n"
+              "[camera]\neye = 0 0 3\ntarget = 0 0 0\nup = 0 1 0\nfov = 30\nwidth = 9\n"
+              "height = 9\n",
+              cfg, sizeof cfg);
+    e2e_run_table(cfg, NULL, "hvb25_render", 2, out, sizeof out, csv, sizeof csv);
+    for (long r = 0; r < 2; r++)
+        cr_expect_eq(e2e_csv_get(csv, r, "clip"), 0.125, "row %ld: clip %g", r,
+                     e2e_csv_get(csv, r, "clip"));
+}
