@@ -4,9 +4,12 @@
  * depend on the thread count. */
 #include "pht/validate.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "core/rng.h"
 
 #define CHUNK 256
 
@@ -205,6 +208,267 @@ dfl_status dfl_pht_validate_grid(const dfl_field *f, const dfl_shape *shape,
         chunk_stats(f, shape, n, pts, o->band, &parts[c]);
     }
     finish(parts, nch, out);
+    free(parts);
+    return DFL_OK;
+}
+
+/* ---- the per-cell protocol ---- */
+
+void dfl_pht_cellval_opts_default(int dim, dfl_pht_cellval_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->eps = NAN;
+    o->random = 4;
+    o->seed = 1;
+    o->dense = dim == 2 ? 9 : 5;
+    o->scales = 12;
+}
+
+/* One cell's partial results (combined in cell order). */
+typedef struct cpart {
+    size_t n, skipped, band, off, medial, above;
+    double max, gmax, band_max, off_max, medial_max;
+    int medial_cell, nomem;
+} cpart;
+
+typedef struct cbuf {
+    size_t cap;
+    double *x, *d, *g, *f, *fg;
+    unsigned char *near, *kind; /* kind: 1 = near-medial point */
+} cbuf;
+
+static void cbuf_free(cbuf *b)
+{
+    free(b->x), free(b->d), free(b->g), free(b->f), free(b->fg), free(b->near), free(b->kind);
+    memset(b, 0, sizeof *b);
+}
+
+static int cbuf_init(cbuf *b, size_t cap, int dim)
+{
+    memset(b, 0, sizeof *b);
+    b->cap = cap;
+    b->x = malloc(cap * (size_t)dim * sizeof *b->x);
+    b->d = malloc(cap * sizeof *b->d);
+    b->g = malloc(cap * (size_t)dim * sizeof *b->g);
+    b->f = malloc(cap * sizeof *b->f);
+    b->fg = malloc(cap * (size_t)dim * sizeof *b->fg);
+    b->near = malloc(cap);
+    b->kind = malloc(cap);
+    return b->x && b->d && b->g && b->f && b->fg && b->near && b->kind ? 0 : -1;
+}
+
+/* Band flags of n points in pieces of CHUNK (band_chunk's bound). */
+static void band_all(const dfl_shape *s, size_t n, const double *x, const double *d,
+                     const double *g, double w, unsigned char *near)
+{
+    const int dim = s->dim;
+    for (size_t a = 0; a < n; a += CHUNK) {
+        size_t k = n - a < CHUNK ? n - a : CHUNK;
+        band_chunk(s, k, x + a * dim, d + a, g + a * dim, w, near + a);
+    }
+}
+
+static double gdist(int dim, const double *a, const double *b)
+{
+    double s = 0.0;
+    for (int j = 0; j < dim; j++) s += (a[j] - b[j]) * (a[j] - b[j]);
+    return sqrt(s);
+}
+
+/* Bisection of the footpoint jump on the segment [a, b] (gradients ga, gb,
+ * |ga - gb| > 0.1): keeps the half with the larger gradient difference.
+ * Returns 1 and the limit point in xm if the jump stays > 0.05 down to
+ * 1e-9 of the segment (at most 60 halvings), else 0. */
+static int bisect_jump(const dfl_shape *s, const double *a0, const double *b0, const double *ga0,
+                       const double *gb0, double *xm)
+{
+    const int dim = s->dim;
+    double a[3], b[3], ga[3], gb[3], m[3], gm[3], dm;
+    memcpy(a, a0, dim * sizeof *a), memcpy(b, b0, dim * sizeof *b);
+    memcpy(ga, ga0, dim * sizeof *ga), memcpy(gb, gb0, dim * sizeof *gb);
+    const double len0 = gdist(dim, a, b);
+    for (int it = 0; it < 60 && gdist(dim, a, b) > 1e-9 * len0; it++) {
+        for (int j = 0; j < dim; j++) m[j] = 0.5 * (a[j] + b[j]);
+        dfl_shape_eval(s, 1, m, &dm, gm);
+        if (!isfinite(dm)) return 0;
+        if (gdist(dim, ga, gm) >= gdist(dim, gm, gb)) {
+            memcpy(b, m, dim * sizeof *b), memcpy(gb, gm, dim * sizeof *gb);
+        } else {
+            memcpy(a, m, dim * sizeof *a), memcpy(ga, gm, dim * sizeof *ga);
+        }
+    }
+    if (!(gdist(dim, ga, gb) > 0.05)) return 0;
+    for (int j = 0; j < dim; j++) xm[j] = 0.5 * (a[j] + b[j]);
+    return 1;
+}
+
+static uint64_t vmix(uint64_t z)
+{
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+/* Lattice node i of q^dim nodes of [lo, hi] into x. */
+static void sub_node(int dim, int q, size_t i, const double *lo, const double *hi, double *x)
+{
+    for (int j = 0; j < dim; j++) {
+        size_t ij = i % (size_t)q;
+        i /= (size_t)q;
+        double t = (double)ij / (double)(q - 1);
+        x[j] = ij == (size_t)(q - 1) ? hi[j] : lo[j] + (hi[j] - lo[j]) * t;
+    }
+}
+
+static void one_cell(const dfl_pht_spline *sp, const dfl_shape *s, const dfl_pht_cellval_opts *o,
+                     size_t ci, cbuf *b, cpart *p)
+{
+    const int dim = s->dim;
+    double lo[3], hi[3], diag = 0.0;
+    int level;
+    dfl_pht_spline_cell(sp, ci, lo, hi, &level);
+    for (int j = 0; j < dim; j++) diag += (hi[j] - lo[j]) * (hi[j] - lo[j]);
+    diag = sqrt(diag);
+    memset(p, 0, sizeof *p);
+    /* the halving's nodes and the random points */
+    size_t n = 0, n3 = dim == 2 ? 9 : 27;
+    for (size_t i = 0; i < n3; i++, n++) sub_node(dim, 3, i, lo, hi, b->x + n * dim);
+    uint64_t st = vmix(o->seed ^ 0xD1B54A32D192ED03ull * (uint64_t)(level + 1));
+    for (int j = 0; j < dim; j++) {
+        uint64_t bits;
+        memcpy(&bits, &lo[j], sizeof bits);
+        st = vmix(st ^ (bits + 0x8CB92BA72F3D8DD7ull * (uint64_t)(j + 1)));
+    }
+    for (int r = 0; r < o->random; r++, n++)
+        for (int j = 0; j < dim; j++) b->x[n * dim + j] = dfl_rng_splitmix(&st, lo[j], hi[j]);
+    dfl_shape_eval(s, n, b->x, b->d, b->g);
+    band_all(s, n, b->x, b->d, b->g, 2.0 * diag, b->near);
+    int med = 0;
+    for (size_t i = 0; i < n; i++) med |= b->near[i] && isfinite(b->d[i]);
+    memset(b->kind, 0, n);
+    if (med) {
+        p->medial_cell = 1;
+        const int q = o->dense;
+        size_t qn = 1, n0 = n;
+        for (int j = 0; j < dim; j++) qn *= (size_t)q;
+        for (size_t i = 0; i < qn; i++) sub_node(dim, q, i, lo, hi, b->x + (n0 + i) * dim);
+        dfl_shape_eval(s, qn, b->x + n0 * dim, b->d + n0, b->g + n0 * dim);
+        memset(b->kind + n0, 0, qn);
+        n = n0 + qn;
+        size_t cap = (size_t)dim * qn / (size_t)q, nb = 0;
+        for (int a = 0; a < dim && nb < cap; a++) {
+            size_t stride = 1;
+            for (int j = 0; j < a; j++) stride *= (size_t)q;
+            for (size_t i = 0; i < qn && nb < cap; i++) {
+                if ((i / stride) % (size_t)q == (size_t)(q - 1)) continue;
+                const size_t ia = n0 + i, ib = n0 + i + stride;
+                if (!isfinite(b->d[ia]) || !isfinite(b->d[ib])) continue;
+                if (!(gdist(dim, b->g + ia * dim, b->g + ib * dim) > 0.1)) continue;
+                double xm[3];
+                nb++;
+                if (!bisect_jump(s, b->x + ia * dim, b->x + ib * dim, b->g + ia * dim,
+                                 b->g + ib * dim, xm))
+                    continue;
+                const double e = hi[a] - lo[a];
+                size_t m0 = n;
+                memcpy(b->x + n * dim, xm, dim * sizeof *xm);
+                n++;
+                for (int k = 1; k <= o->scales; k++)
+                    for (int sg = -1; sg <= 1; sg += 2) {
+                        double *y = b->x + n * dim;
+                        memcpy(y, xm, dim * sizeof *xm);
+                        y[a] += sg * ldexp(e, -k);
+                        if (y[a] < lo[a] || y[a] > hi[a]) continue;
+                        n++;
+                    }
+                dfl_shape_eval(s, n - m0, b->x + m0 * dim, b->d + m0, b->g + m0 * dim);
+                memset(b->kind + m0, 1, n - m0);
+            }
+        }
+    }
+    assert(n <= b->cap);
+    dfl_pht_eval_cell(sp, ci, n, b->x, b->f, b->fg, NULL);
+    band_all(s, n, b->x, b->d, b->g, o->band, b->near);
+    const int count_above = o->eps > 0;
+    for (size_t i = 0; i < n; i++) {
+        if (!isfinite(b->d[i])) {
+            p->skipped++;
+            continue;
+        }
+        double e = fabs(b->f[i] - b->d[i]), ge = 0.0;
+        if (!isfinite(e)) e = INFINITY;
+        for (int j = 0; j < dim; j++) {
+            double dj = b->fg[i * dim + j] - b->g[i * dim + j];
+            ge += dj * dj;
+        }
+        ge = isfinite(ge) ? sqrt(ge) : INFINITY;
+        p->n++;
+        p->max = fmax(p->max, e);
+        p->gmax = fmax(p->gmax, ge);
+        if (b->near[i]) {
+            p->band++;
+            p->band_max = fmax(p->band_max, e);
+        } else {
+            p->off++;
+            p->off_max = fmax(p->off_max, e);
+        }
+        if (b->kind[i]) {
+            p->medial++;
+            p->medial_max = fmax(p->medial_max, e);
+        }
+        if (count_above && e > o->eps) p->above++;
+    }
+}
+
+dfl_status dfl_pht_validate_cells(const dfl_pht_spline *s, const dfl_shape *shape,
+                                  const dfl_pht_cellval_opts *o, dfl_pht_cellval *out,
+                                  dfl_err *err)
+{
+    const int dim = shape->dim;
+    assert(dim == dfl_pht_spline_dim(s));
+    memset(out, 0, sizeof *out);
+    if (o->random < 0 || o->random > 256 || o->dense < 2 || o->dense > 33 || o->scales < 0 ||
+        o->scales > 40 || !(o->band >= 0.0) || !isfinite(o->band))
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "PHT cell validation: random %d (0..256), dense %d (2..33), scales %d "
+                           "(0..40), band %g (>= 0)",
+                           o->random, o->dense, o->scales, o->band);
+    const size_t nc = dfl_pht_spline_ncells(s);
+    size_t qn = 1;
+    for (int j = 0; j < dim; j++) qn *= (size_t)o->dense;
+    const size_t cap = 27 + (size_t)o->random + qn +
+                       (size_t)dim * qn / (size_t)o->dense * (1 + 2 * (size_t)o->scales);
+    cpart *parts = calloc(nc ? nc : 1, sizeof *parts);
+    if (!parts) return dfl_err_set(err, DFL_E_NOMEM, "PHT cell validation: out of memory");
+    int fail = 0;
+#pragma omp parallel reduction(| : fail)
+    {
+        cbuf b;
+        if (cbuf_init(&b, cap, dim) != 0) fail = 1;
+#pragma omp for schedule(dynamic, 8)
+        for (size_t i = 0; i < nc; i++)
+            if (!fail) one_cell(s, shape, o, i, &b, &parts[i]);
+        cbuf_free(&b);
+    }
+    if (fail) {
+        free(parts);
+        return dfl_err_set(err, DFL_E_NOMEM, "PHT cell validation: out of memory");
+    }
+    for (size_t i = 0; i < nc; i++) {
+        const cpart *p = &parts[i];
+        out->n += p->n;
+        out->skipped += p->skipped;
+        out->band += p->band;
+        out->off += p->off;
+        out->medial += p->medial;
+        out->above += p->above;
+        out->medial_cells += (size_t)p->medial_cell;
+        out->max = fmax(out->max, p->max);
+        out->gmax = fmax(out->gmax, p->gmax);
+        out->band_max = fmax(out->band_max, p->band_max);
+        out->off_max = fmax(out->off_max, p->off_max);
+        out->medial_max = fmax(out->medial_max, p->medial_max);
+    }
     free(parts);
     return DFL_OK;
 }
