@@ -268,37 +268,32 @@ static void band_all(const dfl_shape *s, size_t n, const double *x, const double
     }
 }
 
-static double gdist(int dim, const double *a, const double *b)
-{
-    double s = 0.0;
-    for (int j = 0; j < dim; j++) s += (a[j] - b[j]) * (a[j] - b[j]);
-    return sqrt(s);
-}
-
-/* Bisection of the footpoint jump on the segment [a, b] (gradients ga, gb,
- * |ga - gb| > 0.1): keeps the half with the larger gradient difference.
- * Returns 1 and the limit point in xm if the jump stays > 0.05 down to
- * 1e-9 of the segment (at most 60 halvings), else 0. */
-static int bisect_jump(const dfl_shape *s, const double *a0, const double *b0, const double *ga0,
-                       const double *gb0, double *xm)
+/* The medial axis on x's normal line (d, g: the exact SDF at x): the
+ * defect of the band criterion, |d(x)| + t - |d(x + t sigma g)|, is 0 while
+ * the footpoint stays x's and positive once the line has crossed the medial
+ * axis; t is bisected in [0, w] (the defect positive at w), at most 60
+ * halvings, down to 1e-9 w.  Returns 1 and the crossing in xm, 0 if the
+ * defect at w is not positive. */
+static int bisect_medial(const dfl_shape *s, const double *x, double d, const double *g, double w,
+                         double *xm)
 {
     const int dim = s->dim;
-    double a[3], b[3], ga[3], gb[3], m[3], gm[3], dm;
-    memcpy(a, a0, dim * sizeof *a), memcpy(b, b0, dim * sizeof *b);
-    memcpy(ga, ga0, dim * sizeof *ga), memcpy(gb, gb0, dim * sizeof *gb);
-    const double len0 = gdist(dim, a, b);
-    for (int it = 0; it < 60 && gdist(dim, a, b) > 1e-9 * len0; it++) {
-        for (int j = 0; j < dim; j++) m[j] = 0.5 * (a[j] + b[j]);
-        dfl_shape_eval(s, 1, m, &dm, gm);
-        if (!isfinite(dm)) return 0;
-        if (gdist(dim, ga, gm) >= gdist(dim, gm, gb)) {
-            memcpy(b, m, dim * sizeof *b), memcpy(gb, gm, dim * sizeof *gb);
-        } else {
-            memcpy(a, m, dim * sizeof *a), memcpy(ga, gm, dim * sizeof *ga);
-        }
+    const double sg = d < 0.0 ? -1.0 : 1.0;
+    double r = 0.0;
+    for (int j = 0; j < dim; j++) r += x[j] * x[j];
+    const double tol0 = 1e-12 * (1.0 + sqrt(r));
+    double lo = 0.0, hi = w, y[3], dy;
+    for (int j = 0; j < dim; j++) y[j] = x[j] + hi * sg * g[j];
+    dfl_shape_eval(s, 1, y, &dy, NULL);
+    if (!(fabs(d) + hi - fabs(dy) > 1e-6 * hi + tol0)) return 0;
+    for (int it = 0; it < 60 && hi - lo > 1e-9 * w; it++) {
+        const double t = 0.5 * (lo + hi);
+        for (int j = 0; j < dim; j++) y[j] = x[j] + t * sg * g[j];
+        dfl_shape_eval(s, 1, y, &dy, NULL);
+        if (fabs(d) + t - fabs(dy) > 1e-6 * t + tol0) hi = t;
+        else lo = t;
     }
-    if (!(gdist(dim, ga, gb) > 0.05)) return 0;
-    for (int j = 0; j < dim; j++) xm[j] = 0.5 * (a[j] + b[j]);
+    for (int j = 0; j < dim; j++) xm[j] = x[j] + 0.5 * (lo + hi) * sg * g[j];
     return 1;
 }
 
@@ -355,35 +350,37 @@ static void one_cell(const dfl_pht_spline *sp, const dfl_shape *s, const dfl_pht
         dfl_shape_eval(s, qn, b->x + n0 * dim, b->d + n0, b->g + n0 * dim);
         memset(b->kind + n0, 0, qn);
         n = n0 + qn;
-        size_t cap = (size_t)dim * qn / (size_t)q, nb = 0;
-        for (int a = 0; a < dim && nb < cap; a++) {
-            size_t stride = 1;
-            for (int j = 0; j < a; j++) stride *= (size_t)q;
-            for (size_t i = 0; i < qn && nb < cap; i++) {
-                if ((i / stride) % (size_t)q == (size_t)(q - 1)) continue;
-                const size_t ia = n0 + i, ib = n0 + i + stride;
-                if (!isfinite(b->d[ia]) || !isfinite(b->d[ib])) continue;
-                if (!(gdist(dim, b->g + ia * dim, b->g + ib * dim) > 0.1)) continue;
-                double xm[3];
-                nb++;
-                if (!bisect_jump(s, b->x + ia * dim, b->x + ib * dim, b->g + ia * dim,
-                                 b->g + ib * dim, xm))
-                    continue;
-                const double e = hi[a] - lo[a];
-                size_t m0 = n;
-                memcpy(b->x + n * dim, xm, dim * sizeof *xm);
-                n++;
-                for (int k = 1; k <= o->scales; k++)
-                    for (int sg = -1; sg <= 1; sg += 2) {
-                        double *y = b->x + n * dim;
-                        memcpy(y, xm, dim * sizeof *xm);
-                        y[a] += sg * ldexp(e, -k);
-                        if (y[a] < lo[a] || y[a] > hi[a]) continue;
-                        n++;
+        /* normal-line bisection from the sub-grid nodes that see the medial
+         * axis within 2 diag (at most dim q^(dim-1) of them, in node order) */
+        band_all(s, qn, b->x + n0 * dim, b->d + n0, b->g + n0 * dim, 2.0 * diag, b->near + n0);
+        double e = hi[0] - lo[0];
+        for (int j = 1; j < dim; j++) e = fmin(e, hi[j] - lo[j]);
+        const size_t cap = (size_t)dim * qn / (size_t)q;
+        for (size_t i = 0, nb = 0; i < qn && nb < cap; i++) {
+            const size_t ia = n0 + i;
+            if (!b->near[ia] || !isfinite(b->d[ia])) continue;
+            nb++;
+            double xm[3], nrm[3];
+            memcpy(nrm, b->g + ia * dim, dim * sizeof *nrm);
+            if (!bisect_medial(s, b->x + ia * dim, b->d[ia], nrm, 2.0 * diag, xm)) continue;
+            int in = 1;
+            for (int j = 0; j < dim; j++) in &= xm[j] >= lo[j] && xm[j] <= hi[j];
+            if (!in) continue;
+            size_t m0 = n;
+            memcpy(b->x + n * dim, xm, dim * sizeof *xm);
+            n++;
+            for (int k = 1; k <= o->scales; k++)
+                for (int sg = -1; sg <= 1; sg += 2) {
+                    double *y = b->x + n * dim;
+                    int inside = 1;
+                    for (int j = 0; j < dim; j++) {
+                        y[j] = xm[j] + sg * ldexp(e, -k) * nrm[j];
+                        inside &= y[j] >= lo[j] && y[j] <= hi[j];
                     }
-                dfl_shape_eval(s, n - m0, b->x + m0 * dim, b->d + m0, b->g + m0 * dim);
-                memset(b->kind + m0, 1, n - m0);
-            }
+                    n += (size_t)inside;
+                }
+            dfl_shape_eval(s, n - m0, b->x + m0 * dim, b->d + m0, b->g + m0 * dim);
+            memset(b->kind + m0, 1, n - m0);
         }
     }
     assert(n <= b->cap);

@@ -36,14 +36,14 @@
  * points.  A cell is "medial" when one of those nodes is within 2 diag (the
  * cell's diagonal) of the medial axis along its normal line (the band
  * criterion above with w = 2 diag); a medial cell also gets the `dense`^dim
- * nodes of a uniform sub-grid, and on every sub-grid edge whose end points'
- * exact gradients differ by more than 0.1 (|g_a - g_b|) the footpoint jump
- * is bisected (at most 60 halvings, down to 1e-9 of the edge): if the jump
- * stays above 0.05 the limit point x_m is a medial point (a gradient that
- * turns smoothly loses its jump under bisection and gives none), and
- * x_m +- e 2^-k u, k = 1..scales (u the edge's direction, e the cell's edge
- * length along it; points outside the cell are dropped) join the set as
- * the "near-medial" points, with x_m itself.  Points are evaluated with the
+ * nodes of a uniform sub-grid, and from each sub-grid node x that sees the
+ * medial axis within 2 diag (at most dim dense^(dim-1) of them, in node
+ * order) the crossing of x's normal line with the medial axis is bisected on
+ * the band criterion's defect (it is 0 while the footpoint stays x's and
+ * positive past the crossing; at most 60 halvings, down to 1e-9 of 2 diag):
+ * the crossing x_m, if inside the cell, and x_m +- e 2^-k n, k = 1..scales
+ * (n = grad d(x), e the cell's shortest edge; points outside the cell are
+ * dropped) are "near-medial" points, with x_m itself.  Points are evaluated with the
  * polynomial of their own cell; duplicates at shared corners are kept (they
  * do not change a maximum).
  *
