@@ -220,8 +220,8 @@ void dfl_pht_cellval_opts_default(int dim, dfl_pht_cellval_opts *o)
     o->eps = NAN;
     o->random = 4;
     o->seed = 1;
-    o->dense = dim == 2 ? 9 : 5;
-    o->scales = 12;
+    o->dense = dim == 2 ? 5 : 4;
+    o->scales = 8;
 }
 
 /* One cell's partial results (combined in cell order). */
@@ -272,7 +272,7 @@ static void band_all(const dfl_shape *s, size_t n, const double *x, const double
  * defect of the band criterion, |d(x)| + t - |d(x + t sigma g)|, is 0 while
  * the footpoint stays x's and positive once the line has crossed the medial
  * axis; t is bisected in [0, w] (the defect positive at w), at most 60
- * halvings, down to 1e-9 w.  Returns 1 and the crossing in xm, 0 if the
+ * halvings, down to 1e-7 w.  Returns 1 and the crossing in xm, 0 if the
  * defect at w is not positive. */
 static int bisect_medial(const dfl_shape *s, const double *x, double d, const double *g, double w,
                          double *xm)
@@ -286,7 +286,7 @@ static int bisect_medial(const dfl_shape *s, const double *x, double d, const do
     for (int j = 0; j < dim; j++) y[j] = x[j] + hi * sg * g[j];
     dfl_shape_eval(s, 1, y, &dy, NULL);
     if (!(fabs(d) + hi - fabs(dy) > 1e-6 * hi + tol0)) return 0;
-    for (int it = 0; it < 60 && hi - lo > 1e-9 * w; it++) {
+    for (int it = 0; it < 60 && hi - lo > 1e-7 * w; it++) {
         const double t = 0.5 * (lo + hi);
         for (int j = 0; j < dim; j++) y[j] = x[j] + t * sg * g[j];
         dfl_shape_eval(s, 1, y, &dy, NULL);
@@ -355,26 +355,33 @@ static void one_cell(const dfl_pht_spline *sp, const dfl_shape *s, const dfl_pht
         band_all(s, qn, b->x + n0 * dim, b->d + n0, b->g + n0 * dim, 2.0 * diag, b->near + n0);
         double e = hi[0] - lo[0];
         for (int j = 1; j < dim; j++) e = fmin(e, hi[j] - lo[j]);
-        const size_t cap = (size_t)dim * qn / (size_t)q;
-        for (size_t i = 0, nb = 0; i < qn && nb < cap; i++) {
+        const size_t cap = (size_t)q;
+        size_t nf = 0;
+        for (size_t i = 0; i < qn; i++) nf += b->near[n0 + i] && isfinite(b->d[n0 + i]);
+        /* the flagged nodes j nf / cap, j = 0..cap-1: spread over the cell */
+        for (size_t i = 0, seen = 0, next = 0, nb = 0; i < qn && nb < cap; i++) {
             const size_t ia = n0 + i;
             if (!b->near[ia] || !isfinite(b->d[ia])) continue;
+            if (seen++ != next) continue;
             nb++;
+            next = nb * nf / cap;
+            if (next < seen) next = seen;
             double xm[3], nrm[3];
             memcpy(nrm, b->g + ia * dim, dim * sizeof *nrm);
             if (!bisect_medial(s, b->x + ia * dim, b->d[ia], nrm, 2.0 * diag, xm)) continue;
             int in = 1;
             for (int j = 0; j < dim; j++) in &= xm[j] >= lo[j] && xm[j] <= hi[j];
-            if (!in) continue;
             size_t m0 = n;
-            memcpy(b->x + n * dim, xm, dim * sizeof *xm);
-            n++;
+            if (in) memcpy(b->x + n++ * dim, xm, dim * sizeof *xm);
+            /* two offsets per octave: e 2^-k and 3/4 e 2^-k (the maximum of
+             * |f - d| next to a point kink sits at a fraction of e) */
             for (int k = 1; k <= o->scales; k++)
-                for (int sg = -1; sg <= 1; sg += 2) {
+                for (int h = 0; h < 4; h++) {
+                    const double t = (h & 1 ? 0.75 : 1.0) * ldexp(e, -k) * (h & 2 ? -1.0 : 1.0);
                     double *y = b->x + n * dim;
                     int inside = 1;
                     for (int j = 0; j < dim; j++) {
-                        y[j] = xm[j] + sg * ldexp(e, -k) * nrm[j];
+                        y[j] = xm[j] + t * nrm[j];
                         inside &= y[j] >= lo[j] && y[j] <= hi[j];
                     }
                     n += (size_t)inside;
@@ -433,8 +440,7 @@ dfl_status dfl_pht_validate_cells(const dfl_pht_spline *s, const dfl_shape *shap
     const size_t nc = dfl_pht_spline_ncells(s);
     size_t qn = 1;
     for (int j = 0; j < dim; j++) qn *= (size_t)o->dense;
-    const size_t cap = 27 + (size_t)o->random + qn +
-                       (size_t)dim * qn / (size_t)o->dense * (1 + 2 * (size_t)o->scales);
+    const size_t cap = 27 + (size_t)o->random + qn + (size_t)o->dense * (1 + 4 * (size_t)o->scales);
     cpart *parts = calloc(nc ? nc : 1, sizeof *parts);
     if (!parts) return dfl_err_set(err, DFL_E_NOMEM, "PHT cell validation: out of memory");
     int fail = 0;

@@ -37,13 +37,15 @@
  * cell's diagonal) of the medial axis along its normal line (the band
  * criterion above with w = 2 diag); a medial cell also gets the `dense`^dim
  * nodes of a uniform sub-grid, and from each sub-grid node x that sees the
- * medial axis within 2 diag (at most dim dense^(dim-1) of them, in node
- * order) the crossing of x's normal line with the medial axis is bisected on
+ * medial axis within 2 diag (at most `dense` of them, spread evenly over
+ * the flagged nodes in node order) the crossing of x's normal line with the medial axis is bisected on
  * the band criterion's defect (it is 0 while the footpoint stays x's and
- * positive past the crossing; at most 60 halvings, down to 1e-9 of 2 diag):
- * the crossing x_m, if inside the cell, and x_m +- e 2^-k n, k = 1..scales
- * (n = grad d(x), e the cell's shortest edge; points outside the cell are
- * dropped) are "near-medial" points, with x_m itself.  Points are evaluated with the
+ * positive past the crossing; at most 60 halvings, down to 1e-7 of 2 diag):
+ * the crossing x_m (if inside the cell; a crossing within the cell's
+ * neighbourhood still gives offsets) and x_m +- e 2^-k n, x_m +- (3/4) e
+ * 2^-k n, k = 1..scales (n = grad d(x), e the cell's shortest edge; points
+ * outside the cell are dropped) are the "near-medial" points.  Points are
+ * evaluated with the
  * polynomial of their own cell; duplicates at shared corners are kept (they
  * do not change a maximum).
  *
@@ -107,8 +109,8 @@ typedef struct dfl_pht_cellval_opts {
     double eps;      /* points with error > eps are counted (NaN or <= 0: none) */
     int random;      /* seeded random points per leaf cell, 0..256; default 4 */
     uint64_t seed;   /* default 1 */
-    int dense;       /* sub-grid nodes per axis of a medial cell, 2..33; default 9 (2D), 5 (3D) */
-    int scales;      /* near-medial offsets per side, 0..40; default 12 */
+    int dense;       /* sub-grid nodes per axis of a medial cell, 2..33; default 5 (2D), 4 (3D) */
+    int scales;      /* near-medial offsets per side, 0..40; default 8 */
 } dfl_pht_cellval_opts;
 
 typedef struct dfl_pht_cellval {
