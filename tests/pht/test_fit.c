@@ -187,3 +187,36 @@ Test(pht_fit, bad_options_name_the_option)
     cr_assert_eq(dfl_pht_estimator_from_name("grid"), DFL_PHT_EST_GRID);
     cr_assert_eq(dfl_pht_estimator_from_name("sobol"), -1);
 }
+
+/* capped (fit.h): the leaf cells above eps at max_level; 0 iff converged. */
+Test(pht_fit, capped_counts_the_cells_above_eps_at_max_level)
+{
+    dfl_shape s = circle();
+    dfl_pht_fit_opts o;
+    dfl_pht_fit_opts_default(2, &o);
+    o.eps = 1e-5;
+    o.max_level = 5;
+    dfl_pht_fit f;
+    fit(&s, &o, &f);
+    cr_assert_eq(f.converged, 0);
+    size_t above = 0;
+    const size_t nl = dfl_tmesh_nleaves(f.mesh);
+    const size_t *leaves = dfl_tmesh_leaves(f.mesh);
+    for (size_t i = 0; i < nl; i++) {
+        if (!(f.cell_err[i] > o.eps)) continue;
+        dfl_tmesh_cell c;
+        dfl_tmesh_cell_get(f.mesh, leaves[i], &c);
+        cr_assert_eq(c.level, o.max_level, "a cell above eps below max_level");
+        above++;
+    }
+    cr_assert_gt(above, 0);
+    cr_assert_eq(f.capped, above);
+    dfl_pht_fit_free(&f);
+    o.eps = 1e-2;
+    o.max_level = 10;
+    fit(&s, &o, &f);
+    cr_assert_eq(f.converged, 1);
+    cr_assert_eq(f.capped, 0);
+    dfl_pht_fit_free(&f);
+    dfl_shape_free(&s);
+}
