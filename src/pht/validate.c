@@ -272,7 +272,7 @@ static void band_all(const dfl_shape *s, size_t n, const double *x, const double
  * defect of the band criterion, |d(x)| + t - |d(x + t sigma g)|, is 0 while
  * the footpoint stays x's and positive once the line has crossed the medial
  * axis; t is bisected in [0, w] (the defect positive at w), at most 60
- * halvings, down to 1e-7 w.  Returns 1 and the crossing in xm, 0 if the
+ * halvings, down to 1e-6 w.  Returns 1 and the crossing in xm, 0 if the
  * defect at w is not positive. */
 static int bisect_medial(const dfl_shape *s, const double *x, double d, const double *g, double w,
                          double *xm)
@@ -286,7 +286,7 @@ static int bisect_medial(const dfl_shape *s, const double *x, double d, const do
     for (int j = 0; j < dim; j++) y[j] = x[j] + hi * sg * g[j];
     dfl_shape_eval(s, 1, y, &dy, NULL);
     if (!(fabs(d) + hi - fabs(dy) > 1e-6 * hi + tol0)) return 0;
-    for (int it = 0; it < 60 && hi - lo > 1e-7 * w; it++) {
+    for (int it = 0; it < 60 && hi - lo > 1e-6 * w; it++) {
         const double t = 0.5 * (lo + hi);
         for (int j = 0; j < dim; j++) y[j] = x[j] + t * sg * g[j];
         dfl_shape_eval(s, 1, y, &dy, NULL);
@@ -355,7 +355,7 @@ static void one_cell(const dfl_pht_spline *sp, const dfl_shape *s, const dfl_pht
         band_all(s, qn, b->x + n0 * dim, b->d + n0, b->g + n0 * dim, 2.0 * diag, b->near + n0);
         double e = hi[0] - lo[0];
         for (int j = 1; j < dim; j++) e = fmin(e, hi[j] - lo[j]);
-        const size_t cap = (size_t)q;
+        const size_t cap = (size_t)(q + 1) / 2;
         size_t nf = 0;
         for (size_t i = 0; i < qn; i++) nf += b->near[n0 + i] && isfinite(b->d[n0 + i]);
         /* the flagged nodes j nf / cap, j = 0..cap-1: spread over the cell */
@@ -392,7 +392,12 @@ static void one_cell(const dfl_pht_spline *sp, const dfl_shape *s, const dfl_pht
     }
     assert(n <= b->cap);
     dfl_pht_eval_cell(sp, ci, n, b->x, b->f, b->fg, NULL);
-    band_all(s, n, b->x, b->d, b->g, o->band, b->near);
+    /* near-medial points lie within e of the medial axis along a normal
+     * line: in the band whenever w > 0 (no second SDF for them) */
+    size_t nplain = n;
+    while (nplain > 0 && b->kind[nplain - 1]) nplain--;
+    band_all(s, nplain, b->x, b->d, b->g, o->band, b->near);
+    memset(b->near + nplain, o->band > 0.0, n - nplain);
     const int count_above = o->eps > 0;
     for (size_t i = 0; i < n; i++) {
         if (!isfinite(b->d[i])) {

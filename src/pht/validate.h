@@ -37,14 +37,15 @@
  * cell's diagonal) of the medial axis along its normal line (the band
  * criterion above with w = 2 diag); a medial cell also gets the `dense`^dim
  * nodes of a uniform sub-grid, and from each sub-grid node x that sees the
- * medial axis within 2 diag (at most `dense` of them, spread evenly over
+ * medial axis within 2 diag (at most (dense + 1) / 2 of them, spread evenly over
  * the flagged nodes in node order) the crossing of x's normal line with the medial axis is bisected on
  * the band criterion's defect (it is 0 while the footpoint stays x's and
- * positive past the crossing; at most 60 halvings, down to 1e-7 of 2 diag):
+ * positive past the crossing; at most 60 halvings, down to 1e-6 of 2 diag):
  * the crossing x_m (if inside the cell; a crossing within the cell's
  * neighbourhood still gives offsets) and x_m +- e 2^-k n, x_m +- (3/4) e
  * 2^-k n, k = 1..scales (n = grad d(x), e the cell's shortest edge; points
- * outside the cell are dropped) are the "near-medial" points.  Points are
+ * outside the cell are dropped) are the "near-medial" points, counted in
+ * the band whenever w > 0 (they are within e of the medial axis).  Points are
  * evaluated with the
  * polynomial of their own cell; duplicates at shared corners are kept (they
  * do not change a maximum).
