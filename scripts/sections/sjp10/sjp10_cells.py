@@ -98,11 +98,11 @@ def render(ctx):
     md += dflio.md_table(["case", "level k", "cells", "dofs", "max", "max off band", "grid max",
                           "grid mean", "time s"], body) + "\n\n"
     md += ("**Fitted slopes** d log10(cells) / d log10(1/error), dflab's rule, per-cell errors. "
-           "'Resolving' uses the thresholds over which the whole-box max error still falls (by ≥ 2× "
+           "'While the max falls' uses the thresholds over which the whole-box max error still falls (by ≥ 2× "
            "per threshold; below that the cells at the medial axis sit at max_level and the "
            "whole-box max stays at their kink error; those fits do not meet eps):\n\n")
-    md += dflio.md_table(["case", "PHT resolving (val max)", "thresholds used", "PHT vs 1/eps (all 5)",
-                          "PHT vs off-band max (all 5)", "uniform, val max", "uniform, off band (k ≥ 3)"],
+    md += dflio.md_table(["case", "PHT while the max falls", "thresholds used", "PHT vs 1/eps (all 5)",
+                          "PHT vs off-band max (all 5)", "uniform, max", "uniform, off band (k ≥ 3)"],
                          [[c, sc.fmt(v[0]), v[1], sc.fmt(v[2]), sc.fmt(v[3]), sc.fmt(v[4]), sc.fmt(v[5])]
                           for c, v in slopes.items()]) + "\n\n"
     sm = slopes.get("smooth")
@@ -113,7 +113,7 @@ def render(ctx):
     ci = slopes.get("circle")
     curve_cases = [c for c in cases if c not in ("circle", "smooth")]
     if ci:
-        md += (f"For the circle (medial axis = one point) the resolving slope is {sc.fmt(ci[0])} over "
+        md += (f"For the circle (medial axis = one point) the slope while the max falls is {sc.fmt(ci[0])} over "
                f"{ci[1]} thresholds (the whole-square max stops falling once the centre's cells "
                "reach max_level): "
                "near the centre a cell of size h errs by ∝ h (the SDF's cone), but only a bounded "
@@ -122,7 +122,7 @@ def render(ctx):
     if curve_cases:
         md += ("Where the medial axis is a curve of length L, each level along it holds ~2L/h cells "
                "and the kink's error is ∝ h, so while eps is above the kink error of the deepest "
-               "cells the count grows like 1/eps (slope 1): measured resolving slopes "
+               "cells the count grows like 1/eps (slope 1): measured slopes while the max falls "
                + ", ".join(f"{c} {sc.fmt(slopes[c][0])}" for c in curve_cases)
                + ". Once the medial cells sit at max_level, further thresholds refine only the "
                "smooth part (slope ~1/2; against the off-band error the curves give "
