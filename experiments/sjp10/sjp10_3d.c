@@ -12,6 +12,7 @@
  *   eps             = e1 e2 ...      thresholds (> 0)
  *   uniform_levels  = k1 ...         uniform grid levels (0..7)
  *   uniform_samples = 1              estimator points per uniform cell
+ *   rules           = dflab paper    fit rules of the pht rows (sjp10_common.h)
  * A case section:
  *   shape     = <section>   the surface fitted (its SDF needs derivatives)
  *   ref       = <section>   the validation reference (default: shape)
@@ -23,7 +24,10 @@
  *                           (slow references, small grids); false: per chunk
  *   eps, uniform_levels     the case's own lists (default: the study's)
  *   samples                 the case's estimator points per cell (default: the fit's)
- * Rows: one per case and fit.  Signs: negative inside (sjp10: positive).
+ *   cell_val  = true        also the per-cell protocol (cv_ columns, pht/validate.h)
+ *                           against ref; false for references too slow for it
+ *                           (cv_ columns NaN, converged judged by the estimator)
+ * Rows: one per case and fit (pht rows per rule and eps).  Signs: negative inside (sjp10: positive).
  */
 #include <math.h>
 #include <stdio.h>
@@ -47,7 +51,7 @@ typedef struct case3 {
     dfl_pht_source *src;
     double lo[3], hi[3];
     long val_n;
-    bool midpoints, cache;
+    bool midpoints, cache, cell_val;
     double band;
     double *eps, *levels;   /* the case's own lists (NULL: the study's) */
     size_t neps, nlevels;
@@ -62,6 +66,7 @@ typedef struct keys3 {
     double *eps, *levels;
     size_t neps, nlevels;
     long uniform_samples;
+    int rules[SJP10_RULES], nrules;
 } keys3;
 
 static void keys_free(keys3 *k)
@@ -120,6 +125,7 @@ static dfl_status read_case(const dfl_cfg *cfg, case3 *c, dfl_err *err)
     if ((st = dfl_cfg_int_opt(cfg, sec, "val_n", 217, 2, 1001, &c->val_n, err))) return st;
     if ((st = dfl_cfg_bool_opt(cfg, sec, "midpoints", false, &c->midpoints, err))) return st;
     if ((st = dfl_cfg_bool_opt(cfg, sec, "cache", false, &c->cache, err))) return st;
+    if ((st = dfl_cfg_bool_opt(cfg, sec, "cell_val", true, &c->cell_val, err))) return st;
     if ((st = dfl_cfg_double_opt(cfg, sec, "band", 0.0, 0.0, 1e300, &c->band, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, sec, "samples", 0, 0, 4096, &c->samples, err))) return st;
     c->own_eps = dfl_cfg_has(cfg, sec, "eps");
@@ -143,33 +149,42 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys3 *k, dfl_err *err)
     if ((st = sjp10_fit_from_cfg(cfg, "fit", 3, &k->fit, err))) return st;
     if ((st = read_lists(cfg, "study", "eps", NULL, &k->eps, &k->neps, err))) return st;
     if ((st = read_lists(cfg, "study", NULL, "uniform_levels", &k->levels, &k->nlevels, err))) return st;
+    if ((st = sjp10_rules_from_cfg(cfg, k->rules, &k->nrules, err))) return st;
     return dfl_cfg_int_opt(cfg, "study", "uniform_samples", 1, 1, 4096, &k->uniform_samples, err);
 }
 
-static dfl_status put_row(dfl_table *t, const case3 *c, const char *method, double eps, long level,
-                          const dfl_pht_fit_opts *o, const dfl_pht_fit *fit, const dfl_pht_val *v,
-                          double t_val, dfl_err *err)
+static dfl_status put_row(dfl_table *t, const case3 *c, const char *method, int rule, double eps,
+                          long level, const dfl_pht_fit_opts *o, const dfl_pht_fit *fit,
+                          const dfl_pht_val *v, const dfl_pht_cellval *cv, double t_val,
+                          dfl_err *err)
 {
     dfl_status st = dfl_table_row(t, err);
     if (!st) st = dfl_table_set_string(t, "case", c->name, err);
     if (!st) st = dfl_table_set_string(t, "method", method, err);
+    if (!st) st = dfl_table_set_string(t, "rule", sjp10_rule_name(rule), err);
     if (!st) st = dfl_table_set_double(t, "eps", eps, err);
     if (!st) st = dfl_table_set_int(t, "uniform_level", level, err);
     if (!st) st = dfl_table_set_int(t, "max_level", o->max_level, err);
     if (!st) st = dfl_table_set_int(t, "samples", o->samples, err);
-    if (!st) st = sjp10_put_fit(t, fit, err);
+    if (!st) st = dfl_table_set_int(t, "grade", o->grade, err);
+    if (!st) st = dfl_table_set_int(t, "peaks", o->peaks, err);
+    if (!st) st = sjp10_put_fit(t, fit, cv, eps, err);
     if (!st) st = dfl_table_set_int(t, "val_n", c->val_n, err);
     if (!st) st = dfl_table_set_int(t, "midpoints", c->midpoints, err);
     if (!st) st = dfl_table_set_double(t, "band", c->band, err);
     if (!st) st = sjp10_put_val(t, "val_", v, err);
     if (!st) st = dfl_table_set_double(t, "t_val", t_val, err);
+    if (!st) st = sjp10_put_cellval(t, cv, eps, err);
     return st;
 }
 
-static dfl_status one_fit(const keys3 *k, const case3 *c, const sjp10_ref *ref, double eps,
-                          long level, const dfl_study_ctx *ctx, dfl_table *t, dfl_err *err)
+static dfl_status one_fit(const keys3 *k, const case3 *c, const sjp10_ref *ref, int rule,
+                          double eps, long level, const dfl_study_ctx *ctx, dfl_table *t,
+                          dfl_err *err)
 {
     dfl_pht_fit_opts o = k->fit;
+    sjp10_rule_apply(rule, &o);
+    dfl_pht_cellval cv;
     memcpy(o.lo, c->lo, sizeof o.lo);
     memcpy(o.hi, c->hi, sizeof o.hi);
     if (c->samples > 0) o.samples = (int)c->samples;
@@ -185,7 +200,9 @@ static dfl_status one_fit(const keys3 *k, const case3 *c, const sjp10_ref *ref, 
         st = dfl_pht_fit_uniform(c->src, &o, (int)level, &fit, err);
     }
     if (st) return dfl_err_prefix(err, "[%s]", c->name);
-    st = dfl_pht_field_new(&fit.spline, &f, err);
+    if (c->cell_val)
+        st = sjp10_cellval(fit.spline, &c->ref, c->band, level < 0 ? eps : NAN, &cv, err);
+    if (!st) st = dfl_pht_field_new(&fit.spline, &f, err);
     const double t0 = omp_get_wtime();
     if (!st)
         st = ref ? sjp10_ref_errors(&f, ref, ctx->threads, &v, err)
@@ -193,8 +210,8 @@ static dfl_status one_fit(const keys3 *k, const case3 *c, const sjp10_ref *ref, 
                                        c->band, ctx->threads, &v, err);
     const double t_val = omp_get_wtime() - t0;
     if (!st)
-        st = put_row(t, c, level < 0 ? "pht" : "uniform", level < 0 ? eps : NAN, level, &o, &fit,
-                     &v, t_val, err);
+        st = put_row(t, c, level < 0 ? "pht" : "uniform", rule, level < 0 ? eps : NAN, level, &o,
+                     &fit, &v, c->cell_val ? &cv : NULL, t_val, err);
     dfl_field_destroy(&f);
     dfl_pht_fit_free(&fit);
     return st;
@@ -210,10 +227,11 @@ static dfl_status run_case(const keys3 *k, const case3 *c, const dfl_study_ctx *
                             ctx->threads, &ref, err);
     const double *eps = c->own_eps ? c->eps : k->eps, *lev = c->own_levels ? c->levels : k->levels;
     const size_t neps = c->own_eps ? c->neps : k->neps, nlev = c->own_levels ? c->nlevels : k->nlevels;
-    for (size_t i = 0; i < neps && !st; i++)
-        st = one_fit(k, c, c->cache ? &ref : NULL, eps[i], -1, ctx, t, err);
+    for (int r = 0; r < k->nrules && !st; r++)
+        for (size_t i = 0; i < neps && !st; i++)
+            st = one_fit(k, c, c->cache ? &ref : NULL, k->rules[r], eps[i], -1, ctx, t, err);
     for (size_t i = 0; i < nlev && !st; i++)
-        st = one_fit(k, c, c->cache ? &ref : NULL, NAN, (long)lev[i], ctx, t, err);
+        st = one_fit(k, c, c->cache ? &ref : NULL, 0, NAN, (long)lev[i], ctx, t, err);
     sjp10_ref_free(&ref);
     return st;
 }

@@ -16,7 +16,12 @@
  *   uniform_samples = 1               estimator points per cell of the uniform
  *                                     fits (only its column uses them)
  *   val_n = 301, band = 0.02          validation grid (+ midpoints), medial band
- * Rows: one per case and method (pht: per eps; uniform: per level).
+ *   rules = dflab paper               fit rules of the pht rows (sjp10_common.h)
+ * Validation: the grid (val_ columns, the same cached points for every fit
+ * of a case) and the per-cell protocol (cv_ columns, pht/validate.h);
+ * `converged` / `reason` judge eps against the per-cell max.
+ * Rows: one per case and method (pht: per rule and eps; uniform: per level,
+ * rule "dflab").
  * Signs: dflab's SDF is negative inside (sjp10: positive inside); errors
  * are absolute values and do not depend on it.
  */
@@ -40,6 +45,7 @@ typedef struct cells_keys {
     size_t nlevels;
     long uniform_samples, val_n;
     double band;
+    int rules[SJP10_RULES], nrules;
 } cells_keys;
 
 static void keys_free(cells_keys *k)
@@ -70,30 +76,36 @@ static dfl_status read_keys(const dfl_cfg *cfg, cells_keys *k, dfl_err *err)
     if ((st = dfl_cfg_int_opt(cfg, "study", "uniform_samples", 1, 1, 4096, &k->uniform_samples, err)))
         return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "val_n", 301, 2, 4001, &k->val_n, err))) return st;
+    if ((st = sjp10_rules_from_cfg(cfg, k->rules, &k->nrules, err))) return st;
     return dfl_cfg_double_opt(cfg, "study", "band", 0.02, 0.0, 1e300, &k->band, err);
 }
 
-static dfl_status put_row(dfl_table *t, const sjp10_case *c, const char *method, double eps,
-                          long level, const dfl_pht_fit_opts *o, const dfl_pht_fit *fit,
-                          const dfl_pht_val *v, double band, dfl_err *err)
+static dfl_status put_row(dfl_table *t, const sjp10_case *c, const char *method, int rule,
+                          double eps, long level, const dfl_pht_fit_opts *o, const dfl_pht_fit *fit,
+                          const dfl_pht_val *v, const dfl_pht_cellval *cv, double band,
+                          dfl_err *err)
 {
     dfl_status st = dfl_table_row(t, err);
     if (!st) st = dfl_table_set_string(t, "case", c->name, err);
     if (!st) st = dfl_table_set_string(t, "kind", c->shape.ops->kind, err);
     if (!st) st = dfl_table_set_string(t, "method", method, err);
+    if (!st) st = dfl_table_set_string(t, "rule", sjp10_rule_name(rule), err);
     if (!st) st = dfl_table_set_double(t, "eps", eps, err);
     if (!st) st = dfl_table_set_int(t, "uniform_level", level, err);
     if (!st) st = dfl_table_set_int(t, "max_level", o->max_level, err);
     if (!st) st = dfl_table_set_int(t, "samples", o->samples, err);
     if (!st) st = dfl_table_set_string(t, "split", dfl_pht_split_name(o->split), err);
-    if (!st) st = sjp10_put_fit(t, fit, err);
+    if (!st) st = dfl_table_set_int(t, "grade", o->grade, err);
+    if (!st) st = dfl_table_set_int(t, "peaks", o->peaks, err);
+    if (!st) st = sjp10_put_fit(t, fit, cv, eps, err);
     if (!st) st = dfl_table_set_double(t, "band", band, err);
     if (!st) st = sjp10_put_val(t, "val_", v, err);
+    if (!st) st = sjp10_put_cellval(t, cv, eps, err);
     return st;
 }
 
 /* Fit (adaptive when level < 0, else uniform at level), validate, one row. */
-static dfl_status one_fit(const cells_keys *k, const sjp10_case *c, const sjp10_ref *ref,
+static dfl_status one_fit(const cells_keys *k, const sjp10_case *c, const sjp10_ref *ref, int rule,
                           double eps, long level, const dfl_study_ctx *ctx, dfl_table *t,
                           dfl_err *err)
 {
@@ -101,7 +113,9 @@ static dfl_status one_fit(const cells_keys *k, const sjp10_case *c, const sjp10_
     dfl_pht_fit fit;
     dfl_field f = {0};
     dfl_pht_val v;
+    dfl_pht_cellval cv;
     dfl_status st;
+    sjp10_rule_apply(rule, &o);
     if (level < 0) {
         o.eps = eps;
         st = dfl_pht_fit_run(c->src, &o, &fit, err);
@@ -110,11 +124,12 @@ static dfl_status one_fit(const cells_keys *k, const sjp10_case *c, const sjp10_
         st = dfl_pht_fit_uniform(c->src, &o, (int)level, &fit, err);
     }
     if (st) return dfl_err_prefix(err, "[%s]", c->name);
-    st = dfl_pht_field_new(&fit.spline, &f, err);
+    st = sjp10_cellval(fit.spline, &c->shape, k->band, level < 0 ? eps : NAN, &cv, err);
+    if (!st) st = dfl_pht_field_new(&fit.spline, &f, err);
     if (!st) st = sjp10_ref_errors(&f, ref, ctx->threads, &v, err);
     if (!st)
-        st = put_row(t, c, level < 0 ? "pht" : "uniform", level < 0 ? eps : NAN, level, &o, &fit,
-                     &v, k->band, err);
+        st = put_row(t, c, level < 0 ? "pht" : "uniform", rule, level < 0 ? eps : NAN, level, &o,
+                     &fit, &v, &cv, k->band, err);
     dfl_field_destroy(&f);
     dfl_pht_fit_free(&fit);
     return st;
@@ -126,9 +141,11 @@ static dfl_status run_case(const cells_keys *k, const sjp10_case *c, const dfl_s
     sjp10_ref ref;
     dfl_status st = sjp10_ref_grid(&c->shape, k->fit.lo, k->fit.hi, (int)k->val_n, 1, k->band,
                                    ctx->threads, &ref, err);
-    for (size_t i = 0; i < k->neps && !st; i++) st = one_fit(k, c, &ref, k->eps[i], -1, ctx, t, err);
+    for (int r = 0; r < k->nrules && !st; r++)
+        for (size_t i = 0; i < k->neps && !st; i++)
+            st = one_fit(k, c, &ref, k->rules[r], k->eps[i], -1, ctx, t, err);
     for (size_t i = 0; i < k->nlevels && !st; i++)
-        st = one_fit(k, c, &ref, NAN, (long)k->levels[i], ctx, t, err);
+        st = one_fit(k, c, &ref, 0, NAN, (long)k->levels[i], ctx, t, err);
     sjp10_ref_free(&ref);
     return st;
 }

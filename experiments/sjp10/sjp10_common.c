@@ -199,8 +199,14 @@ dfl_status sjp10_ref_errors(const dfl_field *f, const sjp10_ref *r, int threads,
     return DFL_OK;
 }
 
-dfl_status sjp10_put_fit(dfl_table *t, const dfl_pht_fit *f, dfl_err *err)
+dfl_status sjp10_put_fit(dfl_table *t, const dfl_pht_fit *f, const dfl_pht_cellval *cv, double eps,
+                         dfl_err *err)
 {
+    int conv = f->converged;
+    const char *reason = "none";
+    if (!(eps > 0)) reason = "no_target";
+    else if (!f->converged) reason = "level_cap";
+    else if (cv && !(cv->max <= eps)) reason = "estimator", conv = 0;
     const dfl_pht_level *last = &f->levels[f->nlevels - 1];
     double tf = 0, ts = 0, tm = 0;
     for (int k = 0; k < f->nlevels; k++) {
@@ -213,7 +219,9 @@ dfl_status sjp10_put_fit(dfl_table *t, const dfl_pht_fit *f, dfl_err *err)
     if (!st) st = dfl_table_set_int(t, "dofs", (long)last->dofs, err);
     if (!st) st = dfl_table_set_int(t, "levels", (long)f->nlevels, err);
     if (!st) st = dfl_table_set_int(t, "max_cell_level", (long)dfl_tmesh_max_level(f->mesh), err);
-    if (!st) st = dfl_table_set_int(t, "converged", (long)f->converged, err);
+    if (!st) st = dfl_table_set_int(t, "converged", (long)conv, err);
+    if (!st) st = dfl_table_set_string(t, "reason", reason, err);
+    if (!st) st = dfl_table_set_int(t, "capped_cells", (long)f->capped, err);
     if (!st) st = dfl_table_set_int(t, "medial_vertices", (long)f->medial_vertices, err);
     if (!st) st = dfl_table_set_double(t, "est_max", last->max_err, err);
     if (!st) st = dfl_table_set_double(t, "est_mean", last->mean_err, err);
@@ -241,6 +249,76 @@ dfl_status sjp10_put_val(dfl_table *t, const char *prefix, const dfl_pht_val *v,
     snprintf(col, sizeof col, "%sband_points", prefix);
     if (!st) st = dfl_table_set_int(t, col, (long)v->band, err);
     return st;
+}
+
+dfl_status sjp10_cellval(const dfl_pht_spline *s, const dfl_shape *shape, double band, double eps,
+                         dfl_pht_cellval *out, dfl_err *err)
+{
+    dfl_pht_cellval_opts o;
+    dfl_pht_cellval_opts_default(shape->dim, &o);
+    o.band = band;
+    o.eps = eps;
+    return dfl_pht_validate_cells(s, shape, &o, out, err);
+}
+
+dfl_status sjp10_put_cellval(dfl_table *t, const dfl_pht_cellval *cv, double eps, dfl_err *err)
+{
+    dfl_pht_cellval none;
+    if (!cv) {
+        memset(&none, 0, sizeof none);
+        none.max = none.band_max = none.off_max = none.medial_max = none.gmax = NAN;
+        cv = &none;
+        eps = NAN;
+    }
+    dfl_status st = dfl_table_set_int(t, "cv_points", (long)cv->n, err);
+    if (!st) st = dfl_table_set_double(t, "cv_max", cv->max, err);
+    if (!st) st = dfl_table_set_double(t, "cv_band_max", cv->band_max, err);
+    if (!st) st = dfl_table_set_double(t, "cv_off_max", cv->off_max, err);
+    if (!st) st = dfl_table_set_double(t, "cv_medial_max", cv->medial_max, err);
+    if (!st) st = dfl_table_set_int(t, "cv_medial_points", (long)cv->medial, err);
+    if (!st) st = dfl_table_set_int(t, "cv_medial_cells", (long)cv->medial_cells, err);
+    const double share = eps > 0 && cv->n ? (double)cv->above / (double)cv->n : NAN;
+    if (!st) st = dfl_table_set_double(t, "cv_above_eps", share, err);
+    if (!st) st = dfl_table_set_double(t, "cv_gmax", cv->gmax, err);
+    return st;
+}
+
+static const char *const rule_names[SJP10_RULES] = {"dflab", "paper"};
+
+const char *sjp10_rule_name(int rule)
+{
+    return rule >= 0 && rule < SJP10_RULES ? rule_names[rule] : "?";
+}
+
+void sjp10_rule_apply(int rule, dfl_pht_fit_opts *o)
+{
+    if (rule == 1) o->grade = o->peaks = 0;
+}
+
+dfl_status sjp10_rules_from_cfg(const dfl_cfg *cfg, int *rules, int *n, dfl_err *err)
+{
+    char names[SJP10_RULES + 1][DFL_SECTION_NAME_LEN];
+    *n = 0;
+    if (!dfl_cfg_has(cfg, "study", "rules")) {
+        rules[(*n)++] = 0;
+        return DFL_OK;
+    }
+    int k = 0;
+    dfl_status st = dfl_section_names_from_cfg(cfg, "study", "rules", SJP10_RULES, names, &k,
+                                               "fit rule", err);
+    if (st) return st;
+    for (int i = 0; i < k; i++) {
+        int r = -1;
+        for (int j = 0; j < SJP10_RULES; j++)
+            if (strcmp(names[i], rule_names[j]) == 0) r = j;
+        for (int j = 0; j < *n; j++)
+            if (rules[j] == r) r = -2;
+        if (r < 0)
+            return dfl_cfg_reject(cfg, "study", "rules", err,
+                                  "expected dflab and/or paper, each once, got '%s'", names[i]);
+        rules[(*n)++] = r;
+    }
+    return DFL_OK;
 }
 
 /* ---- files ---- */

@@ -14,8 +14,11 @@
  *   sjp10_ref_errors   errors of a field against a reference (deterministic, parallel)
  *   sjp10_ref_free
  *   sjp10_stream_errors  the same without a cache (points and exact values per chunk)
- *   sjp10_put_fit      cells, base vertices, dofs, levels, times of a fit
+ *   sjp10_put_fit      cells, base vertices, dofs, levels, times, converged + reason of a fit
  *   sjp10_put_val      validation columns <prefix>max, mean, rms, gmax, off_max, ...
+ *   sjp10_cellval      the per-cell protocol (pht/validate.h) with the studies' options
+ *   sjp10_put_cellval  its columns cv_points, cv_max, cv_band_max, cv_off_max, ...
+ *   sjp10_rules_from_cfg / sjp10_rule_apply   [study] rules = dflab paper
  *   sjp10_eval         batched field evaluation in fixed parallel chunks
  *   sjp10_write_mesh   the leaf cells of a spline: .vtp (cells as quads coloured by level) + .csv
  *   sjp10_write_graph  the graph surface z = f(x, y) of a 2D field as a .vtp
@@ -99,7 +102,33 @@ dfl_status sjp10_stream_errors(const dfl_field *f, const dfl_shape *shape, const
 void sjp10_eval(const dfl_field *f, size_t m, const double *pts, double *val, double *grad,
                 int threads);
 
-dfl_status sjp10_put_fit(dfl_table *t, const dfl_pht_fit *f, dfl_err *err);
+/* Columns of a fit.  converged = 1 iff the fit's estimator met eps in
+ * every cell (f->converged) and, when cv is given, the per-cell validation
+ * max is <= eps; reason = "none" (converged), "level_cap" (cells above eps
+ * at max_level stopped the fit; capped_cells counts them), "estimator" (the
+ * estimator met eps but the validation max is above it).  eps NaN (uniform
+ * grids, no target): converged = f->converged and reason "no_target". */
+dfl_status sjp10_put_fit(dfl_table *t, const dfl_pht_fit *f, const dfl_pht_cellval *cv, double eps,
+                         dfl_err *err);
+
+/* The per-cell protocol on f's spline against shape, band width band,
+ * share above eps (pht/validate.h's default density).  DFL_E_NOMEM. */
+dfl_status sjp10_cellval(const dfl_pht_spline *s, const dfl_shape *shape, double band, double eps,
+                         dfl_pht_cellval *out, dfl_err *err);
+/* cv_points, cv_max, cv_band_max, cv_off_max, cv_medial_max, cv_medial_points,
+ * cv_medial_cells, cv_above_eps (share of points above eps, NaN without eps),
+ * cv_gmax; cv NULL (not run): NaN maxima and share, zero counts. */
+dfl_status sjp10_put_cellval(dfl_table *t, const dfl_pht_cellval *cv, double eps, dfl_err *err);
+
+/* Fit rules: "dflab" (the fit section's grade and peaks) and "paper"
+ * (sjp10's rule alone: grade = peaks = 0).  [study] rules = one or both
+ * (default "dflab"), in the order given, no repeats; DFL_E_INPUT naming the
+ * key.  rules[i] is 0 (dflab) or 1 (paper). */
+#define SJP10_RULES 2
+dfl_status sjp10_rules_from_cfg(const dfl_cfg *cfg, int *rules, int *n, dfl_err *err);
+const char *sjp10_rule_name(int rule);
+/* o with the rule applied. */
+void sjp10_rule_apply(int rule, dfl_pht_fit_opts *o);
 dfl_status sjp10_put_val(dfl_table *t, const char *prefix, const dfl_pht_val *v, dfl_err *err);
 
 /* <stem><tag>.vtp: every leaf cell as a quad (2D; 3D: its 6 faces) with

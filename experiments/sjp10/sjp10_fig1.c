@@ -11,8 +11,14 @@
  *   band       = 0.02            medial band width (pht/validate.h)
  *   image_n    = 201             nodes per axis of the .vti/.exr sample
  *   graph_n    = 101             nodes per axis of the graph surface
+ *   rules      = dflab paper     fit rules (sjp10_common.h): dflab's (the fit
+ *                                section's grade, peaks) and/or sjp10's alone
  * [output] vti, exr, compress, half (harness/field_out.h).
- * Rows: one per case.  Files per case: <case>_mesh.vtp/.csv (leaf cells,
+ * Validation: the grid (val_ columns) and the per-cell protocol (cv_
+ * columns, pht/validate.h); `converged` / `reason` judge eps against the
+ * per-cell max (sjp10_common.h).
+ * Rows: one per rule and case (rule column).  Files per case (stem
+ * <case>, <case>_paper for the paper rule): <case>_mesh.vtp/.csv (leaf cells,
  * point data "level"), <case>_graph.vtp (z = f, point data value, error =
  * f - d), <case>.vti/.exr (value, gradient, reference = exact SDF, error).
  * Signs: dflab's f and d are negative inside (sjp10: positive inside).
@@ -36,6 +42,7 @@ typedef struct fig1_keys {
     long val_n, image_n, graph_n;
     double band;
     dfl_field_write_opts out;
+    int rules[SJP10_RULES], nrules;
 } fig1_keys;
 
 static dfl_status read_keys(const dfl_cfg *cfg, fig1_keys *k, dfl_err *err)
@@ -50,6 +57,7 @@ static dfl_status read_keys(const dfl_cfg *cfg, fig1_keys *k, dfl_err *err)
     if ((st = dfl_cfg_double_opt(cfg, "study", "band", 0.02, 0.0, 1e300, &k->band, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "image_n", 201, 2, 4001, &k->image_n, err))) return st;
     if ((st = dfl_cfg_int_opt(cfg, "study", "graph_n", 101, 2, 2001, &k->graph_n, err))) return st;
+    if ((st = sjp10_rules_from_cfg(cfg, k->rules, &k->nrules, err))) return st;
     return dfl_field_out_from_cfg(cfg, &k->out, err);
 }
 
@@ -75,52 +83,61 @@ static dfl_status write_image(const dfl_study_ctx *ctx, const char *stem, const 
     return st;
 }
 
-static dfl_status put_row(dfl_table *t, const sjp10_case *c, const fig1_keys *k,
-                          const dfl_pht_fit *fit, const dfl_pht_val *v, const dfl_study_ctx *ctx,
-                          dfl_err *err)
+static dfl_status put_row(dfl_table *t, const sjp10_case *c, const char *base, int rule,
+                          const fig1_keys *k, const dfl_pht_fit *fit, const dfl_pht_val *v,
+                          const dfl_pht_cellval *cv, const dfl_study_ctx *ctx, dfl_err *err)
 {
-    char stem[96];
+    char stem[160];
     dfl_status st = dfl_table_row(t, err);
     if (!st) st = dfl_table_set_string(t, "case", c->name, err);
+    if (!st) st = dfl_table_set_string(t, "rule", sjp10_rule_name(rule), err);
     if (!st) st = dfl_table_set_string(t, "kind", c->shape.ops->kind, err);
     if (!st) st = dfl_table_set_double(t, "eps", k->fit.eps, err);
     if (!st) st = dfl_table_set_int(t, "max_level", k->fit.max_level, err);
     if (!st) st = dfl_table_set_int(t, "samples", k->fit.samples, err);
     if (!st) st = dfl_table_set_string(t, "split", dfl_pht_split_name(k->fit.split), err);
     if (!st) st = dfl_table_set_string(t, "estimator", dfl_pht_estimator_name(k->fit.estimator), err);
-    if (!st) st = sjp10_put_fit(t, fit, err);
+    if (!st) st = dfl_table_set_int(t, "grade", k->fit.grade && rule == 0, err);
+    if (!st) st = dfl_table_set_int(t, "peaks", k->fit.peaks && rule == 0, err);
+    if (!st) st = sjp10_put_fit(t, fit, cv, k->fit.eps, err);
     if (!st) st = dfl_table_set_double(t, "band", k->band, err);
     if (!st) st = sjp10_put_val(t, "val_", v, err);
-    snprintf(stem, sizeof stem, "%s_mesh", c->name);
+    if (!st) st = sjp10_put_cellval(t, cv, k->fit.eps, err);
+    snprintf(stem, sizeof stem, "%s_mesh", base);
     if (!st) st = dfl_study_put_file(t, "mesh_vtp", ctx, stem, "vtp", true, err);
     if (!st) st = dfl_study_put_file(t, "mesh_csv", ctx, stem, "csv", true, err);
-    snprintf(stem, sizeof stem, "%s_graph", c->name);
+    snprintf(stem, sizeof stem, "%s_graph", base);
     if (!st) st = dfl_study_put_file(t, "graph_vtp", ctx, stem, "vtp", true, err);
-    if (!st) st = dfl_study_put_file(t, "image_vti", ctx, c->name, "vti", k->out.vti, err);
+    if (!st) st = dfl_study_put_file(t, "image_vti", ctx, base, "vti", k->out.vti, err);
     return st;
 }
 
-static dfl_status run_case(const fig1_keys *k, sjp10_case *c, const dfl_study_ctx *ctx,
+static dfl_status run_case(const fig1_keys *k, sjp10_case *c, int rule, const dfl_study_ctx *ctx,
                            dfl_table *t, dfl_err *err)
 {
     dfl_pht_fit fit;
     dfl_field f = {0};
     sjp10_ref ref = {0};
     dfl_pht_val v;
-    char stem[96];
-    dfl_status st = dfl_pht_fit_run(c->src, &k->fit, &fit, err);
+    dfl_pht_cellval cv;
+    char stem[160], base[96];
+    dfl_pht_fit_opts o = k->fit;
+    sjp10_rule_apply(rule, &o);
+    snprintf(base, sizeof base, "%s%s", c->name, rule ? "_paper" : "");
+    dfl_status st = dfl_pht_fit_run(c->src, &o, &fit, err);
     if (st) return dfl_err_prefix(err, "[%s]", c->name);
+    if (!st) st = sjp10_cellval(fit.spline, &c->shape, k->band, k->fit.eps, &cv, err);
     if (!st) st = dfl_pht_field_new(&fit.spline, &f, err);
     if (!st) st = sjp10_ref_grid(&c->shape, k->fit.lo, k->fit.hi, (int)k->val_n, 1, k->band,
                                  ctx->threads, &ref, err);
     if (!st) st = sjp10_ref_errors(&f, &ref, ctx->threads, &v, err);
-    snprintf(stem, sizeof stem, "%s_mesh", c->name);
+    snprintf(stem, sizeof stem, "%s_mesh", base);
     if (!st) st = sjp10_write_mesh(ctx, stem, dfl_pht_field_spline(&f), err);
-    snprintf(stem, sizeof stem, "%s_graph", c->name);
+    snprintf(stem, sizeof stem, "%s_graph", base);
     if (!st) st = sjp10_write_graph(ctx, stem, &f, &c->shape, k->fit.lo, k->fit.hi,
                                     (int)k->graph_n, ctx->threads, err);
-    if (!st) st = write_image(ctx, c->name, &f, &c->shape, k, err);
-    if (!st) st = put_row(t, c, k, &fit, &v, ctx, err);
+    if (!st) st = write_image(ctx, base, &f, &c->shape, k, err);
+    if (!st) st = put_row(t, c, base, rule, k, &fit, &v, &cv, ctx, err);
     sjp10_ref_free(&ref);
     dfl_field_destroy(&f);
     dfl_pht_fit_free(&fit);
@@ -134,7 +151,9 @@ static dfl_status fig1_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     memset(&k, 0, sizeof k);
     dfl_status st = read_keys(cfg, &k, err);
     if (!st) st = dfl_cfg_check_used(cfg, err);
-    for (int i = 0; i < k.ncases && !st; i++) st = run_case(&k, &k.c[i], ctx, table, err);
+    for (int r = 0; r < k.nrules && !st; r++)
+        for (int i = 0; i < k.ncases && !st; i++)
+            st = run_case(&k, &k.c[i], k.rules[r], ctx, table, err);
     sjp10_cases_free(k.c, k.ncases);
     return st;
 }

@@ -267,7 +267,7 @@ static dfl_status put_fit_cols(dfl_table *t, const dfl_pht_fit_opts *o, const df
                                dfl_err *err)
 {
     dfl_status st = dfl_table_set_double(t, "eps", o->eps, err);
-    if (!st) st = sjp10_put_fit(t, fit, err);
+    if (!st) st = sjp10_put_fit(t, fit, NULL, o->eps, err);
     return st;
 }
 

@@ -470,13 +470,16 @@ dfl_status dfl_pht_fit_run(const dfl_pht_source *src, const dfl_pht_fit_opts *o,
         }
         split = sp;
         int all_ok = 1;
+        size_t capped = 0;
         for (size_t i = 0; i < nl; i++) {
             if (cell_err[i] <= o->eps) continue;
             all_ok = 0;
             int level;
             dfl_pht_spline_cell(F.spline, i, NULL, NULL, &level);
             if (level < o->max_level) split[ns++] = leaves[i];
+            else capped++;
         }
+        out->capped = capped;
         if (o->grade && ns) ns = add_owners(&F, split, ns, nl);
         out->converged = all_ok;
         rec->refined = ns;
@@ -487,8 +490,10 @@ dfl_status dfl_pht_fit_run(const dfl_pht_source *src, const dfl_pht_fit_opts *o,
     }
     free(split);
     int conv = out->converged;
+    size_t capped = out->capped;
     fitter_finish(&F, out, cell_err, levels, nlev, t_start);
     out->converged = conv;
+    out->capped = capped;
     return DFL_OK;
 fail:
     free(split);
@@ -534,11 +539,12 @@ dfl_status dfl_pht_fit_uniform(const dfl_pht_source *src, const dfl_pht_fit_opts
         fitter_abort(&F, cell_err, levels, out);
         return st;
     }
-    int conv = 1;
+    size_t capped = 0;
     for (size_t i = 0; i < dfl_tmesh_nleaves(F.mesh); i++)
-        if (!(cell_err[i] <= u.eps)) conv = 0;
+        if (!(cell_err[i] <= u.eps)) capped++;
     fitter_finish(&F, out, cell_err, levels, 1, t_start);
-    out->converged = conv;
+    out->converged = capped == 0;
+    out->capped = capped;
     return DFL_OK;
 }
 

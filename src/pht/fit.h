@@ -122,7 +122,9 @@ typedef struct dfl_pht_fit {
     double *cell_err;        /* estimator error per leaf cell of the final mesh (owned) */
     int nlevels;
     dfl_pht_level *levels;   /* nlevels records (owned) */
-    int converged;           /* 1 if every cell met eps, 0 if max_level stopped it */
+    int converged;           /* 1 if every cell's estimate met eps, 0 if max_level stopped it */
+    size_t capped;           /* leaf cells whose estimate is > eps at max_level (0 iff converged;
+                                uniform fits: cells above eps) */
     size_t medial_vertices;  /* base vertices whose data came from a medial tie */
     double t_total;          /* s, wall time of the whole fit */
 } dfl_pht_fit;

@@ -4,9 +4,12 @@
  * depend on the thread count. */
 #include "pht/validate.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "core/rng.h"
 
 #define CHUNK 256
 
@@ -205,6 +208,275 @@ dfl_status dfl_pht_validate_grid(const dfl_field *f, const dfl_shape *shape,
         chunk_stats(f, shape, n, pts, o->band, &parts[c]);
     }
     finish(parts, nch, out);
+    free(parts);
+    return DFL_OK;
+}
+
+/* ---- the per-cell protocol ---- */
+
+void dfl_pht_cellval_opts_default(int dim, dfl_pht_cellval_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->eps = NAN;
+    o->random = 4;
+    o->seed = 1;
+    o->dense = dim == 2 ? 5 : 4;
+    o->scales = 8;
+}
+
+/* One cell's partial results (combined in cell order). */
+typedef struct cpart {
+    size_t n, skipped, band, off, medial, above;
+    double max, gmax, band_max, off_max, medial_max;
+    int medial_cell, nomem;
+} cpart;
+
+typedef struct cbuf {
+    size_t cap;
+    double *x, *d, *g, *f, *fg;
+    unsigned char *near, *kind; /* kind: 1 = near-medial point */
+} cbuf;
+
+static void cbuf_free(cbuf *b)
+{
+    free(b->x), free(b->d), free(b->g), free(b->f), free(b->fg), free(b->near), free(b->kind);
+    memset(b, 0, sizeof *b);
+}
+
+static int cbuf_init(cbuf *b, size_t cap, int dim)
+{
+    memset(b, 0, sizeof *b);
+    b->cap = cap;
+    b->x = malloc(cap * (size_t)dim * sizeof *b->x);
+    b->d = malloc(cap * sizeof *b->d);
+    b->g = malloc(cap * (size_t)dim * sizeof *b->g);
+    b->f = malloc(cap * sizeof *b->f);
+    b->fg = malloc(cap * (size_t)dim * sizeof *b->fg);
+    b->near = malloc(cap);
+    b->kind = malloc(cap);
+    return b->x && b->d && b->g && b->f && b->fg && b->near && b->kind ? 0 : -1;
+}
+
+/* Band flags of n points in pieces of CHUNK (band_chunk's bound). */
+static void band_all(const dfl_shape *s, size_t n, const double *x, const double *d,
+                     const double *g, double w, unsigned char *near)
+{
+    const int dim = s->dim;
+    for (size_t a = 0; a < n; a += CHUNK) {
+        size_t k = n - a < CHUNK ? n - a : CHUNK;
+        band_chunk(s, k, x + a * dim, d + a, g + a * dim, w, near + a);
+    }
+}
+
+/* The medial axis on x's normal line (d, g: the exact SDF at x): the
+ * defect of the band criterion, |d(x)| + t - |d(x + t sigma g)|, is 0 while
+ * the footpoint stays x's and positive once the line has crossed the medial
+ * axis; t is bisected in [0, w] (the defect positive at w), at most 60
+ * halvings, down to 1e-6 w.  Returns 1 and the crossing in xm, 0 if the
+ * defect at w is not positive. */
+static int bisect_medial(const dfl_shape *s, const double *x, double d, const double *g, double w,
+                         double *xm)
+{
+    const int dim = s->dim;
+    const double sg = d < 0.0 ? -1.0 : 1.0;
+    double r = 0.0;
+    for (int j = 0; j < dim; j++) r += x[j] * x[j];
+    const double tol0 = 1e-12 * (1.0 + sqrt(r));
+    double lo = 0.0, hi = w, y[3], dy;
+    for (int j = 0; j < dim; j++) y[j] = x[j] + hi * sg * g[j];
+    dfl_shape_eval(s, 1, y, &dy, NULL);
+    if (!(fabs(d) + hi - fabs(dy) > 1e-6 * hi + tol0)) return 0;
+    for (int it = 0; it < 60 && hi - lo > 1e-6 * w; it++) {
+        const double t = 0.5 * (lo + hi);
+        for (int j = 0; j < dim; j++) y[j] = x[j] + t * sg * g[j];
+        dfl_shape_eval(s, 1, y, &dy, NULL);
+        if (fabs(d) + t - fabs(dy) > 1e-6 * t + tol0) hi = t;
+        else lo = t;
+    }
+    for (int j = 0; j < dim; j++) xm[j] = x[j] + 0.5 * (lo + hi) * sg * g[j];
+    return 1;
+}
+
+static uint64_t vmix(uint64_t z)
+{
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+/* Lattice node i of q^dim nodes of [lo, hi] into x. */
+static void sub_node(int dim, int q, size_t i, const double *lo, const double *hi, double *x)
+{
+    for (int j = 0; j < dim; j++) {
+        size_t ij = i % (size_t)q;
+        i /= (size_t)q;
+        double t = (double)ij / (double)(q - 1);
+        x[j] = ij == (size_t)(q - 1) ? hi[j] : lo[j] + (hi[j] - lo[j]) * t;
+    }
+}
+
+static void one_cell(const dfl_pht_spline *sp, const dfl_shape *s, const dfl_pht_cellval_opts *o,
+                     size_t ci, cbuf *b, cpart *p)
+{
+    const int dim = s->dim;
+    double lo[3], hi[3], diag = 0.0;
+    int level;
+    dfl_pht_spline_cell(sp, ci, lo, hi, &level);
+    for (int j = 0; j < dim; j++) diag += (hi[j] - lo[j]) * (hi[j] - lo[j]);
+    diag = sqrt(diag);
+    memset(p, 0, sizeof *p);
+    /* the halving's nodes and the random points */
+    size_t n = 0, n3 = dim == 2 ? 9 : 27;
+    for (size_t i = 0; i < n3; i++, n++) sub_node(dim, 3, i, lo, hi, b->x + n * dim);
+    uint64_t st = vmix(o->seed ^ 0xD1B54A32D192ED03ull * (uint64_t)(level + 1));
+    for (int j = 0; j < dim; j++) {
+        uint64_t bits;
+        memcpy(&bits, &lo[j], sizeof bits);
+        st = vmix(st ^ (bits + 0x8CB92BA72F3D8DD7ull * (uint64_t)(j + 1)));
+    }
+    for (int r = 0; r < o->random; r++, n++)
+        for (int j = 0; j < dim; j++) b->x[n * dim + j] = dfl_rng_splitmix(&st, lo[j], hi[j]);
+    dfl_shape_eval(s, n, b->x, b->d, b->g);
+    band_all(s, n, b->x, b->d, b->g, 2.0 * diag, b->near);
+    int med = 0;
+    for (size_t i = 0; i < n; i++) med |= b->near[i] && isfinite(b->d[i]);
+    memset(b->kind, 0, n);
+    if (med) {
+        p->medial_cell = 1;
+        const int q = o->dense;
+        size_t qn = 1, n0 = n;
+        for (int j = 0; j < dim; j++) qn *= (size_t)q;
+        for (size_t i = 0; i < qn; i++) sub_node(dim, q, i, lo, hi, b->x + (n0 + i) * dim);
+        dfl_shape_eval(s, qn, b->x + n0 * dim, b->d + n0, b->g + n0 * dim);
+        memset(b->kind + n0, 0, qn);
+        n = n0 + qn;
+        /* normal-line bisection from the sub-grid nodes that see the medial
+         * axis within 2 diag (at most dim q^(dim-1) of them, in node order) */
+        band_all(s, qn, b->x + n0 * dim, b->d + n0, b->g + n0 * dim, 2.0 * diag, b->near + n0);
+        double e = hi[0] - lo[0];
+        for (int j = 1; j < dim; j++) e = fmin(e, hi[j] - lo[j]);
+        const size_t cap = (size_t)(q + 1) / 2;
+        size_t nf = 0;
+        for (size_t i = 0; i < qn; i++) nf += b->near[n0 + i] && isfinite(b->d[n0 + i]);
+        /* the flagged nodes j nf / cap, j = 0..cap-1: spread over the cell */
+        for (size_t i = 0, seen = 0, next = 0, nb = 0; i < qn && nb < cap; i++) {
+            const size_t ia = n0 + i;
+            if (!b->near[ia] || !isfinite(b->d[ia])) continue;
+            if (seen++ != next) continue;
+            nb++;
+            next = nb * nf / cap;
+            if (next < seen) next = seen;
+            double xm[3], nrm[3];
+            memcpy(nrm, b->g + ia * dim, dim * sizeof *nrm);
+            if (!bisect_medial(s, b->x + ia * dim, b->d[ia], nrm, 2.0 * diag, xm)) continue;
+            int in = 1;
+            for (int j = 0; j < dim; j++) in &= xm[j] >= lo[j] && xm[j] <= hi[j];
+            size_t m0 = n;
+            if (in) memcpy(b->x + n++ * dim, xm, dim * sizeof *xm);
+            /* two offsets per octave: e 2^-k and 3/4 e 2^-k (the maximum of
+             * |f - d| next to a point kink sits at a fraction of e) */
+            for (int k = 1; k <= o->scales; k++)
+                for (int h = 0; h < 4; h++) {
+                    const double t = (h & 1 ? 0.75 : 1.0) * ldexp(e, -k) * (h & 2 ? -1.0 : 1.0);
+                    double *y = b->x + n * dim;
+                    int inside = 1;
+                    for (int j = 0; j < dim; j++) {
+                        y[j] = xm[j] + t * nrm[j];
+                        inside &= y[j] >= lo[j] && y[j] <= hi[j];
+                    }
+                    n += (size_t)inside;
+                }
+            dfl_shape_eval(s, n - m0, b->x + m0 * dim, b->d + m0, b->g + m0 * dim);
+            memset(b->kind + m0, 1, n - m0);
+        }
+    }
+    assert(n <= b->cap);
+    dfl_pht_eval_cell(sp, ci, n, b->x, b->f, b->fg, NULL);
+    /* near-medial points lie within e of the medial axis along a normal
+     * line: in the band whenever w > 0 (no second SDF for them) */
+    size_t nplain = n;
+    while (nplain > 0 && b->kind[nplain - 1]) nplain--;
+    band_all(s, nplain, b->x, b->d, b->g, o->band, b->near);
+    memset(b->near + nplain, o->band > 0.0, n - nplain);
+    const int count_above = o->eps > 0;
+    for (size_t i = 0; i < n; i++) {
+        if (!isfinite(b->d[i])) {
+            p->skipped++;
+            continue;
+        }
+        double e = fabs(b->f[i] - b->d[i]), ge = 0.0;
+        if (!isfinite(e)) e = INFINITY;
+        for (int j = 0; j < dim; j++) {
+            double dj = b->fg[i * dim + j] - b->g[i * dim + j];
+            ge += dj * dj;
+        }
+        ge = isfinite(ge) ? sqrt(ge) : INFINITY;
+        p->n++;
+        p->max = fmax(p->max, e);
+        p->gmax = fmax(p->gmax, ge);
+        if (b->near[i]) {
+            p->band++;
+            p->band_max = fmax(p->band_max, e);
+        } else {
+            p->off++;
+            p->off_max = fmax(p->off_max, e);
+        }
+        if (b->kind[i]) {
+            p->medial++;
+            p->medial_max = fmax(p->medial_max, e);
+        }
+        if (count_above && e > o->eps) p->above++;
+    }
+}
+
+dfl_status dfl_pht_validate_cells(const dfl_pht_spline *s, const dfl_shape *shape,
+                                  const dfl_pht_cellval_opts *o, dfl_pht_cellval *out,
+                                  dfl_err *err)
+{
+    const int dim = shape->dim;
+    assert(dim == dfl_pht_spline_dim(s));
+    memset(out, 0, sizeof *out);
+    if (o->random < 0 || o->random > 256 || o->dense < 2 || o->dense > 33 || o->scales < 0 ||
+        o->scales > 40 || !(o->band >= 0.0) || !isfinite(o->band))
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "PHT cell validation: random %d (0..256), dense %d (2..33), scales %d "
+                           "(0..40), band %g (>= 0)",
+                           o->random, o->dense, o->scales, o->band);
+    const size_t nc = dfl_pht_spline_ncells(s);
+    size_t qn = 1;
+    for (int j = 0; j < dim; j++) qn *= (size_t)o->dense;
+    const size_t cap = 27 + (size_t)o->random + qn + (size_t)o->dense * (1 + 4 * (size_t)o->scales);
+    cpart *parts = calloc(nc ? nc : 1, sizeof *parts);
+    if (!parts) return dfl_err_set(err, DFL_E_NOMEM, "PHT cell validation: out of memory");
+    int fail = 0;
+#pragma omp parallel reduction(| : fail)
+    {
+        cbuf b;
+        if (cbuf_init(&b, cap, dim) != 0) fail = 1;
+#pragma omp for schedule(dynamic, 8)
+        for (size_t i = 0; i < nc; i++)
+            if (!fail) one_cell(s, shape, o, i, &b, &parts[i]);
+        cbuf_free(&b);
+    }
+    if (fail) {
+        free(parts);
+        return dfl_err_set(err, DFL_E_NOMEM, "PHT cell validation: out of memory");
+    }
+    for (size_t i = 0; i < nc; i++) {
+        const cpart *p = &parts[i];
+        out->n += p->n;
+        out->skipped += p->skipped;
+        out->band += p->band;
+        out->off += p->off;
+        out->medial += p->medial;
+        out->above += p->above;
+        out->medial_cells += (size_t)p->medial_cell;
+        out->max = fmax(out->max, p->max);
+        out->gmax = fmax(out->gmax, p->gmax);
+        out->band_max = fmax(out->band_max, p->band_max);
+        out->off_max = fmax(out->off_max, p->off_max);
+        out->medial_max = fmax(out->medial_max, p->medial_max);
+    }
     free(parts);
     return DFL_OK;
 }

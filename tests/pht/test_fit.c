@@ -9,6 +9,7 @@
 
 #include "geom/shape.h"
 #include "pht/fit.h"
+#include "pht/spline.h"
 
 static dfl_shape circle(void)
 {
@@ -186,4 +187,102 @@ Test(pht_fit, bad_options_name_the_option)
     cr_assert_str_eq(dfl_pht_estimator_name(DFL_PHT_EST_GRADIENT), "gradient");
     cr_assert_eq(dfl_pht_estimator_from_name("grid"), DFL_PHT_EST_GRID);
     cr_assert_eq(dfl_pht_estimator_from_name("sobol"), -1);
+}
+
+/* capped (fit.h): the leaf cells above eps at max_level; 0 iff converged. */
+Test(pht_fit, capped_counts_the_cells_above_eps_at_max_level)
+{
+    dfl_shape s = circle();
+    dfl_pht_fit_opts o;
+    dfl_pht_fit_opts_default(2, &o);
+    o.eps = 1e-5;
+    o.max_level = 5;
+    dfl_pht_fit f;
+    fit(&s, &o, &f);
+    cr_assert_eq(f.converged, 0);
+    size_t above = 0;
+    const size_t nl = dfl_tmesh_nleaves(f.mesh);
+    const size_t *leaves = dfl_tmesh_leaves(f.mesh);
+    for (size_t i = 0; i < nl; i++) {
+        if (!(f.cell_err[i] > o.eps)) continue;
+        dfl_tmesh_cell c;
+        dfl_tmesh_cell_get(f.mesh, leaves[i], &c);
+        cr_assert_eq(c.level, o.max_level, "a cell above eps below max_level");
+        above++;
+    }
+    cr_assert_gt(above, 0);
+    cr_assert_eq(f.capped, above);
+    dfl_pht_fit_free(&f);
+    o.eps = 1e-2;
+    o.max_level = 10;
+    fit(&s, &o, &f);
+    cr_assert_eq(f.converged, 1);
+    cr_assert_eq(f.capped, 0);
+    dfl_pht_fit_free(&f);
+    dfl_shape_free(&s);
+}
+
+/* mean_err (fit.h): the mean of |f - d| over all estimator points.  With
+ * the grid estimator on a uniform fit the points are known: the centres of
+ * the n x n subdivision of every cell (n = 2 for samples = 4). */
+Test(pht_fit, mean_err_is_the_mean_over_the_estimator_points)
+{
+    dfl_shape s = circle();
+    dfl_pht_source *src;
+    cr_assert_eq(dfl_pht_source_new(&s, &src, NULL), DFL_OK);
+    dfl_pht_fit_opts o;
+    dfl_pht_fit_opts_default(2, &o);
+    o.estimator = DFL_PHT_EST_GRID;
+    o.samples = 4;
+    dfl_pht_fit f;
+    cr_assert_eq(dfl_pht_fit_uniform(src, &o, 3, &f, NULL), DFL_OK);
+    const size_t nc = dfl_pht_spline_ncells(f.spline);
+    cr_assert_eq(nc, 64);
+    double sum = 0.0, mx = 0.0;
+    for (size_t i = 0; i < nc; i++) {
+        double lo[2], hi[2], x[8], v[4], d[4];
+        dfl_pht_spline_cell(f.spline, i, lo, hi, NULL);
+        for (int k = 0; k < 4; k++) {
+            x[2 * k] = lo[0] + (hi[0] - lo[0]) * ((k % 2) + 0.5) / 2;
+            x[2 * k + 1] = lo[1] + (hi[1] - lo[1]) * ((k / 2) + 0.5) / 2;
+        }
+        dfl_pht_eval(f.spline, 4, x, v, NULL, NULL);
+        dfl_shape_eval(&s, 4, x, d, NULL);
+        for (int k = 0; k < 4; k++) {
+            sum += fabs(v[k] - d[k]);
+            mx = fmax(mx, fabs(v[k] - d[k]));
+        }
+    }
+    cr_assert_float_eq(f.levels[0].mean_err, sum / (4.0 * nc), 1e-12 * sum / nc + 1e-18);
+    cr_assert_float_eq(f.levels[0].max_err, mx, 1e-12 * mx);
+    dfl_pht_fit_free(&f);
+    dfl_pht_source_free(src);
+    dfl_shape_free(&s);
+}
+
+/* The gradient estimator (fit.h) takes max(|f - d|, |grad f - grad d|) at
+ * the random estimator's points: on the same points (same seed and cells)
+ * its error is >= the random estimator's, and strictly larger on a uniform
+ * level-3 fit of the circle, whose gradient error next to the centre's kink
+ * is O(1) while the value error is O(h). */
+Test(pht_fit, gradient_estimator_adds_the_gradient_error)
+{
+    dfl_shape s = circle();
+    dfl_pht_source *src;
+    cr_assert_eq(dfl_pht_source_new(&s, &src, NULL), DFL_OK);
+    dfl_pht_fit_opts o;
+    dfl_pht_fit_opts_default(2, &o);
+    dfl_pht_fit fr, fg;
+    cr_assert_eq(dfl_pht_fit_uniform(src, &o, 3, &fr, NULL), DFL_OK);
+    o.estimator = DFL_PHT_EST_GRADIENT;
+    cr_assert_eq(dfl_pht_fit_uniform(src, &o, 3, &fg, NULL), DFL_OK);
+    const size_t nc = dfl_pht_spline_ncells(fr.spline);
+    for (size_t i = 0; i < nc; i++) cr_assert_geq(fg.cell_err[i], fr.cell_err[i], "cell %zu", i);
+    cr_assert_gt(fg.levels[0].max_err, 2.0 * fr.levels[0].max_err, "gradient %g, value %g",
+                 fg.levels[0].max_err, fr.levels[0].max_err);
+    cr_assert_gt(fg.levels[0].max_err, 0.1);
+    dfl_pht_fit_free(&fr);
+    dfl_pht_fit_free(&fg);
+    dfl_pht_source_free(src);
+    dfl_shape_free(&s);
 }

@@ -2,10 +2,16 @@
  * radius w around its centre (its medial axis is the centre, and there the
  * normal-line distance is the Euclidean one); the exact field validates to
  * zero; fitted circle and sphere meet eps at 10^4 random points off the
- * medial axis; the field adapter and its jets. */
+ * medial axis; the field adapter and its jets.  The per-cell protocol: its
+ * maximum is within 10 % of an independent dense probe of the same fit
+ * (circles whose centre is off the cell lattice), it partitions its
+ * points into band and off-band, finds near-medial points only where there
+ * is a medial axis, and does not depend on the thread count. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "core/rng.h"
 #include "field/exact.h"
@@ -109,5 +115,135 @@ Test(pht_validate, fitted_sphere_meets_eps_off_the_medial_axis)
     const double c[3] = {0.5, 0.5, 0.5};
     cr_assert_eq(dfl_shape_sphere(c, 0.3, &s, NULL), DFL_OK);
     fit_meets_eps(&s, 1e-3, 12, 0.1);
+    dfl_shape_free(&s);
+}
+
+/* Fit of s at eps (max_level ml); the caller frees fit and src. */
+static void small_fit(const dfl_shape *s, double eps, int ml, dfl_pht_source **src,
+                      dfl_pht_fit *fit)
+{
+    cr_assert_eq(dfl_pht_source_new(s, src, NULL), DFL_OK);
+    dfl_pht_fit_opts o;
+    dfl_pht_fit_opts_default(s->dim, &o);
+    o.eps = eps;
+    o.max_level = ml;
+    dfl_err err;
+    cr_assert_eq(dfl_pht_fit_run(*src, &o, fit, &err), DFL_OK, "%s", err.msg);
+}
+
+/* Brute force: max |f - d| over the q^2 nodes of every leaf cell of a 2D
+ * spline (cell edges included), each cell's own polynomial. */
+static double dense_probe(const dfl_pht_spline *sp, const dfl_shape *s, int q)
+{
+    const size_t nc = dfl_pht_spline_ncells(sp);
+    double *pts = malloc(2 * (size_t)q * q * sizeof *pts), *f = malloc((size_t)q * q * sizeof *f);
+    double *d = malloc((size_t)q * q * sizeof *d), best = 0.0;
+    for (size_t i = 0; i < nc; i++) {
+        double lo[2], hi[2];
+        dfl_pht_spline_cell(sp, i, lo, hi, NULL);
+        for (int a = 0; a < q; a++)
+            for (int b = 0; b < q; b++) {
+                pts[2 * (a * q + b)] = lo[0] + (hi[0] - lo[0]) * b / (q - 1);
+                pts[2 * (a * q + b) + 1] = lo[1] + (hi[1] - lo[1]) * a / (q - 1);
+            }
+        dfl_pht_eval_cell(sp, i, (size_t)q * q, pts, f, NULL, NULL);
+        dfl_shape_eval(s, (size_t)q * q, pts, d, NULL);
+        for (int k = 0; k < q * q; k++) best = fmax(best, fabs(f[k] - d[k]));
+    }
+    free(pts), free(f), free(d);
+    return best;
+}
+
+static void cells_match_probe(const dfl_shape *s, double eps, int ml)
+{
+    dfl_pht_source *src;
+    dfl_pht_fit fit;
+    small_fit(s, eps, ml, &src, &fit);
+    dfl_pht_cellval_opts o;
+    dfl_pht_cellval_opts_default(2, &o);
+    o.band = 0.02;
+    o.eps = eps;
+    dfl_pht_cellval v;
+    cr_assert_eq(dfl_pht_validate_cells(fit.spline, s, &o, &v, NULL), DFL_OK);
+    const double probe = dense_probe(fit.spline, s, 129);
+    cr_log_info("%s: cells %zu, cell protocol max %.4g (medial %.4g, %zu points), probe %.4g",
+                s->ops->kind, dfl_pht_spline_ncells(fit.spline), v.max, v.medial_max, v.medial,
+                probe);
+    cr_assert(probe > eps, "the case must have an error above eps (probe %g)", probe);
+    cr_assert(v.max >= 0.9 * probe && v.max <= 1.1 * probe, "%s: max %.4g vs dense probe %.4g",
+              s->ops->kind, v.max, probe);
+    cr_assert_eq(v.band + v.off, v.n);
+    cr_assert(v.medial > 0 && v.medial_cells > 0);
+    cr_assert(v.above > 0 && v.above < v.n);
+    cr_assert(v.medial_max <= v.max && v.band_max <= v.max && v.off_max <= v.max);
+    cr_assert(v.max == fmax(v.band_max, v.off_max));
+    dfl_pht_fit_free(&fit);
+    dfl_pht_source_free(src);
+}
+
+Test(pht_validate, cell_protocol_max_is_within_10_percent_of_a_dense_probe_circle)
+{
+    dfl_shape s;
+    const double c[2] = {0.43, 0.521};
+    cr_assert_eq(dfl_shape_circle(c, 0.3, &s, NULL), DFL_OK);
+    cells_match_probe(&s, 1e-4, 6);
+    dfl_shape_free(&s);
+}
+
+Test(pht_validate, cell_protocol_max_is_within_10_percent_of_a_dense_probe_deeper)
+{
+    dfl_shape s;
+    const double c[2] = {0.6123, 0.377};
+    cr_assert_eq(dfl_shape_circle(c, 0.27, &s, NULL), DFL_OK);
+    cells_match_probe(&s, 1e-5, 8);
+    dfl_shape_free(&s);
+}
+
+Test(pht_validate, cell_protocol_no_medial_points_without_a_medial_axis)
+{
+    dfl_shape s;
+    const double c[2] = {-0.4, 0.5};
+    cr_assert_eq(dfl_shape_circle(c, 0.1, &s, NULL), DFL_OK);
+    dfl_pht_source *src;
+    dfl_pht_fit fit;
+    small_fit(&s, 1e-5, 8, &src, &fit);
+    dfl_pht_cellval_opts o;
+    dfl_pht_cellval_opts_default(2, &o);
+    o.eps = 1e-5;
+    dfl_pht_cellval v;
+    cr_assert_eq(dfl_pht_validate_cells(fit.spline, &s, &o, &v, NULL), DFL_OK);
+    cr_assert_eq(v.medial, 0);
+    cr_assert_eq(v.medial_cells, 0);
+    cr_assert_eq(v.band, 0); /* band 0: every point is off the band */
+    cr_assert_eq(v.off, v.n);
+    const size_t nc = dfl_pht_spline_ncells(fit.spline);
+    cr_assert_eq(v.n, nc * (9 + (size_t)o.random));
+    o.dense = 1;
+    cr_assert_eq(dfl_pht_validate_cells(fit.spline, &s, &o, &v, NULL), DFL_E_INPUT);
+    dfl_pht_fit_free(&fit);
+    dfl_pht_source_free(src);
+    dfl_shape_free(&s);
+}
+
+Test(pht_validate, cell_protocol_is_thread_count_independent)
+{
+    dfl_shape s;
+    const double c[2] = {0.43, 0.521};
+    cr_assert_eq(dfl_shape_circle(c, 0.3, &s, NULL), DFL_OK);
+    dfl_pht_source *src;
+    dfl_pht_fit fit;
+    small_fit(&s, 1e-3, 6, &src, &fit);
+    dfl_pht_cellval_opts o;
+    dfl_pht_cellval_opts_default(2, &o);
+    o.band = 0.05;
+    o.eps = 1e-3;
+    dfl_pht_cellval v1, v2;
+    omp_set_num_threads(1);
+    cr_assert_eq(dfl_pht_validate_cells(fit.spline, &s, &o, &v1, NULL), DFL_OK);
+    omp_set_num_threads(2);
+    cr_assert_eq(dfl_pht_validate_cells(fit.spline, &s, &o, &v2, NULL), DFL_OK);
+    cr_assert(memcmp(&v1, &v2, sizeof v1) == 0);
+    dfl_pht_fit_free(&fit);
+    dfl_pht_source_free(src);
     dfl_shape_free(&s);
 }

@@ -9,7 +9,12 @@ ASSUMPTIONS = [
     "peers' protocol sphere (r 0.5) and torus (R 0.6, r 0.25, axis z) in [−1, 1]³, fitted from "
     "their analytic SDFs (exact jets) at eps = 1e-2, 3e-3, 1e-3, max_level 7, 16 random estimator "
     "points per cell, cross splits (8 children), validated on the peers' 217³ node grid (L1 = mean "
-    "|e|, L∞ = max |e|, no band).",
+    "|e|, L∞ = max |e|, no band) and by the per-cell protocol (pht/validate.h: every leaf cell's "
+    "27 halving nodes + 4 random points, a 4³ sub-grid and near-medial points in cells next to the "
+    "medial set; 'max per cell'); 'met eps' judges eps against the per-cell max (genus 2 and "
+    "Goursat: cell_val = false, their implicit footpoints are too slow for it, so the estimator "
+    "alone judges).",
+    sc.DEPARTURES,
     "Implicit input (sjp10 Sec. 3.3): the torus quartic, geom's genus-2 tube around Bernoulli's "
     "lemniscate (eps 0.1) in [−1.5, 1.5]³ and Goursat's tangle cube (x⁴+y⁴+z⁴−5|x|²+11.8 = 0) in "
     "[−3, 3]³; footpoints by geom's Riemannian Newton from several surface samples (not sjp10's "
@@ -30,13 +35,15 @@ def render(ctx):
     body = []
     for r in rows:
         what = f"eps {_f(r, 'eps'):g}" if r["method"] == "pht" else f"level {int(_f(r, 'uniform_level'))}"
-        body.append([r["case"], r["method"], what, int(_f(r, "cells")), int(_f(r, "dofs")),
-                     "yes" if _f(r, "converged") == 1 else "no", _f(r, "val_mean"), _f(r, "val_rms"),
-                     _f(r, "val_max"), _f(r, "val_gmax"),
+        body.append([r["case"], r["method"] + ("" if r["method"] != "pht" else f" ({sc.rule(r)})"),
+                     what, int(_f(r, "cells")), int(_f(r, "dofs")),
+                     sc.met(r) if r["method"] == "pht" else "—", _f(r, "val_mean"), _f(r, "val_rms"),
+                     _f(r, "val_max"), _f(r, "cv_max"), _f(r, "val_gmax"),
                      f"{int(_f(r, 'val_n'))}³" + (" + mid" if _f(r, "midpoints") == 1 else ""),
                      _f(r, "t_total"), _f(r, "t_val")])
-    md += dflio.md_table(["case", "method", "setting", "cells", "dofs (stored scalars)", "met eps",
-                          "L1", "RMS", "L∞", "max |∇f − ∇d|", "validation", "fit s", "validation s"],
+    md += dflio.md_table(["case", "method (rule)", "setting", "cells", "dofs (stored scalars)", "met eps",
+                          "L1", "RMS", "L∞ (grid)", "max per cell", "max |∇f − ∇d|", "validation",
+                          "fit s", "validation s"],
                          body) + "\n\n"
     pr = sc.peers(ctx, "discregrid3d") + [r for r in sc.peers(ctx, "simple3d") if "taylor2_float64" in r["method"]]
     pbody = [[r["shape"], r["protocol"] + " " + r["method"], r["param"], int(float(r["scalars"])),
@@ -45,7 +52,30 @@ def render(ctx):
            "Discregrid's cubic serendipity cells are C0 across cells, the PHT spline is C1):\n\n")
     md += dflio.md_table(["shape", "method", "N", "stored scalars", "L1", "L∞"], pbody) + "\n\n"
     # the issue's aim on the torus
-    tor = [r for r in rows if r["case"].startswith("torus") and r["method"] == "pht"]
+    sph = sorted([r for r in rows if r["case"].startswith("sphere") and r["method"] == "pht"
+                  and sc.rule(r) == "dflab"], key=lambda r: -_f(r, "eps"))
+    if len(sph) > 1:
+        md += ("**Sphere cell counts are not monotone in eps** ("
+               + ", ".join(f"{int(_f(r, 'cells'))} at {_f(r, 'eps'):g}" for r in sph)
+               + "). Away from its centre the sphere's SDF is smooth and the level-2 cells already "
+               "meet these thresholds; only the 8 cells touching the centre (the kink, a corner of "
+               "each) keep splitting, about 56 new cells per level, so every eps ≤ 3e-3 ends at "
+               "max_level 7 with ~8 + 56·6 cells, the kink's error (~0.22 h) above eps. At eps = "
+               "1e-2 the kink error of levels 4–6 (0.035, 0.015, 0.0083) straddles eps, and the "
+               "estimator's random points, which rarely come close to the kink corner, rate only 6 "
+               "of the 8 level-4 centre cells above eps: the mesh turns asymmetric, the unsplit "
+               "coarse centre cells give the data at their hanging corners (their polynomial, with "
+               "its kink error), and the finer neighbours inherit that error and split level after "
+               "level to max_level (240 cells at level 7). The count is decided by which of the "
+               "symmetric centre cells the estimator catches, not by eps alone (a per-level trace "
+               "of the fits: at 1e-2 the level-4 step splits 6 cells, at 3e-3 and 1e-3 all 8). "
+               "The paper's rule shows the same ("
+               + ", ".join(f"{int(_f(r, 'cells'))} at {_f(r, 'eps'):g}" for r in sorted(
+                   [r for r in rows if r["case"].startswith("sphere") and r["method"] == "pht"
+                    and sc.rule(r) == "paper"], key=lambda r: -_f(r, "eps")))
+               + ").\n\n")
+    tor = [r for r in rows if r["case"].startswith("torus") and r["method"] == "pht"
+           and sc.rule(r) == "dflab"]
     ok = [r for r in tor if _f(r, "dofs") <= 33000 and _f(r, "val_mean") <= 1.4e-4 and _f(r, "val_max") <= 2.6e-3]
     if tor:
         best = min(tor, key=lambda r: _f(r, "val_max"))

@@ -94,14 +94,16 @@ Test(e2e_sjp10_cells, uniform_counts_plane_exact_smooth_rate, .timeout = 120)
     e2e_rmtree(dir);
 }
 
-/* Bad input: a threshold <= 0, a uniform level out of range, an open curve
- * as a case: exit 2 naming the key. */
+/* Bad input: a threshold <= 0, a uniform level out of range, an unknown or
+ * repeated fit rule, an open curve as a case: exit 2 naming the key. */
 Test(e2e_sjp10_cells, bad_input, .timeout = 60)
 {
     static const char *const rows[][2] = {
         {"--set 'study.eps=1e-3 0'", "eps"},
         {"--set 'study.uniform_levels=2 13'", "uniform_levels"},
         {"--set fit.max_level=99", "max_level"},
+        {"--set 'study.rules=dflab foo'", "rules"},
+        {"--set 'study.rules=paper paper'", "rules"},
     };
     char dir[256], cfg[512];
     e2e_tmpdir(dir, sizeof dir);
