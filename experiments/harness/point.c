@@ -14,6 +14,7 @@
 #include "io/dirs.h"
 #include "io/manifest.h"
 #include "io/meta_attrs.h"
+#include "harness/nonfinite.h"
 #include "io/table.h"
 
 #include "dfl_version.h"
@@ -218,6 +219,8 @@ static dfl_status compute(const dfl_sweep *s, dfl_cfg *pt, size_t k, const char 
         st = dfl_table_prefix_string(t, p.cols[i], p.vals[i], err);
     const char *dummy;
     dfl_cfg_string(pt, "study", "name", &dummy, NULL); /* mark used */
+    bool allow; /* read by the runner after the run (harness/nonfinite.h) */
+    dfl_study_allow_nonfinite(pt, &allow, NULL);
     char tag[32];
     dfl_study_tag(k, s->np, tag, sizeof tag);
     dfl_study_ctx ctx = {.stage_dir = stage, .tag = tag, .point = k, .npoints = s->np,
