@@ -163,6 +163,16 @@ case("--version into /dev/full", ["--version"], ["cannot write"], rc=1, stdout_t
 case("probe into /dev/full", PROBE, ["cannot write"], ini=GOOD, pts=PTS, rc=1, stdout_to="/dev/full")
 case("out of memory", RUN, ["out of memory"], ini=HEAD + SHAPE + FIELD + b"[grid]\nn = 4096\n", rc=1,
      shell_prefix="ulimit -v 600000;")
+# ---- numbers at the ends of the double range -------------------------------
+case("pht eps 5e-324: below the smallest eps accepted",
+     ["run", os.path.join(REPO, "configs/paper/sjp10/sjp10_fig1.ini"), "--set", "fit.eps=5e-324",
+      "--out", "{D}/o"], ["fit.eps", "got '5e-324' (below the smallest value accepted, 1e-300)"])
+runc("offset 1e-400 rounds to zero", GOOD + b"[perturb]\noffset = 1e-400\n", "bad.ini:12",
+     "out of range", "below the smallest double")
+runc("offset 1e400 overflows", GOOD + b"[perturb]\noffset = 1e400\n", "bad.ini:12",
+     "out of range", "beyond the largest double")
+runc("offset 2 above the range", GOOD + b"[perturb]\noffset = 2\n", "bad.ini:12",
+     "above the largest value accepted, 1")
 # ---- the non-finite rule: outputs written, then exit 1 -------------------
 # A proxy whose footpoints are moved 1e10 (far beyond half's 65504) decodes
 # to a non-finite value at every one of the 17^3 = 4913 evaluation points.
