@@ -85,10 +85,12 @@ dfl_status dfl_proxy_grid_from_cfg(const dfl_cfg *cfg, const char *sec, const ch
     dfl_proxy_input in;
     if ((st = dfl_proxy_input_from_cfg(cfg, sec, shape_sec, &in, err))) return st;
     if (c.is_signed && !in.has_inside) {
+        /* the name before the free, which zeroes in */
+        const char *name = in.name ? in.name : "chosen";
         dfl_proxy_input_free(&in);
         return dfl_cfg_reject(cfg, sec, "signed", err,
                               "the %s input of this shape has no inside (use signed = false)",
-                              in.name ? in.name : "?");
+                              name);
     }
     st = dfl_proxy_grid_build(&in, &c.build, grid, err);
     dfl_proxy_input_free(&in);
