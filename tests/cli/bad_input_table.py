@@ -173,6 +173,26 @@ runc("offset 1e400 overflows", GOOD + b"[perturb]\noffset = 1e400\n", "bad.ini:1
      "out of range", "beyond the largest double")
 runc("offset 2 above the range", GOOD + b"[perturb]\noffset = 2\n", "bad.ini:12",
      "above the largest value accepted, 1")
+# ---- wrong answers accepted before: now input errors -----------------------
+RENDER = os.path.join(REPO, "configs/paper/hvb25/hvb25_table4_render_sphere.ini")
+for k, v, want in [("camera.target", "1.6 -2.2 1.4", "camera"), ("trace.max_steps", "0", "trace.max_steps"),
+                   ("trace.box", "maybe", "trace.box"), ("study.reps", "0", "study.reps"),
+                   ("trace.eps", "0", "trace.eps"), ("camera.fov", "nan", "camera.fov")]:
+    # every error path of the renderer's key reader (steps and box were read
+    # uninitialised there: exit 1 and no error line under the sanitizer)
+    case("hvb25_render %s = %s" % (k, v), ["run", RENDER, "--set", k + "=" + v, "--out", "{D}/o"],
+         [want])
+PX = (b"[study]\nname = hvb25_accuracy\n[shape]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\n"
+      b"[field]\nkind = proxy\norder = 2\nres = 4\ninput = sdf\ncurvature = fit\n[eval]\nn = 5\n")
+runc("proxy lo = -1e200 beyond |x| <= 1e150", PX, "field.lo", "[-1e+150, 1e+150]",
+     extra=["--set", "field.lo=-1e200"])
+for h in ["1e-300", "1e300", "1e-8", "1e6"]:
+    runc("fit_spacing = " + h + " is input (not a singular design)", PX, "field.fit_spacing",
+         "[1e-06, 10000]", extra=["--set", "field.fit_spacing=" + h])
+BZ = os.path.join(REPO, "configs/shapes/hvb25_bezier_single.ini").encode()
+runc("signed open surface names its input", b"[study]\nname = hvb25_accuracy\n[shape]\ninclude = " + BZ +
+     b"\n[field]\nkind = proxy\norder = 1\nres = 4\ninput = parametric\nsigned = true\n[eval]\nn = 5\n",
+     "bad.ini:10", "[field] signed", "the parametric input of this shape has no inside")
 # ---- the non-finite rule: outputs written, then exit 1 -------------------
 # A proxy whose footpoints are moved 1e10 (far beyond half's 65504) decodes
 # to a non-finite value at every one of the 17^3 = 4913 evaluation points.
