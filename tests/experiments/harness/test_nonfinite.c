@@ -6,6 +6,7 @@
 #include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "harness/nonfinite.h"
@@ -75,5 +76,28 @@ Test(nonfinite, allowed_run_exits_0_with_inf_metrics, .timeout = 120)
     free(msg);
     snprintf(csv, sizeof csv, "%s/q/hvb25_accuracy.csv", d);
     cr_expect_eq(e2e_csv_get(csv, 0, "nonfinite"), 729);
+    e2e_rmtree(d);
+}
+
+/* The report marks a row holding an error of +inf in red (scripts/dflio.py
+ * md_table), and only that row; nonfinite_count reads the count columns. */
+Test(nonfinite, report_marks_the_row_red, .timeout = 60)
+{
+    char d[512];
+    e2e_tmpdir(d, sizeof d);
+    char *out = NULL;
+    const int rc = e2e_python_run(
+        d, &out,
+        "-c \"import sys; sys.path.insert(0, 'scripts'); import dflio\n"
+        "t = dflio.md_table(['a', 'linf'], [['x', 0.5], ['y', float('inf')], ['z', 'inf']])\n"
+        "l = t.split(chr(10))\n"
+        "assert 'color:red' not in l[2], l[2]\n"
+        "assert l[3].count('color:red') == 2 and l[4].count('color:red') == 2, t\n"
+        "assert dflio.nonfinite_count({'nonfinite': '0', 'band_nonfinite': '3', 'l1': '9'}) == 3\n"
+        "assert dflio.nonfinite_count({'l1': 'inf'}) == 0\n"
+        "print('ok')\"");
+    cr_expect_eq(rc, 0, "%s", out ? out : "");
+    cr_expect(out && strstr(out, "ok"), "%s", out ? out : "");
+    free(out);
     e2e_rmtree(d);
 }
