@@ -142,11 +142,42 @@ def read_vti_plane(path, z=0):
     return x, y, {name: a[k] for name, a in arrays.items()}
 
 
+def is_nonfinite_error(v):
+    """True for a cell that holds an error of +inf (dflab's non-finite rule:
+    a point whose value was NaN or inf enters every metric as +inf), given
+    as a float or as the CSV text."""
+    if isinstance(v, float):
+        return v == float("inf")
+    return isinstance(v, str) and v.strip().lower() in ("inf", "+inf")
+
+
+def nonfinite_count(row):
+    """The largest count of a CSV row's columns whose name holds
+    "nonfinite" (0 when none): the points that entered its metrics as +inf."""
+    best = 0
+    for k, v in row.items():
+        if k and "nonfinite" in k:
+            try:
+                best = max(best, float(v))
+            except (TypeError, ValueError):
+                pass
+    return best
+
+
+def red(text):
+    return f'<span style="color:red">{text}</span>' if text != "" else text
+
+
 def md_table(header, rows):
-    """A GitHub-flavoured markdown table."""
+    """A GitHub-flavoured markdown table.  A row holding an error of +inf
+    (is_nonfinite_error) is shown in red, so that no reader takes its other
+    numbers for a clean result."""
     out = ["| " + " | ".join(header) + " |", "|" + "|".join("---" for _ in header) + "|"]
     for r in rows:
-        out.append("| " + " | ".join(fmt(c) for c in r) + " |")
+        cells = [fmt(c) for c in r]
+        if any(is_nonfinite_error(c) for c in r):
+            cells = [red(c) for c in cells]
+        out.append("| " + " | ".join(cells) + " |")
     return "\n".join(out)
 
 

@@ -43,7 +43,8 @@ dfl_status dfl_pht_opts_from_cfg(const dfl_cfg *cfg, const char *sec, int dim,
     long maxl, samples, seed;
     double eps;
     bool grade, peaks;
-    if ((st = dfl_cfg_double_opt(cfg, sec, "eps", r.eps, -INFINITY, INFINITY, &eps, err)))
+    /* the smallest eps accepted: 1e-300 (a target, with max_level as the cap) */
+    if ((st = dfl_cfg_double_opt(cfg, sec, "eps", r.eps, 1e-300, INFINITY, &eps, err)))
         return st;
     if (!(eps > 0))
         return dfl_cfg_reject(cfg, sec, "eps", err, "eps = %g, expected a target error > 0", eps);

@@ -1,5 +1,7 @@
 #include "cfg/proxy_cfg.h"
 
+#include "core/domain.h"
+
 #include <string.h>
 
 #include "cfg/proxy_input_cfg.h"
@@ -17,7 +19,8 @@ static dfl_status read_box_end(const dfl_cfg *cfg, const char *sec, const char *
         return DFL_OK;
     }
     if (dfl_cfg_point_dim(s) == 1) {
-        st = dfl_cfg_double(cfg, sec, key, -1e300, 1e300, &out[0], err);
+        /* a coordinate: |v| <= DFL_COORD_MAX, as the vector form */
+        st = dfl_cfg_double(cfg, sec, key, -DFL_COORD_MAX, DFL_COORD_MAX, &out[0], err);
         out[1] = out[2] = out[0];
         return st;
     }
@@ -85,10 +88,12 @@ dfl_status dfl_proxy_grid_from_cfg(const dfl_cfg *cfg, const char *sec, const ch
     dfl_proxy_input in;
     if ((st = dfl_proxy_input_from_cfg(cfg, sec, shape_sec, &in, err))) return st;
     if (c.is_signed && !in.has_inside) {
+        /* the name before the free, which zeroes in */
+        const char *name = in.name ? in.name : "chosen";
         dfl_proxy_input_free(&in);
         return dfl_cfg_reject(cfg, sec, "signed", err,
                               "the %s input of this shape has no inside (use signed = false)",
-                              in.name ? in.name : "?");
+                              name);
     }
     st = dfl_proxy_grid_build(&in, &c.build, grid, err);
     dfl_proxy_input_free(&in);

@@ -42,7 +42,10 @@ static dfl_status read_keys(const dfl_cfg *cfg, const char *sec, input_keys *k, 
     if ((st = dfl_cfg_enum_opt(cfg, sec, "curvature", curvs, 2, 0, &cv, err)) != DFL_OK) return st;
     if ((st = dfl_cfg_enum_opt(cfg, sec, "footpoint", foots, 2, 1, &fp, err)) != DFL_OK) return st;
     if ((st = dfl_cfg_int_opt(cfg, sec, "fit_grid", 5, 3, 15, &g, err)) != DFL_OK) return st;
-    if ((st = dfl_cfg_double_opt(cfg, sec, "fit_spacing", 0.01, 0.0, 1e300, &k->fit.spacing,
+    /* [1e-6, 1e4]: the range of h in which the fit's (unscaled) normal
+     * equations stay regular for every fit_grid 3..15; outside it the
+     * design is singular, which is the input's fault */
+    if ((st = dfl_cfg_double_opt(cfg, sec, "fit_spacing", 0.01, 1e-6, 1e4, &k->fit.spacing,
                                  err)) != DFL_OK)
         return st;
     if (!(k->fit.spacing > 0.0))

@@ -10,7 +10,7 @@
  *   curvature = analytic | fit                  (default analytic; sdf only)
  *   footpoint = paper | robust                  (default robust; implicit only)
  *   fit_grid  = g, 3..15                        (default 5; curvature = fit)
- *   fit_spacing = h > 0                         (default 0.01; curvature = fit)
+ *   fit_spacing = h in [1e-6, 1e4]              (default 0.01; curvature = fit)
  *   param_grid  = n, 4..512: parameter-grid starts per patch and direction
  *                 (default 16; parametric)
  *   param_starts = 1..3: nearest grid nodes refined by Newton (default 3;

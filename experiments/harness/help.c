@@ -7,6 +7,7 @@
 
 #include "harness/experiment.h"
 #include "harness/help.h"
+#include "harness/nonfinite.h"
 #include "harness/probe.h"
 #include "io/config.h"
 #include "io/table.h"
@@ -23,6 +24,8 @@ dfl_status dfl_study_help(const dfl_study *study, const char *config, FILE *out,
         dfl_probe_sections_defer(pt); /* the probe's, not the study's keys */
         const char *dummy;
         dfl_cfg_string(pt, "study", "name", &dummy, NULL);
+        bool allow; /* every study: the runner's non-finite rule */
+        dfl_study_allow_nonfinite(pt, &allow, NULL);
         dfl_study_ctx ctx = {.stage_dir = "/nonexistent/dflab-help", .tag = "", .point = 0,
                              .npoints = 1, .threads = 1};
         dfl_err e2;

@@ -20,6 +20,7 @@
 #include "io/manifest.h"
 #include "io/meta_attrs.h"
 #include "io/rfile.h"
+#include "harness/nonfinite.h"
 #include "io/table.h"
 
 #include "dfl_version.h"
@@ -439,6 +440,8 @@ static dfl_status compute(const dfl_sweep *s, dfl_cfg *pt, size_t k, const char 
     dfl_cfg_string(pt, "study", "name", &dummy, NULL); /* mark used */
     double mem_budget, work_budget; /* the runner's keys; validation checked them */
     dfl_sweep_budgets(pt, &mem_budget, &work_budget, NULL);
+    bool allow; /* read by the runner after the run (harness/nonfinite.h) */
+    dfl_study_allow_nonfinite(pt, &allow, NULL);
     char tag[32];
     dfl_study_tag(k, s->np, tag, sizeof tag);
     dfl_study_ctx ctx = {.stage_dir = stage, .tag = tag, .point = k, .npoints = s->np,

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "core/sha256.h"
+#include "harness/nonfinite.h"
 #include "harness/probe.h"
 #include "harness/sweep.h"
 #include "io/dirs.h"
@@ -123,7 +124,9 @@ static dfl_status validate_points(const dfl_sweep *s, dfl_err *err)
                              .npoints = s->np, .threads = s->threads};
         dfl_err e2;
         dfl_err_clear(&e2);
-        st = s->study->run(pt, &ctx, t, &e2);
+        bool allow;
+        st = dfl_study_allow_nonfinite(pt, &allow, &e2);
+        if (st == DFL_OK) st = s->study->run(pt, &ctx, t, &e2);
         if (!dfl_cfg_validated(pt) && st == DFL_OK) st = dfl_cfg_check_used(pt, &e2);
         if (dfl_cfg_validated(pt)) st = DFL_OK;
         if (st == DFL_OK) st = dfl_probe_sections_check(pt, &e2);
@@ -247,6 +250,24 @@ static void progress_stop(progress *p)
     pthread_cond_destroy(&p->cv);
 }
 
+/* The exit-status rule of harness/nonfinite.h over the folder just
+ * written (a point's or the merged one): each point's own allow_nonfinite. */
+static dfl_status check_nonfinite(const dfl_sweep *s, const char *dir, dfl_err *err)
+{
+    bool *allow = calloc(s->np ? s->np : 1, sizeof *allow);
+    if (!allow) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    dfl_status st = DFL_OK;
+    for (size_t k = 0; k < s->np && st == DFL_OK; k++) {
+        dfl_cfg *pt = NULL;
+        st = dfl_cfg_sweep_point(s->cfg, k, &pt, err);
+        if (st == DFL_OK) st = dfl_study_allow_nonfinite(pt, &allow[k], err);
+        dfl_cfg_free(pt);
+    }
+    if (st == DFL_OK) st = dfl_nonfinite_check(dir, allow, s->np, err);
+    free(allow);
+    return st;
+}
+
 dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
 {
     dfl_sweep s;
@@ -296,6 +317,11 @@ dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
         char pd[4400];
         fprintf(stderr, "dflab: wrote %s/\n", o->has_point ? dfl_point_dir(&s, lo, pd, sizeof pd)
                                                             : s.outdir);
+    }
+    if (st == DFL_OK) { /* after the outputs are written: exit 1 for a non-finite error */
+        char pd[4400];
+        st = check_nonfinite(&s, o->has_point ? dfl_point_dir(&s, lo, pd, sizeof pd) : s.outdir,
+                             err);
     }
     dfl_sweep_close(&s);
     return st;

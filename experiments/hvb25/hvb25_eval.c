@@ -47,7 +47,7 @@ void hvb25_view_field(const hvb25_view *v, dfl_field *out)
 
 /* Running sums of one decoding: count-weighted means of the slab metrics. */
 typedef struct acc {
-    size_t n[3];
+    size_t n[3], nf[3];
     double s1[3], s2[3], mx[3];
     hvb25_acc_result r;
 } acc;
@@ -133,6 +133,7 @@ static dfl_status add_masked(acc *a, int which, size_t m, const double *u, const
                          : dfl_metrics_compute(m, 3, u, NULL, ref, band, &mt, err);
     if (st != DFL_OK || mt.count == 0) return st;
     a->n[which] += mt.count;
+    a->nf[which] += mt.nonfinite;
     a->s1[which] += mt.l1 * (double)mt.count;
     a->s2[which] += mt.mse * (double)mt.count;
     if (mt.linf > a->mx[which]) a->mx[which] = mt.linf;
@@ -189,10 +190,12 @@ static dfl_status slab(const hvb25_acc_spec *s, int z, slab_bufs *b, acc *accs, 
             b->ref[i] = sgn ? b->d[i] : fabs(b->d[i]);
             const int fin = isfinite(b->u[i]);
             nonfinite += !fin;
-            b->m_all[i] = (unsigned char)fin;
-            b->m_band[i] = (unsigned char)(fin && fabs(b->d[i]) <= s->band);
-            b->m_off[i] = (unsigned char)(fin && b->jump[i] <= s->medial);
-            const double e = fin ? fabs(b->u[i] - b->ref[i]) : -1;
+            /* field/metrics' non-finite rule: such a point is an error of
+             * +inf in every set it lies in (by its reference) */
+            b->m_all[i] = 1;
+            b->m_band[i] = (unsigned char)(fabs(b->d[i]) <= s->band);
+            b->m_off[i] = (unsigned char)(b->jump[i] <= s->medial);
+            const double e = fin ? fabs(b->u[i] - b->ref[i]) : INFINITY;
             if (e > a->r.worst_err) {
                 a->r.worst_err = e;
                 memcpy(a->r.worst, b->pts + 3 * i, sizeof a->r.worst);
@@ -201,12 +204,10 @@ static dfl_status slab(const hvb25_acc_spec *s, int z, slab_bufs *b, acc *accs, 
             }
         }
         a->r.nonfinite += nonfinite;
-        /* all finite (the usual case): the band rule of field/metrics directly */
-        const int clean = nonfinite == 0;
-        dfl_status st = add_masked(a, 0, m, b->u, b->ref, clean ? NULL : b->m_all, 0, err);
-        if (!st) st = add_masked(a, 1, m, b->u, b->ref, clean ? NULL : b->m_band, s->band, err);
-        if (!st)
-            st = add_masked(a, 2, m, b->u, b->ref, clean && !nmedial ? NULL : b->m_off, 0, err);
+        /* the band rule of field/metrics directly; the off-medial set by mask */
+        dfl_status st = add_masked(a, 0, m, b->u, b->ref, NULL, 0, err);
+        if (!st) st = add_masked(a, 1, m, b->u, b->ref, NULL, s->band, err);
+        if (!st) st = add_masked(a, 2, m, b->u, b->ref, !nmedial ? NULL : b->m_off, 0, err);
         if (st) return st;
     }
     return DFL_OK;
@@ -223,6 +224,7 @@ static void finish(acc *a)
         mt->rms = sqrt(mt->mse);
         mt->linf = a->n[w] ? a->mx[w] : NAN;
         mt->gdef_mean = mt->gdef_max = NAN;
+        mt->nonfinite = a->nf[w];
     }
 }
 
@@ -253,7 +255,6 @@ dfl_status hvb25_acc_put(dfl_table *t, const hvb25_acc_result *r, size_t npoints
     dfl_status st = dfl_metrics_put(t, "", &r->all, err);
     if (!st) st = dfl_metrics_put(t, "_band", &r->band, err);
     if (!st) st = dfl_metrics_put(t, "_off", &r->off, err);
-    if (!st) st = dfl_table_set_int(t, "nonfinite", (long)r->nonfinite, err);
     if (!st) st = dfl_table_set_int(t, "medial", (long)r->medial, err);
     if (!st) st = dfl_table_set_double(t, "worst_x", r->worst[0], err);
     if (!st) st = dfl_table_set_double(t, "worst_y", r->worst[1], err);

@@ -60,7 +60,7 @@ typedef struct hvb25_cells {
 
 typedef struct hvb25_acc_result {
     dfl_metrics all, band, off;     /* whole grid, band, off the medial region */
-    size_t nonfinite, medial;       /* points left out (u not finite); medial points */
+    size_t nonfinite, medial;       /* points with u not finite (error +inf); medial points */
     double worst[3], worst_d, worst_err, worst_jump;  /* argmax |e| (first in grid order) */
     double eval_seconds;            /* decoding time over the whole grid */
 } hvb25_acc_result;

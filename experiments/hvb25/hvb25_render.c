@@ -57,8 +57,9 @@ static dfl_status read_camera(const dfl_cfg *cfg, dfl_camera *c, dfl_err *err)
 static dfl_status read_keys(const dfl_cfg *cfg, render_keys *k, dfl_err *err)
 {
     memset(k, 0, sizeof *k);
-    long steps;
-    bool box;
+    /* set before any getter: every error path below stores them too */
+    long steps = 256;
+    bool box = true;
     dfl_status st = hvb25_filters_from_cfg(cfg, "study", "filters", k->filters, &k->nfilters, err);
     if (!st) st = dfl_cfg_int_opt(cfg, "study", "reps", 3, 1, 100, &k->reps, err);
     if (!st) st = read_camera(cfg, &k->cam, err);

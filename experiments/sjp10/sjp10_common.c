@@ -123,8 +123,13 @@ typedef struct acc {
     double max, sum, sq, gmax, gsum;
 } acc;
 
+/* field/metrics' non-finite rule: a NaN error (a non-finite value of the
+ * fit) is +inf, so max, mean and rms become inf instead of a NaN that the
+ * max would drop. */
 static void acc_add(acc *a, double e, double ge)
 {
+    if (isnan(e)) e = INFINITY;
+    if (isnan(ge)) ge = INFINITY;
     a->n++;
     if (e > a->max) a->max = e;
     a->sum += e;

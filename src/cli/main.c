@@ -42,7 +42,10 @@ static const char *const usage_main =
     "made); 1 a failure of the machine (disk full, stdout closed or full, out of\n"
     "memory) or of a numerical method.  Every failure prints one line\n"
     "`dflab: error: ...` on stderr (non-printable bytes as \\xNN) and leaves no\n"
-    "output behind.\n";
+    "output behind -- but for one: a table that holds a point whose value was\n"
+    "not finite (NaN or inf: an error of +inf, counted in its `nonfinite`\n"
+    "columns) is written, then the run exits 1 naming table, row, column and\n"
+    "count, unless the config says `[study] allow_nonfinite = true`.\n";
 
 static const char *const usage_run =
     "usage: dflab run CONFIG.ini [--set section.key=value]... [--out DIR] [--threads N] [--quiet]\n"

@@ -46,25 +46,37 @@ static void metrics_finish(size_t cnt, double s1, double s2, double mx, int has_
 /* Sums of one fixed chunk of samples (see dfl_metrics_compute). */
 typedef struct chunk_sums {
     double s1, s2, g1, mx, gmx;
-    size_t cnt, bad;
+    size_t cnt, nonfinite, bad;
 } chunk_sums;
+
+/* The non-finite rule of metrics.h: the error of a sample whose value (or,
+ * with a gradient, whose gradient) is not finite is +inf. */
+static inline int sample_finite(const double *u, const double *gu, int dim, size_t i)
+{
+    if (!isfinite(u[i])) return 0;
+    for (int d = 0; gu && d < dim; d++)
+        if (!isfinite(gu[i * (size_t)dim + (size_t)d])) return 0;
+    return 1;
+}
 
 static void chunk_sum(size_t i0, size_t i1, int dim, const double *u, const double *gu,
                       const double *ref, int use_band, double band, chunk_sums *o)
 {
-    chunk_sums c = {0, 0, 0, 0, 0, 0, (size_t)-1};
+    chunk_sums c = {0, 0, 0, 0, 0, 0, 0, (size_t)-1};
     for (size_t i = i0; i < i1; i++) {
-        if (!isfinite(u[i]) || !isfinite(ref[i])) {
+        if (!isfinite(ref[i])) {
             if (i < c.bad) c.bad = i;
             continue;
         }
         if (use_band && fabs(ref[i]) > band) continue;
-        double e = fabs(u[i] - ref[i]);
+        const int fin = sample_finite(u, gu, dim, i);
+        double e = fin ? fabs(u[i] - ref[i]) : INFINITY;
+        c.nonfinite += !fin;
         c.s1 += e;
         c.s2 += e * e;
         if (e > c.mx) c.mx = e;
         if (gu) {
-            double gd = fabs(grad_norm(gu + i * (size_t)dim, dim) - 1.0);
+            double gd = fin ? fabs(grad_norm(gu + i * (size_t)dim, dim) - 1.0) : INFINITY;
             c.g1 += gd;
             if (gd > c.gmx) c.gmx = gd;
         }
@@ -89,18 +101,20 @@ dfl_status dfl_metrics_compute(size_t m, int dim, const double *u, const double 
 #pragma omp parallel for schedule(static) if (nch > 1)
     for (size_t k = 0; k < nch; k++)
         chunk_sum(k * C, k + 1 == nch ? m : (k + 1) * C, dim, u, gu, ref, use_band, band, &cs[k]);
-    size_t bad = (size_t)-1, cnt = 0;
+    size_t bad = (size_t)-1, cnt = 0, nonfinite = 0;
     double s1 = 0, s2 = 0, mx = 0, g1 = 0, gmx = 0;
     for (size_t k = 0; k < nch; k++) {
         s1 += cs[k].s1, s2 += cs[k].s2, g1 += cs[k].g1, cnt += cs[k].cnt;
+        nonfinite += cs[k].nonfinite;
         if (cs[k].mx > mx) mx = cs[k].mx;
         if (cs[k].gmx > gmx) gmx = cs[k].gmx;
         if (cs[k].bad < bad) bad = cs[k].bad;
     }
     if (cs != &one) free(cs);
     if (bad != (size_t)-1)
-        return dfl_err_set(err, DFL_E_NUMERIC, "non-finite field value at sample %zu", bad);
+        return dfl_err_set(err, DFL_E_NUMERIC, "non-finite reference value at sample %zu", bad);
     metrics_finish(cnt, s1, s2, mx, gu != NULL, g1, gmx, out);
+    out->nonfinite = nonfinite;
     return DFL_OK;
 }
 
@@ -142,11 +156,12 @@ dfl_status dfl_metrics_compute_saturating(size_t m, int dim, const double *u, co
     dfl_status st = band_rule(band, &use_band, err);
     if (st != DFL_OK) return st;
     double s1 = 0, s2 = 0, mx = 0, g1 = 0, gmx = 0;
-    size_t cnt = 0;
+    size_t cnt = 0, nonfinite = 0;
     for (size_t i = 0; i < m; i++) {
         if (use_band && !(fabs(ref[i]) <= band)) continue;
         double e = fabs(u[i] - ref[i]);
         if (!isfinite(e)) e = INFINITY;
+        nonfinite += !sample_finite(u, gu, dim, i);
         cnt++;
         s1 += e;
         s2 += e * e;
@@ -159,6 +174,7 @@ dfl_status dfl_metrics_compute_saturating(size_t m, int dim, const double *u, co
         }
     }
     metrics_finish(cnt, s1, s2, mx, gu != NULL, g1, gmx, out);
+    out->nonfinite = nonfinite;
     return DFL_OK;
 }
 
@@ -172,16 +188,21 @@ dfl_status dfl_metrics_bandstats(size_t m, int dim, const double *u, const doubl
     dfl_status st = band_rule(band, &use_band, err);
     if (st != DFL_OK) return st;
     double s = 0, sr = 0, sa = 0, s2 = 0, mx = 0, gs = 0, gmn = INFINITY, gmx = 0;
-    size_t cnt = 0, rcnt = 0, gcnt = 0;
+    size_t cnt = 0, rcnt = 0, gcnt = 0, nonfinite = 0;
     for (size_t i = 0; i < m; i++) {
         if (isnan(ref[i]))
             return dfl_err_set(err, DFL_E_NUMERIC, "reference is NaN at node %zu", i);
         if (use_band && !(fabs(ref[i]) <= band)) continue;
-        if (!isfinite(u[i]) || !isfinite(ref[i]))
-            return dfl_err_set(err, DFL_E_NUMERIC, "non-finite value %g (reference %g) at node %zu",
-                               u[i], ref[i], i);
-        const double e = u[i] - ref[i];
+        if (!isfinite(ref[i]))
+            return dfl_err_set(err, DFL_E_NUMERIC, "reference is %g at node %zu", ref[i], i);
         cnt++;
+        if (!isfinite(u[i])) { /* the non-finite rule: an error of +inf */
+            nonfinite++;
+            s = sa = s2 = mx = INFINITY;
+            if (ref[i] != 0.0) sr = INFINITY, rcnt++;
+            continue;
+        }
+        const double e = u[i] - ref[i];
         s += e, sa += fabs(e), s2 += e * e;
         if (fabs(e) > mx) mx = fabs(e);
         if (ref[i] != 0.0) sr += e / fabs(ref[i]), rcnt++;
@@ -194,6 +215,7 @@ dfl_status dfl_metrics_bandstats(size_t m, int dim, const double *u, const doubl
         }
     }
     out->count = cnt;
+    out->nonfinite = nonfinite;
     out->gcount = gcnt;
     out->bias = cnt ? s / (double)cnt : NAN;
     out->l1 = cnt ? sa / (double)cnt : NAN;
@@ -237,6 +259,8 @@ dfl_status dfl_metrics_put(dfl_table *t, const char *sfx, const dfl_metrics *m, 
         snprintf(col, sizeof col, "%s%s", names[i + 1], sfx);
         st = dfl_table_set_double(t, col, v[i], err);
     }
+    snprintf(col, sizeof col, "nonfinite%s", sfx);
+    if (st == DFL_OK) st = dfl_table_set_int(t, col, (long)m->nonfinite, err);
     return st;
 }
 
@@ -247,6 +271,7 @@ dfl_status dfl_metrics_put_bandstats(dfl_table *t, const dfl_bandstats *b, dfl_e
     const double v[8] = {b->bias, b->rel_bias, b->l1, b->rms, b->linf, b->gmin, b->gmean, b->gmax};
     dfl_status st = dfl_table_set_int(t, "band_count", (long)b->count, err);
     for (int i = 0; i < 8 && st == DFL_OK; i++) st = dfl_table_set_double(t, names[i], v[i], err);
+    if (st == DFL_OK) st = dfl_table_set_int(t, "band_nonfinite", (long)b->nonfinite, err);
     return st;
 }
 

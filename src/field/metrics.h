@@ -15,6 +15,18 @@
  * samples with |ref| <= band.  band <= 0 or band = +inf means every
  * sample; a NaN band is DFL_E_INPUT.
  *
+ * The non-finite rule (every computation of errors, every study): a sample
+ * whose value u (or, where a gradient is given to dfl_metrics_compute, a
+ * gradient component) is NaN or +-inf has an error of +inf.  It is never
+ * left out: it enters count, is counted in nonfinite, and makes every
+ * metric of its set +inf (L1, MSE, RMS, Linf; the gradient defects when a
+ * gradient is given; bias, relative bias, L1, RMS, Linf of a band).  Its
+ * band membership is decided by its reference, which must be finite
+ * (a non-finite reference is DFL_E_NUMERIC: the reference is dflab's own).
+ * The tables carry the count in a column whose name holds "nonfinite", and
+ * a run whose tables hold a non-zero one exits with status 1 unless the
+ * config allows it (harness/runner.h).
+ *
  * dfl_metrics:
  *   L1   = mean |u - d|          MSE  = mean (u - d)^2
  *   RMS  = sqrt(MSE)             Linf = max |u - d|
@@ -52,6 +64,7 @@ typedef struct dfl_metrics {
     size_t count;        /* samples that entered the metrics */
     double l1, mse, rms, linf;
     double gdef_mean, gdef_max;  /* NAN when no gradient was given */
+    size_t nonfinite;    /* of count: samples with a non-finite value (error +inf) */
 } dfl_metrics;
 
 typedef struct dfl_gradstat {
@@ -62,14 +75,16 @@ typedef struct dfl_gradstat {
 typedef struct dfl_bandstats {
     size_t count;                 /* samples in the band */
     double bias, rel_bias, l1, rms, linf;
-    size_t gcount;                /* band samples with u != 0 */
+    size_t gcount;                /* band samples with u != 0, u finite */
     double gmin, gmean, gmax;
+    size_t nonfinite;             /* of count: samples with u not finite */
 } dfl_bandstats;
 
 /* u, ref: m values; gu: m*dim gradient of u (may be NULL).  Band: see the
- * band rule above.  Non-finite u or ref at any sample (in the band or
- * not): DFL_E_NUMERIC naming the first such sample.  count == 0 (empty
- * band) gives NAN metrics and DFL_OK.  Parallel (OpenMP) over fixed
+ * band rule above.  Non-finite u or gradient: the non-finite rule above
+ * (error +inf, counted in nonfinite).  A non-finite ref at any sample (in
+ * the band or not): DFL_E_NUMERIC naming the first such sample.  count == 0
+ * (empty band) gives NAN metrics, nonfinite 0 and DFL_OK.  Parallel (OpenMP) over fixed
  * chunks of DFL_METRICS_CHUNK samples whose sums are added in chunk order,
  * so the result is bitwise the same at any thread count.  DFL_E_NOMEM when
  * the chunk sums cannot be allocated. */
@@ -90,7 +105,8 @@ dfl_status dfl_metrics_compute_masked(size_t m, int dim, const double *u, const 
  * rfunc's recursive normalization): the band rule above, but a sample
  * whose |u - ref| or gradient defect is not finite enters it as +inf
  * instead of failing, so linf (gdef_max) and the means become +inf; a NaN
- * ref lies in no finite band.  Serial, summed in sample order; |grad u| is
+ * ref lies in no finite band.  nonfinite counts the samples of the band
+ * whose u or gradient is not finite (as the non-finite rule above).  Serial, summed in sample order; |grad u| is
  * hypot(g0, g1) (dim 2; dim 1: |g0|; dim 3: hypot(hypot(g0, g1), g2)), as
  * bs04_recursive's tables were computed.  dim 1..3 (asserted).  Empty band:
  * count 0 and NAN metrics.  Fails only with DFL_E_INPUT for a NaN band. */
@@ -100,8 +116,11 @@ dfl_status dfl_metrics_compute_saturating(size_t m, int dim, const double *u, co
 
 /* u, ref: m values; gu: m*dim gradient components (may be NULL: gradient
  * statistics NAN).  Band: see the band rule above.  Empty band: count 0 and
- * NAN statistics, DFL_OK.  DFL_E_NUMERIC naming the sample for a NaN ref
- * anywhere or a non-finite u or ref inside the band.  Serial. */
+ * NAN statistics, DFL_OK.  A non-finite u inside the band: the non-finite
+ * rule above (counted in nonfinite; bias, rel_bias (when ref != 0), l1, rms,
+ * linf become +inf; the gradient statistics leave the sample out).
+ * DFL_E_NUMERIC naming the sample for a NaN ref anywhere or an infinite ref
+ * inside the band.  Serial. */
 dfl_status dfl_metrics_bandstats(size_t m, int dim, const double *u, const double *gu,
                                  const double *ref, double band, dfl_bandstats *out,
                                  dfl_err *err);
@@ -115,12 +134,13 @@ void dfl_metrics_gradstat(size_t m, int dim, const double *grad, const unsigned 
                           dfl_gradstat *out);
 
 /* Sets count<sfx>, l1<sfx>, mse<sfx>, rms<sfx>, linf<sfx>,
- * graddefect_mean<sfx>, graddefect_max<sfx> in the current row of t.
+ * graddefect_mean<sfx>, graddefect_max<sfx>, nonfinite<sfx> in the current
+ * row of t.
  * Fails as the table setters do (table.h), at the first failed cell. */
 dfl_status dfl_metrics_put(dfl_table *t, const char *sfx, const dfl_metrics *m, dfl_err *err);
 
 /* Sets band_count, band_bias, band_rel_bias, band_l1, band_rms, band_linf,
- * grad_min, grad_mean, grad_max in the current row of t.  Fails as the
+ * grad_min, grad_mean, grad_max, band_nonfinite in the current row of t.  Fails as the
  * table setters do. */
 dfl_status dfl_metrics_put_bandstats(dfl_table *t, const dfl_bandstats *b, dfl_err *err);
 

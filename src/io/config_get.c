@@ -56,16 +56,31 @@ dfl_status dfl_cfg_string_opt(const dfl_cfg *c, const char *sec, const char *key
     return dfl_cfg_string(c, sec, key, out, err);
 }
 
-static int parse_double(const char *s, double *out)
+/* What strtod made of a value: a finite double, or why not. */
+enum { NUM_OK = 1, NUM_BAD = 0, NUM_OVERFLOW = -1, NUM_UNDERFLOW = -2 };
+
+/* strtod's ERANGE means two things: overflow (the result is +-HUGE_VAL,
+ * i.e. inf: out of range) and underflow (the result is subnormal or zero).
+ * A subnormal is a finite double (config.h) and the value; a non-zero
+ * number that rounds to zero (below 4.9e-324) is out of range. */
+static int classify_double(const char *s, double *out)
 {
     char *end;
     errno = 0;
     double v = strtod(s, &end);
-    if (end == s) return 0;
+    const int erange = errno == ERANGE;
+    if (end == s) return NUM_BAD;
     while (isspace((unsigned char)*end)) end++;
-    if (*end != '\0' || errno == ERANGE || !isfinite(v)) return 0;
+    if (*end != '\0' || isnan(v)) return NUM_BAD;
+    if (isinf(v)) return erange ? NUM_OVERFLOW : NUM_BAD; /* "inf" written is not a number */
+    if (erange && v == 0.0) return NUM_UNDERFLOW;
     *out = v;
-    return 1;
+    return NUM_OK;
+}
+
+static int parse_double(const char *s, double *out)
+{
+    return classify_double(s, out) == NUM_OK;
 }
 
 static int parse_long(const char *s, long *out)
@@ -113,6 +128,16 @@ dfl_status dfl_cfg_int_opt(const dfl_cfg *c, const char *sec, const char *key, l
     return dfl_cfg_int(c, sec, key, lo, hi, out, err);
 }
 
+/* dfl_cfgi_bad with the reason after the value. */
+static dfl_status bad_why(const dfl_cfg_entry *en, const char *expect, const char *why,
+                          dfl_err *err)
+{
+    char w[1024];
+    dfl_cfgi_where(en, w, sizeof w);
+    return dfl_err_set(err, DFL_E_INPUT, "%s: expected %s, got '%.200s' (%s)", w, expect,
+                       en->value, why);
+}
+
 static void double_expect(double lo, double hi, char *expect, size_t size)
 {
     if (isinf(lo) && isinf(hi))
@@ -134,7 +159,20 @@ dfl_status dfl_cfg_double(const dfl_cfg *c, const char *sec, const char *key, do
     dfl_status st = fetch(c, sec, key, expect, &en, err);
     if (st != DFL_OK) return st;
     double v;
-    if (!parse_double(en->value, &v) || !(v >= lo && v <= hi)) return dfl_cfgi_bad(en, expect, err);
+    const int k = classify_double(en->value, &v);
+    if (k == NUM_OVERFLOW)
+        return bad_why(en, expect, "out of range: beyond the largest double, 1.8e308", err);
+    if (k == NUM_UNDERFLOW)
+        return bad_why(en, expect, "out of range: not zero, but below the smallest double, 4.9e-324",
+                       err);
+    if (k != NUM_OK) return dfl_cfgi_bad(en, expect, err);
+    if (!(v >= lo && v <= hi)) { /* a finite number out of the key's range: say which end */
+        char why[128];
+        snprintf(why, sizeof why, "%s %.17g", v < lo ? "below the smallest value accepted,"
+                                                     : "above the largest value accepted,",
+                 v < lo ? lo : hi);
+        return bad_why(en, expect, why, err);
+    }
     *out = v;
     return DFL_OK;
 }

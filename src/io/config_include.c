@@ -7,7 +7,10 @@
  * so the resolved config.ini lists them where the include stood.  An
  * included file is parsed with includes disabled: nesting (and with it any
  * include loop) is an error, not a search. */
+#define _DEFAULT_SOURCE /* realpath */
+#include <limits.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "io/config_impl.h"
@@ -30,6 +33,45 @@ static dfl_status check_shape_only(const dfl_cfg *f, const char *via, const char
     return DFL_OK;
 }
 
+/* realpath of the directory part of path ("." when it has none); NULL
+ * when it does not resolve.  Caller frees. */
+static char *real_dir(const char *path)
+{
+    char dir[4096];
+    const size_t dlen = (size_t)(dfl_path_base(path) - path);
+    if (dlen >= sizeof dir) return NULL;
+    if (dlen == 0) snprintf(dir, sizeof dir, ".");
+    else memcpy(dir, path, dlen), dir[dlen] = '\0';
+    return realpath(dir, NULL);
+}
+
+/* The file an include names, as the kernel resolves it: rel below the
+ * directory of the including file, where "lnk/../x.ini" is x.ini beside
+ * lnk's target (as every other program reads it), not beside lnk.  The
+ * lexically cleaned name (io/path.h) is kept when it names the same
+ * directory (it reads better in messages: "configs/shapes/S.ini"); when a
+ * symbolic link makes them differ, the real directory and rel's base name
+ * are used.  When nothing resolves (a missing directory), the cleaned name
+ * is tried and fails to open with its own message.  NULL when the result
+ * does not fit. */
+static char *include_path(const char *file, const char *rel, char *buf, size_t size)
+{
+    if (!dfl_path_beside(file, rel, buf, size)) return NULL;
+    char raw[8200];
+    const size_t dlen = rel[0] == '/' ? 0 : (size_t)(dfl_path_base(file) - file);
+    if ((size_t)snprintf(raw, sizeof raw, "%.*s%s", (int)dlen, file, rel) >= sizeof raw)
+        return NULL;
+    char *kd = real_dir(raw), *ld = real_dir(buf);
+    char *out = buf;
+    if (kd && !(ld && strcmp(kd, ld) == 0)) {
+        const int n = snprintf(buf, size, "%s/%s", strcmp(kd, "/") == 0 ? "" : kd,
+                               dfl_path_base(raw));
+        if (n < 0 || (size_t)n >= size) out = NULL;
+    }
+    free(kd), free(ld);
+    return out;
+}
+
 dfl_status dfl_cfgi_resolve_includes(dfl_cfg *c, const dfl_cfg_include *incs, size_t n,
                                      dfl_err *err)
 {
@@ -38,7 +80,7 @@ dfl_status dfl_cfgi_resolve_includes(dfl_cfg *c, const dfl_cfg_include *incs, si
         const dfl_cfg_include *in = &incs[k];
         char via[4200], path[4096];
         snprintf(via, sizeof via, "%s:%d", c->path, in->line);
-        if (!dfl_path_beside(c->path, in->value, path, sizeof path))
+        if (!include_path(c->path, in->value, path, sizeof path))
             return dfl_err_set(err, DFL_E_INPUT, "%s: [%s] include: file name too long", via,
                                in->sec);
         dfl_cfg *f = NULL;

@@ -28,10 +28,12 @@ CASES = []
 
 
 def case(name, args, want=(), ini=None, pts=None, rc=2, files=None, stdout_to=None, env=None,
-         shell_prefix=None):
+         shell_prefix=None, keep=()):
+    """keep: names the run must leave (the outputs of a run that exits 1
+    after writing them, the non-finite rule); each must exist."""
     CASES.append(dict(name=name, args=args, want=list(want), ini=ini, pts=pts, rc=rc,
                       files=files or {}, stdout_to=stdout_to, env=env or {},
-                      shell_prefix=shell_prefix))
+                      shell_prefix=shell_prefix, keep=set(keep)))
 
 
 def runc(name, ini, *want, rc=2, extra=()):
@@ -196,6 +198,59 @@ case("--version into /dev/full", ["--version"], ["cannot write"], rc=1, stdout_t
 case("probe into /dev/full", PROBE, ["cannot write"], ini=GOOD, pts=PTS, rc=1, stdout_to="/dev/full")
 case("out of memory", RUN, ["out of memory"], ini=HEAD + SHAPE + FIELD + b"[grid]\nn = 4096\n", rc=1,
      shell_prefix="ulimit -v 600000;")
+# ---- numbers at the ends of the double range -------------------------------
+case("pht eps 5e-324: below the smallest eps accepted",
+     ["run", os.path.join(REPO, "configs/paper/sjp10/sjp10_fig1.ini"), "--set", "fit.eps=5e-324",
+      "--out", "{D}/o"], ["fit.eps", "got '5e-324' (below the smallest value accepted, 1e-300)"])
+runc("offset 1e-400 rounds to zero", GOOD + b"[perturb]\noffset = 1e-400\n", "bad.ini:12",
+     "out of range", "below the smallest double")
+runc("offset 1e400 overflows", GOOD + b"[perturb]\noffset = 1e400\n", "bad.ini:12",
+     "out of range", "beyond the largest double")
+runc("offset 2 above the range", GOOD + b"[perturb]\noffset = 2\n", "bad.ini:12",
+     "above the largest value accepted, 1")
+# ---- wrong answers accepted before: now input errors -----------------------
+RENDER = os.path.join(REPO, "configs/paper/hvb25/hvb25_table4_render_sphere.ini")
+for k, v, want in [("camera.target", "1.6 -2.2 1.4", "camera"), ("trace.max_steps", "0", "trace.max_steps"),
+                   ("trace.box", "maybe", "trace.box"), ("study.reps", "0", "study.reps"),
+                   ("trace.eps", "0", "trace.eps"), ("camera.fov", "nan", "camera.fov")]:
+    # every error path of the renderer's key reader (steps and box were read
+    # uninitialised there: exit 1 and no error line under the sanitizer)
+    case("hvb25_render %s = %s" % (k, v), ["run", RENDER, "--set", k + "=" + v, "--out", "{D}/o"],
+         [want])
+PX = (b"[study]\nname = hvb25_accuracy\n[shape]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\n"
+      b"[field]\nkind = proxy\norder = 2\nres = 4\ninput = sdf\ncurvature = fit\n[eval]\nn = 5\n")
+runc("proxy lo = -1e200 beyond |x| <= 1e150", PX, "field.lo", "[-1e+150, 1e+150]",
+     extra=["--set", "field.lo=-1e200"])
+for h in ["1e-300", "1e300", "1e-8", "1e6"]:
+    runc("fit_spacing = " + h + " is input (not a singular design)", PX, "field.fit_spacing",
+         "[1e-06, 10000]", extra=["--set", "field.fit_spacing=" + h])
+BZ = os.path.join(REPO, "configs/shapes/hvb25_bezier_single.ini").encode()
+runc("signed open surface names its input", b"[study]\nname = hvb25_accuracy\n[shape]\ninclude = " + BZ +
+     b"\n[field]\nkind = proxy\norder = 1\nres = 4\ninput = parametric\nsigned = true\n[eval]\nn = 5\n",
+     "bad.ini:10", "[field] signed", "the parametric input of this shape has no inside")
+# ---- the non-finite rule: outputs written, then exit 1 -------------------
+# A proxy whose footpoints are moved 1e10 (far beyond half's 65504) decodes
+# to a non-finite value at every one of the 17^3 = 4913 evaluation points.
+NF = (b"[study]\nname = hvb25_accuracy\nband = 0.05\n"
+      b"[shape]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\n"
+      b"[field]\nkind = proxy\norder = 1\nres = 8\ninput = sdf\nstorage = half\nseed = 1\n"
+      b"[eval]\nn = 17\n")
+OUTS = ["o", "o.points"]
+case("noise 1e10 in half: non-finite is exit 1", RUN + ["--set", "field.noise=1e10"],
+     ["hvb25_accuracy.csv", "row 1", "point 0", "nonfinite", "4913 non-finite points",
+      "allow_nonfinite"], ini=NF, rc=1, keep=OUTS)
+case("noise 1e300: non-finite is exit 1", RUN + ["--set", "field.noise=1e300", "--set",
+     "field.storage=double"], ["row 1", "non-finite point"], ini=NF, rc=1, keep=OUTS)
+case("non-finite in a sweep names the point", RUN + ["--set", "field.noise=0,1e10"],
+     ["row 2", "point 1", "4913 non-finite points"], ini=NF, rc=1, keep=OUTS)
+case("allow_nonfinite swept: the point that does not allow it", RUN + [
+     "--set", "field.noise=1e10", "--set", "study.allow_nonfinite=true,false"],
+     ["row 2", "point 1"], ini=NF, rc=1, keep=OUTS)
+case("--point run: non-finite is exit 1", RUN + ["--set", "field.noise=1e10", "--point", "0"],
+     ["row 1", "4913 non-finite points"], ini=NF, rc=1, keep=["o.points"])
+runc("allow_nonfinite not a bool", NF, "allow_nonfinite",
+     "boolean", extra=["--set", "study.allow_nonfinite=maybe"])
+
 # ---- probe and the points reader ----------------------------------------
 case("probe missing points", ["probe", "{D}/bad.ini", "--points", "{D}/none.csv"], ["none.csv", "cannot open"], ini=GOOD)
 case("probe no --points", ["probe", "{D}/bad.ini"], ["--points", "missing"], ini=GOOD)
@@ -281,7 +336,10 @@ def run_case(c, dflab, base):
                 problems.append("message lacks %r" % w)
         if stdout:
             problems.append("stdout not empty: %r" % stdout[:80])
-        left = set(os.listdir(d)) - inputs
+        missing = c["keep"] - set(os.listdir(d))
+        if missing:
+            problems.append("outputs missing: %s" % sorted(missing))
+        left = set(os.listdir(d)) - inputs - c["keep"]
         if left:
             problems.append("files left behind: %s" % sorted(left))
         return problems, text.strip()

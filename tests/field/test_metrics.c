@@ -40,13 +40,78 @@ static void hand_case(metrics_fn compute)
 
 Test(metrics, hand_computed) { hand_case(dfl_metrics_compute); }
 
-Test(metrics, rejects_non_finite)
+/* The non-finite rule: a NaN or infinite value is an error of +inf, in the
+ * set its reference puts it in, counted; a non-finite reference fails. */
+Test(metrics, non_finite_value_is_an_error_of_inf)
 {
-    const double ref[2] = {0, 1};
-    const double u[2] = {0, NAN};
+    /* samples 1 (NaN) and 3 (-inf) are not finite; refs 1 and 3 lie outside
+     * the band 0.5, sample 1's inside the band 2 */
+    const double ref[5] = {0.0, 1.0, 0.25, 3.0, -0.5};
+    const double u[5] = {0.0, NAN, 0.5, -INFINITY, -0.25};
     dfl_metrics m;
     dfl_err err;
-    cr_expect_eq(dfl_metrics_compute(2, 2, u, NULL, ref, 0.0, &m, &err), DFL_E_NUMERIC);
+    cr_assert_eq(dfl_metrics_compute(5, 2, u, NULL, ref, 0.0, &m, &err), DFL_OK);
+    cr_expect_eq(m.count, 5);
+    cr_expect_eq(m.nonfinite, 2);
+    cr_expect(isinf(m.l1) && m.l1 > 0 && isinf(m.mse) && isinf(m.rms) && isinf(m.linf));
+    cr_expect(m.linf > 0);
+    /* band 0.5: samples 0, 2, 4, all finite: errors 0, 0.25, 0.25 */
+    cr_assert_eq(dfl_metrics_compute(5, 2, u, NULL, ref, 0.5, &m, &err), DFL_OK);
+    cr_expect(m.count == 3 && m.nonfinite == 0);
+    cr_expect_float_eq(m.l1, 0.5 / 3, 1e-15);
+    cr_expect_float_eq(m.linf, 0.25, 1e-15);
+    /* band 2: sample 1 joins (its reference is in the band) */
+    cr_assert_eq(dfl_metrics_compute(5, 2, u, NULL, ref, 2.0, &m, &err), DFL_OK);
+    cr_expect(m.count == 4 && m.nonfinite == 1 && isinf(m.linf) && isinf(m.l1));
+    /* a finite value with a NaN gradient component: gradient defect +inf */
+    const double g[10] = {1, 0, 0, 1, 0, NAN, 0, 1, 1, 0};
+    const double uf[5] = {0.0, 1.0, 0.25, 3.0, -0.5};
+    cr_assert_eq(dfl_metrics_compute(5, 2, uf, g, ref, 0.0, &m, &err), DFL_OK);
+    cr_expect(m.count == 5 && m.nonfinite == 1 && isinf(m.gdef_max) && isinf(m.linf));
+    /* the masked variant counts the same way */
+    const unsigned char mask[5] = {1, 1, 0, 0, 1};
+    cr_assert_eq(dfl_metrics_compute_masked(5, 2, u, NULL, ref, mask, &m, &err), DFL_OK);
+    cr_expect(m.count == 3 && m.nonfinite == 1 && isinf(m.linf));
+    /* a non-finite reference is dflab's own failure */
+    const double bref[2] = {0.0, NAN}, bu[2] = {0.0, 0.0};
+    cr_expect_eq(dfl_metrics_compute(2, 2, bu, NULL, bref, 0.0, &m, &err), DFL_E_NUMERIC);
+    cr_expect(strstr(err.msg, "sample 1") != NULL, "%s", err.msg);
+}
+
+/* A field that is NaN at known nodes of a large sample (several chunks):
+ * the count is exact and the result the same at any thread count. */
+Test(metrics, non_finite_counted_across_chunks)
+{
+    const size_t m = 3 * DFL_METRICS_CHUNK + 17;
+    double *u = malloc(m * sizeof *u), *ref = malloc(m * sizeof *ref);
+    cr_assert(u && ref);
+    size_t expect = 0, expect_band = 0;
+    for (size_t i = 0; i < m; i++) {
+        ref[i] = (double)(i % 100) / 100.0; /* 0 .. 0.99 */
+        u[i] = ref[i];
+        if (i % 1000 == 7) { /* NaN at 7, 1007, ...: ref 0.07 (in band 0.5) */
+            u[i] = NAN;
+            expect++, expect_band++;
+        }
+        if (i % 1000 == 555) { /* +inf at 555, ...: ref 0.55 (outside band 0.5) */
+            u[i] = INFINITY;
+            expect++;
+        }
+    }
+    dfl_metrics a, b;
+    cr_assert_eq(dfl_metrics_compute(m, 1, u, NULL, ref, 0.0, &a, NULL), DFL_OK);
+    cr_expect_eq(a.count, m);
+    cr_expect_eq(a.nonfinite, expect);
+    cr_expect(isinf(a.linf) && isinf(a.l1));
+    cr_assert_eq(dfl_metrics_compute(m, 1, u, NULL, ref, 0.5, &b, NULL), DFL_OK);
+    cr_expect_eq(b.nonfinite, expect_band);
+    const int t0 = omp_get_max_threads();
+    omp_set_num_threads(1);
+    dfl_metrics c;
+    cr_assert_eq(dfl_metrics_compute(m, 1, u, NULL, ref, 0.5, &c, NULL), DFL_OK);
+    omp_set_num_threads(t0);
+    cr_expect(c.count == b.count && c.nonfinite == b.nonfinite);
+    free(u), free(ref);
 }
 
 Test(metrics, bandstats_hand_computed_band)
@@ -90,14 +155,22 @@ Test(metrics, bandstats_empty_band_and_errors)
     const double ref[2] = {1.0, 2.0}, u[2] = {1.0, NAN};
     dfl_bandstats b;
     cr_assert_eq(dfl_metrics_bandstats(2, 2, u, NULL, ref, 0.5, &b, NULL), DFL_OK);
-    cr_expect(b.count == 0 && isnan(b.bias) && isnan(b.linf));
+    cr_expect(b.count == 0 && isnan(b.bias) && isnan(b.linf) && b.nonfinite == 0);
+    /* node 1's NaN inside the band: an error of +inf, counted */
     dfl_err err;
-    cr_expect_eq(dfl_metrics_bandstats(2, 2, u, NULL, ref, 3.0, &b, &err), DFL_E_NUMERIC);
-    cr_expect(strstr(err.msg, "node 1") != NULL, "%s", err.msg);
+    cr_assert_eq(dfl_metrics_bandstats(2, 2, u, NULL, ref, 3.0, &b, &err), DFL_OK);
+    cr_expect(b.count == 2 && b.nonfinite == 1);
+    cr_expect(isinf(b.bias) && isinf(b.rel_bias) && isinf(b.l1) && isinf(b.rms) && isinf(b.linf));
     /* band <= 0 means every node (the band rule): node 1's NaN is inside */
-    cr_expect_eq(dfl_metrics_bandstats(2, 2, u, NULL, ref, 0.0, &b, NULL), DFL_E_NUMERIC);
-    cr_expect_eq(dfl_metrics_bandstats(2, 2, u, NULL, ref, -1.0, &b, NULL), DFL_E_NUMERIC);
+    cr_assert_eq(dfl_metrics_bandstats(2, 2, u, NULL, ref, 0.0, &b, NULL), DFL_OK);
+    cr_expect(b.nonfinite == 1 && isinf(b.linf));
+    cr_assert_eq(dfl_metrics_bandstats(2, 2, u, NULL, ref, -1.0, &b, NULL), DFL_OK);
+    cr_expect(b.nonfinite == 1 && isinf(b.linf));
     cr_expect_eq(dfl_metrics_bandstats(2, 2, u, NULL, ref, NAN, &b, NULL), DFL_E_INPUT);
+    /* the gradient statistics leave a non-finite node out */
+    const double g[4] = {0.6, 0.8, NAN, NAN};
+    cr_assert_eq(dfl_metrics_bandstats(2, 2, u, g, ref, 3.0, &b, NULL), DFL_OK);
+    cr_expect(b.gcount == 1 && b.gmax == 1.0 && b.gmin == 1.0);
     /* a NaN reference is an error wherever it is */
     const double nref[2] = {NAN, 0.1}, nu[2] = {0.0, 0.1};
     cr_expect_eq(dfl_metrics_bandstats(2, 2, nu, NULL, nref, 0.3, &b, &err), DFL_E_NUMERIC);
@@ -131,21 +204,21 @@ Test(metrics, band_rule)
 /* The cells of a row, with their suffix, as the studies' tables hold them. */
 Test(metrics, table_cells)
 {
-    const dfl_metrics m = {3, 0.25, 0.5, 0.75, 1.0, 0.125, 2.0};
-    const dfl_bandstats b = {4, -0.5, 0.25, 1.5, 2.5, 3.5, 2, 0.5, 0.75, 1.0};
+    const dfl_metrics m = {3, 0.25, 0.5, 0.75, 1.0, 0.125, 2.0, 1};
+    const dfl_bandstats b = {4, -0.5, 0.25, 1.5, 2.5, 3.5, 2, 0.5, 0.75, 1.0, 2};
     dfl_table *t = dfl_table_new();
     dfl_err err;
     cr_assert_eq(dfl_table_row(t, &err), DFL_OK);
     cr_assert_eq(dfl_metrics_put(t, "_band", &m, &err), DFL_OK);
     cr_assert_eq(dfl_metrics_put_bandstats(t, &b, &err), DFL_OK);
-    const char *cols[16] = {"count_band", "l1_band", "mse_band", "rms_band", "linf_band",
-                            "graddefect_mean_band", "graddefect_max_band", "band_count",
-                            "band_bias", "band_rel_bias", "band_l1", "band_rms", "band_linf",
-                            "grad_min", "grad_mean", "grad_max"};
-    const char *vals[16] = {"3", "0.25", "0.5", "0.75", "1", "0.125", "2", "4",
-                            "-0.5", "0.25", "1.5", "2.5", "3.5", "0.5", "0.75", "1"};
-    cr_assert_eq(dfl_table_cols(t), 16);
-    for (int j = 0; j < 16; j++) {
+    const char *cols[18] = {"count_band", "l1_band", "mse_band", "rms_band", "linf_band",
+                            "graddefect_mean_band", "graddefect_max_band", "nonfinite_band",
+                            "band_count", "band_bias", "band_rel_bias", "band_l1", "band_rms",
+                            "band_linf", "grad_min", "grad_mean", "grad_max", "band_nonfinite"};
+    const char *vals[18] = {"3", "0.25", "0.5", "0.75", "1", "0.125", "2", "1", "4",
+                            "-0.5", "0.25", "1.5", "2.5", "3.5", "0.5", "0.75", "1", "2"};
+    cr_assert_eq(dfl_table_cols(t), 18);
+    for (int j = 0; j < 18; j++) {
         cr_expect_str_eq(dfl_table_col_name(t, (size_t)j), cols[j]);
         cr_expect_str_eq(dfl_table_get(t, 0, cols[j]), vals[j], "%s", cols[j]);
     }
@@ -198,11 +271,14 @@ Test(metrics, masked_is_compute_of_the_selection)
     cr_expect_float_eq(a.linf, 0.5, 1e-15);
     cr_assert_eq(dfl_metrics_compute_masked(5, 2, u, NULL, ref, mask, &a, &err), DFL_OK);
     cr_expect(a.count == 3 && a.l1 == b.l1 && isnan(a.gdef_mean) && isnan(a.gdef_max));
-    /* an unselected non-finite sample does not matter, a selected one does */
+    /* an unselected non-finite sample does not matter, a selected one is an
+     * error of +inf (the non-finite rule) */
     const double bad[5] = {NAN, -0.2, 0.9, 0.2, INFINITY};
     const unsigned char first[5] = {0, 1, 1, 1, 0};
-    cr_expect_eq(dfl_metrics_compute_masked(5, 2, bad, g, ref, first, &a, &err), DFL_OK);
-    cr_expect_eq(dfl_metrics_compute_masked(5, 2, bad, g, ref, mask, &a, &err), DFL_E_NUMERIC);
+    cr_assert_eq(dfl_metrics_compute_masked(5, 2, bad, g, ref, first, &a, &err), DFL_OK);
+    cr_expect(a.nonfinite == 0 && isfinite(a.linf));
+    cr_assert_eq(dfl_metrics_compute_masked(5, 2, bad, g, ref, mask, &a, &err), DFL_OK);
+    cr_expect(a.count == 3 && a.nonfinite == 1 && isinf(a.linf) && isinf(a.gdef_max));
     const unsigned char none[5] = {0};
     cr_assert_eq(dfl_metrics_compute_masked(5, 2, u, g, ref, none, &a, &err), DFL_OK);
     cr_expect(a.count == 0 && isnan(a.l1));
@@ -232,10 +308,12 @@ Test(metrics, saturating_hand_computed_and_inf)
     cr_assert_eq(dfl_metrics_compute_saturating(4, 2, uo, go, ref, 0.0, &m, &err), DFL_OK);
     cr_expect(m.count == 4 && isinf(m.l1) && isinf(m.rms) && isinf(m.linf));
     cr_expect(isinf(m.gdef_mean) && isinf(m.gdef_max));
+    /* samples 1 and 2 are not finite; sample 3's gradient is (its norm overflows) */
+    cr_expect_eq(m.nonfinite, 2);
     /* outside the band they do not count */
     const double uf[4] = {NAN, 0.0, 0.05, NAN};
     cr_assert_eq(dfl_metrics_compute_saturating(4, 2, uf, g, ref, 0.1, &m, &err), DFL_OK);
-    cr_expect(m.count == 2 && m.linf == 0.0);
+    cr_expect(m.count == 2 && m.linf == 0.0 && m.nonfinite == 0);
     /* a NaN reference lies in no band */
     const double rn[4] = {NAN, 0.0, 0.05, 0.5};
     cr_assert_eq(dfl_metrics_compute_saturating(4, 2, u, g, rn, 1.0, &m, &err), DFL_OK);

@@ -17,20 +17,21 @@ Test(metrics_put, columns_in_order_with_suffix)
                            .rms = 0.125,
                            .linf = 2.0,
                            .gdef_mean = 0.1,
-                           .gdef_max = 3.5};
+                           .gdef_max = 3.5,
+                           .nonfinite = 4};
     dfl_err err = {0};
     cr_assert_eq(dfl_table_row(t, &err), DFL_OK);
     cr_assert_eq(dfl_metrics_put(t, "", &m, &err), DFL_OK);
     cr_assert_eq(dfl_metrics_put(t, "_band", &m, &err), DFL_OK);
     const char *names[] = {"count", "l1", "mse", "rms", "linf", "graddefect_mean",
-                           "graddefect_max"};
-    const char *values[] = {"12", "0.5", "0.25", "0.125", "2", "0.1", "3.5"};
-    cr_assert_eq(dfl_table_cols(t), 14);
-    for (size_t j = 0; j < 7; j++) {
+                           "graddefect_max", "nonfinite"};
+    const char *values[] = {"12", "0.5", "0.25", "0.125", "2", "0.1", "3.5", "4"};
+    cr_assert_eq(dfl_table_cols(t), 16);
+    for (size_t j = 0; j < 8; j++) {
         char band[64];
         snprintf(band, sizeof band, "%s_band", names[j]);
         cr_expect_str_eq(dfl_table_col_name(t, j), names[j]);
-        cr_expect_str_eq(dfl_table_col_name(t, 7 + j), band);
+        cr_expect_str_eq(dfl_table_col_name(t, 8 + j), band);
         cr_expect_str_eq(dfl_table_get(t, 0, names[j]), values[j], "%s", names[j]);
         cr_expect_str_eq(dfl_table_get(t, 0, band), values[j], "%s", band);
     }

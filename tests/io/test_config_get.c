@@ -56,6 +56,41 @@ Test(config, rejects_non_finite)
     dfl_cfg_free(c);
 }
 
+/* strtod's ERANGE: a subnormal is a finite double and the value; overflow
+ * (inf) and a non-zero number that rounds to zero are out of range, and a
+ * finite value outside the key's range names the end it misses. */
+Test(config, subnormals_are_values)
+{
+    dfl_cfg *c = cfgu_parse("[a]\ns = 4e-320\nt = -5e-324\nu = 0x1p-1074\nz = 1e-400\n"
+                            "o = 1e400\nw = 5e-324\nh = 2\n");
+    dfl_err err;
+    double d;
+    cr_assert_eq(dfl_cfg_double(c, "a", "s", -1, 1, &d, &err), DFL_OK, "%s", err.msg);
+    cr_expect(d == 4e-320 && d > 0 && !isnormal(d) && isfinite(d));
+    cr_assert_eq(dfl_cfg_double(c, "a", "t", -1, 1, &d, &err), DFL_OK, "%s", err.msg);
+    cr_expect(d == -0x1p-1074);
+    cr_assert_eq(dfl_cfg_double(c, "a", "u", -1, 1, &d, &err), DFL_OK, "%s", err.msg);
+    cr_expect(d == 0x1p-1074);
+    cr_expect_eq(dfl_cfg_double(c, "a", "z", -1, 1, &d, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "got '1e-400' (out of range") != NULL, "%s", err.msg);
+    cr_expect(strstr(err.msg, "below the smallest double") != NULL, "%s", err.msg);
+    cr_expect_eq(dfl_cfg_double(c, "a", "o", -HUGE_VAL, HUGE_VAL, &d, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "out of range: beyond the largest double") != NULL, "%s", err.msg);
+    /* below a key's smallest value: said so, naming it (not "not finite") */
+    cr_expect_eq(dfl_cfg_double(c, "a", "w", 1e-300, HUGE_VAL, &d, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "got '5e-324' (below the smallest value accepted, 1e-300)") != NULL,
+              "%s", err.msg);
+    cr_expect_eq(dfl_cfg_double(c, "a", "h", -1, 1, &d, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "(above the largest value accepted, 1)") != NULL, "%s", err.msg);
+    /* vectors (coordinates) take subnormals too */
+    dfl_cfg *v = cfgu_parse("[a]\nv = 4e-320 1\n");
+    double x[2];
+    cr_assert_eq(dfl_cfg_vec(v, "a", "v", 2, x, &err), DFL_OK, "%s", err.msg);
+    cr_expect(x[0] == 4e-320);
+    dfl_cfg_free(v);
+    dfl_cfg_free(c);
+}
+
 /* _opt getters: the default when absent, the full check when present. */
 Test(config, optional_getters)
 {

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "io/config.h"
 #include "util/config_util.h"
@@ -295,5 +296,29 @@ Test(config_include, fifo_include_is_refused_at_once, .timeout = 10)
     cr_expect_null(c);
     cr_expect(strstr(err.msg, "main.ini:4"), "%s", err.msg);
     cr_expect(strstr(err.msg, "not a regular file (a FIFO)"), "%s", err.msg);
+    tmpdir_remove(dir);
+}
+
+/* `include = lnk/../x.ini` where lnk is a symbolic link to real/sub: the
+ * file read is real/x.ini (the kernel's resolution), not the x.ini beside
+ * lnk that a lexical "lnk/.." cancellation would pick. */
+Test(config_include, dotdot_after_a_symlink_is_the_kernels)
+{
+    char dir[256], p[600], lnk[600];
+    tmpdir_new(dir, sizeof dir);
+    tmpdir_write(dir, "real/sub/keep", "", NULL, 0);
+    tmpdir_write(dir, "real/x.ini", "[shape]\nkind = circle\nradius = 0.25\n", NULL, 0);
+    tmpdir_write(dir, "x.ini", "[shape]\nkind = circle\nradius = 0.75\n", NULL, 0);
+    snprintf(p, sizeof p, "%s/real/sub", dir);
+    snprintf(lnk, sizeof lnk, "%s/lnk", dir);
+    cr_assert_eq(symlink(p, lnk), 0);
+    tmpdir_write(dir, "main.ini", "[S]\ninclude = lnk/../x.ini\n", NULL, 0);
+    snprintf(p, sizeof p, "%s/main.ini", dir);
+    dfl_cfg *c = cfgu_load(p);
+    cr_expect_str_eq(cfgu_string(c, "S", "radius"), "0.25");
+    char w[1024], want[1024];
+    snprintf(want, sizeof want, "/real/x.ini:3: [shape] radius (included as [S] at %s:2)", p);
+    cr_expect(strstr(dfl_cfg_where(c, "S", "radius", w, sizeof w), want) != NULL, "%s", w);
+    dfl_cfg_free(c);
     tmpdir_remove(dir);
 }

@@ -42,3 +42,16 @@ Test(config, set_refuses_include)
               err.msg);
     dfl_cfg_free(c);
 }
+
+/* `--set perturb.offset=4e-320`: a subnormal set on the command line is the
+ * value the getter returns, within [-1, 1]. */
+Test(config, set_subnormal_is_a_value)
+{
+    dfl_cfg *c = cfgu_parse("[perturb]\nscale = 0\n");
+    dfl_err err;
+    cr_assert_eq(dfl_cfg_set(c, "perturb.offset=4e-320", &err), DFL_OK, "%s", err.msg);
+    double d;
+    cr_assert_eq(dfl_cfg_double(c, "perturb", "offset", -1, 1, &d, &err), DFL_OK, "%s", err.msg);
+    cr_expect(d == 4e-320);
+    dfl_cfg_free(c);
+}
