@@ -42,15 +42,16 @@ Test(nonfinite, scan_names_table_row_column_count)
     cr_expect_eq(dfl_nonfinite_check("/nonexistent/dflab", none, 2, &err), DFL_E_IO);
 }
 
-/* A half proxy with footpoints moved 1e10: every one of the 9^3 = 729
+/* A double proxy with footpoints moved 1e300 (the decode's |x - p|^2
+ * overflows; half storage would clamp, proxy/store.h): every one of the 9^3 = 729
  * evaluation points decodes to a non-finite value.  Allowed, the run exits 0
  * and the table holds +inf metrics and the count; not allowed, exit 1 with
  * the same table written. */
 #define NF_INI                                                                                  \
     "[study]\nname = hvb25_accuracy\nband = 0.05\n%s"                                          \
     "[shape]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\n"                                   \
-    "[field]\nkind = proxy\norder = 1\nres = 8\ninput = sdf\nstorage = half\nseed = 1\n"       \
-    "noise = 1e10\n[eval]\nn = 9\n"
+    "[field]\nkind = proxy\norder = 1\nres = 8\ninput = sdf\nstorage = double\nseed = 1\n"       \
+    "noise = 1e300\n[eval]\nn = 9\n"
 
 Test(nonfinite, allowed_run_exits_0_with_inf_metrics, .timeout = 120)
 {
