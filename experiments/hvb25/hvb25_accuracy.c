@@ -24,7 +24,7 @@
  * stored scalars and bytes, build time, uncertified / failed / moved
  * footpoints, cells with a scalar clamped to the storage range),
  * the decoding (filter, clip, signed) and the metrics of hvb25_eval.h:
- * l1, mse (the paper's "L2"), rms, linf over the grid, *_band in the band,
+ * l1, mse (beside the paper's undefined "L2"), rms, linf over the grid, *_band in the band,
  * *_off off the medial region, the worst point and its footpoint jump.
  * The time columns are for the report's Table 4 (gen_seconds: building
  * the field from the input, one thread per the run's thread count;

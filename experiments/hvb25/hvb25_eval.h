@@ -5,7 +5,7 @@
  *
  * Per decoding it accumulates, over the whole grid, over the band
  * |d| <= band and over the points off the medial region (below), the
- * metrics of field/metrics.h (L1 = mean |e|, MSE = the paper's "L2", RMS,
+ * metrics of field/metrics.h (L1 = mean |e|, MSE, set beside the paper's undefined "L2", RMS,
  * Linf), combined slab after slab in slab order (count-weighted means, so
  * the result does not depend on the thread count), and the worst point.
  *

@@ -377,7 +377,7 @@ def _table3(ctx):
         "**Table 3, Scene 2** (our CSG stand-in; the paper's composition is not given, so the "
         f"ratios compare two different scenes of the same kind). {METRIC_NOTE} G2 uses the SDF's "
         "Hessian; the 'fit' columns the paper's fitted curvature (hvb25_table3_fit; cells whose "
-        f"fit gave no finite curvature (the builder's failed cells; where they lie we did not map) and the points they decode to NaN, left out of the metrics: {fails or '—'}; compare those columns with that in mind).", "",
+        f"fit gave no finite curvature (the builder's failed cells; where they lie we did not map) and the points they decode to NaN, each an error of +inf (counted, so those columns' L1, MSE and L∞ are inf, in red): {fails or '—'}).", "",
         dflio.md_table(head, body), "",
         _l2_note(C.paper_rows(ctx, "hvb25_table3.csv"),
                  ["g1_nearest", "g1_cubic_hermite", "g2_nearest", "g2_quintic_hermite"],
