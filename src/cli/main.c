@@ -237,6 +237,11 @@ static int exec_run(void *opts)
     if (!o->outdir) {
         dfl_path_stem(o->config, stem, sizeof stem);
         snprintf(def, sizeof def, "results/%s", stem);
+        if (strcmp(stem, ".") == 0 || strcmp(stem, "..") == 0) { /* results/.. is the cwd */
+            dfl_err_set(&err, DFL_E_INPUT, "%s: the config's name '%s' cannot name its results "
+                        "folder; rename the config or give --out", o->config, stem);
+            return fail(&err);
+        }
     }
     dfl_outdir_guard g;
     if (dfl_outdir_check(o->outdir ? o->outdir : def, &g, &err) != DFL_OK) return fail(&err);
