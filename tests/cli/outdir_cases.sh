@@ -112,11 +112,12 @@ if command -v strace > /dev/null; then
     old=$(sha)
     (strace -f -qq -P "$P/o" -e trace=rename,renameat,renameat2 \
         -e inject=rename,renameat,renameat2:signal=SIGKILL:when=1 \
-        "$DFLAB" run g.ini --out "$P/o" --quiet --force > /dev/null 2>&1) 2> /dev/null
+        "$DFLAB" run g.ini --out "$P/o" --quiet --force > /dev/null 2>&1 || true) 2> /dev/null
     [ -d o ] && [ "$(sha)" = "$old" ] || die "a kill at the first rename of o lost the folder: $(ls)"
+    ls -d o.stage.* > /dev/null 2>&1 || die "the kill did not land at the swap: $(ls)"
     (strace -f -qq -P "$P/o" -e trace=rename,renameat,renameat2 \
         -e inject=rename,renameat,renameat2:signal=SIGKILL:when=2 \
-        "$DFLAB" run g.ini --out "$P/o" --quiet --force > /dev/null 2>&1) 2> /dev/null
+        "$DFLAB" run g.ini --out "$P/o" --quiet --force > /dev/null 2>&1 || true) 2> /dev/null
     [ -f o/manifest.json ] || die "a kill at a second rename of o left no folder: $(ls)"
     wrote o run g.ini --out o --quiet
     [ -z "$(ls -a | grep -E '\.(stage|old)\.')" ] || die "leftovers after the rerun: $(ls -a)"
