@@ -121,6 +121,58 @@ if command -v strace > /dev/null; then
     [ -f o/manifest.json ] || die "a kill at a second rename of o left no folder: $(ls)"
     wrote o run g.ini --out o --quiet
     [ -z "$(ls -a | grep -E '\.(stage|old)\.')" ] || die "leftovers after the rerun: $(ls -a)"
+    # a file system without RENAME_EXCHANGE (renameat2 made to fail with
+    # EINVAL): a kill between the two renames leaves no o/ and the
+    # backup, which the next dflab puts back
+    if command -v cc > /dev/null; then
+        cat > ../noexchange.c <<'EOF'
+#define _GNU_SOURCE
+#include <dlfcn.h>
+#include <errno.h>
+#include <stdarg.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/syscall.h>
+long syscall(long n, ...)
+{
+    va_list ap;
+    va_start(ap, n);
+    long a[6];
+    for (int i = 0; i < 6; i++) a[i] = va_arg(ap, long);
+    va_end(ap);
+    if (n == SYS_renameat2) {
+        errno = EINVAL;
+        return -1;
+    }
+    long (*real)(long, ...) = (long (*)(long, ...))dlsym(RTLD_NEXT, "syscall");
+    return real(n, a[0], a[1], a[2], a[3], a[4], a[5]);
+}
+/* SIGKILL right after a rename to a name that starts with $KILL_AFTER_ASIDE */
+int rename(const char *from, const char *to)
+{
+    int (*real)(const char *, const char *) =
+        (int (*)(const char *, const char *))dlsym(RTLD_NEXT, "rename");
+    const int r = real(from, to);
+    const char *k = getenv("KILL_AFTER_ASIDE");
+    if (r == 0 && k && strncmp(to, k, strlen(k)) == 0) raise(SIGKILL);
+    return r;
+}
+EOF
+        cc -shared -fPIC -o ../noexchange.so ../noexchange.c -ldl || die "shim does not build"
+        old=$(sha)
+        (KILL_AFTER_ASIDE="$P/o.old." LD_PRELOAD="$W/noexchange.so" \
+            "$DFLAB" run g.ini --out "$P/o" --quiet --force > /dev/null 2>&1 || true) 2> /dev/null
+        [ ! -e o ] && ls -d o.old.* > /dev/null 2>&1 || die "the kill did not land between the renames: $(ls)"
+        mv o.points keep.points
+        LD_PRELOAD="$W/noexchange.so" "$DFLAB" merge o > /dev/null 2>&1
+        mv keep.points o.points
+        [ -d o ] && [ "$(sha)" = "$old" ] && ! ls -d o.old.* > /dev/null 2>&1 \
+            || die "the backup of a cut-off replacement was not put back: $(ls)"
+        LD_PRELOAD="$W/noexchange.so" "$DFLAB" run g.ini --out o --quiet --force \
+            || die "the two-rename replacement failed"
+        [ -z "$(ls -a | grep -E '\.(stage|old)\.')" ] || die "leftovers after the two renames: $(ls -a)"
+    fi
 else
     echo "strace missing: the kill at the swap is not checked"
 fi
