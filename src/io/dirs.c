@@ -342,6 +342,12 @@ dfl_status dfl_dir_check_replaceable(const char *dir, const char *marker, const 
 {
     struct stat sb;
     if (lstat(dir, &sb) != 0) return DFL_OK;
+    /* a link would be replaced by the folder, not followed */
+    if (S_ISLNK(sb.st_mode))
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "%s %s: is a symbolic link (a run would replace the link); give the "
+                           "folder it points to",
+                           what, dir);
     if (!S_ISDIR(sb.st_mode))
         return dfl_err_set(err, DFL_E_INPUT, "%s %s: exists and is not a directory", what, dir);
     char **ents;

@@ -78,7 +78,8 @@ dfl_status dfl_dir_check_name(const char *dir, const char *what, dfl_err *err);
  * dfl_manifest_results_files reads (this format version, or the shape of
  * dflab before the magic existed), and every other entry is a regular
  * file that manifest lists.  Else DFL_E_INPUT "what DIR: ..." naming the
- * first foreign entry in name order (or the manifest), so that `--out
+ * first foreign entry in name order (or the manifest; a symbolic link at
+ * dir is refused too: the swap would replace the link), so that `--out
  * webapp` or `dflab merge notes` never deletes anything dflab did not
  * write.  DFL_E_NOMEM when memory runs out. */
 dfl_status dfl_dir_check_replaceable(const char *dir, const char *marker, const char *what,

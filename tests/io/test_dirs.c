@@ -84,6 +84,14 @@ Test(dirs, replaceable_only_when_every_entry_is_listed)
     tmpdir_write(d, "index.html", "", p, sizeof p);
     expect_refused(d, "no manifest.json; it holds index.html");
     tmpdir_remove(d);
+    /* a link to a dflab folder: the swap would replace the link */
+    make_results(d, 1);
+    char ln[600];
+    snprintf(ln, sizeof ln, "%s/ln", t);
+    cr_assert_eq(symlink(d, ln), 0);
+    expect_refused(ln, "symbolic link");
+    unlink(ln);
+    tmpdir_remove(d);
     /* the shape before the magic is accepted when all entries match */
     make_results(d, 0);
     expect_ok(d);
