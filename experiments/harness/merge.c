@@ -289,6 +289,7 @@ static dfl_status write_manifest(const pt_rec *r, size_t n, const char *stage,
     struct tm tmv;
     gmtime_r(&now, &tmv);
     strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", &tmv);
+    dfl_manifest_put_format(m); /* first: it tells a dflab folder from others */
     dfl_manifest_put_string(m, "tool", "dflab");
     dfl_manifest_put_string(m, "version", DFL_VERSION);
     dfl_manifest_put_string(m, "git_revision", DFL_GIT_REV);
@@ -336,7 +337,11 @@ static dfl_status write_manifest(const pt_rec *r, size_t n, const char *stage,
     return st;
 }
 
-static void clean_in(const char *dir, const char *prefix)
+/* Removes dead runs' leftovers "<prefix>stage.*" and "<prefix>old.*" in
+ * dir.  A dead run's backup "<out>.old.*" of a folder that is missing is
+ * the only copy of it (a replacement cut off between its two renames):
+ * it is put back at out, never removed. */
+static void clean_in(const char *dir, const char *prefix, const char *out)
 {
     DIR *d = opendir(dir);
     if (!d) return;
@@ -348,6 +353,8 @@ static void clean_in(const char *dir, const char *prefix)
             continue;
         char p[8192];
         snprintf(p, sizeof p, "%s/%s", dir, de->d_name);
+        if (out && dfl_dir_owner_dead(de->d_name, "old") && dfl_dir_restore_stale(p, out)) continue;
+        if (out && dfl_dir_owner_dead(de->d_name, "old") && access(out, F_OK) != 0) continue;
         dfl_dir_remove_tree(p, NULL);
     }
     closedir(d);
@@ -359,9 +366,9 @@ void dfl_sweep_clean_stale(const char *outdir)
     snprintf(parent, sizeof parent, "%s", outdir);
     snprintf(base, sizeof base, "%s", outdir);
     snprintf(prefix, sizeof prefix, "%s.", basename(base));
-    clean_in(dirname(parent), prefix);
+    clean_in(dirname(parent), prefix, outdir);
     snprintf(pdir, sizeof pdir, "%s.points", outdir);
-    clean_in(pdir, "pt");
+    clean_in(pdir, "pt", NULL);
 }
 
 /* Removes the committed points of pdir that the merge did not take (an
@@ -427,7 +434,8 @@ dfl_status dfl_merge(const char *dir, int quiet, const char *cmdline, dfl_err *e
     snprintf(d, sizeof d, "%s", dir);
     size_t l = strlen(d);
     while (l > 1 && d[l - 1] == '/') d[--l] = '\0';
-    dfl_status st = dfl_dir_check_replaceable(d, "manifest.json", "merge", err);
+    dfl_status st = dfl_dir_check_name(d, "merge", err);
+    if (st == DFL_OK) st = dfl_dir_check_replaceable(d, "manifest.json", "merge", err);
     if (st != DFL_OK) return st;
     dfl_sweep_clean_stale(d);
     return dfl_merge_into(d, NULL, quiet, cmdline, err);

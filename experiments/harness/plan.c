@@ -10,21 +10,47 @@
 
 #include "harness/sweep.h"
 #include "io/path.h"
+#include "io/shell.h"
 
-/* s quoted for a POSIX shell (as is when it needs no quotes). */
-static void put_sh(FILE *out, const char *s)
+#define put_sh dfl_shell_put
+
+/* Why sbatch cannot read p whole as the value of an #SBATCH option, or
+ * NULL when it can.  sbatch splits those lines at blanks, takes quotes
+ * and '#' as its own syntax, and expands '%' (%j, %a, %x ...) and '\'
+ * escapes in file names; a newline ends the line and starts a shell line.
+ * Quoting is no way out (not every sbatch removes quotes), so such paths
+ * are refused. */
+static const char *sbatch_problem(const char *p)
 {
-    if (*s && strspn(s, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./=,:+-@%") ==
-                  strlen(s)) {
-        fputs(s, out);
-        return;
+    for (const unsigned char *c = (const unsigned char *)p; *c; c++) {
+        if (*c == '\n') return "a newline";
+        if (*c < 0x20 || *c == 0x7f) return "a control character";
+        if (*c == ' ') return "a space";
+        if (*c == '%') return "a '%' (sbatch expands %j, %a ... in file names)";
+        if (*c == '\\') return "a backslash (sbatch's escape in file names)";
+        if (*c == '"' || *c == '\'') return "a quote";
+        if (*c == '#') return "a '#'";
     }
-    fputc('\'', out);
-    for (; *s; s++) {
-        if (*s == '\'') fputs("'\\''", out);
-        else fputc(*s, out);
-    }
-    fputc('\'', out);
+    return NULL;
+}
+
+/* A job name for Slurm: the stem with every byte outside [A-Za-z0-9._-]
+ * replaced by '_' (a name is a label, not a path: nothing is lost). */
+static void job_name(const char *stem, char *buf, size_t size)
+{
+    snprintf(buf, size, "%s", stem);
+    for (char *c = buf; *c; c++)
+        if (!((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') ||
+              *c == '.' || *c == '_' || *c == '-'))
+            *c = '_';
+}
+
+/* s for a '#' comment line: control bytes (a newline would end the
+ * comment) as '?'. */
+static void put_comment(FILE *out, const char *s)
+{
+    for (const unsigned char *c = (const unsigned char *)s; *c; c++)
+        fputc(*c < 0x20 || *c == 0x7f ? '?' : *c, out);
 }
 
 /* Absolute form of a path (jobs may start elsewhere). */
@@ -51,54 +77,69 @@ static void put_run(FILE *out, const dfl_plan_opts *o, const char *config, const
     fputs(" --quiet", out);
 }
 
-static void emit_slurm(FILE *out, const dfl_plan_opts *o, const dfl_sweep *s, const char *config,
-                       const char *outdir, long m)
+static dfl_status emit_slurm(FILE *out, const dfl_plan_opts *o, const dfl_sweep *s,
+                             const char *config, const char *outdir, long m, dfl_err *err)
 {
-    char stem[512], logs[4200];
+    char stem[512], job[512], logs[4200], cwd[PATH_MAX];
     dfl_path_stem(config, stem, sizeof stem);
+    job_name(stem, job, sizeof job);
     snprintf(logs, sizeof logs, "%s.logs", outdir);
+    const char *why = sbatch_problem(logs);
+    if (why)
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "--out %s: the Slurm log folder %s holds %s, which an #SBATCH "
+                           "--output line cannot carry; choose an output folder without it",
+                           s->outdir, logs, why);
+    if (!getcwd(cwd, sizeof cwd))
+        return dfl_err_set(err, DFL_E_IO, "cannot read the working directory");
+    if ((why = sbatch_problem(cwd)))
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "--emit slurm: the working directory %s holds %s, which an #SBATCH "
+                           "--chdir line cannot carry; run dflab plan from another folder",
+                           cwd, why);
     fprintf(out, "#!/bin/bash\n");
-    fprintf(out, "# dflab sweep of %s: %zu points as a Slurm job array, then a merge job.\n",
-            config, s->np);
+    fputs("# dflab sweep of ", out);
+    put_comment(out, config);
+    fprintf(out, ": %zu points as a Slurm job array, then a merge job.\n", s->np);
     fprintf(out, "#   bash THIS_FILE     creates the log folder, submits the array and the merge\n"
                  "#                      (which starts when every task succeeded)\n"
                  "#   sbatch THIS_FILE   submits the array only; then `dflab merge OUT`\n");
-    fprintf(out, "#SBATCH --job-name=dflab-%s\n", stem);
+    fprintf(out, "#SBATCH --job-name=dflab-%s\n", job);
     fprintf(out, "#SBATCH --array=0-%zu%%%ld\n", s->np - 1, m);
     fprintf(out, "#SBATCH --output=%s/point_%%a.log\n", logs);
     fprintf(out, "#SBATCH --ntasks=1\n");
     if (o->run.threads > 0) fprintf(out, "#SBATCH --cpus-per-task=%d\n", o->run.threads);
-    char cwd[PATH_MAX];
-    if (getcwd(cwd, sizeof cwd)) {
-        fputs("#SBATCH --chdir=", out);
-        put_sh(out, cwd);
-        fputc('\n', out);
-    }
+    fprintf(out, "#SBATCH --chdir=%s\n", cwd);
     fputs("set -euo pipefail\n", out);
     fputs("if [ -z \"${SLURM_ARRAY_TASK_ID:-}\" ]; then\n  mkdir -p ", out);
     put_sh(out, logs);
     fputs("\n  array=$(sbatch --parsable \"$0\")\n", out);
     fprintf(out, "  sbatch --parsable --dependency=afterok:\"${array%%%%;*}\" --job-name=dflab-%s-merge "
-                 "--output=", stem);
+                 "--output=", job);
     put_sh(out, logs);
     fputs("/merge.log --wrap=", out);
-    /* the wrapped command is one shell word */
+    /* the wrapped command is one shell word, read again by sbatch's sh */
     char *cmd = NULL;
     size_t len = 0;
     FILE *mem = open_memstream(&cmd, &len);
-    if (mem) {
-        put_sh(mem, o->exe);
-        fputs(" merge ", mem);
-        put_sh(mem, outdir);
-        fclose(mem);
-        put_sh(out, cmd);
-        free(cmd);
-    }
+    if (!mem) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    put_sh(mem, o->exe);
+    fputs(" merge ", mem);
+    put_sh(mem, outdir);
+    fclose(mem);
+    put_sh(out, cmd);
+    free(cmd);
     fputs("\n  exit 0\nfi\nexec ", out);
     put_run(out, o, config, outdir);
     fputs(" --point \"$SLURM_ARRAY_TASK_ID\"\n", out);
+    return DFL_OK;
 }
 
+/* GNU parallel joins its command words with blanks, replaces {}, {.},
+ * {/} ... in them and hands the result to a shell: a name in those words
+ * would be read twice and could be replaced.  So the names travel in
+ * environment variables (quoted once, for the shell that runs this line)
+ * and the command names only the variables. */
 static void emit_parallel(FILE *out, const dfl_plan_opts *o, const dfl_sweep *s,
                           const char *config, const char *outdir, long m)
 {
@@ -107,11 +148,23 @@ static void emit_parallel(FILE *out, const dfl_plan_opts *o, const dfl_sweep *s,
     snprintf(log, sizeof log, "%s/parallel.joblog", pdir);
     fputs("mkdir -p ", out);
     put_sh(out, pdir);
-    fputs(" && parallel --joblog ", out);
+    fputs(" && DFLAB_EXE=", out);
+    put_sh(out, o->exe);
+    fputs(" DFLAB_CONFIG=", out);
+    put_sh(out, config);
+    fputs(" DFLAB_OUT=", out);
+    put_sh(out, outdir);
+    for (int i = 0; i < o->run.nsets; i++) {
+        fprintf(out, " DFLAB_SET_%d=", i);
+        put_sh(out, o->run.sets[i]);
+    }
+    fputs(" parallel --joblog ", out);
     put_sh(out, log);
-    fprintf(out, " --resume-failed -j %ld ", m);
-    put_run(out, o, config, outdir);
-    fprintf(out, " --point {} ::: $(seq 0 %zu) && ", s->np - 1);
+    fprintf(out, " --resume-failed -j %ld '\"$DFLAB_EXE\"' run '\"$DFLAB_CONFIG\"'", m);
+    for (int i = 0; i < o->run.nsets; i++) fprintf(out, " --set '\"$DFLAB_SET_%d\"'", i);
+    fputs(" --out '\"$DFLAB_OUT\"'", out);
+    if (o->run.threads > 0) fprintf(out, " --threads %d", o->run.threads);
+    fprintf(out, " --quiet --point {} ::: $(seq 0 %zu) && ", s->np - 1);
     put_sh(out, o->exe);
     fputs(" merge ", out);
     put_sh(out, outdir);
@@ -131,13 +184,19 @@ dfl_status dfl_plan(const dfl_plan_opts *o, FILE *out, dfl_err *err)
     absolute(s.outdir, outdir, sizeof outdir);
     const long m = o->max_parallel > 0 ? o->max_parallel : 4;
     if (o->emit && strcmp(o->emit, "slurm") == 0) {
-        emit_slurm(out, o, &s, config, outdir, m);
+        st = emit_slurm(out, o, &s, config, outdir, m, err);
     } else if (o->emit) {
         emit_parallel(out, o, &s, config, outdir, m);
     } else {
         if (!o->commands)
-            fprintf(out, "# %s: study %s, %zu point%s, output %s\n", o->run.config,
-                    s.study->name, s.np, s.np == 1 ? "" : "s", s.outdir);
+        {
+            fputs("# ", out);
+            put_comment(out, o->run.config);
+            fprintf(out, ": study %s, %zu point%s, output ", s.study->name, s.np,
+                    s.np == 1 ? "" : "s");
+            put_comment(out, s.outdir);
+            fputc('\n', out);
+        }
         for (size_t k = 0; k < s.np && st == DFL_OK; k++) {
             if (o->commands) {
                 put_run(out, o, config, outdir);

@@ -165,6 +165,16 @@ dfl_status dfl_sweep_open(const dfl_run_opts *o, dfl_sweep *s, dfl_err *err)
     s->threads = o->threads > 0 ? o->threads : omp_get_max_threads();
     dfl_sweep_outdir(o, s->outdir, sizeof s->outdir);
     snprintf(s->points, sizeof s->points, "%s.points", s->outdir);
+    /* a config "..ini" or "...ini" would name results/. or results/.. */
+    char stem[512];
+    dfl_path_stem(o->config, stem, sizeof stem);
+    if (!o->outdir && (strcmp(stem, ".") == 0 || strcmp(stem, "..") == 0))
+        return dfl_err_set(err, DFL_E_INPUT,
+                           "%s: the config's name '%s' cannot name its results folder; rename "
+                           "the config or give --out",
+                           o->config, stem);
+    st = dfl_dir_check_name(s->outdir, "--out", err);
+    if (st != DFL_OK) return st;
     dfl_cfg_sweep_hash(s->cfg, s->sweep_sha);
     st = dfl_sha256_file("/proc/self/exe", s->binary_sha, err);
     if (st == DFL_OK) st = validate_points(s, err);
@@ -272,6 +282,7 @@ dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
 {
     dfl_sweep s;
     dfl_status st = dfl_sweep_open(o, &s, err);
+    if (st == DFL_OK) st = dfl_dir_check_name(s.outdir, "--out", err);
     if (st == DFL_OK) st = dfl_dir_check_writable(s.outdir, "--out", err);
     if (st == DFL_OK) st = dfl_dir_check_replaceable(s.outdir, "manifest.json", "--out", err);
     if (st != DFL_OK) {

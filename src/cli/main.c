@@ -66,7 +66,10 @@ static const char *const usage_run =
     "a malformed point.json, a file it does not list or a non-regular entry (FIFO,\n"
     "folder, link) is exit 2.  `dflab merge DIR` recomputes nothing: it refuses any\n"
     "such point with exit 2 naming the file.  Merged files are copies, never links.\n"
-    "DIR is replaced as a whole when the run succeeds.  --point K runs only point K\n"
+    "DIR is replaced as a whole when the run succeeds (in one atomic swap), and only\n"
+    "when it is new, empty or a folder dflab wrote: its manifest.json is dflab's and\n"
+    "lists every other entry; anything else is refused (exit 2) and left alone.\n"
+    "DIR cannot end in . or ..  --point K runs only point K\n"
     "into DIR.points/ (for job arrays); `dflab merge DIR` then assembles DIR.\n"
     "Progress goes to stderr at most every 2 s (--quiet: none).  --threads N: OpenMP\n"
     "threads (default: OMP_NUM_THREADS, else every core); results are the same bytes\n"
@@ -245,6 +248,11 @@ static int exec_run(void *opts)
     if (!o->outdir) {
         dfl_path_stem(o->config, stem, sizeof stem);
         snprintf(def, sizeof def, "results/%s", stem);
+        if (strcmp(stem, ".") == 0 || strcmp(stem, "..") == 0) { /* results/.. is the cwd */
+            dfl_err_set(&err, DFL_E_INPUT, "%s: the config's name '%s' cannot name its results "
+                        "folder; rename the config or give --out", o->config, stem);
+            return fail(&err);
+        }
     }
     dfl_outdir_guard g;
     if (dfl_outdir_check(o->outdir ? o->outdir : def, &g, &err) != DFL_OK) return fail(&err);

@@ -1,5 +1,6 @@
 /* Checks are made on the real file system, once, before any study code
- * runs; the probe directory is the only thing ever created here. */
+ * runs; the probe (an unnamed file where the file system has them) is the
+ * only thing ever created here. */
 #include "outdir.h"
 
 #include <errno.h>
@@ -7,6 +8,8 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+
+#include "io/dirs.h"
 
 static int is_dir(const char *p)
 {
@@ -25,6 +28,7 @@ dfl_status dfl_outdir_check(const char *dir, dfl_outdir_guard *g, dfl_err *err)
     if (strcmp(g->dir, "/") == 0)
         return dfl_err_set(err, DFL_E_INPUT,
                            "--out /: the root directory cannot hold a run's results");
+    if (dfl_dir_check_name(g->dir, "--out", err) != DFL_OK) return DFL_E_INPUT;
     struct stat sb;
     if (stat(g->dir, &sb) == 0 && !S_ISDIR(sb.st_mode))
         return dfl_err_set(err, DFL_E_INPUT, "--out %s: exists and is not a directory", g->dir);
@@ -44,12 +48,10 @@ dfl_status dfl_outdir_check(const char *dir, dfl_outdir_guard *g, dfl_err *err)
             return dfl_err_set(err, DFL_E_INPUT, "--out %s: %s is not a directory", g->dir, a);
     }
     g->exist_len = strcmp(a, ".") == 0 && g->dir[0] != '.' ? 0 : strlen(a);
-    char probe[4200];
-    snprintf(probe, sizeof probe, "%s/.dflab-probe.%ld", a, (long)getpid());
-    if (mkdir(probe, 0700) != 0)
+    const int e = dfl_dir_probe(a);
+    if (e)
         return dfl_err_set(err, DFL_E_INPUT, "--out %s: cannot create directories in %s: %s",
-                           g->dir, a, strerror(errno));
-    rmdir(probe);
+                           g->dir, a, strerror(e));
     return DFL_OK;
 }
 

@@ -4,10 +4,12 @@
  *   dfl_outdir_undo(&g)              after a failed run: removes the (empty)
  *                                    directories the run created above dir
  *
- * dir is usable when it is not empty and not "/", is a directory if it
- * exists, and its deepest existing ancestor is a directory in which a
- * directory can be made (tried with a probe directory, removed at once:
- * this is what tells /proc/x or a read-only mount from a writable place).
+ * dir is usable when it is not empty and not "/", passes
+ * dfl_dir_check_name (not "." or ".." at its end, no ".." after a missing
+ * folder), is a directory if it exists, and its deepest existing ancestor
+ * is a directory in which a file can be made (dfl_dir_probe, which leaves
+ * nothing behind: this is what tells /proc/x or a read-only mount from a
+ * writable place).
  * Each failure is DFL_E_INPUT "--out DIR: ..." (exit status 2): the user
  * chose the place.  The runner creates the missing parents itself; undo
  * removes those that are empty after a failed run, so a failed run leaves

@@ -6,6 +6,9 @@
  *   dfl_dir_owner_dead      whether such a name's process is gone
  *   dfl_dir_remove_tree     rm -r
  *   dfl_dir_replace         put a finished directory in place of another
+ *   dfl_dir_restore_stale   put back a dead run's backup of a missing folder
+ *   dfl_dir_probe           whether a file can be created in a directory
+ *   dfl_dir_check_name      whether a name can be a results folder
  *   dfl_dir_link_or_copy    a file's bytes under a new name (a copy)
  *   dfl_dir_check_writable  whether a directory (or its nearest existing
  *                           ancestor) accepts new entries
@@ -33,10 +36,21 @@ bool dfl_dir_owner_dead(const char *name, const char *kind);
 /* Removes path and everything below it; a missing path is fine.  Returns
  * DFL_E_IO naming the first entry that could not be removed. */
 dfl_status dfl_dir_remove_tree(const char *path, dfl_err *err);
-/* Makes the directory fresh appear at dst: an existing dst is moved aside
- * (to "<dst>.old.<host>.<pid>") and removed after fresh took its name.
- * Readers see either the old or the new directory, never a mix. */
+/* Makes the directory fresh appear at dst.  An existing dst is swapped
+ * with fresh in one renameat2(RENAME_EXCHANGE) and the old folder (now
+ * under fresh's name) removed: a kill at any moment leaves either the old
+ * or the new folder at dst.  Only when the file system has no exchange
+ * (EINVAL, ENOSYS) dst is moved aside to "<dst>.old.<host>.<pid>" and fresh
+ * renamed to dst; a kill between the two leaves no dst and the backup,
+ * which is never deleted then: dfl_dir_restore_stale puts it back.
+ * DFL_E_IO naming dst on failure (the old folder then stays at dst, or
+ * the message names where it is). */
 dfl_status dfl_dir_replace(const char *fresh, const char *dst, dfl_err *err);
+/* When backup is "<dst>.old.<host>.<pid>" of a dead process of this host
+ * and dst does not exist: renames backup to dst and returns true (the one
+ * copy of a folder whose replacement was cut off).  Else false, nothing
+ * touched. */
+bool dfl_dir_restore_stale(const char *backup, const char *dst);
 /* A copy of the regular file src at dst (replacing dst through a
  * temporary file): never a hard link, so writing to one file leaves the
  * other as it was.  A reflink (FICLONE) where the file system has it,
@@ -45,13 +59,32 @@ dfl_status dfl_dir_replace(const char *fresh, const char *dst, dfl_err *err);
 dfl_status dfl_dir_link_or_copy(const char *src, const char *dst, dfl_err *err);
 /* DFL_OK when dir exists and is a writable directory, or does not exist
  * and its nearest existing ancestor is a writable directory; else
- * DFL_E_INPUT "what DIR: not writable (...)". */
+ * DFL_E_INPUT "what DIR: not writable (...)".  Probes with dfl_dir_probe,
+ * so nothing is left in any directory. */
 dfl_status dfl_dir_check_writable(const char *dir, const char *what, dfl_err *err);
+/* 0 when a file can be created in the existing directory dir, else the
+ * errno of the attempt.  An unnamed O_TMPFILE file where the file system
+ * has them (a kill leaves nothing); else a directory
+ * "dir/.dflab.probe.<host>.<pid>" made and removed at once, after removing
+ * such probes of dead processes of this host. */
+int dfl_dir_probe(const char *dir);
+/* DFL_E_INPUT "what DIR: ..." when dir's last component is "." or ".."
+ * (the folder would be one that holds other things: the working
+ * directory, its parent) or a ".." follows a prefix that is not an
+ * existing directory ("nonexist/../y": resolving it would need nonexist);
+ * else DFL_OK.  Only stat()s. */
+dfl_status dfl_dir_check_name(const char *dir, const char *what, dfl_err *err);
 
-/* DFL_OK when dir does not exist, is empty, or holds a file named marker
- * (a run's manifest.json: dflab made it); else DFL_E_INPUT "what DIR:
- * exists and is not ...", so that `--out results` cannot wipe a folder of
- * other things. */
+/* Whether a run or merge may replace the folder dir as a whole.  DFL_OK
+ * when dir does not exist, is empty, or is a dflab results folder: its
+ * file marker (manifest.json) is a results manifest that
+ * dfl_manifest_results_files reads (this format version, or the shape of
+ * dflab before the magic existed), and every other entry is a regular
+ * file that manifest lists.  Else DFL_E_INPUT "what DIR: ..." naming the
+ * first foreign entry in name order (or the manifest; a symbolic link at
+ * dir is refused too: the swap would replace the link), so that `--out
+ * webapp` or `dflab merge notes` never deletes anything dflab did not
+ * write.  DFL_E_NOMEM when memory runs out. */
 dfl_status dfl_dir_check_replaceable(const char *dir, const char *marker, const char *what,
                                      dfl_err *err);
 

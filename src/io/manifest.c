@@ -276,3 +276,148 @@ dfl_status dfl_manifest_write(const dfl_manifest *m, const char *path, const cha
     fprintf(fp, "\n  ]\n}\n");
     return dfl_atomic_commit(&af, err);
 }
+
+dfl_status dfl_manifest_put_format(dfl_manifest *m)
+{
+    dfl_status st = dfl_manifest_put_string(m, "format", DFL_RESULTS_FORMAT);
+    return st == DFL_OK ? dfl_manifest_put_int(m, "format_version", DFL_RESULTS_FORMAT_VERSION)
+                        : st;
+}
+
+static int hexval(char c)
+{
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+}
+
+/* The JSON string literal at *p (after its opening quote) decoded into a
+ * malloc'ed string; *p moves past the closing quote.  NULL (and *oom set
+ * when memory ran out) on a malformed literal.  Escapes of U+0001..U+FFFF
+ * become UTF-8; \u0000 and surrogates are refused (no file has such a
+ * name as dflab wrote it). */
+static char *json_string(const char **p, int *oom)
+{
+    const char *s = *p;
+    size_t cap = strlen(s) + 1;   /* decoding never grows the text */
+    char *o = malloc(cap), *w = o;
+    if (!o) {
+        *oom = 1;
+        return NULL;
+    }
+    for (; *s && *s != '"'; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c < 0x20) break;
+        if (c != '\\') {
+            *w++ = (char)c;
+            continue;
+        }
+        s++;
+        switch (*s) {
+        case '"': case '\\': case '/': *w++ = *s; break;
+        case 'b': *w++ = '\b'; break;
+        case 'f': *w++ = '\f'; break;
+        case 'n': *w++ = '\n'; break;
+        case 'r': *w++ = '\r'; break;
+        case 't': *w++ = '\t'; break;
+        case 'u': {
+            long u = 0;
+            for (int i = 1; i <= 4; i++) {   /* stops at the NUL: hexval('\0') < 0 */
+                const int h = hexval(s[i]);
+                if (h < 0) goto bad;
+                u = 16 * u + h;
+            }
+            s += 4;
+            if (u == 0 || (u >= 0xd800 && u <= 0xdfff)) goto bad;
+            if (u < 0x80) {
+                *w++ = (char)u;
+            } else if (u < 0x800) {
+                *w++ = (char)(0xc0 | (u >> 6)), *w++ = (char)(0x80 | (u & 0x3f));
+            } else {
+                *w++ = (char)(0xe0 | (u >> 12)), *w++ = (char)(0x80 | ((u >> 6) & 0x3f));
+                *w++ = (char)(0x80 | (u & 0x3f));
+            }
+            break;
+        }
+        default: goto bad;
+        }
+    }
+    if (*s != '"') goto bad;
+    *w = '\0';
+    *p = s + 1;
+    return o;
+bad:
+    free(o);
+    return NULL;
+}
+
+static const char *skip_ws(const char *p)
+{
+    while (*p == ' ' || *p == '\n' || *p == '\t' || *p == '\r') p++;
+    return p;
+}
+
+int dfl_manifest_results_files(const char *json, char ***names, size_t *n)
+{
+    *names = NULL;
+    *n = 0;
+    /* the magic is the object's first field, spelt as put_format writes it */
+    static const char magic[] = "{\n  \"format\": \"" DFL_RESULTS_FORMAT "\",\n  \"format_version\": ";
+    int kind;
+    if (strncmp(json, magic, sizeof magic - 1) == 0) {
+        const char *v = json + sizeof magic - 1;
+        long ver = 0;
+        int digits = 0;
+        for (; *v >= '0' && *v <= '9' && digits < 6; v++, digits++) ver = 10 * ver + (*v - '0');
+        if (digits == 0 || ver != DFL_RESULTS_FORMAT_VERSION || *v != ',') return -1;
+        kind = 1;
+    } else if (strncmp(json, "{\n  \"tool\": \"dflab\",\n", 21) == 0 &&
+               !strstr(json, "\n  \"format\": ")) {
+        kind = 0;
+    } else {
+        return -1;
+    }
+    /* "files" is the last field: its last spelling at the top level */
+    const char *p = NULL;
+    for (const char *q = strstr(json, ",\n  \"files\": ["); q; q = strstr(q + 1, ",\n  \"files\": ["))
+        p = q;
+    if (!p) return -1;
+    p += 14;
+    char **list = NULL;
+    size_t k = 0;
+    int oom = 0;
+    for (;;) {
+        p = skip_ws(p);
+        if (*p == ']') break;
+        if (k > 0) {
+            if (*p != ',') goto bad;
+            p = skip_ws(p + 1);
+        }
+        if (strncmp(p, "{\"name\": \"", 10) != 0) goto bad;
+        p += 10;
+        char *name = json_string(&p, &oom);
+        if (!name) goto bad;
+        char **nl = realloc(list, (k + 1) * sizeof *nl);
+        if (!nl) {
+            free(name);
+            oom = 1;
+            goto bad;
+        }
+        list = nl;
+        list[k++] = name;
+        /* the rest of the entry: "bytes": N, "sha256": "hex" -- no braces */
+        while (*p && *p != '}' && *p != '{' && *p != ']') p++;
+        if (*p != '}') goto bad;
+        p++;
+    }
+    p = skip_ws(p + 1);
+    if (*p != '}' || *skip_ws(p + 1) != '\0') goto bad;
+    *names = list;
+    *n = k;
+    return kind;
+bad:
+    for (size_t i = 0; i < k; i++) free(list[i]);
+    free(list);
+    return oom ? -2 : -1;
+}

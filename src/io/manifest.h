@@ -4,6 +4,8 @@
  *   dfl_manifest_new, _free            lifetime
  *   dfl_manifest_put_string/_int/_double/_strings/_raw   fields, in order
  *   dfl_manifest_write                 the object plus "files" (name, bytes, sha256)
+ *   dfl_manifest_put_format            the results folder's magic and format version
+ *   dfl_manifest_results_files         the "files" names of a results manifest
  *   dfl_manifest_libraries             JSON object of the linked libraries' versions
  *   dfl_json_quote                     a C string as a JSON string literal
  *   dfl_json_find_string, _number      a top-level field of JSON dflab wrote
@@ -44,6 +46,29 @@ dfl_status dfl_manifest_put_raw(dfl_manifest *m, const char *key, const char *js
  * success.  DFL_E_IO naming the file on failure. */
 dfl_status dfl_manifest_write(const dfl_manifest *m, const char *path, const char *files_dir,
                               dfl_err *err);
+
+/* A results folder's manifest.json opens with
+ *   "format": "dflab-results", "format_version": 1
+ * so that dflab can tell its own folders (which a run replaces whole) from
+ * a folder that merely holds some file called manifest.json. */
+#define DFL_RESULTS_FORMAT "dflab-results"
+#define DFL_RESULTS_FORMAT_VERSION 1
+
+/* Puts "format" and "format_version" (call before any other field, so
+ * they come first).  DFL_OK or DFL_E_NOMEM. */
+dfl_status dfl_manifest_put_format(dfl_manifest *m);
+
+/* What json (a whole manifest.json, NUL-terminated) is, and the names of
+ * its "files" array into *names (*n of them; malloc'ed, the caller frees
+ * each and the array; NULL with *n = 0 when there are none):
+ *    1  a results manifest of this format version (magic as above);
+ *    0  one of dflab before the magic: no "format" field, "tool": "dflab";
+ *   -1  not dflab's, a newer or unknown format_version, or a "files" array
+ *       not in this writer's spelling (*names NULL then);
+ *   -2  out of memory.
+ * Only the spelling dfl_manifest_write produces is read; never reads past
+ * the terminating NUL. */
+int dfl_manifest_results_files(const char *json, char ***names, size_t *n);
 
 /* {"dflab": ..., "inih": ..., "ceres": ..., "openexr": ..., "zlib": ...} into
  * buf: compile-time versions for inih and Ceres, the loaded library's own

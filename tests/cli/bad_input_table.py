@@ -185,6 +185,22 @@ case("--out /proc/x/y", ["run", "{D}/bad.ini", "--out", "/proc/x/y"], ["cannot c
 case("--out /dev/null", ["run", "{D}/bad.ini", "--out", "/dev/null"], ["not a directory"], ini=GOOD)
 case("--out control char", ["run", "{D}/bad.ini", "--out", "{D}/bad.ini/\x1b[2J"], ["\\x1b"], ini=GOOD)
 case("failed run leaves no parent", ["run", "{D}/bad.ini", "--out", "{D}/new/deeper/o"], ["bad.ini:11"], ini=GOOD + b"nn = 1\n")
+# a results folder is never '.', '..' or a folder reached through a missing one
+case("--out .", ["run", "{D}/bad.ini", "--out", "."], ["--out .", "cannot be named '.' or '..'"], ini=GOOD)
+case("--out ..", ["run", "{D}/bad.ini", "--out", ".."], ["--out ..", "cannot be named"], ini=GOOD)
+case("--out D/.", ["run", "{D}/bad.ini", "--out", "{D}/."], ["cannot be named"], ini=GOOD)
+case("--out res/.", ["run", "{D}/bad.ini", "--out", "res/."], ["--out res/.", "cannot be named"], ini=GOOD)
+case("--out res/..", ["run", "{D}/bad.ini", "--out", "res/.."], ["--out res/..", "cannot be named"], ini=GOOD)
+case("--out nonexist/../y", ["run", "{D}/bad.ini", "--out", "nonexist/../y"], ["'..' follows nonexist"], ini=GOOD)
+case("--out D/nonexist/../y", ["run", "{D}/bad.ini", "--out", "{D}/nonexist/../y"], ["'..' follows"], ini=GOOD)
+case("merge .", ["merge", "."], ["merge .", "cannot be named"])
+case("merge ..", ["merge", ".."], ["merge ..", "cannot be named"])
+case("config stem ..", ["run", "{D}/...ini"], ["...ini", "name '..' cannot name its results folder"],
+     files={"...ini": GOOD})
+case("config stem .", ["run", "{D}/..ini"], ["..ini", "name '.' cannot name"], files={"..ini": GOOD})
+case("config stem .. with --set", ["run", "{D}/...ini", "--set", "grid.n=8"], ["name '..'"],
+     files={"...ini": GOOD})
+case("plan config stem ..", ["plan", "{D}/...ini"], ["name '..'"], files={"...ini": GOOD})
 case("missing config", ["run", "{D}/nope.ini", "--out", "{D}/o"], ["nope.ini", "cannot open"])
 case("missing CONFIG", ["run"], ["missing CONFIG.ini"])
 case("two configs", ["run", "{D}/bad.ini", "{D}/bad.ini"], ["unexpected argument"], ini=GOOD)
@@ -302,6 +318,9 @@ def run_case(c, dflab, base):
         if c["ini"] is not None:
             open(os.path.join(d, "bad.ini"), "wb").write(c["ini"])
             inputs.add("bad.ini")
+        for name, data in c["files"].items():   # further inputs, by name
+            open(os.path.join(d, name), "wb").write(data)
+            inputs.add(name)
         if c["pts"] is not None:
             open(os.path.join(d, "pts.csv"), "wb").write(c["pts"])
             inputs.add("pts.csv")

@@ -78,7 +78,7 @@ WRAP
     "$DFLAB" plan "$CFG" "${SETS[@]}" --out "$W/par" --emit parallel -j 2 > "$W/line.sh"
     grep -q -- '--joblog' "$W/line.sh" && grep -q -- '--resume-failed' "$W/line.sh" \
         || die "parallel line lacks --joblog/--resume-failed: $(cat "$W/line.sh")"
-    sed -i "s| -j 2 $DFLAB run | -j 2 $W/wrap.sh run |" "$W/line.sh"
+    sed -i "s|DFLAB_EXE=$DFLAB |DFLAB_EXE=$W/wrap.sh |" "$W/line.sh"
     grep -q wrap.sh "$W/line.sh" || die "wrapper not in line: $(cat "$W/line.sh")"
     if bash "$W/line.sh" 2> "$W/first.err"; then die "the killed job did not fail the line"; fi
     [ -e "$W/killed" ] || die "point 5 was never started"
