@@ -71,8 +71,8 @@ The medial band of width w (--band) is the library's criterion (x is in the
 band iff |d(x)| + w - |d(x + w sign(d) grad d)| > 1e-6 w + 1e-12 (1 + |x|)).
 Columns: max_whole (all points), max_band / max_off (in / off the band),
 near_medial_max, near_surface_max, share_above_eps (share of all points with
-error > eps), data_max / data_rms (at the data nodes the fit used; s = 0
-interpolates them to rounding), fp (FITPACK's residual sum of squares over
+error > eps), data_n / data_max / data_rms (count, max and RMS residual at
+the data nodes the fit used; s = 0 interpolates them to rounding), fp (FITPACK's residual sum of squares over
 all data, s > 0 rows).  A non-finite spline value is an error of +inf.
 
 Writes DIR/sjp10_peers/sjp10_fitpack.csv (long format, one row per fit)
