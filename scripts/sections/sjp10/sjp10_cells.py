@@ -4,6 +4,7 @@ import math
 import dflio
 from sections.common.plot import pyplot
 from sections.sjp10 import sjp10_common as sc
+from sections.sjp10 import sjp10_fitpack_cmp as fpc
 
 _f = dflio.cell_nan
 
@@ -23,11 +24,8 @@ ASSUMPTIONS = [
     "Equal-error comparisons interpolate each baseline's size linearly in log-log between its "
     "measured points at the PHT fit's validation max error; '—' means the baseline did not reach "
     "that error in its measured range (no extrapolation). Sizes: PHT dofs = 4 × base vertices; the "
-    "uniform grid's dofs likewise; FITPACK's stored scalars = coefficients + knots (coefficients "
-    "alone in the CSV).",
-    "FITPACK peer (scripts/peers/sjp10_fitpack.py, SciPy RectBivariateSpline kx = ky = 3): s = 0 on "
-    "n × n grids (n = 9..257) and s = N r² on the 301² node data with target RMS r = 1e-3..3e-6, "
-    "validated on the same nodes + midpoints (for s > 0 the nodes are its own data).",
+    "uniform grid's dofs likewise; FITPACK's stored scalars = coefficients + knots (both in its CSV).",
+    fpc.assumption(),
 ]
 
 
@@ -138,49 +136,22 @@ def render(ctx):
         for c in cases:
             un = _case_rows(rows, c, "uniform")
             upairs = [(_f(r, "dofs"), _f(r, _CV[key])) for r in un]
-            fkey = "val_max" if key == "val_max" else "val_off_max"
-            f0 = [(float(r["scalars"]), float(r[fkey])) for r in fp if r["case"] == c and r["method"] == "fitpack_s0"]
-            fa = [(float(r["scalars"]), float(r[fkey])) for r in fp if r["case"] == c and r["method"] == "fitpack_adaptive"]
             for r in sorted(_case_rows(rows, c, "pht"), key=lambda r: -_f(r, "eps")):
                 e, d = _f(r, _CV[key]), _f(r, "dofs")
-                su, s0, sa = sc.size_at_error(upairs, e), sc.size_at_error(f0, e), sc.size_at_error(fa, e)
-                best_fp = min([v for v in (s0, sa) if v is not None], default=None)
-                body.append([c, f"{_f(r, 'eps'):g}", e, int(d), su, su / d if su else None, s0, sa,
-                             d / best_fp if best_fp else None])
-                if best_fp:
-                    verdict.setdefault((key, c), []).append(d / best_fp)
+                su = sc.size_at_error(upairs, e)
+                body.append([c, f"{_f(r, 'eps'):g}", e, int(d), su, su / d if su else None])
                 if su:
                     verdict.setdefault((key, c + "_u"), []).append(su / d)
-        md += (f"**At equal validation max error, {label}**: the size each baseline needs to reach "
-               "the PHT fit's error ('—': not reached in its measured range).\n\n")
-        md += dflio.md_table(["case", "eps", "PHT error", "PHT dofs", "uniform dofs", "uniform / PHT",
-                              "FITPACK s=0 scalars", "FITPACK s>0 scalars", "PHT / best FITPACK"],
+        md += (f"**At equal validation max error, {label}**: the dofs the uniform grid needs to reach "
+               "the PHT fit's error ('—': not reached in its measured range; FITPACK below).\n\n")
+        md += dflio.md_table(["case", "eps", "PHT error", "PHT dofs", "uniform dofs", "uniform / PHT"],
                              body) + "\n\n"
     if not fp:
         md += ("*The FITPACK peer's table (results/sjp10_peers/sjp10_fitpack.csv) is absent: run "
                "`scripts/peers/sjp10_fitpack.py --results results`.*\n\n")
     aims = []
-    fmax = max([float(r["scalars"]) for r in fp], default=0)
     for key, label in (("val_max", "whole square"), ("val_off_max", "off the medial band")):
         part = []
-        for c in ["circle"] + curve_cases:
-            aim = 0.5 if c == "circle" else 0.1
-            ph = sorted(_case_rows(rows, c, "pht"), key=lambda r: -_f(r, "eps"))
-            if not ph or not any(rr["case"] == c for rr in fp):
-                continue
-            rat = verdict.get((key, c), [])
-            never = [r for r in ph if not any(rr["case"] == c and rr["method"].startswith("fitpack")
-                                              and float(rr[key]) <= _f(r, _CV[key]) for rr in fp)]
-            txt = f"{c}: PHT dofs / FITPACK scalars " + (f"{min(rat):.2f} at best where both reach the error"
-                                                        if rat else "— (no common error)")
-            verdict_txt = "met" if rat and min(rat) <= aim else "not met"
-            if never:
-                txt += (f"; at eps = {max(_f(r, 'eps') for r in never):g} … {min(_f(r, 'eps') for r in never):g} "
-                        f"FITPACK does not reach the PHT error with up to {int(fmax)} scalars "
-                        f"(PHT: {int(min(_f(r, 'dofs') for r in never))}–{int(max(_f(r, 'dofs') for r in never))} dofs)")
-                if verdict_txt == "not met":
-                    verdict_txt = "not met where both reach the error; PHT alone reaches the smaller errors"
-            part.append(txt + f" (aim ≤ {aim:g}: {verdict_txt})")
         us = [max(v) for (k2, c), v in verdict.items() if k2 == key and c.endswith("_u")]
         if us:
             part.append(f"uniform grid / PHT dofs up to {max(us):.0f}× (aim ≥ 10×: "
@@ -190,6 +161,9 @@ def render(ctx):
     if aims:
         md += ("**Against the aims (what would beat the peers):**\n\n" + "\n".join(f"- {a}" for a in aims)
                + "\n\n")
+    if fp:
+        md += fpc.verdict({c: sorted(_case_rows(rows, c, "pht"), key=lambda r: -_f(r, "eps")) for c in cases}, fp)
+        md += fpc.table(fp)
 
     # --- plot ---
     fig, ax = plt.subplots(1, 3, figsize=(15, 4.8))
@@ -206,10 +180,10 @@ def render(ctx):
                      label=f"{c} PHT")
         ax[2].loglog([_f(r, "cv_off_max") for r in un], [_f(r, "dofs") for r in un], "s--", color=col,
                      ms=3, alpha=0.6)
-        for m, mk in (("fitpack_s0", "x:"), ("fitpack_adaptive", "^:")):
-            pr = sorted([r for r in fp if r["case"] == c and r["method"] == m], key=lambda r: float(r["scalars"]))
+        for m, mk in (("fitpack_s0", "x:"), ("fitpack_smooth", "^:"), ("lsq_graded", "v:")):
+            pr = sorted([r for r in fpc.usable(fp) if r["shape"] == c and r["method"] == m], key=fpc.scalars)
             if pr:
-                ax[2].loglog([float(r["val_off_max"]) for r in pr], [float(r["scalars"]) for r in pr], mk,
+                ax[2].loglog([_f(r, "max_off") for r in pr], [fpc.scalars(r) for r in pr], mk,
                              color=col, ms=4, label=f"{c} {m}")
     xs = [10 ** (k / 4) for k in range(4, 30)]
     for j in (0, 1):
@@ -233,6 +207,6 @@ def render(ctx):
     worst = max(_f(r, "t_total") for r in rows)
     md += (f"**Timing.** {sc.quote(fc, 'timing')}. The slowest fit here takes {worst:.2f} s "
            "(2 shared cores); per fit times are in the tables above"
-           + (", FITPACK's adaptive fits " + ", ".join(f"{float(r['seconds']):.2f}" for r in fp if r['method'] == 'fitpack_adaptive' and r['case'] == 'circle') + " s on the circle" if fp else "")
+           + fpc.timing(fp)
            + ".\n")
     return md
