@@ -2,6 +2,7 @@
 
 #include "core/domain.h"
 
+#include <math.h>
 #include <string.h>
 
 #include "cfg/proxy_input_cfg.h"
@@ -66,6 +67,21 @@ dfl_status dfl_proxy_cfg_read(const dfl_cfg *cfg, const char *sec, dfl_proxy_cfg
     if ((st = dfl_cfg_double_opt(cfg, sec, "noise", 0.0, 0.0, 1e300, &c.build.noise, err)))
         return st;
     if ((st = dfl_cfg_int_opt(cfg, sec, "seed", 1, 0, 0x7fffffffL, &seed, err))) return st;
+    if (dfl_cfg_has(cfg, sec, "noise_at")) {
+        double at[3];
+        if ((st = dfl_cfg_vec(cfg, sec, "noise_at", 3, at, err))) return st;
+        long idx = 0, mul = 1;
+        for (int j = 0; j < 3; j++) {
+            /* the cell of a point on a face between two cells: the upper one */
+            const double t = (at[j] - c.build.lo[j]) / (c.build.hi[j] - c.build.lo[j]) * res;
+            if (!(t >= 0 && t < res))
+                return dfl_cfg_reject(cfg, sec, "noise_at", err,
+                                      "expected a point inside the box (axis %d: %g)", j, at[j]);
+            idx += (long)floor(t) * mul;
+            mul *= res;
+        }
+        c.build.noise_cell = idx;
+    }
     c.build.order = (int)order;
     c.build.res = (int)res;
     c.build.storage = (dfl_proxy_storage)sto;

@@ -25,6 +25,9 @@
  *   noise       footpoint noise length >= 0, in config length units
  *               (default 0; proxy/proxy.h)
  *   seed        the noise's seed >= 0                  (default 1)
+ *   noise_at    x y z: only the cell holding this point gets noise (the
+ *               paper's variant: it moved one footpoint); a point outside
+ *               the box is refused                     (default: every cell)
  * Bad values exit 2 naming the key: res < 1, clip_radius <= 0, lo >= hi
  * (named as hi), signed with an input that has no inside, an input the
  * shape lacks (named as input, by proxy_input_cfg).

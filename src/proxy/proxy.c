@@ -24,6 +24,7 @@ void dfl_proxy_build_opts_default(dfl_proxy_build_opts *o)
     }
     o->storage = DFL_PROXY_DOUBLE;
     o->position = DFL_PROXY_DISPLACEMENT;
+    o->noise_cell = -1;
 }
 
 static dfl_status check_opts(const dfl_proxy_build_opts *o, dfl_err *err)
@@ -39,6 +40,10 @@ static dfl_status check_opts(const dfl_proxy_build_opts *o, dfl_err *err)
                                j, o->lo[j], j, o->hi[j]);
     if (!(o->noise >= 0) || !isfinite(o->noise))
         return dfl_err_set(err, DFL_E_INPUT, "proxy grid: noise %g (expected >= 0)", o->noise);
+    if (o->noise_cell < -1 || (o->noise_cell >= 0 && o->res >= 1 &&
+                               (double)o->noise_cell >= (double)o->res * o->res * o->res))
+        return dfl_err_set(err, DFL_E_INPUT, "proxy grid: noise cell %ld (expected -1 or < N^3)",
+                           o->noise_cell);
     if ((unsigned)o->storage >= DFL_PROXY_STORAGE_COUNT ||
         (unsigned)o->position >= DFL_PROXY_POSITION_COUNT)
         return dfl_err_set(err, DFL_E_INPUT, "proxy grid: bad storage or position");
@@ -219,7 +224,8 @@ static void store_cell(dfl_proxy_grid *g, const dfl_proxy_build_opts *o, size_t 
         return;
     }
     double w[3];
-    if (o->noise > 0) {
+    const int noisy = o->noise > 0 && (o->noise_cell < 0 || (size_t)o->noise_cell == c);
+    if (noisy) {
         noise_dir(o->seed, c, w);
         for (int j = 0; j < 3; j++) w[j] *= o->noise;
     }
@@ -230,7 +236,7 @@ static void store_cell(dfl_proxy_grid *g, const dfl_proxy_build_opts *o, size_t 
     double delta = moved_delta(g, xc);
     int side = 1, moved = 0, clamped = 0, ok = 0;
     for (int it = 0; it < MOVE_TRIES && !ok; it++, delta *= 2) {
-        moved = dfl_proxy_encode(g->order, xc, sp, o->noise > 0 ? w : NULL, delta, s, &side);
+        moved = dfl_proxy_encode(g->order, xc, sp, noisy ? w : NULL, delta, s, &side);
         /* a moved displacement is -delta n itself: through x_c - delta n
          * and back it would keep only delta / ulp(x_c) of n's direction */
         if (g->position == DFL_PROXY_DISPLACEMENT)

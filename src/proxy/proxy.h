@@ -44,6 +44,9 @@
  * noise * w, w uniform on the unit sphere from SplitMix64 seeded by
  * seed + cell index (the same grid for any thread count), before encoding:
  * the order-1 normal p - x_c moves with it, curvatures and t do not.
+ * noise_cell >= 0 moves only that cell's footpoint (index i + N (j + N k),
+ * the paper's variant: hvb25 Sec. 7 moved one footpoint by hand); -1 (the
+ * default) moves every footpoint.
  */
 #ifndef DFL_PROXY_PROXY_H
 #define DFL_PROXY_PROXY_H
@@ -62,6 +65,7 @@ typedef struct dfl_proxy_build_opts {
     dfl_proxy_storage storage;
     dfl_proxy_position position;
     double noise;                 /* footpoint noise length >= 0 */
+    long noise_cell;              /* -1: noise on every cell; else that cell only, < N^3 */
     uint64_t seed;
 } dfl_proxy_build_opts;
 
@@ -90,7 +94,7 @@ typedef struct dfl_proxy_grid {
  * the input in chunks of 256 cells in parallel (OpenMP, static schedule;
  * the grid is the same at any thread count), one buffer per thread.
  * Errors: DFL_E_INPUT for bad options (order not 1|2, res < 1 or res^3
- * overflow, lo >= hi, noise < 0 or not finite) or a NULL input; an input's
+ * overflow, lo >= hi, noise < 0 or not finite, noise_cell < -1 or >= N^3) or a NULL input; an input's
  * error status is passed on (first failing chunk's message); DFL_E_NOMEM.
  * On error *out holds no buffers.  Order 2 asks the input for curvature; a
  * non-finite curvature counts the cell as failed. */

@@ -198,3 +198,47 @@ Test(proxy_grid, centres_on_surface_half_absolute)
             dfl_proxy_grid_free(&g);
         }
 }
+
+/* noise_cell: only that cell's stored scalars differ from the noiseless
+ * grid (the paper's variant, one footpoint moved); -1 moves every cell's.
+ * Out-of-range cells are refused. */
+Test(proxy_grid, noise_on_one_cell_only)
+{
+    dfl_proxy_build_opts o;
+    dfl_proxy_build_opts_default(&o);
+    cr_expect_eq(o.noise_cell, -1, "the default moves every footpoint");
+    o.res = 6;
+    dfl_proxy_grid clean, one, all;
+    build_with_threads(1, &o, &clean);
+    o.noise = 0.01;
+    o.noise_cell = 3 + 6 * (2 + 6 * 4);
+    build_with_threads(1, &o, &one);
+    o.noise_cell = -1;
+    build_with_threads(1, &o, &all);
+    size_t differ_one = 0, differ_all = 0, which = 0;
+    const size_t ns = (size_t)clean.nscalar;
+    for (size_t c = 0; c < clean.ncells; c++) {
+        const double *a = (const double *)clean.data + ns * c;
+        if (memcmp(a, (const double *)one.data + ns * c, ns * sizeof(double)) != 0)
+            differ_one++, which = c;
+        if (memcmp(a, (const double *)all.data + ns * c, ns * sizeof(double)) != 0) differ_all++;
+    }
+    cr_expect_eq(differ_one, 1);
+    cr_expect_eq(which, (size_t)(3 + 6 * (2 + 6 * 4)));
+    cr_expect_eq(differ_all, clean.ncells, "every footpoint moves without noise_cell");
+    dfl_proxy_grid_free(&clean);
+    dfl_proxy_grid_free(&one);
+    dfl_proxy_grid_free(&all);
+    dfl_proxy_input in;
+    ta_input(&sphere, &in);
+    dfl_proxy_grid g;
+    dfl_err err;
+    o.noise_cell = 216;
+    cr_expect_eq(dfl_proxy_grid_build(&in, &o, &g, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "noise cell 216") != NULL, "%s", err.msg);
+    o.noise_cell = -2;
+    cr_expect_eq(dfl_proxy_grid_build(&in, &o, &g, &err), DFL_E_INPUT);
+    o.noise_cell = 215;
+    cr_expect_eq(dfl_proxy_grid_build(&in, &o, &g, &err), DFL_OK, "%s", err.msg);
+    dfl_proxy_grid_free(&g);
+}

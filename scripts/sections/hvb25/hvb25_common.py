@@ -31,8 +31,10 @@ ASSUMPTIONS = [
     "SDF input: curvature = analytic (the SDF's Hessian, the paper's ref. [6]) unless a config says fit.",
     "Implicit input: footpoint = paper is our reading of its method (gradient-direction starts, Newton, "
     "several starts); footpoint = robust is ours (proxy/input_implicit.h).",
-    "Footpoint noise: the paper moved one footpoint by hand; we move every footpoint by the given "
-    "length in a random direction (proxy/proxy.h), a stronger test.",
+    "Footpoint noise: the paper moved one footpoint by hand, without saying which; "
+    "hvb25_noise_one moves one (the cell holding noise_at, a cell 0.069 outside the sphere), "
+    "hvb25_noise moves every footpoint by the given length in a random direction (proxy/proxy.h), "
+    "a stronger test.",
     "Table 4: our times are CPU times on this 2-core machine (one frame 256² in the paper configs, "
     "512² in make bench), beside the paper's GTX 1650 figures as a per-proxy and per-query cost, not "
     "as a race of machines; generation = building the grid from the input (best of one run).",

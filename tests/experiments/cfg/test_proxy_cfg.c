@@ -124,3 +124,25 @@ Test(proxy_cfg, bad_keys_name_the_key)
     expect_reject("noise = -1\n", "noise");
     expect_reject("input = magic\n", "input");
 }
+
+/* noise_at names the cell that holds the point: box [-1, 2] x [-2, 2] x
+ * [-0.5, 2] at res 8 has cell sizes 3/8, 1/2, 5/16; (0.2, 1.9, -0.5) lies in
+ * cell (3, 7, 0) (the face at -0.5 belongs to cell 0), index 3 + 8 * 7 = 59.
+ * The default is every cell (-1); a point outside the box is refused. */
+Test(proxy_cfg, noise_at_names_its_cell)
+{
+    dfl_cfg *cfg = with_field("");
+    dfl_proxy_cfg c;
+    cr_assert_eq(dfl_proxy_cfg_read(cfg, "field", &c, NULL), DFL_OK);
+    cr_expect_eq(c.build.noise_cell, -1);
+    dfl_cfg_free(cfg);
+    cfg = with_field("res = 8\nlo = -1 -2 -0.5\nhi = 2\nnoise = 0.01\nnoise_at = 0.2 1.9 -0.5\n");
+    cr_assert_eq(dfl_proxy_cfg_read(cfg, "field", &c, NULL), DFL_OK);
+    cr_expect_eq(c.build.noise_cell, 59);
+    dfl_cfg_free(cfg);
+    cfg = with_field("res = 8\nnoise_at = 0 0 1\n");
+    dfl_err err;
+    cr_expect_eq(dfl_proxy_cfg_read(cfg, "field", &c, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "noise_at") && strstr(err.msg, "inside the box"), "%s", err.msg);
+    dfl_cfg_free(cfg);
+}
