@@ -22,7 +22,9 @@
  * [eval] n = 217, lo = -1 -1 -1, hi = 1 1 1: the node grid.
  * Rows: one per decoding: what was built (field kind, order, res, storage,
  * stored scalars and bytes, build time, uncertified / failed / moved
- * footpoints, cells with a scalar clamped to the storage range),
+ * footpoints, cells with a scalar clamped to the storage range; proxy
+ * grids: wrong_footpoints, judged by the truth, not by the method's own
+ * certificate: see count_wrong),
  * the decoding (filter, clip, signed) and the metrics of hvb25_eval.h:
  * l1, mse (beside the paper's undefined "L2"), rms, linf over the grid, *_band in the band,
  * *_off off the medial region, the worst point and its footpoint jump.
@@ -89,6 +91,7 @@ typedef struct build_info {
     const char *storage;
     dfl_proxy_stats ps;
     hvb25_cells cells;
+    long wrong; /* count_wrong; -1 for fields that are not proxy grids */
 } build_info;
 
 static void field_info(const dfl_field *f, build_info *b)
@@ -115,6 +118,43 @@ static void field_info(const dfl_field *f, build_info *b)
     }
 }
 
+/* Cells whose stored footpoint p is not a closest surface point of the
+ * cell centre x_c by the truth: p is off the surface (|ref(p)| > tol) or
+ * farther than the truth's distance (|x_c - p| > |ref(x_c)| + tol), with
+ * tol = 0.1 cell sizes; a failed (non-finite) footpoint is wrong.  Ties of
+ * the truth (cells on the medial axis) are not wrong: every closest point
+ * passes.  Moved cells (a centre on the surface) move by far less than tol.
+ * Chunks of 256 cells in parallel; the count does not depend on threads. */
+#define WRONG_CHUNK 256
+static long count_wrong(const dfl_proxy_grid *g, const dfl_field *ref, int threads)
+{
+    const double tol = 0.1 * dfl_proxy_cell_size(g);
+    const size_t nch = (g->ncells + WRONG_CHUNK - 1) / WRONG_CHUNK;
+    long wrong = 0;
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : wrong) num_threads(threads)
+    for (size_t ch = 0; ch < nch; ch++) {
+        double xc[3 * WRONG_CHUNK], p[3 * WRONG_CHUNK], dx[WRONG_CHUNK], dp[WRONG_CHUNK];
+        const size_t c0 = ch * WRONG_CHUNK;
+        const size_t m = g->ncells - c0 < WRONG_CHUNK ? g->ncells - c0 : WRONG_CHUNK;
+        for (size_t q = 0; q < m; q++) {
+            dfl_proxy_geom pg;
+            dfl_proxy_cell_centre(g, c0 + q, xc + 3 * q);
+            dfl_proxy_cell_decode(g, c0 + q, &pg);
+            for (int j = 0; j < 3; j++) p[3 * q + j] = pg.p[j];
+        }
+        ref->ops->eval(ref->ctx, m, xc, dx, NULL);
+        ref->ops->eval(ref->ctx, m, p, dp, NULL);
+        for (size_t q = 0; q < m; q++) {
+            const double *a = xc + 3 * q, *b = p + 3 * q;
+            const double r = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                  (a[2] - b[2]) * (a[2] - b[2]));
+            /* written so that NaN anywhere counts as wrong */
+            if (!(fabs(dp[q]) <= tol && r <= fabs(dx[q]) + tol)) wrong++;
+        }
+    }
+    return wrong;
+}
+
 static dfl_status put_build(dfl_table *t, const dfl_field *f, const build_info *b, double gen,
                             dfl_err *err)
 {
@@ -131,6 +171,7 @@ static dfl_status put_build(dfl_table *t, const dfl_field *f, const build_info *
     if (!st) st = dfl_table_set_int(t, "failed", (long)b->ps.failed, err);
     if (!st) st = dfl_table_set_int(t, "moved", (long)b->ps.moved, err);
     if (!st) st = dfl_table_set_int(t, "clamped", (long)b->ps.clamped, err);
+    if (!st) st = dfl_table_set_int(t, "wrong_footpoints", b->wrong, err);
     return st;
 }
 
@@ -167,6 +208,7 @@ static dfl_status acc_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
     build_info bi;
     if (!st) {
         field_info(&f, &bi);
+        bi.wrong = grid ? count_wrong(grid, &ref, s.threads) : -1;
         s.cells = bi.cells;
         st = hvb25_acc_run(&s, res, err);
     }

@@ -194,3 +194,22 @@ Test(e2e_hvb25_accuracy, torus_order2_exact_in_equator_cells, .timeout = 120)
     cr_expect(e2e_csv_get(csv, 0, "linf") > 1e-6, "off the equator: linf %g",
               e2e_csv_get(csv, 0, "linf"));
 }
+
+/* wrong_footpoints is judged by the truth.  Sphere of radius 0.5, SDF
+ * input, 8^3 cells of size 0.25 (tol 0.025): without noise every stored
+ * footpoint is the exact one (0 wrong).  noise_at = (0.55, 0.05, 0.05) is
+ * cell (6, 4, 4), centre (0.625, 0.125, 0.125), d = 0.149; moving its
+ * footpoint p by 1 puts p' either off the sphere or, on it, at chord 1 from
+ * p, so |x_c - p'| >= 1 - d = 0.85 > d + tol: exactly 1 wrong, and the
+ * method's certificate (uncertified) still says 0. */
+Test(e2e_hvb25_accuracy, wrong_footpoints_by_the_truth, .timeout = 60)
+{
+    char csv[700];
+    run_text("[study]\nname = hvb25_accuracy\n" SPHERE
+             "[field]\nkind = proxy\norder = 1\nres = 8\ninput = sdf\nnoise = 0, 1\n"
+             "noise_at = 0.55 0.05 0.05\n[eval]\nn = 9\n",
+             2, csv, sizeof csv);
+    cr_expect_eq(e2e_csv_get(csv, 0, "wrong_footpoints"), 0);
+    cr_expect_eq(e2e_csv_get(csv, 1, "wrong_footpoints"), 1);
+    cr_expect_eq(e2e_csv_get(csv, 1, "uncertified"), 0);
+}
