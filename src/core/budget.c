@@ -137,33 +137,38 @@ static const double class_seconds[] = {
 
 double dfl_cost_class_seconds(dfl_cost_class cls) { return class_seconds[cls]; }
 
+/* The largest single contribution names the key a refusal points at. */
+static void keep_largest(double v, double *big, const char **bsec, const char **bkey,
+                         char *what, size_t size, const char *sec, const char *key,
+                         const char *fmt, va_list ap)
+{
+    if (v > *big || !*bkey) {
+        *big = v;
+        *bsec = sec, *bkey = key;
+        vsnprintf(what, size, fmt, ap);
+    }
+}
+
 void dfl_cost_add_bytes(dfl_cost *c, const char *sec, const char *key, double bytes,
                         const char *what, ...)
 {
     c->bytes += bytes;
-    if (bytes > c->big_bytes || !c->mem_key) {
-        c->big_bytes = bytes;
-        c->mem_sec = sec, c->mem_key = key;
-        va_list ap;
-        va_start(ap, what);
-        vsnprintf(c->mem_what, sizeof c->mem_what, what, ap);
-        va_end(ap);
-    }
+    va_list ap;
+    va_start(ap, what);
+    keep_largest(bytes, &c->big_bytes, &c->mem_sec, &c->mem_key, c->mem_what,
+                 sizeof c->mem_what, sec, key, what, ap);
+    va_end(ap);
 }
 
 void dfl_cost_add_work(dfl_cost *c, const char *sec, const char *key, dfl_cost_class cls,
                        double n, const char *what, ...)
 {
     c->evals[cls] += n;
-    const double s = n * class_seconds[cls];
-    if (s > c->big_seconds || !c->work_key) {
-        c->big_seconds = s;
-        c->work_sec = sec, c->work_key = key;
-        va_list ap;
-        va_start(ap, what);
-        vsnprintf(c->work_what, sizeof c->work_what, what, ap);
-        va_end(ap);
-    }
+    va_list ap;
+    va_start(ap, what);
+    keep_largest(n * class_seconds[cls], &c->big_seconds, &c->work_sec, &c->work_key,
+                 c->work_what, sizeof c->work_what, sec, key, what, ap);
+    va_end(ap);
 }
 
 double dfl_cost_seconds(const dfl_cost *c, int threads)

@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -278,33 +279,14 @@ dfl_status dfl_dir_check_name(const char *dir, const char *what, dfl_err *err)
     return DFL_OK;
 }
 
+/* One reader of whole files: io/rfile.h's (regular files only, so a FIFO
+ * named like a manifest cannot block a run). */
 char *dfl_file_read_all(const char *path, size_t *len)
 {
-    FILE *fp = fopen(path, "rb");
-    if (!fp) return NULL;
-    char *buf = NULL;
-    size_t cap = 0, n = 0, k;
-    do {
-        if (n + 65536 > cap) {
-            char *b = realloc(buf, cap = 2 * cap + 65536);
-            if (!b) {
-                free(buf), fclose(fp);
-                return NULL;
-            }
-            buf = b;
-        }
-        k = fread(buf + n, 1, cap - n - 1, fp);
-        n += k;
-    } while (k > 0);
-    const int bad = ferror(fp);
-    fclose(fp);
-    if (bad) {
-        free(buf);
-        return NULL;
-    }
-    buf[n] = '\0';
-    if (len) *len = n;
-    return buf;
+    char *text;
+    dfl_err e;
+    if (dfl_rfile_read(path, "", SIZE_MAX - 1, &text, len, &e) != DFL_OK) return NULL;
+    return text;
 }
 
 static int cmp_name(const void *a, const void *b)

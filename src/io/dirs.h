@@ -90,7 +90,7 @@ dfl_status dfl_dir_check_replaceable(const char *dir, const char *marker, const 
 
 /* The bytes of path plus a terminating NUL, malloc'ed (caller frees);
  * *len (may be NULL) receives the byte count.  NULL when the file cannot
- * be read or memory runs out. */
+ * be read, is not a regular file (dfl_rfile_read) or memory runs out. */
 char *dfl_file_read_all(const char *path, size_t *len);
 
 #endif
