@@ -3,6 +3,7 @@
  * wrote itself (point records, for merging), so the two finders below look
  * for the fixed `"key": value` spelling of this writer. */
 #include "io/manifest.h"
+#include "io/json.h"
 
 #include <ceres/version.h>
 #include <dirent.h>
@@ -132,67 +133,6 @@ char *dfl_json_quote(const char *s)
     return q;
 }
 
-static const char *find_key(const char *json, const char *key)
-{
-    size_t kl = strlen(key);
-    for (const char *p = strstr(json, key); p; p = strstr(p + 1, key))
-        if (p > json && p[-1] == '"' && p[kl] == '"' && strncmp(p + kl + 1, ": ", 2) == 0)
-            return p + kl + 3;
-    return NULL;
-}
-
-/* Reads only up to the closing quote: an escape is taken only when all of
- * its bytes are there, so a \u near the end of the text stops at the NUL. */
-int dfl_json_find_string(const char *json, const char *key, char *buf, size_t size)
-{
-    if (size) buf[0] = '\0';
-    const char *v = find_key(json, key);
-    if (!v || *v != '"') return 0;
-    size_t k = 0;
-    for (v++; *v != '"'; v++) {
-        if (*v == '\0') goto bad; /* no closing quote */
-        char c = *v;
-        if (c == '\\') {
-            c = *++v;
-            if (c == 'u') {
-                unsigned u = 0;
-                for (int i = 1; i <= 4; i++) { /* stops at the NUL: not a hex digit */
-                    const char h = v[i];
-                    const int d = h >= '0' && h <= '9' ? h - '0'
-                                : h >= 'a' && h <= 'f' ? h - 'a' + 10
-                                : h >= 'A' && h <= 'F' ? h - 'A' + 10 : -1;
-                    if (d < 0) goto bad;
-                    u = 16 * u + (unsigned)d;
-                }
-                v += 4;
-                c = (char)u; /* dflab escapes only control characters */
-            } else if (c == 'n') c = '\n';
-            else if (c == 't') c = '\t';
-            else if (c == 'r') c = '\r';
-            else if (c == 'b') c = '\b';
-            else if (c == 'f') c = '\f';
-            else if (c != '"' && c != '\\' && c != '/') goto bad;
-        }
-        if (k + 1 < size) buf[k++] = c;
-    }
-    if (size) buf[k] = '\0';
-    return 1;
-bad:
-    if (size) buf[0] = '\0';
-    return 0;
-}
-
-int dfl_json_find_number(const char *json, const char *key, double *out)
-{
-    const char *v = find_key(json, key);
-    if (!v) return 0;
-    char *end;
-    double d = strtod(v, &end);
-    if (end == v) return 0;
-    *out = d;
-    return 1;
-}
-
 const char *dfl_manifest_libraries(char *buf, size_t size)
 {
     int maj = 0, min = 0, patch = 0;
@@ -284,140 +224,58 @@ dfl_status dfl_manifest_put_format(dfl_manifest *m)
                         : st;
 }
 
-static int hexval(char c)
-{
-    if (c >= '0' && c <= '9') return c - '0';
-    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-    return -1;
-}
-
-/* The JSON string literal at *p (after its opening quote) decoded into a
- * malloc'ed string; *p moves past the closing quote.  NULL (and *oom set
- * when memory ran out) on a malformed literal.  Escapes of U+0001..U+FFFF
- * become UTF-8; \u0000 and surrogates are refused (no file has such a
- * name as dflab wrote it). */
-static char *json_string(const char **p, int *oom)
-{
-    const char *s = *p;
-    size_t cap = strlen(s) + 1;   /* decoding never grows the text */
-    char *o = malloc(cap), *w = o;
-    if (!o) {
-        *oom = 1;
-        return NULL;
-    }
-    for (; *s && *s != '"'; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c < 0x20) break;
-        if (c != '\\') {
-            *w++ = (char)c;
-            continue;
-        }
-        s++;
-        switch (*s) {
-        case '"': case '\\': case '/': *w++ = *s; break;
-        case 'b': *w++ = '\b'; break;
-        case 'f': *w++ = '\f'; break;
-        case 'n': *w++ = '\n'; break;
-        case 'r': *w++ = '\r'; break;
-        case 't': *w++ = '\t'; break;
-        case 'u': {
-            long u = 0;
-            for (int i = 1; i <= 4; i++) {   /* stops at the NUL: hexval('\0') < 0 */
-                const int h = hexval(s[i]);
-                if (h < 0) goto bad;
-                u = 16 * u + h;
-            }
-            s += 4;
-            if (u == 0 || (u >= 0xd800 && u <= 0xdfff)) goto bad;
-            if (u < 0x80) {
-                *w++ = (char)u;
-            } else if (u < 0x800) {
-                *w++ = (char)(0xc0 | (u >> 6)), *w++ = (char)(0x80 | (u & 0x3f));
-            } else {
-                *w++ = (char)(0xe0 | (u >> 12)), *w++ = (char)(0x80 | ((u >> 6) & 0x3f));
-                *w++ = (char)(0x80 | (u & 0x3f));
-            }
-            break;
-        }
-        default: goto bad;
-        }
-    }
-    if (*s != '"') goto bad;
-    *w = '\0';
-    *p = s + 1;
-    return o;
-bad:
-    free(o);
-    return NULL;
-}
-
-static const char *skip_ws(const char *p)
-{
-    while (*p == ' ' || *p == '\n' || *p == '\t' || *p == '\r') p++;
-    return p;
-}
-
+/* On io/json.h's strict reader: a manifest is one JSON object, so a
+ * truncated, padded or re-spelt one is refused as a whole, and a name is
+ * unescaped exactly as any JSON reader would. */
 int dfl_manifest_results_files(const char *json, char ***names, size_t *n)
 {
     *names = NULL;
     *n = 0;
-    /* the magic is the object's first field, spelt as put_format writes it */
-    static const char magic[] = "{\n  \"format\": \"" DFL_RESULTS_FORMAT "\",\n  \"format_version\": ";
+    dfl_err e;
+    if (dfl_json_check(json, strlen(json), "manifest.json", &e) != DFL_OK) return -1;
+    char fmt[64];
+    long ver;
     int kind;
-    if (strncmp(json, magic, sizeof magic - 1) == 0) {
-        const char *v = json + sizeof magic - 1;
-        long ver = 0;
-        int digits = 0;
-        for (; *v >= '0' && *v <= '9' && digits < 6; v++, digits++) ver = 10 * ver + (*v - '0');
-        if (digits == 0 || ver != DFL_RESULTS_FORMAT_VERSION || *v != ',') return -1;
+    const char *v;
+    size_t vl;
+    if (dfl_json_member(json, "format", &v, &vl)) {
+        if (dfl_json_get_string(json, "format", "", fmt, sizeof fmt, &e) != DFL_OK ||
+            strcmp(fmt, DFL_RESULTS_FORMAT) != 0 ||
+            dfl_json_get_long(json, "format_version", "", 0, 1000000, &ver, &e) != DFL_OK ||
+            ver != DFL_RESULTS_FORMAT_VERSION)
+            return -1;
         kind = 1;
-    } else if (strncmp(json, "{\n  \"tool\": \"dflab\",\n", 21) == 0 &&
-               !strstr(json, "\n  \"format\": ")) {
-        kind = 0;
     } else {
-        return -1;
+        if (dfl_json_get_string(json, "tool", "", fmt, sizeof fmt, &e) != DFL_OK ||
+            strcmp(fmt, "dflab") != 0)
+            return -1;
+        kind = 0;
     }
-    /* "files" is the last field: its last spelling at the top level */
-    const char *p = NULL;
-    for (const char *q = strstr(json, ",\n  \"files\": ["); q; q = strstr(q + 1, ",\n  \"files\": ["))
-        p = q;
-    if (!p) return -1;
-    p += 14;
+    if (!dfl_json_member(json, "files", &v, &vl) || *v != '[') return -1;
     char **list = NULL;
     size_t k = 0;
-    int oom = 0;
-    for (;;) {
-        p = skip_ws(p);
-        if (*p == ']') break;
-        if (k > 0) {
-            if (*p != ',') goto bad;
-            p = skip_ws(p + 1);
-        }
-        if (strncmp(p, "{\"name\": \"", 10) != 0) goto bad;
-        p += 10;
-        char *name = json_string(&p, &oom);
-        if (!name) goto bad;
-        char **nl = realloc(list, (k + 1) * sizeof *nl);
+    const char *el;
+    size_t el_len;
+    while (dfl_json_each(&v, &el, &el_len)) {
+        /* unescaping never lengthens a string, so el_len + 1 bytes hold it */
+        char *name = malloc(el_len + 1);
+        char **nl = name ? realloc(list, (k + 1) * sizeof *nl) : NULL;
         if (!nl) {
             free(name);
-            oom = 1;
-            goto bad;
+            for (size_t i = 0; i < k; i++) free(list[i]);
+            free(list);
+            return -2;
         }
         list = nl;
+        if (dfl_json_get_string(el, "name", "", name, el_len + 1, &e) != DFL_OK) {
+            free(name);
+            for (size_t i = 0; i < k; i++) free(list[i]);
+            free(list);
+            return -1;
+        }
         list[k++] = name;
-        /* the rest of the entry: "bytes": N, "sha256": "hex" -- no braces */
-        while (*p && *p != '}' && *p != '{' && *p != ']') p++;
-        if (*p != '}') goto bad;
-        p++;
     }
-    p = skip_ws(p + 1);
-    if (*p != '}' || *skip_ws(p + 1) != '\0') goto bad;
     *names = list;
     *n = k;
     return kind;
-bad:
-    for (size_t i = 0; i < k; i++) free(list[i]);
-    free(list);
-    return oom ? -2 : -1;
 }

@@ -8,7 +8,6 @@
  *   dfl_manifest_results_files         the "files" names of a results manifest
  *   dfl_manifest_libraries             JSON object of the linked libraries' versions
  *   dfl_json_quote                     a C string as a JSON string literal
- *   dfl_json_find_string, _number      a top-level field of JSON dflab wrote
  *   dfl_wall_seconds                   monotonic clock
  *
  * A manifest holds each key once (json.load keeps the last of duplicates,
@@ -63,11 +62,13 @@ dfl_status dfl_manifest_put_format(dfl_manifest *m);
  * each and the array; NULL with *n = 0 when there are none):
  *    1  a results manifest of this format version (magic as above);
  *    0  one of dflab before the magic: no "format" field, "tool": "dflab";
- *   -1  not dflab's, a newer or unknown format_version, or a "files" array
- *       not in this writer's spelling (*names NULL then);
+ *   -1  not one strict JSON object (io/json.h: truncated, trailing bytes,
+ *       duplicate keys), not dflab's, a newer or unknown format_version, or
+ *       no "files" array of objects each with a string "name" (*names NULL
+ *       then);
  *   -2  out of memory.
- * Only the spelling dfl_manifest_write produces is read; never reads past
- * the terminating NUL. */
+ * Any valid JSON spelling of those members is read (key order, white space
+ * and escapes are free); never reads past the terminating NUL. */
 int dfl_manifest_results_files(const char *json, char ***names, size_t *n);
 
 /* {"dflab": ..., "inih": ..., "ceres": ..., "openexr": ..., "zlib": ...} into
@@ -78,14 +79,6 @@ const char *dfl_manifest_libraries(char *buf, size_t size);
 /* s as a quoted JSON string (escapes ", \ and control characters), malloc'ed
  * (caller frees); NULL when out of memory. */
 char *dfl_json_quote(const char *s);
-/* The value of the first `"key": "..."` in json (unescaped, cut to
- * size - 1 bytes) into buf; returns 0 when absent or not a whole JSON
- * string (no closing quote, an unknown escape, \u without 4 hex digits;
- * buf is "" then).  Reads nothing past json's terminating NUL. */
-int dfl_json_find_string(const char *json, const char *key, char *buf, size_t size);
-/* The value of the first `"key": <number>`; returns 0 when absent. */
-int dfl_json_find_number(const char *json, const char *key, double *out);
-
 /* Monotonic wall clock in seconds. */
 double dfl_wall_seconds(void);
 

@@ -147,6 +147,52 @@ Test(dirs, results_files_reads_names_and_refuses_the_rest)
     tmpdir_remove(t);
 }
 
+/* The manifest is read as JSON, not as one spelling: the members may come
+ * in any order and with any white space; the magic, the version and the
+ * shape of "files" are what decide. */
+Test(dirs, results_files_is_json_not_a_spelling)
+{
+    char **got;
+    size_t n;
+    static const char *const yes1[] = {
+        "{\"files\":[{\"sha256\":\"00\",\"name\":\"a\"}],\"format_version\":1,"
+        "\"format\":\"dflab-results\"}",
+        " {\"format\" : \"dflab-results\" , \"format_version\" : 1 , \"files\" : "
+        "[ { \"name\" : \"\\u0061\" } ] } \n",
+    };
+    for (size_t i = 0; i < 2; i++) {
+        cr_assert_eq(dfl_manifest_results_files(yes1[i], &got, &n), 1, "%s", yes1[i]);
+        cr_assert_eq(n, 1);
+        cr_expect_str_eq(got[0], "a");
+        free(got[0]);
+        free(got);
+    }
+    cr_assert_eq(dfl_manifest_results_files("{\"tool\":\"dflab\",\"files\":[]}", &got, &n), 0);
+    cr_expect_eq(n, 0);
+    cr_expect_null(got);
+    static const char *const no[] = {
+        "{\"format\":\"dflab-results\",\"format_version\":2,\"files\":[]}",
+        "{\"format\":\"dflab-resultz\",\"format_version\":1,\"files\":[]}",
+        "{\"format\":\"dflab-results\",\"format_version\":1.0,\"files\":[]}",
+        "{\"format\":\"dflab-results\",\"files\":[]}",
+        "{\"format\":\"dflab-results\",\"format_version\":1}",
+        "{\"format\":\"dflab-results\",\"format_version\":1,\"files\":{}}",
+        "{\"format\":\"dflab-results\",\"format_version\":1,\"files\":[\"a\"]}",
+        "{\"format\":\"dflab-results\",\"format_version\":1,\"files\":[{\"name\":1}]}",
+        "{\"format\":\"dflab-results\",\"format_version\":1,\"files\":[{\"name\":\"\\u0000\"}]}",
+        "{\"format\":\"dflab-results\",\"format_version\":1,\"files\":[],\"files\":[]}",
+        "{\"format\":\"dflab-results\",\"format_version\":1,\"files\":[],}",
+        "{\"tool\":\"dflab\",\"format\":\"x\",\"files\":[]}",
+        "{\"tool\":\"dflabx\",\"files\":[]}",
+        "[{\"tool\":\"dflab\",\"files\":[]}]",
+    };
+    for (size_t i = 0; i < sizeof no / sizeof no[0]; i++) {
+        cr_expect_eq(dfl_manifest_results_files(no[i], &got, &n), -1, "%s", no[i]);
+        cr_expect_null(got);
+        cr_expect_eq(n, 0);
+    }
+}
+
 Test(dirs, names_that_cannot_be_results_folders)
 {
     char t[256], d[600];
