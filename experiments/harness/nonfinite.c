@@ -10,93 +10,47 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "io/dirs.h"
+#include "io/table.h"
 
 dfl_status dfl_study_allow_nonfinite(const dfl_cfg *pt, bool *out, dfl_err *err)
 {
     return dfl_cfg_bool_opt(pt, "study", "allow_nonfinite", false, out, err);
 }
 
-/* The next cell of a CSV record at *p (RFC 4180 quotes), copied into buf
- * (truncated to size - 1); *eol is set when the record ends after it. */
-static void next_cell(const char **p, char *buf, size_t size, int *eol)
-{
-    const char *s = *p;
-    size_t n = 0;
-    int q = 0;
-    for (; *s; s++) {
-        if (q) {
-            if (*s == '"' && s[1] == '"') s++;
-            else if (*s == '"') {
-                q = 0;
-                continue;
-            }
-        } else if (*s == '"') {
-            q = 1;
-            continue;
-        } else if (*s == ',' || *s == '\n') {
-            break;
-        }
-        if (n + 1 < size && *s != '\r') buf[n++] = *s;
-    }
-    buf[n] = '\0';
-    *eol = *s != ',';
-    *p = *s ? s + 1 : s;
-}
-
-enum { MAX_COLS = 4096, CELL = 256 };
-
+/* The table read back with io/table.h's reader (the one the merge uses),
+ * so quoting and empty cells are read as they are written. */
 static dfl_status check_file(const char *path, const char *name, const bool *allow, size_t np,
                              dfl_err *err)
 {
-    char *text = dfl_file_read_all(path, NULL);
-    if (!text) return dfl_err_set(err, DFL_E_IO, "%s: cannot read", path);
-    char (*cols)[CELL] = malloc(MAX_COLS * sizeof *cols);
-    char *cell = malloc(CELL);
-    if (!cols || !cell) {
-        free(text), free(cols), free(cell);
-        return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-    }
-    const char *p = text;
-    size_t nc = 0;
-    int eol = 0;
-    long pcol = -1;
-    while (*p && !eol && nc < MAX_COLS) {
-        next_cell(&p, cols[nc], CELL, &eol);
-        if (strcmp(cols[nc], "point") == 0) pcol = (long)nc;
-        nc++;
-    }
-    dfl_status st = DFL_OK;
-    char hit_col[CELL] = "";
-    double hit = 0;
-    for (long row = 1; *p && st == DFL_OK; row++) {
+    dfl_table *t = dfl_table_new();
+    if (!t) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    dfl_status st = dfl_table_append_csv(t, path, err);
+    const size_t nc = dfl_table_cols(t), nr = dfl_table_rows(t);
+    for (size_t i = 0; i < nr && st == DFL_OK; i++) {
         size_t point = 0;
-        hit = 0;
-        for (size_t j = 0;; j++) {
-            next_cell(&p, cell, CELL, &eol);
-            if (j < nc && (long)j == pcol) {
-                char *end;
-                const unsigned long k = strtoul(cell, &end, 10);
-                if (end != cell && k < np) point = (size_t)k;
-            }
-            if (j < nc && hit == 0 && strstr(cols[j], "nonfinite")) {
-                char *end;
-                const double v = strtod(cell, &end);
-                if (end != cell && v > 0) {
-                    hit = v;
-                    snprintf(hit_col, sizeof hit_col, "%s", cols[j]);
-                }
-            }
-            if (eol) break;
+        const char *pc = dfl_table_get(t, i, "point");
+        if (pc && *pc) {
+            char *end;
+            const unsigned long k = strtoul(pc, &end, 10);
+            if (end != pc && k < np) point = (size_t)k;
         }
-        if (hit > 0 && !(point < np && allow[point]))
+        if (point < np && allow[point]) continue;
+        for (size_t j = 0; j < nc; j++) {
+            const char *col = dfl_table_col_name(t, j);
+            if (!strstr(col, "nonfinite")) continue;
+            const char *cell = dfl_table_get(t, i, col);
+            char *end;
+            const double v = strtod(cell, &end);
+            if (end == cell || !(v > 0)) continue;
             st = dfl_err_set(err, DFL_E_NUMERIC,
-                             "%s: row %ld (point %zu): %s: %.0f non-finite point%s (error +inf "
+                             "%s: row %zu (point %zu): %s: %.0f non-finite point%s (error +inf "
                              "in its metrics); the outputs are written; [study] allow_nonfinite "
                              "= true accepts them",
-                             name, row, point, hit_col, hit, hit == 1 ? "" : "s");
+                             name, i + 1, point, col, v, v == 1 ? "" : "s");
+            break;
+        }
     }
-    free(text), free(cols), free(cell);
+    dfl_table_free(t);
     return st;
 }
 

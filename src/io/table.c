@@ -316,3 +316,78 @@ dfl_status dfl_table_csv_prepend(const char *path, size_t n, const char *const *
     free(text);
     return st;
 }
+
+/* ---- reading back (the writer's own format, RFC 4180) ---------------- */
+
+/* Next cell of the record at *p into a malloc'ed string; *eol set when the
+ * record ends after it. */
+static char *next_cell(const char **p, int *eol)
+{
+    const char *s = *p;
+    size_t cap = 64, n = 0;
+    char *c = malloc(cap);
+    if (!c) return NULL;
+    int q = 0;
+    if (*s == '"') q = 1, s++;
+    for (;; s++) {
+        if (n + 2 > cap) {
+            char *b = realloc(c, cap *= 2);
+            if (!b) return free(c), NULL;
+            c = b;
+        }
+        if (q) {
+            if (*s == '\0') break;
+            if (*s == '"' && s[1] == '"') c[n++] = '"', s++;
+            else if (*s == '"') q = 0;
+            else c[n++] = *s;
+            continue;
+        }
+        if (*s == ',' || *s == '\n' || *s == '\0') break;
+        c[n++] = *s;
+    }
+    c[n] = '\0';
+    *eol = *s != ',';
+    *p = *s ? s + 1 : s;
+    return c;
+}
+
+dfl_status dfl_table_append_csv(dfl_table *t, const char *path, dfl_err *err)
+{
+    char *text = dfl_file_read_all(path, NULL);
+    if (!text) return dfl_err_set(err, DFL_E_IO, "%s: cannot read", path);
+    const char *p = text;
+    char **cols = NULL;
+    size_t nc = 0;
+    dfl_status st = DFL_OK;
+    int eol = 0;
+    while (*p && *p != '\n' && !eol && st == DFL_OK) {
+        char *c = next_cell(&p, &eol);
+        char **nw = c ? realloc(cols, (nc + 1) * sizeof *nw) : NULL;
+        if (!nw) {
+            free(c);
+            st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+            break;
+        }
+        cols = nw;
+        cols[nc++] = c;
+        st = dfl_table_add_col(t, c, err);
+    }
+    if (*p == '\n') p++;
+    while (*p && st == DFL_OK) {
+        st = dfl_table_row(t, err);
+        for (size_t j = 0; st == DFL_OK; j++) {
+            char *c = next_cell(&p, &eol);
+            if (!c) {
+                st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+                break;
+            }
+            if (c[0] && j < nc) st = dfl_table_set_string(t, cols[j], c, err);
+            free(c);
+            if (eol) break;
+        }
+    }
+    for (size_t j = 0; j < nc; j++) free(cols[j]);
+    free(cols);
+    free(text);
+    return st;
+}

@@ -26,6 +26,7 @@ typedef struct dfl_table dfl_table;
  *   dfl_table_write_csv                     the CSV file
  *   dfl_table_format_double                 the text a double cell gets
  *   dfl_table_csv_prepend                   leading columns for a CSV file
+ *   dfl_table_append_csv                    a CSV file read back into rows
  *
  * Failure behaviour of the setters (prefix_string, row, set_*): they return
  * DFL_OK, or DFL_E_NOMEM ("table: out of memory ...") or DFL_E_INTERNAL
@@ -80,5 +81,13 @@ dfl_status dfl_table_write_csv(const dfl_table *t, const char *path, dfl_err *er
  * split at newlines outside quotes.  DFL_E_IO naming path on failure. */
 dfl_status dfl_table_csv_prepend(const char *path, size_t n, const char *const *cols,
                                  const char *const *values, dfl_err *err);
+
+/* Appends the CSV file at path (as dfl_table_write_csv writes it: a header
+ * record, RFC 4180 quotes, "\n" records) to t: its header's columns are
+ * added (dfl_table_add_col), then one row per record with its non-empty
+ * cells; cells beyond the header are ignored.  DFL_E_IO "PATH: cannot
+ * read" when the file is not a readable regular file, DFL_E_NOMEM; rows
+ * appended before a failure stay. */
+dfl_status dfl_table_append_csv(dfl_table *t, const char *path, dfl_err *err);
 
 #endif

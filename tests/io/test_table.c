@@ -134,3 +134,42 @@ Test(table, csv_prepend_adds_leading_columns_once)
     cr_expect_eq(dfl_table_csv_prepend(path, 2, cols, vals, &err), DFL_E_IO);
     cr_expect(strstr(err.msg, path) != NULL);
 }
+
+/* What dfl_table_write_csv writes, dfl_table_append_csv reads back cell for
+ * cell: quotes, commas and newlines inside cells, empty cells absent; a
+ * second file adds rows under the same columns; a missing file is
+ * DFL_E_IO naming it. */
+Test(table, append_csv_reads_back_what_write_csv_wrote)
+{
+    dfl_table *t = dfl_table_new();
+    dfl_err err;
+    static const char *const cells[3][3] = {
+        {"1", "x\ny", "q,\"r\""}, {"", "plain", ""}, {"-0.5", "", "\"\""}};
+    for (int i = 0; i < 3; i++) {
+        cr_assert_eq(dfl_table_row(t, &err), DFL_OK);
+        static const char *const cols[3] = {"a", "b", "c"};
+        for (int j = 0; j < 3; j++)
+            if (cells[i][j][0]) dfl_table_set_string(t, cols[j], cells[i][j], &err);
+    }
+    char path[] = "/tmp/dflab-tread-XXXXXX";
+    int fd = mkstemp(path);
+    cr_assert(fd >= 0);
+    close(fd);
+    cr_assert_eq(dfl_table_write_csv(t, path, &err), DFL_OK);
+    dfl_table *r = dfl_table_new();
+    cr_assert_eq(dfl_table_append_csv(r, path, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(dfl_table_append_csv(r, path, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(dfl_table_cols(r), 3);
+    cr_assert_eq(dfl_table_rows(r), 6);
+    for (size_t i = 0; i < 6; i++)
+        for (int j = 0; j < 3; j++) {
+            static const char *const cols[3] = {"a", "b", "c"};
+            cr_expect_str_eq(dfl_table_get(r, i, cols[j]), cells[i % 3][j], "row %zu col %s", i,
+                             cols[j]);
+        }
+    remove(path);
+    cr_expect_eq(dfl_table_append_csv(r, path, &err), DFL_E_IO);
+    cr_expect(strstr(err.msg, path) != NULL);
+    dfl_table_free(r);
+    dfl_table_free(t);
+}
