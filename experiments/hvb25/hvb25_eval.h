@@ -11,7 +11,8 @@
  *
  * Error: e = u - ref where ref = d (the reference's signed distance) for
  * signed decodings and |d| for unsigned ones (the paper's output).
- * Non-finite u (a failed proxy stores NaN) is counted and left out.
+ * Non-finite u is an error of +inf (field/metrics.h): counted, in every
+ * set its reference puts it in, never left out.
  *
  * Medial region: a point x whose exact footpoint p(x) = x - d grad d lies
  * farther than `medial` cell sizes from the exact footpoint of the centre
