@@ -56,6 +56,15 @@ dfl_status dfl_proxy_cfg_read(const dfl_cfg *cfg, const char *sec, dfl_proxy_cfg
     if ((st = dfl_cfg_enum_opt(cfg, sec, "position", dfl_proxy_position_names,
                                DFL_PROXY_POSITION_COUNT, DFL_PROXY_DISPLACEMENT, &pos, err)))
         return st;
+    int ck;
+    if ((st = dfl_cfg_enum_opt(cfg, sec, "clip", dfl_proxy_clip_names, DFL_PROXY_CLIP_COUNT,
+                               DFL_PROXY_CLIP_BOUND, &ck, err)))
+        return st;
+    c.clip_kind = (dfl_proxy_clip)ck;
+    if (c.clip_kind == DFL_PROXY_CLIP_OFF && dfl_cfg_has(cfg, sec, "clip_radius"))
+        return dfl_cfg_reject(cfg, sec, "clip_radius", err,
+                              "clip = off takes no radius (remove clip_radius or choose "
+                              "clip = bound|paper)");
     if (dfl_cfg_has(cfg, sec, "clip_radius")) {
         if ((st = dfl_cfg_double(cfg, sec, "clip_radius", -1e300, 1e300, &c.clip_cells, err)))
             return st;
@@ -116,6 +125,7 @@ dfl_status dfl_proxy_grid_from_cfg(const dfl_cfg *cfg, const char *sec, const ch
     if (st) return st;
     dfl_proxy_filter_opts_default(c.filter, grid, fo);
     if (c.clip_cells > 0) fo->clip = c.clip_cells * dfl_proxy_cell_size(grid);
+    fo->clip_kind = c.clip_kind;
     fo->is_signed = c.is_signed;
     return DFL_OK;
 }

@@ -17,9 +17,12 @@
  *   storage     double | float | half                  (default double)
  *   position    displacement | absolute: what the footpoint's 3 scalars
  *               store (proxy/store.h)                  (default displacement)
+ *   clip        bound | paper | off: the sphere constraint's formula
+ *               (proxy/filter.h: dflab's lower bound, the paper's proxy
+ *               solid intersected with the ball, or none) (default bound)
  *   clip_radius the sphere constraint's radius in CELL SIZES (max_j h_j),
  *               > 0 (default: 1 for nearest, no clip for trilinear and
- *               hermite; proxy/filter.h defines the clip)
+ *               hermite); refused with clip = off
  *   signed      true: signed output (needs an input with an inside)
  *               (default false: unsigned, as the paper)
  *   noise       footpoint noise length >= 0, in config length units
@@ -28,7 +31,8 @@
  *   noise_at    x y z: only the cell holding this point gets noise (the
  *               paper's variant: it moved one footpoint); a point outside
  *               the box is refused                     (default: every cell)
- * Bad values exit 2 naming the key: res < 1, clip_radius <= 0, lo >= hi
+ * Bad values exit 2 naming the key: res < 1, clip_radius <= 0 or given
+ * with clip = off, lo >= hi
  * (named as hi), signed with an input that has no inside, an input the
  * shape lacks (named as input, by proxy_input_cfg).
  */
@@ -45,6 +49,7 @@ typedef struct dfl_proxy_cfg {
     dfl_proxy_build_opts build;
     dfl_proxy_filter filter;
     double clip_cells;     /* clip radius in cell sizes; 0: the filter's default */
+    dfl_proxy_clip clip_kind;
     int is_signed;
 } dfl_proxy_cfg;
 

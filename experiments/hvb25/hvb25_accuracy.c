@@ -14,7 +14,7 @@
  *   filters   = nearest hermite ...   proxy fields only: decode the one
  *                           grid with each of these filters (each with its
  *                           default clip, proxy/filter.h, or [field]
- *                           clip_radius when given; signedness of
+ *                           clip_radius when given, and [field] clip's kind; signedness of
  *                           [field]), one row each; absent: the field as
  *                           [field] configures it, one row
  *   band      = 0.05        the band |d| <= band of the *_band metrics
@@ -203,6 +203,9 @@ static dfl_status acc_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
         s.dec[i].is_signed = fo->is_signed;
         /* [field] clip_radius, when given, is every filter's clip */
         if (dfl_cfg_has(cfg, "field", "clip_radius")) s.dec[i].clip = fo->clip;
+        /* and [field] clip its formula (off: no radius at all) */
+        s.dec[i].clip_kind = fo->clip_kind;
+        if (fo->clip_kind == DFL_PROXY_CLIP_OFF) s.dec[i].clip = 0;
     }
     hvb25_acc_result res[HVB25_MAX_DECODINGS];
     build_info bi;
@@ -219,6 +222,11 @@ static dfl_status acc_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
         if (!st) st = put_build(table, &f, &bi, gen, err);
         if (!st) st = dfl_table_set_string(table, "filter", o ? dfl_proxy_filter_name(o->filter) : "", err);
         if (!st) st = dfl_table_set_double(table, "clip", o ? o->clip : NAN, err);
+        if (!st)
+            st = dfl_table_set_string(table, "clip_kind",
+                                      o ? dfl_proxy_clip_name(o->clip > 0 ? o->clip_kind
+                                                                          : DFL_PROXY_CLIP_OFF)
+                                        : "", err);
         if (!st) st = dfl_table_set_int(table, "signed", o ? o->is_signed : 1, err);
         if (!st) st = dfl_table_set_double(table, "band", k.band, err);
         if (!st) st = dfl_table_set_int(table, "eval_n", k.eval.n[0], err);

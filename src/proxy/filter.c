@@ -10,6 +10,8 @@
 DFL_NAMES_DEFINE(dfl_proxy_filter, DFL_PROXY_FILTER_LIST, DFL_PROXY_FILTER_COUNT,
                  dfl_proxy_filter_names, dfl_proxy_filter_name, dfl_proxy_filter_parse,
                  "filter")
+DFL_NAMES_DEFINE(dfl_proxy_clip, DFL_PROXY_CLIP_LIST, DFL_PROXY_CLIP_COUNT, dfl_proxy_clip_names,
+                 dfl_proxy_clip_name, dfl_proxy_clip_parse, "clip")
 
 void dfl_proxy_filter_opts_default(dfl_proxy_filter f, const dfl_proxy_grid *g,
                                    dfl_proxy_filter_opts *o)
@@ -17,6 +19,7 @@ void dfl_proxy_filter_opts_default(dfl_proxy_filter f, const dfl_proxy_grid *g,
     o->filter = f;
     o->clip = f == DFL_PROXY_NEAREST ? dfl_proxy_cell_size(g) : 0.0;
     o->is_signed = 0;
+    o->clip_kind = DFL_PROXY_CLIP_BOUND;
 }
 
 dfl_status dfl_proxy_filter_check(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o,
@@ -24,6 +27,8 @@ dfl_status dfl_proxy_filter_check(const dfl_proxy_grid *g, const dfl_proxy_filte
 {
     if ((unsigned)o->filter >= DFL_PROXY_FILTER_COUNT)
         return dfl_err_set(err, DFL_E_INPUT, "proxy filter: unknown filter %d", (int)o->filter);
+    if ((unsigned)o->clip_kind >= DFL_PROXY_CLIP_COUNT)
+        return dfl_err_set(err, DFL_E_INPUT, "proxy filter: unknown clip %d", (int)o->clip_kind);
     if (!(o->clip >= 0) || !isfinite(o->clip))
         return dfl_err_set(err, DFL_E_INPUT, "proxy filter: clip radius %g (expected >= 0)",
                            o->clip);
@@ -33,41 +38,56 @@ dfl_status dfl_proxy_filter_check(const dfl_proxy_grid *g, const dfl_proxy_filte
     return DFL_OK;
 }
 
-static inline double clipped(const dfl_proxy_geom *pgp, int order, double clip,
-                             const double x[3], double *grad)
+static inline double clipped(const dfl_proxy_geom *pgp, int order, dfl_proxy_clip kind,
+                             double clip, const double x[3], double *grad)
 {
     const dfl_proxy_geom *pg = pgp;
     double phi = dfl_proxy_geom_eval(pg, order, x, grad);
-    if (clip > 0) {
+    if (clip > 0 && kind != DFL_PROXY_CLIP_OFF) {
         const double v[3] = {x[0] - pg->p[0], x[1] - pg->p[1], x[2] - pg->p[2]};
-        /* |x - p| - rho > |phi|, without a square root when it is not */
-        const double lim = clip + fabs(phi), r2 = dfl_vec3_dot(v, v);
-        if (r2 > lim * lim) {
-            const double r = sqrt(r2), ball = r - clip;
-            const double s = phi < 0 ? -1.0 : 1.0;
-            phi = s * fmax(ball, fabs(phi));
-            if (grad)
-                for (int j = 0; j < 3; j++) grad[j] = s * v[j] / r;
+        const double r2 = dfl_vec3_dot(v, v);
+        if (kind == DFL_PROXY_CLIP_BOUND) {
+            /* |x - p| - rho > |phi|, without a square root when it is not */
+            const double lim = clip + fabs(phi);
+            if (r2 > lim * lim) {
+                const double r = sqrt(r2), ball = r - clip;
+                const double s = phi < 0 ? -1.0 : 1.0;
+                phi = s * fmax(ball, fabs(phi));
+                if (grad)
+                    for (int j = 0; j < 3; j++) grad[j] = s * v[j] / r;
+            }
+        } else {
+            /* max(phi, |x - p| - rho); the ball term wins only where
+             * |x - p| > rho + phi, which needs rho + phi < |x - p| */
+            const double lim = clip + phi;
+            if (lim < 0 || r2 > lim * lim) {
+                const double r = sqrt(r2), ball = r - clip;
+                if (ball > phi) {
+                    phi = ball;
+                    if (grad)
+                        for (int j = 0; j < 3; j++) grad[j] = r > 0 ? v[j] / r : 0.0;
+                }
+            }
         }
     }
     return phi;
 }
 
-double dfl_proxy_proxy_dist(const dfl_proxy_grid *g, size_t c, double clip, const double x[3],
-                            double *grad)
+double dfl_proxy_proxy_dist(const dfl_proxy_grid *g, size_t c, dfl_proxy_clip kind, double clip,
+                            const double x[3], double *grad)
 {
     dfl_proxy_geom pg;
     dfl_proxy_cell_decode(g, c, &pg);
-    return clipped(&pg, g->order, clip, x, grad);
+    return clipped(&pg, g->order, kind, clip, x, grad);
 }
 
 /* D of cell (i, j, k) */
 static inline double dist_ijk(const dfl_proxy_grid *g, size_t i, size_t j, size_t k,
-                              double clip, const double x[3], double *grad)
+                              const dfl_proxy_filter_opts *o, const double x[3], double *grad)
 {
     dfl_proxy_geom pg;
     dfl_proxy_cell_decode_ijk(g, i, j, k, &pg);
-    return clipped(&pg, g->order, clip, x, grad);
+    return clipped(&pg, g->order, o->clip_kind, o->clip, x, grad);
 }
 
 static void fold(int is_signed, double *val, double *grad)
@@ -143,7 +163,7 @@ static double blend(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, con
         const double W = w[0][a] * w[1][b] * w[2][c];
         if (W == 0 && !grad) continue;
         double gd[3];
-        double d = dist_ijk(g, a ? i1[0] : i0[0], b ? i1[1] : i0[1], c ? i1[2] : i0[2], o->clip,
+        double d = dist_ijk(g, a ? i1[0] : i0[0], b ? i1[1] : i0[1], c ? i1[2] : i0[2], o,
                             x, grad ? gd : NULL);
         if (!o->is_signed && d < 0) {
             d = -d;
@@ -170,7 +190,7 @@ void dfl_proxy_filter_eval(const dfl_proxy_grid *g, const dfl_proxy_filter_opts 
             double *gi = grad ? grad + 3 * i : NULL;
             size_t c[3];
             nearest_cell(g, x + 3 * i, c);
-            val[i] = dist_ijk(g, c[0], c[1], c[2], o->clip, x + 3 * i, gi);
+            val[i] = dist_ijk(g, c[0], c[1], c[2], o, x + 3 * i, gi);
             fold(o->is_signed, &val[i], gi);
         }
         return;

@@ -5,23 +5,39 @@
  * Function index
  *   DFL_PROXY_FILTER_LIST         nearest | trilinear | hermite
  *   dfl_proxy_filter_name/parse
- *   dfl_proxy_filter_opts         filter, clip radius, signed output
+ *   DFL_PROXY_CLIP_LIST           bound | paper | off: the clip's formula
+ *   dfl_proxy_clip_name/parse
+ *   dfl_proxy_filter_opts         filter, clip kind and radius, signed output
  *   dfl_proxy_filter_opts_default the paper's settings for a filter
  *   dfl_proxy_filter_check        options usable with a grid?
  *   dfl_proxy_proxy_dist          one proxy's (clipped) distance and gradient
  *   dfl_proxy_filter_eval         a batch of points: values and gradients
  *
- * The sphere constraint ("clip", radius rho > 0; the paper's Fig. 10):
- * each proxy surface is cut to its part inside the ball B(p, rho) around
- * its footpoint, and its distance is taken as
- *     D(x) = sgn(phi) max(|phi(x)|, |x - p| - rho)
- * (phi: the proxy's exact signed distance, decode.h).  D equals the exact
- * distance to the cut patch wherever the nearest point of the uncut proxy
- * lies in the ball (then |x - p| - rho <= |phi|), and is a 1-Lipschitz lower
- * bound of it elsewhere (the distance to the ball), so it never invents a
- * surface far from the footpoint and sphere tracing stays safe.  Where
- * the max picks the ball term the gradient is sgn(phi) (x - p)/|x - p|.
- * rho = 0 means no clip.  Defaults: nearest clips at one cell size
+ * The sphere constraint ("clip", radius rho > 0; the paper's Fig. 10: "we
+ * constrained the geometries with a sphere around the footpoint", with no
+ * formula).  Two readings, chosen by the clip kind:
+ *   bound  (dflab's default) each proxy surface is cut to its part inside
+ *          the ball B(p, rho) around its footpoint, and its distance is
+ *              D(x) = sgn(phi) max(|phi(x)|, |x - p| - rho)
+ *          (phi: the proxy's exact signed distance, decode.h).  D equals the
+ *          exact distance to the cut patch wherever the nearest point of the
+ *          uncut proxy lies in the ball (then |x - p| - rho <= |phi|), and
+ *          is a 1-Lipschitz lower bound of it elsewhere (the distance to the
+ *          ball), so it never invents a surface far from the footpoint and
+ *          sphere tracing stays safe.  Where the max picks the ball term the
+ *          gradient is sgn(phi) (x - p)/|x - p|.
+ *   paper  the proxy's solid intersected with the ball, the usual SDF
+ *          intersection of a shader:  D(x) = max(phi(x), |x - p| - rho),
+ *          gradient (x - p)/|x - p| where the ball term wins (ties: phi's).
+ *          Outside the proxy's solid it is the bound's value; inside it
+ *          and inside the ball it is the larger of two negatives, so the
+ *          ball's sphere becomes a second zero set there (the unsigned
+ *          output folds it to a surface): only the solid's outside part of
+ *          the ball's boundary is no surface.
+ *   off    no clip whatever rho is (D = phi).
+ * For bound and paper, rho = 0 also means no clip.  The formula's value
+ * and gradient are exact for the formula (tests/proxy/test_filter.c).
+ * Defaults: the bound kind; nearest clips at one cell size
  * (max_j h_j; the paper's "in practice" choice), trilinear and Hermite do
  * not clip (their 8 neighbours' footpoints lie up to ~2 sqrt(3) h from x,
  * so a one-cell clip would cut the surface itself).
@@ -60,25 +76,39 @@ extern const char *const dfl_proxy_filter_names[DFL_PROXY_FILTER_COUNT];
 const char *dfl_proxy_filter_name(dfl_proxy_filter f);
 dfl_status dfl_proxy_filter_parse(const char *s, dfl_proxy_filter *out, dfl_err *err);
 
+#define DFL_PROXY_CLIP_LIST(X)                                                 \
+    X(DFL_PROXY_CLIP_BOUND, "bound", "sgn(phi) max(|phi|, |x - p| - rho)")     \
+    X(DFL_PROXY_CLIP_PAPER, "paper", "max(phi, |x - p| - rho): solid and ball") \
+    X(DFL_PROXY_CLIP_OFF, "off", "no clip")
+typedef enum dfl_proxy_clip { DFL_PROXY_CLIP_LIST(DFL_NAMES_CODE) } dfl_proxy_clip;
+enum { DFL_PROXY_CLIP_COUNT = 0 DFL_PROXY_CLIP_LIST(DFL_NAMES_ONE) };
+extern const char *const dfl_proxy_clip_names[DFL_PROXY_CLIP_COUNT];
+const char *dfl_proxy_clip_name(dfl_proxy_clip c);
+dfl_status dfl_proxy_clip_parse(const char *s, dfl_proxy_clip *out, dfl_err *err);
+
 typedef struct dfl_proxy_filter_opts {
     dfl_proxy_filter filter;
     double clip;     /* clip radius rho (length); 0: none */
     int is_signed;   /* 1: signed output, 0: unsigned (|D|) */
+    dfl_proxy_clip clip_kind;  /* the formula (0, the default: bound) */
 } dfl_proxy_filter_opts;
 
-/* filter f with its default clip for grid g (see above), unsigned. */
+/* filter f with its default clip for grid g (see above: bound kind),
+ * unsigned. */
 void dfl_proxy_filter_opts_default(dfl_proxy_filter f, const dfl_proxy_grid *g,
                                    dfl_proxy_filter_opts *o);
 
-/* DFL_E_INPUT when o->filter is unknown, o->clip < 0 or not finite, or
+/* DFL_E_INPUT when o->filter or o->clip_kind is unknown, o->clip < 0 or
+ * not finite, or
  * o->is_signed with a grid whose input has no inside. */
 dfl_status dfl_proxy_filter_check(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o,
                                   dfl_err *err);
 
-/* D (signed as above, before the unsigned fold) of cell c's proxy at x,
- * gradient into grad when not NULL. */
-double dfl_proxy_proxy_dist(const dfl_proxy_grid *g, size_t c, double clip, const double x[3],
-                            double *grad);
+/* D (signed as above, before the unsigned fold) of cell c's proxy at x
+ * under clip kind `kind` and radius clip, gradient into grad when not
+ * NULL. */
+double dfl_proxy_proxy_dist(const dfl_proxy_grid *g, size_t c, dfl_proxy_clip kind, double clip,
+                            const double x[3], double *grad);
 
 /* val[i] (and grad[3i..3i+2] when grad is not NULL) at x[3i..3i+2], i < m.
  * Serial, allocation-free, thread-safe for a shared grid (callers

@@ -240,6 +240,12 @@ runc("proxy lo = -1e200 beyond |x| <= 1e150", PX, "field.lo", "[-1e+150, 1e+150]
 for h in ["1e-300", "1e300", "1e-8", "1e6"]:
     runc("fit_spacing = " + h + " is input (not a singular design)", PX, "field.fit_spacing",
          "[1e-06, 10000]", extra=["--set", "field.fit_spacing=" + h])
+runc("proxy clip = nope names the kinds", PX, "field.clip", "bound|paper|off",
+     extra=["--set", "field.clip=nope"])
+runc("proxy clip = off with a clip_radius", PX.replace(b"[eval]", b"clip = off\nclip_radius = 1\n[eval]"), "[field] clip_radius",
+     "clip = off takes no radius")
+runc("hvb25_render false_hit_tol = 0", PX.replace(b"hvb25_accuracy", b"hvb25_render"),
+     "study.false_hit_tol", extra=["--set", "study.false_hit_tol=0"])
 BZ = os.path.join(REPO, "configs/shapes/hvb25_bezier_single.ini").encode()
 runc("signed open surface names its input", b"[study]\nname = hvb25_accuracy\n[shape]\ninclude = " + BZ +
      b"\n[field]\nkind = proxy\norder = 1\nres = 4\ninput = parametric\nsigned = true\n[eval]\nn = 5\n",

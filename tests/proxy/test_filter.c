@@ -66,8 +66,8 @@ Test(proxy_filter, clip_definition)
         double v[3] = {x[0] - pg.p[0], x[1] - pg.p[1], x[2] - pg.p[2]};
         const double ball = dfl_vec3_norm(v) - 0.25;
         const double want = (phi < 0 ? -1 : 1) * fmax(fabs(phi), ball);
-        cr_expect_eq(dfl_proxy_proxy_dist(&g, c, 0.25, x, NULL), want);
-        cr_expect_eq(dfl_proxy_proxy_dist(&g, c, 0, x, NULL), phi);
+        cr_expect_eq(dfl_proxy_proxy_dist(&g, c, DFL_PROXY_CLIP_BOUND, 0.25, x, NULL), want);
+        cr_expect_eq(dfl_proxy_proxy_dist(&g, c, DFL_PROXY_CLIP_BOUND, 0, x, NULL), phi);
     }
     dfl_proxy_grid_free(&g);
 }
@@ -214,8 +214,8 @@ Test(proxy_filter, hermite_order2_hessian_at_centres)
             double ga[3], gb[3], pa[3], pb[3];
             eval1(&g, &o, a, ga);
             eval1(&g, &o, b, gb);
-            dfl_proxy_proxy_dist(&g, c, 0, a, pa);
-            dfl_proxy_proxy_dist(&g, c, 0, b, pb);
+            dfl_proxy_proxy_dist(&g, c, DFL_PROXY_CLIP_BOUND, 0, a, pa);
+            dfl_proxy_proxy_dist(&g, c, DFL_PROXY_CLIP_BOUND, 0, b, pb);
             for (int k = 0; k < 3; k++)
                 cr_expect_float_eq((ga[k] - gb[k]) / 2e-7, (pa[k] - pb[k]) / 2e-7, 1e-4,
                                    "cell %zu H[%d][%d] %g vs %g", c, k, j, (ga[k] - gb[k]) / 2e-7,
@@ -225,4 +225,48 @@ Test(proxy_filter, hermite_order2_hessian_at_centres)
     }
     cr_expect_gt(checked, 20);
     dfl_proxy_grid_free(&g);
+}
+
+/* The paper's reading of the clip, the proxy solid intersected with the
+ * ball: D = max(phi, |x - p| - rho) exactly, gradient (x - p)/|x - p| where
+ * the ball term is the larger, phi's gradient elsewhere; the off kind is
+ * phi whatever rho; the kinds' names come from one list. */
+Test(proxy_filter, paper_clip_is_solid_and_ball_and_off_is_none)
+{
+    dfl_proxy_grid g;
+    build(&torus, 2, 8, DFL_PROXY_DOUBLE, &g);
+    uint64_t seed = 5;
+    int ball_won = 0, phi_won = 0;
+    for (int k = 0; k < 2000; k++) {
+        double x[3];
+        for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(&seed, -1, 1);
+        const size_t c = (size_t)(dfl_rng_splitmix(&seed, 0, 512));
+        dfl_proxy_geom pg;
+        dfl_proxy_cell_decode(&g, c, &pg);
+        double gphi[3], gd[3];
+        const double phi = dfl_proxy_geom_eval(&pg, 2, x, gphi);
+        const double v[3] = {x[0] - pg.p[0], x[1] - pg.p[1], x[2] - pg.p[2]};
+        const double r = dfl_vec3_norm(v), ball = r - 0.2;
+        const double got = dfl_proxy_proxy_dist(&g, c, DFL_PROXY_CLIP_PAPER, 0.2, x, gd);
+        cr_expect_eq(got, fmax(phi, ball), "x %g %g %g", x[0], x[1], x[2]);
+        for (int j = 0; j < 3; j++)
+            cr_expect_eq(gd[j], ball > phi ? v[j] / r : gphi[j], "component %d", j);
+        ball_won += ball > phi;
+        phi_won += ball < phi;
+        cr_expect_eq(dfl_proxy_proxy_dist(&g, c, DFL_PROXY_CLIP_OFF, 0.2, x, NULL), phi);
+    }
+    cr_expect(ball_won > 100 && phi_won > 100, "both branches: %d %d", ball_won, phi_won);
+    dfl_proxy_clip k;
+    dfl_err err;
+    dfl_proxy_filter_opts o;
+    dfl_proxy_filter_opts_default(DFL_PROXY_NEAREST, &g, &o);
+    cr_expect_eq(o.clip_kind, DFL_PROXY_CLIP_BOUND);
+    cr_expect_eq(dfl_proxy_filter_check(&g, &o, &err), DFL_OK);
+    o.clip_kind = (dfl_proxy_clip)DFL_PROXY_CLIP_COUNT;
+    cr_expect_eq(dfl_proxy_filter_check(&g, &o, &err), DFL_E_INPUT);
+    dfl_proxy_grid_free(&g);
+    cr_expect_eq(dfl_proxy_clip_parse("paper", &k, &err), DFL_OK);
+    cr_expect_eq(k, DFL_PROXY_CLIP_PAPER);
+    cr_expect_eq(dfl_proxy_clip_parse("ball", &k, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "bound|paper|off") != NULL, "%s", err.msg);
 }

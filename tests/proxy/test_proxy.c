@@ -123,7 +123,7 @@ Test(proxy_grid, order2_sphere_exact_through_storage)
             dfl_proxy_cell_centre(&g, c, xc);
             if (fabs(ta_sdf(&sphere, xc)) > h) continue;
             for (int j = 0; j < 3; j++) x[j] = xc[j] + dfl_rng_splitmix(&seed, -h / 2, h / 2);
-            double e = fabs(dfl_proxy_proxy_dist(&g, c, 0, x, NULL) - ta_sdf(&sphere, x));
+            double e = fabs(dfl_proxy_proxy_dist(&g, c, DFL_PROXY_CLIP_BOUND, 0, x, NULL) - ta_sdf(&sphere, x));
             if (e > worst) worst = e;
         }
         cr_expect_lt(worst, 1e-10, "position %d", pos);
@@ -193,7 +193,7 @@ Test(proxy_grid, centres_on_surface_half_absolute)
                 dfl_proxy_cell_centre(&g, c, xc);
                 xc[2] += 0.1;
                 /* moved by at most 8 delta = 8 h 2^-10 (|x_c| < 2), plus rounding */
-                cr_expect_lt(fabs(dfl_proxy_proxy_dist(&g, c, 0, xc, NULL) - 0.1), 3e-3);
+                cr_expect_lt(fabs(dfl_proxy_proxy_dist(&g, c, DFL_PROXY_CLIP_BOUND, 0, xc, NULL) - 0.1), 3e-3);
             }
             dfl_proxy_grid_free(&g);
         }

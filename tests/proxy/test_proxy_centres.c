@@ -106,14 +106,14 @@ static size_t check_grid(const dfl_proxy_input *in, sdf_fn sdf, const void *ctx,
         const double m = fmax(fabs(xc[0]), fmax(fabs(xc[1]), fabs(xc[2])));
         const double round = 4 * eps * (fabs(d) + (pos == DFL_PROXY_ABSOLUTE ? 2 * m : 0));
         const double tol = 4 * delta0(&g, xc) + round + 1e-15;
-        const double v = dfl_proxy_proxy_dist(&g, c, 0, xc, NULL);
+        const double v = dfl_proxy_proxy_dist(&g, c, DFL_PROXY_CLIP_BOUND, 0, xc, NULL);
         int ok = isfinite(v) && fabs(v - d) <= tol;
         /* a plane's proxy is the plane: exact in the whole cell (with
          * absolute footpoints the moved cells' normal keeps only the
          * direction that survives rounding next to x_c, store.h) */
         if (plane && ok && pos == DFL_PROXY_DISPLACEMENT) {
             const double x[3] = {xc[0] + h / 3, xc[1] - h / 4, xc[2] + h / 5};
-            const double vx = dfl_proxy_proxy_dist(&g, c, 0, x, NULL);
+            const double vx = dfl_proxy_proxy_dist(&g, c, DFL_PROXY_CLIP_BOUND, 0, x, NULL);
             ok = isfinite(vx) && fabs(vx - sdf(ctx, x)) <= tol + 4 * eps * h;
         }
         if (!ok && bad++ < 3)

@@ -35,7 +35,7 @@ static double near_err(dfl_proxy_input *in, double (*sdf)(const double *), int r
         if (fabs(sdf(xc)) > h) continue;
         for (int q = 0; q < 4; q++) {
             for (int j = 0; j < 3; j++) x[j] = xc[j] + dfl_rng_splitmix(&seed, -h / 2, h / 2);
-            const double e = fabs(dfl_proxy_proxy_dist(&g, c, 0, x, NULL) - sdf(x));
+            const double e = fabs(dfl_proxy_proxy_dist(&g, c, DFL_PROXY_CLIP_BOUND, 0, x, NULL) - sdf(x));
             if (e > worst) worst = e;
         }
     }

@@ -51,7 +51,7 @@ static size_t nonfinite_cells(const dfl_proxy_grid *g)
             double x[3], gr[3];
             for (int j = 0; j < 3; j++)
                 x[j] = xc[j] + (q == 8 ? 0.0 : ((q >> j) & 1 ? 0.5 : -0.5) * h);
-            const double v = dfl_proxy_proxy_dist(g, c, 0, x, gr);
+            const double v = dfl_proxy_proxy_dist(g, c, DFL_PROXY_CLIP_BOUND, 0, x, gr);
             ok = isfinite(v) && isfinite(gr[0]) && isfinite(gr[1]) && isfinite(gr[2]);
         }
         bad += !ok;

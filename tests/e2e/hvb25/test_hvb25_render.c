@@ -65,3 +65,32 @@ Test(e2e_hvb25_render, clip_radius_with_filters, .timeout = 60)
         cr_expect_eq(e2e_csv_get(csv, r, "clip"), 0.125, "row %ld: clip %g", r,
                      e2e_csv_get(csv, r, "clip"));
 }
+
+/* False hits (hits farther than false_hit_tol cells from the true surface)
+ * of a sphere's order-2 SDF-input proxies, which are the sphere itself: no
+ * clip gives |phi| = |d| exactly, and the bound clip max(|phi|, |x-p|-rho)
+ * is zero only where phi is, so neither frame has a false hit, whatever the
+ * tolerance; every row names its clip kind. */
+Test(e2e_hvb25_render, exact_proxies_have_no_false_hits, .timeout = 60)
+{
+    char dir[256], cfg[512], out[512], csv[700];
+    e2e_tmpdir(dir, sizeof dir);
+    e2e_write(dir, "t.ini",
+              "[study]\nname = hvb25_render\nfilters = nearest\nreps = 1\nfalse_hit_tol = 1e-3\n"
+              "[shape]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\n"
+              "[field]\nkind = proxy\norder = 2\nres = 8\ninput = sdf\nstorage = double\n"
+              "clip = off, bound\n"
+              "[camera]\neye = 0 0 3\ntarget = 0 0 0\nup = 0 1 0\nfov = 30\nwidth = 17\n"
+              "height = 17\n[trace]\neps = 1e-7\nbox = false\n",
+              cfg, sizeof cfg);
+    e2e_run_table(cfg, NULL, "hvb25_render", 2, out, sizeof out, csv, sizeof csv);
+    static const char *const kind[2] = {"off", "bound"};
+    for (long r = 0; r < 2; r++) {
+        cr_expect_eq(e2e_csv_get(csv, r, "false_hits"), 0, "row %ld", r);
+        cr_expect_gt(e2e_csv_get(csv, r, "hits"), 0, "row %ld", r);
+        char *k = e2e_csv_cell(csv, r, "clip_kind");
+        cr_assert_not_null(k);
+        cr_expect_str_eq(k, kind[r]);
+        free(k);
+    }
+}
