@@ -22,7 +22,7 @@ static const char *const input_names[IN_COUNT] = {"parametric", "sdf", "implicit
 typedef struct input_keys {
     int input;
     dfl_proxy_curv_method curv;
-    int footpoint_robust;
+    dfl_implicit_foot_method footpoint;
     dfl_curvfit_opts fit;
     int param_grid;
     int implicit_resolution;
@@ -32,7 +32,6 @@ typedef struct input_keys {
 static dfl_status read_keys(const dfl_cfg *cfg, const char *sec, input_keys *k, dfl_err *err)
 {
     static const char *const curvs[] = {"analytic", "fit"};
-    static const char *const foots[] = {"paper", "robust"};
     int cv, fp;
     long g, pg;
     dfl_status st;
@@ -40,7 +39,10 @@ static dfl_status read_keys(const dfl_cfg *cfg, const char *sec, input_keys *k, 
                                err)) != DFL_OK)
         return st;
     if ((st = dfl_cfg_enum_opt(cfg, sec, "curvature", curvs, 2, 0, &cv, err)) != DFL_OK) return st;
-    if ((st = dfl_cfg_enum_opt(cfg, sec, "footpoint", foots, 2, 1, &fp, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_enum_opt(cfg, sec, "footpoint", dfl_implicit_foot_names,
+                               DFL_IMPLICIT_FOOT_COUNT, DFL_IMPLICIT_FOOT_ROBUST, &fp, err)) !=
+        DFL_OK)
+        return st;
     if ((st = dfl_cfg_int_opt(cfg, sec, "fit_grid", 5, 3, 15, &g, err)) != DFL_OK) return st;
     /* [1e-6, 1e4]: the range of h in which the fit's (unscaled) normal
      * equations stay regular for every fit_grid 3..15; outside it the
@@ -59,7 +61,7 @@ static dfl_status read_keys(const dfl_cfg *cfg, const char *sec, input_keys *k, 
     if ((st = dfl_cfg_int_opt(cfg, sec, "param_starts", 3, 1, 3, &ps, err)) != DFL_OK) return st;
     k->param_starts = (int)ps;
     k->curv = cv ? DFL_PROXY_CURV_FIT : DFL_PROXY_CURV_ANALYTIC;
-    k->footpoint_robust = fp;
+    k->footpoint = (dfl_implicit_foot_method)fp;
     k->fit.g = (int)g;
     k->param_grid = (int)pg;
     return DFL_OK;
@@ -212,9 +214,7 @@ static dfl_status build_implicit(const build_req *rq, dfl_proxy_input *out, dfl_
         }
         if (st != DFL_OK) return at_kind(rq, st, err);
     }
-    dfl_implicit_foot_method m =
-        rq->k->footpoint_robust ? DFL_IMPLICIT_FOOT_ROBUST : DFL_IMPLICIT_FOOT_PAPER;
-    return at_kind(rq, dfl_proxy_input_implicit(&imp, m, out, err), err);
+    return at_kind(rq, dfl_proxy_input_implicit(&imp, rq->k->footpoint, out, err), err);
 }
 
 /* The representations of each kind ([kind][input]); NULL: not offered. */

@@ -8,7 +8,9 @@
  * proxy grid's, experiments/cfg/proxy_cfg.c):
  *   input     = parametric | sdf | implicit     (default sdf)
  *   curvature = analytic | fit                  (default analytic; sdf only)
- *   footpoint = paper | robust                  (default robust; implicit only)
+ *   footpoint = paper | robust | paper_against | paper_walk  (default robust;
+ *               implicit only; proxy/input_implicit.h: the paper's method
+ *               under three readings of its starts, and dflab's)
  *   fit_grid  = g, 3..15                        (default 5; curvature = fit)
  *   fit_spacing = h in [1e-6, 1e4]              (default 0.01; curvature = fit)
  *   param_grid  = n, 4..512: parameter-grid starts per patch and direction

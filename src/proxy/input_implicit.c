@@ -11,6 +11,10 @@
 
 #define PAPER_STARTS 4
 
+DFL_NAMES_DEFINE(dfl_implicit_foot_method, DFL_IMPLICIT_FOOT_LIST, DFL_IMPLICIT_FOOT_COUNT,
+                 dfl_implicit_foot_names, dfl_implicit_foot_name, dfl_implicit_foot_parse,
+                 "footpoint method")
+
 typedef struct imp_ctx {
     dfl_implicit *s;
     dfl_implicit_foot_method method;
@@ -59,15 +63,36 @@ static void fill(const imp_ctx *c, const double x[3], const double p[3], int nee
         dfl_curvature_set_nan(&o->curv);
 }
 
-static void paper_point(const imp_ctx *c, const double x[3], int need_curv, dfl_surfpoint *o)
+/* The k-th start of the paper's methods (k = 1..PAPER_STARTS) into p0, from
+ * the previous start prev (x for k = 1); 0 when there is none (grad g
+ * vanishes: a walk ends there). */
+static int paper_start(const imp_ctx *c, dfl_implicit_foot_method m, const double x[3], int k,
+                       const double prev[3], double p0[3])
 {
     double G[3];
-    double g = dfl_implicit_g(c->s, x, G, NULL), gg = dfl_vec3_dot(G, G);
+    if (m == DFL_IMPLICIT_FOOT_WALK) {
+        const double g = dfl_implicit_g(c->s, prev, G, NULL), gg = dfl_vec3_dot(G, G);
+        if (!(gg > 0)) return 0;
+        for (int j = 0; j < 3; j++) p0[j] = prev[j] - g * G[j] / gg;
+        return 1;
+    }
+    double g = dfl_implicit_g(c->s, x, G, NULL);
+    const double gg = dfl_vec3_dot(G, G), fr = (double)k / PAPER_STARTS;
+    if (!(gg > 0)) return 0;
+    if (m == DFL_IMPLICIT_FOOT_AGAINST) g = fabs(g);
+    for (int j = 0; j < 3; j++) p0[j] = x[j] - fr * g * G[j] / gg;
+    return 1;
+}
+
+static void paper_point(const imp_ctx *c, const double x[3], int need_curv, dfl_surfpoint *o)
+{
     double best[3] = {NAN, NAN, NAN}, bd2 = HUGE_VAL, last[3] = {NAN, NAN, NAN};
     int ok = 0;
-    for (int k = 1; k <= PAPER_STARTS && gg > 0; k++) {
-        double p0[3], p[3], fr = (double)k / PAPER_STARTS;
-        for (int j = 0; j < 3; j++) p0[j] = x[j] - fr * g * G[j] / gg;
+    double prev[3] = {x[0], x[1], x[2]};
+    for (int k = 1; k <= PAPER_STARTS; k++) {
+        double p0[3], p[3];
+        if (!paper_start(c, c->method, x, k, prev, p0)) break;
+        memcpy(prev, p0, sizeof prev);
         int conv = paper_newton(c, x, p0, p);
         if (!conv) {
             if (!ok && isfinite(p[0] + p[1] + p[2])) memcpy(last, p, sizeof last);
@@ -132,8 +157,8 @@ static dfl_status imp_query(const void *vctx, size_t m, const double *x, int nee
     (void)err;
     const imp_ctx *c = vctx;
     for (size_t i = 0; i < m; i++) {
-        if (c->method == DFL_IMPLICIT_FOOT_PAPER) paper_point(c, x + 3 * i, need_curv, out + i);
-        else robust_point(c, x + 3 * i, need_curv, out + i);
+        if (c->method == DFL_IMPLICIT_FOOT_ROBUST) robust_point(c, x + 3 * i, need_curv, out + i);
+        else paper_point(c, x + 3 * i, need_curv, out + i);
     }
     return DFL_OK;
 }
@@ -150,6 +175,12 @@ dfl_status dfl_proxy_input_implicit(dfl_implicit **imp, dfl_implicit_foot_method
                                     dfl_proxy_input *out, dfl_err *err)
 {
     if (!imp || !*imp) return dfl_err_set(err, DFL_E_INPUT, "implicit input: no surface");
+    if ((unsigned)method >= DFL_IMPLICIT_FOOT_COUNT) {
+        dfl_implicit_free(*imp);
+        *imp = NULL;
+        return dfl_err_set(err, DFL_E_INPUT, "implicit input: unknown footpoint method %d",
+                           (int)method);
+    }
     imp_ctx *c = calloc(1, sizeof *c);
     if (!c) {
         dfl_implicit_free(*imp);

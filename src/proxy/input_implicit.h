@@ -2,7 +2,8 @@
  * with g < 0 inside, not a distance, and two footpoint methods.
  *
  * Function index
- *   dfl_implicit_foot_method    paper | robust
+ *   DFL_IMPLICIT_FOOT_LIST      paper | robust | paper_against | paper_walk
+ *   dfl_implicit_foot_name/parse
  *   dfl_proxy_input_implicit    wrap a dfl_implicit as a proxy input
  *   dfl_proxy_implicit_certify  the robust method's certificate of one answer
  *
@@ -17,6 +18,15 @@
  *   which is not the direction of the footpoint where g is far from a
  *   distance: the paper's failures.  certified = 1 when some start
  *   converged (the method has no certificate; it claims its answer).
+ * The paper's sentence admits other readings of its starts; two more run
+ * beside it, each refined and chosen as above:
+ * paper_against ("in the opposite direction of the gradient", literally):
+ *   p_k = x - (k/4) |g(x)| grad g(x) / |grad g(x)|^2, k = 1..4: outside
+ *   (g > 0) the same starts, inside they walk away from g = 0.
+ * paper_walk (steps that follow the gradient as it turns): p_0 = x,
+ *   p_k = p_{k-1} - g(p_{k-1}) grad g(p_{k-1}) / |grad g(p_{k-1})|^2,
+ *   k = 1..4, the iterates of the gradient-Newton projection (a start
+ *   where grad g vanishes ends the walk).
  * robust (ours): first a fast path (proxy/input_implicit_fast.h): Newton
  *   on the square system from the nearest surface sample, kept when the
  *   certificate below holds and the cap test shows no other basin among the
@@ -38,17 +48,26 @@
 #ifndef DFL_PROXY_INPUT_IMPLICIT_H
 #define DFL_PROXY_INPUT_IMPLICIT_H
 
+#include "core/names.h"
 #include "core/status.h"
 #include "geom/implicit.h"
 #include "proxy/input.h"
 
+#define DFL_IMPLICIT_FOOT_LIST(X)                                                   \
+    X(DFL_IMPLICIT_FOOT_PAPER, "paper", "starts on the Newton step towards g = 0")    \
+    X(DFL_IMPLICIT_FOOT_ROBUST, "robust", "certified seeds, step control, Ceres LM")  \
+    X(DFL_IMPLICIT_FOOT_AGAINST, "paper_against", "starts against grad g, any side") \
+    X(DFL_IMPLICIT_FOOT_WALK, "paper_walk", "starts: iterates of the projection")
 typedef enum dfl_implicit_foot_method {
-    DFL_IMPLICIT_FOOT_PAPER = 0,
-    DFL_IMPLICIT_FOOT_ROBUST = 1
+    DFL_IMPLICIT_FOOT_LIST(DFL_NAMES_CODE)
 } dfl_implicit_foot_method;
+enum { DFL_IMPLICIT_FOOT_COUNT = 0 DFL_IMPLICIT_FOOT_LIST(DFL_NAMES_ONE) };
+extern const char *const dfl_implicit_foot_names[DFL_IMPLICIT_FOOT_COUNT];
+const char *dfl_implicit_foot_name(dfl_implicit_foot_method m);
+dfl_status dfl_implicit_foot_parse(const char *s, dfl_implicit_foot_method *out, dfl_err *err);
 
 /* Takes ownership of *imp (set to NULL, also on failure).  DFL_E_INPUT for
- * a NULL surface, DFL_E_NOMEM. */
+ * a NULL surface or a method outside the list, DFL_E_NOMEM. */
 dfl_status dfl_proxy_input_implicit(dfl_implicit **imp, dfl_implicit_foot_method method,
                                     dfl_proxy_input *out, dfl_err *err);
 

@@ -155,3 +155,61 @@ Test(input_implicit, fast_path_matches_the_full_search)
         dfl_implicit_free(b);
     }
 }
+
+/* The three readings of the paper's starts, each as its header states:
+ * outside the surface (g > 0) paper_against takes the paper's starts, so its
+ * answers are the paper's bit for bit; on the implicit sphere every reading
+ * converges to the exact footpoint (Newton on the square system of a
+ * sphere from any start off the centre), inside and outside, d = |x| - r;
+ * an unknown method is refused and the surface freed. */
+Test(input_implicit, paper_start_readings)
+{
+    const double c[3] = {0, 0, 0}, ax[3] = {0, 0, 1};
+    static const dfl_implicit_foot_method ms[3] = {
+        DFL_IMPLICIT_FOOT_PAPER, DFL_IMPLICIT_FOOT_AGAINST, DFL_IMPLICIT_FOOT_WALK};
+    dfl_proxy_input tor[3], sph[3];
+    for (int m = 0; m < 3; m++) {
+        dfl_implicit *t, *s;
+        cr_assert_eq(dfl_implicit_torus(c, ax, 0.6, 0.25, NULL, &t, NULL), DFL_OK);
+        cr_assert_eq(dfl_implicit_sphere(c, 0.5, NULL, &s, NULL), DFL_OK);
+        cr_assert_eq(dfl_proxy_input_implicit(&t, ms[m], &tor[m], NULL), DFL_OK);
+        cr_assert_eq(dfl_proxy_input_implicit(&s, ms[m], &sph[m], NULL), DFL_OK);
+    }
+    uint64_t seed = 3;
+    int outside = 0, inside = 0;
+    for (int k = 0; k < 400; k++) {
+        double x[3];
+        for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(&seed, -1, 1);
+        const double rho = hypot(x[0], x[1]), dt = hypot(rho - 0.6, x[2]) - 0.25;
+        dfl_surfpoint a, b;
+        if (dt > 0) {
+            outside++;
+            cr_assert_eq(dfl_proxy_input_query(&tor[0], 1, x, 1, &a, NULL), DFL_OK);
+            cr_assert_eq(dfl_proxy_input_query(&tor[1], 1, x, 1, &b, NULL), DFL_OK);
+            cr_expect_eq(a.certified, b.certified);
+            for (int j = 0; j < 3; j++) cr_expect(a.p[j] == b.p[j] || (isnan(a.p[j]) && isnan(b.p[j])));
+        }
+        const double nx = dfl_vec3_norm(x);
+        if (nx < 0.05) continue;
+        inside += nx < 0.5;
+        for (int m = 0; m < 3; m++) {
+            cr_assert_eq(dfl_proxy_input_query(&sph[m], 1, x, 1, &a, NULL), DFL_OK);
+            cr_expect(a.certified, "method %d", m);
+            cr_expect(fabs(a.d - (nx - 0.5)) < 1e-12, "method %d: d %.17g vs %.17g", m, a.d,
+                      nx - 0.5);
+            for (int j = 0; j < 3; j++)
+                cr_expect(fabs(a.p[j] - 0.5 * x[j] / nx) < 1e-12, "method %d", m);
+        }
+    }
+    cr_expect(outside > 100 && inside > 20, "%d outside, %d inside", outside, inside);
+    for (int m = 0; m < 3; m++) dfl_proxy_input_free(&tor[m]), dfl_proxy_input_free(&sph[m]);
+    dfl_implicit *t;
+    cr_assert_eq(dfl_implicit_sphere(c, 0.5, NULL, &t, NULL), DFL_OK);
+    dfl_proxy_input in;
+    cr_expect_eq(dfl_proxy_input_implicit(&t, (dfl_implicit_foot_method)DFL_IMPLICIT_FOOT_COUNT,
+                                          &in, NULL), DFL_E_INPUT);
+    cr_expect_null(t);
+    dfl_implicit_foot_method fm;
+    cr_expect_eq(dfl_implicit_foot_parse("paper_walk", &fm, NULL), DFL_OK);
+    cr_expect_eq(fm, DFL_IMPLICIT_FOOT_WALK);
+}
