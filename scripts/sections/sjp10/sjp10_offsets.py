@@ -114,7 +114,7 @@ def render(ctx):
                f"offsets, with the same number of components as the exact level set in {same} of "
                f"{len(r2)} cases. The worst is {wr['case']} at δ = {wr['delta']}; {len(over)} of "
                f"{len(r2)} level sets exceed the fit's eps {sc.fmt(_f(wr, 'eps'))} (the fit's "
-               "whole-square error exceeds eps near the medial axis, issue of honest errors, and "
+               "whole-square error exceeds eps near the medial axis, and "
                "a level set through such cells carries it). This is sjp10 Sec. 5's point made quantitative: the spline's level "
                "sets are the trimmed offsets up to the fit error, with no self-intersection "
                "detection at all.\n\n")
