@@ -266,46 +266,53 @@ def _storage(ctx):
 
 def _clip(ctx):
     rows = ctx.csv()
-    head = ["order", "filter", "clip (cells)", "L1", "L∞", "L1 band", "L∞ band"]
+    kinds = dflio.unique(r.get("clip_kind", "bound") for r in rows)
+    head = ["order", "filter", "clip", "clip (cells)", "L1", "L∞", "L1 band", "L∞ band"]
     body = []
     plt = pyplot()
     fig, ax = plt.subplots(1, 2, figsize=(8, 3))
-    for order in (1, 2):
-        for flt in ("nearest", "hermite"):
-            sel = sorted(pick(rows, order=order, filter=flt),
-                         key=lambda r: f(r, "field.clip_radius"))
-            if not sel:
-                continue
-            xs = [f(r, "field.clip_radius") for r in sel]
-            for r in sel:
-                body.append([order, flt, g(f(r, "field.clip_radius")), g(f(r, "l1")),
-                             g(f(r, "linf")), g(f(r, "l1_band")), g(f(r, "linf_band"))])
-            ax[0].semilogy(xs, [f(r, "l1") for r in sel], "o-", label=f"order {order} {flt}")
-            ax[1].semilogy(xs, [f(r, "linf") for r in sel], "o-", label=f"order {order} {flt}")
+    groups = [(o, flt, k) for o in (1, 2) for flt in ("nearest", "hermite") for k in kinds]
+    for order, flt, kind in groups:
+        sel = sorted((r for r in pick(rows, order=order, filter=flt)
+                      if r.get("clip_kind", "bound") == kind),
+                     key=lambda r: f(r, "field.clip_radius"))
+        if not sel:
+            continue
+        xs = [f(r, "field.clip_radius") for r in sel]
+        for r in sel:
+            body.append([order, flt, kind, g(f(r, "field.clip_radius")), g(f(r, "l1")),
+                         g(f(r, "linf")), g(f(r, "l1_band")), g(f(r, "linf_band"))])
+        st = "o-" if kind == "bound" else "s--"
+        ax[0].semilogy(xs, [f(r, "l1") for r in sel], st, label=f"order {order} {flt} {kind}")
+        ax[1].semilogy(xs, [f(r, "linf") for r in sel], st, label=f"order {order} {flt} {kind}")
     for a, t in zip(ax, ("L1", "L∞")):
         a.set_xlabel("clip radius / cell size")
         a.set_title(f"{t} vs clip radius", fontsize=8)
-        a.legend(fontsize=6)
+        a.legend(fontsize=5)
     fig.suptitle(ctx.config, fontsize=8)
-    # From which radius on the band L-inf stops changing, per order and filter
-    # (read off the rows: equal to 12 digits for every larger radius).
+    # From which radius on the band L-inf stops changing, per order, filter
+    # and clip kind (read off the rows: equal to 12 digits for every larger
+    # radius).
     settle = []
-    for order in (1, 2):
-        for flt in ("nearest", "hermite"):
-            sel = sorted(pick(rows, order=order, filter=flt), key=lambda r: f(r, "field.clip_radius"))
-            vals = [(f(r, "field.clip_radius"), f(r, "linf_band")) for r in sel]
-            if not vals:
-                continue
-            last = vals[-1][1]
-            k = len(vals) - 1
-            while k > 0 and abs(vals[k - 1][1] - last) <= 1e-12 * max(abs(last), 1e-300):
-                k -= 1
-            settle.append(f"order {order} {flt}: from {g(vals[k][0])} cells"
-                          + (f" (at {g(vals[k - 1][0])}: {g(vals[k - 1][1])} vs {g(last)})" if k else ""))
+    for order, flt, kind in groups:
+        sel = sorted((r for r in pick(rows, order=order, filter=flt)
+                      if r.get("clip_kind", "bound") == kind),
+                     key=lambda r: f(r, "field.clip_radius"))
+        vals = [(f(r, "field.clip_radius"), f(r, "linf_band")) for r in sel]
+        if not vals:
+            continue
+        last = vals[-1][1]
+        k = len(vals) - 1
+        while k > 0 and abs(vals[k - 1][1] - last) <= 1e-12 * max(abs(last), 1e-300):
+            k -= 1
+        settle.append(f"order {order} {flt} {kind}: from {g(vals[k][0])} cells"
+                      + (f" (at {g(vals[k - 1][0])}: {g(vals[k - 1][1])} vs {g(last)})" if k else ""))
     return "\n".join([
         "**Clip radius** (torus, SDF input, 16³, double storage): the sphere constraint's radius in "
-        "cell sizes (the paper: one cell, chosen \"in practice\"). dflab's clip is a lower bound, "
-        "D = max(|φ|, |x − p| − ρ), not the paper's proxy ∩ ball. The band L∞ stops changing "
+        "cell sizes (the paper: one cell, chosen \"in practice\") under both readings of the "
+        "constraint (proxy/filter.h): dflab's lower bound D = sgn φ max(|φ|, |x − p| − ρ) and the "
+        "proxy's solid ∩ ball, D = max(φ, |x − p| − ρ) (clip = paper; its ball sphere is a second "
+        "zero set inside the solid, so small radii cost it much more). The band L∞ stops changing "
         + "; ".join(settle) + ".", "",
         dflio.md_table(head, body), "", ctx.figure(fig, "clip"), ""])
 
