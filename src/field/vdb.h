@@ -75,7 +75,11 @@
  * triangles: OpenVDB's own exact narrow band (unsigned distance to the
  * nearest triangle in the band, sign by its flood fill, so the mesh must
  * be closed).  Its active voxels are those OpenVDB marks; the box only sets
- * where the mesh is expected (the mesh is not clipped).
+ * where the mesh is expected (the mesh is not clipped).  Within distance
+ * b - voxel of the mesh the values are the exact mesh distance up to float
+ * rounding (tested: 8 float epsilons); in the outermost voxel layer they
+ * come from OpenVDB's approximate band extension (on a sphere at voxel
+ * 0.05 up to 0.17 voxel off, either way).
  *
  * Samplers (dfl_vdb_sample), x in world units, p = x / voxel (+ 1/2 on a
  * staggered grid) in index space:
