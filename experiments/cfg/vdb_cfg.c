@@ -30,10 +30,12 @@ dfl_status dfl_vdb_cfg_read(const dfl_cfg *cfg, const char *sec, dfl_vdb_cfg *ou
     out->opts.band = (int)band;
     out->opts.sampler = (dfl_vdb_sampler)sampler;
     out->build = (dfl_vdb_build)build;
-    /* the lattice must stay inside OpenVDB's coordinates (vdb.h) */
+    /* the lattice limits of field/vdb.h: at most 2^15 voxels per axis,
+     * within 2^30 of the origin */
     if (dfl_vdb_bytes_bound(&out->opts, NULL) == 0)
         return dfl_cfg_reject(cfg, sec, "voxel", err,
-                              "voxel %g: the box would reach beyond 2^30 voxels from the origin",
+                              "voxel %g: the box spans more than 2^15 voxels per axis or reaches"
+                              " beyond 2^30 voxels from the origin",
                               out->opts.voxel);
     return DFL_OK;
 }

@@ -18,7 +18,8 @@
  * metrics to.
  *
  * Errors: DFL_E_INPUT naming file:line and key (voxel <= 0, band < 1, an
- * unknown sampler or build, lo >= hi, a box beyond 2^30 voxels, a 2D shape).
+ * unknown sampler or build, lo >= hi, a box over 2^15 voxels per axis or
+ * beyond 2^30 from the origin, a 2D shape).
  */
 #ifndef DFL_EXPERIMENTS_VDB_CFG_H
 #define DFL_EXPERIMENTS_VDB_CFG_H

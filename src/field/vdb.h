@@ -169,7 +169,7 @@ typedef struct dfl_vdb dfl_vdb;
 /* Direct fill (see the top) of shape (3D; borrowed during the call).
  * Errors: DFL_E_INPUT for voxel not finite and > 0, band < 1, lo >= hi, a
  * non-finite box, lipschitz < 1 or not finite, a 2D shape, an index range
- * beyond +-2^30 voxels; DFL_E_NUMERIC for a non-finite f at a point the
+ * beyond +-2^30 voxels or over 2^15 voxels per axis; DFL_E_NUMERIC for a non-finite f at a point the
  * search evaluates; DFL_E_NOMEM.  *out untouched on failure. */
 dfl_status dfl_vdb_from_shape(const dfl_shape *shape, const dfl_vdb_opts *o, dfl_vdb **out,
                               dfl_err *err);

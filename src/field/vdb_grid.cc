@@ -53,6 +53,9 @@ const int kTop = (int)Node2::DIM;      // 4096
 // so rounding in f or in the centre cannot drop a voxel with |f| < b.
 const double kSlack = 1e-9;
 const double kMaxIndex = 1073741824.0;  // 2^30: far inside OpenVDB's int32 coordinates
+// At most 2^15 voxels per axis: the band search's first pass then evaluates
+// at most 256^3 block centres, whatever the box.
+const double kMaxSpan = 32768.0;
 
 std::once_flag g_init_once;
 void vdb_init() { std::call_once(g_init_once, [] { openvdb::initialize(); }); }
@@ -102,6 +105,10 @@ dfl_status check_opts(const dfl_vdb_opts *o, bool need_lipschitz, range *r, dfl_
                                "openvdb: box axis %d is %.3g voxels from the origin (at most"
                                " 2^30)",
                                a, std::fmax(std::fabs(l), std::fabs(u)));
+        if (u - l + 1 > kMaxSpan)
+            return dfl_err_set(err, DFL_E_INPUT,
+                               "openvdb: box axis %d spans %.3g voxels (at most 2^15 = 32768)", a,
+                               u - l + 1);
         r->lo[a] = (int)l;
         r->hi[a] = (int)u;
     }

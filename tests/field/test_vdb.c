@@ -396,6 +396,7 @@ Test(vdb, bad_input)
     BAD(voxel, -1, DFL_E_INPUT);
     BAD(voxel, NAN, DFL_E_INPUT);
     BAD(voxel, 1e-12, DFL_E_INPUT); /* 1e12 voxels from the origin */
+    BAD(voxel, 2.0 / 32768, DFL_E_INPUT); /* 32768 + 3 voxels per axis */
     BAD(band, 0, DFL_E_INPUT);
     BAD(hi[1], -1, DFL_E_INPUT);
     BAD(lo[2], INFINITY, DFL_E_INPUT);
