@@ -68,7 +68,9 @@
  * kept leaf lies within b + L sqrt(3) 7/2 voxel of it, so about
  * A (2 b + 12 voxel) / (8 voxel)^3 leaves are kept, i.e. about
  * A (2 band + 12) / voxel^2 evaluations, and at most the dense count of I
- * (plus the block and leaf centres).  dfl_vdb_evals reports the count.
+ * (plus the block and leaf centres).  dfl_vdb_evals reports the count
+ * (measured: 1.64 evaluations per active voxel on the torus R = 0.6,
+ * r = 0.25 at voxel 0.0109, band 10).
  *
  * Mesh build: openvdb::tools::meshToLevelSet<FloatGrid>(transform, points,
  * triangles, band) of the mesh's vertices (rounded to float) and
