@@ -24,7 +24,8 @@ WEB_ENV  := NODE_PATH=/usr/share/nodejs
 WEB_DIR  := $(BUILD)/web
 # gridpeer.c stores half floats through the host's Imath, which emscripten's
 # sysroot lacks; the page does not use it.
-WEB_SKIP := src/field/gridpeer.c
+# The mesh shape (Embree) is native only: the page has no meshes.
+WEB_SKIP := src/field/gridpeer.c src/geom/mesh_bvh.c src/geom/mesh.c
 WEB_SRCS := $(filter-out $(WEB_SKIP),$(shell find src/core src/geom src/field src/rfunc -name '*.c' | sort))
 WEB_OBJ  := $(WEB_SRCS:%.c=$(WEB_DIR)/obj/%.o)
 WEB_API  := $(WEB_DIR)/obj/src/web/dflweb.o $(WEB_DIR)/obj/src/web/lsq_stub.o
