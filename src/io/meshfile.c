@@ -87,7 +87,8 @@ static dfl_status gather(const struct aiScene *sc, const char *path, dfl_meshfil
                     if (!isfinite(out->verts[3 * g + j]))
                         return dfl_err_set(err, DFL_E_INPUT,
                                            "%s: vertex %u of mesh %u (in triangle %zu) has a "
-                                           "non-finite coordinate",
+                                           "non-finite coordinate (Assimp reads floats: "
+                                           "|x| < 3.4e38)",
                                            path, F->mIndices[k], i, t);
                 out->tris[3 * t + k] = g;
             }

@@ -18,6 +18,10 @@
  * coordinates are equal as doubles (so seams that Assimp keeps apart for
  * different normals or texture coordinates are shared edges); the first
  * occurrence keeps its index order.  Triangle orientation is the file's.
+ * Assimp (Debian's build) stores coordinates as floats: a file's numbers
+ * are rounded to float on reading, and a coordinate beyond float range
+ * reads as infinite (refused).  Meshes written by dfl_meshfile_write
+ * therefore read back rounded to float.
  *
  * Refused with DFL_E_INPUT, the message starting "PATH: ": not a regular
  * file or unreadable, empty file, larger than DFL_MESHFILE_MAX, not a mesh
