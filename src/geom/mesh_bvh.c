@@ -102,7 +102,7 @@ void dfl_mesh_bvh_closest(const dfl_mesh_bvh *b, const double *x, dfl_mesh_hit *
     hit->feat = DFL_TRI_FACE;
     hit->q[0] = hit->q[1] = hit->q[2] = NAN;
     const double xm = fmax(fmax(fabs(x[0]), fabs(x[1])), fabs(x[2]));
-    if (!(xm <= DBL_MAX)) { /* NaN or inf */
+    if (!(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]))) { /* fmax drops NaN: test each */
         hit->d = NAN;
         return;
     }
