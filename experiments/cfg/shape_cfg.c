@@ -2,7 +2,6 @@
 
 #include "cfg/curve_cfg.h"
 #include "geom/ellipse.h"
-#include "field/exact.h"
 #include "field/isomesh.h"
 #include "geom/implicit.h"
 #include "geom/mesh.h"
@@ -342,26 +341,29 @@ static dfl_status mesh_source(const shape_req *rq, dfl_trimesh *m, dfl_err *err)
     if (!dfl_cfg_has_section(cfg, src))
         return dfl_cfg_reject(cfg, sec, "polygonize", err, "no such section");
     long n, refine;
-    double box;
+    double lo[3], hi[3];
+    static const double mone[3] = {-1, -1, -1}, one[3] = {1, 1, 1};
     if ((st = dfl_cfg_int_opt(cfg, sec, "resolution", 96, 8, 1024, &n, err)) != DFL_OK) return st;
     if ((st = dfl_cfg_int_opt(cfg, sec, "refine", 8, 0, 100, &refine, err)) != DFL_OK) return st;
-    if ((st = dfl_cfg_double_opt(cfg, sec, "box", 1.0, 0.0, DFL_COORD_MAX, &box, err)) != DFL_OK)
-        return st;
-    if (!(box > 0.0)) return dfl_cfg_reject(cfg, sec, "box", err, "expected a number > 0");
+    if ((st = dfl_cfg_vec_opt(cfg, sec, "lo", 3, mone, lo, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_vec_opt(cfg, sec, "hi", 3, one, hi, err)) != DFL_OK) return st;
+    double ext = 0.0;
+    for (int j = 0; j < 3; j++) {
+        if (!(hi[j] > lo[j])) return dfl_cfg_reject(cfg, sec, "hi", err, "expected hi > lo on every axis");
+        ext = fmax(ext, hi[j] - lo[j]);
+    }
+    /* equal spacing on every axis: n nodes along the longest side */
+    dfl_grid g = {3, {0, 0, 0}, {lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}};
+    for (int j = 0; j < 3; j++)
+        g.n[j] = (int)fmax(2.0, ceil((hi[j] - lo[j]) / ext * (double)(n - 1)) + 1.0);
     dfl_shape inner = {0};
     if ((st = from_cfg(cfg, src, rq->depth + 1, &inner, err)) != DFL_OK) return st;
     if (inner.dim != 3) {
         dfl_shape_free(&inner);
         return dfl_cfg_reject(cfg, sec, "polygonize", err, "[%s] is not a 3D shape", src);
     }
-    dfl_field f;
-    if ((st = dfl_field_exact_new(&inner, &f, err)) != DFL_OK) {
-        dfl_shape_free(&inner);
-        return dfl_cfg_err_at(cfg, sec, "polygonize", st, err);
-    }
-    const dfl_grid g = {3, {(int)n, (int)n, (int)n}, {-box, -box, -box}, {box, box, box}};
-    st = dfl_field_isomesh(&f, &g, (int)refine, 0, m, NULL, err);
-    dfl_field_destroy(&f);
+    st = dfl_shape_isomesh(&inner, &g, (int)refine, 0, m, NULL, err);
+    dfl_shape_free(&inner);
     return st == DFL_OK ? DFL_OK : dfl_cfg_err_at(cfg, sec, "polygonize", st, err);
 }
 

@@ -6,6 +6,7 @@
 
 #include "core/vec.h"
 #include "field/isoline.h"
+#include "geom/implicit.h"
 
 static int zero_area(const double *a, const double *b, const double *c)
 {
@@ -72,4 +73,28 @@ dfl_status dfl_field_isomesh(const dfl_field *f, const dfl_grid *g, int refine, 
     out->tris = tris;
     if (dropped) *dropped = drop;
     return DFL_OK;
+}
+
+/* Borrowed views of a shape as a field (no ownership, nothing to free). */
+static void implicit_g_eval(const void *ctx, size_t m, const double *pts, double *val, double *grad)
+{
+    for (size_t i = 0; i < m; i++)
+        val[i] = dfl_implicit_g(ctx, pts + 3 * i, grad ? grad + 3 * i : NULL, NULL);
+}
+
+static void shape_view_eval(const void *ctx, size_t m, const double *pts, double *val, double *grad)
+{
+    dfl_shape_eval(ctx, m, pts, val, grad);
+}
+
+static const dfl_field_ops implicit_g_ops = {"implicit_g", implicit_g_eval, NULL, NULL};
+static const dfl_field_ops shape_view_ops = {"shape", shape_view_eval, NULL, NULL};
+
+dfl_status dfl_shape_isomesh(const dfl_shape *s, const dfl_grid *g, int refine, int threads,
+                             dfl_trimesh *out, size_t *dropped, dfl_err *err)
+{
+    const dfl_implicit *imp = dfl_implicit_of_shape(s);
+    dfl_field f = {s->dim, imp ? &implicit_g_ops : &shape_view_ops,
+                   imp ? (void *)imp : (void *)s};
+    return dfl_field_isomesh(&f, g, refine, threads, out, dropped, err);
 }

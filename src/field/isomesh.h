@@ -6,7 +6,8 @@
  * dflab can use it as `[shape] kind = mesh` (geom/mesh.h) or write it
  * (io/meshfile.h).
  *
- *   dfl_field_isomesh(f, g, refine, threads, out, err)
+ *   dfl_field_isomesh(f, g, refine, threads, out, dropped, err)
+ *   dfl_shape_isomesh(s, g, refine, threads, out, dropped, err)   of a shape's zero set
  *
  * Properties.  The surface is watertight (every edge in two triangles)
  * when the level set does not reach the grid's boundary; triangles are
@@ -30,10 +31,18 @@
 #include "field/field.h"
 #include "field/sample.h"
 #include "geom/polygonize.h"
+#include "geom/shape.h"
 
 /* refine: regula falsi rounds of dfl_iso_refine (0: linear vertices);
  * threads: for sampling (field/sample.h). dropped may be NULL. */
 dfl_status dfl_field_isomesh(const dfl_field *f, const dfl_grid *g, int refine, int threads,
+                             dfl_trimesh *out, size_t *dropped, dfl_err *err);
+
+/* dfl_field_isomesh of the shape s (borrowed, 3D): an implicit surface
+ * (geom/implicit.h) through its defining function g, which has the same
+ * zero set and sign as its distance but costs no footpoint per sample;
+ * any other shape through its signed distance.  Errors as above. */
+dfl_status dfl_shape_isomesh(const dfl_shape *s, const dfl_grid *g, int refine, int threads,
                              dfl_trimesh *out, size_t *dropped, dfl_err *err);
 
 #endif
