@@ -24,21 +24,27 @@
  * non-finite x gives d = NaN (hit->tri = SIZE_MAX).
  *
  * Winding number.  Clusters are BVH nodes with area A, area-weighted
- * centroid p, radius r (every vertex of the cluster within r of p) and
- * area vector N = sum of the triangles' (b - a) x (c - a) / 2.  Since
- * w(x) = 1/(4 pi) sum_t int_t n_t . (y - x) / |y - x|^3 dA(y) exactly for
- * flat triangles, a cluster with R = |x - p| > beta r is replaced by its
- * monopole N . (p - x) / (4 pi R^3) (the first term of Barill, Dickson,
- * Schmidt, Levin, Jacobson: "Fast winding numbers for soups and clouds",
- * ACM Transactions on Graphics 37(4), 43:1-12, 2018,
- * doi:10.1145/3197517.3201337); the kernel's Jacobian (I - 3 u u^T)/|y-x|^3
- * has norm 2/|y - x|^3, so that cluster's error is at most
- * A r / (2 pi (R - r)^3).  The sum of these is the returned bound; leaves
- * that are not accepted are summed exactly (Van Oosterom-Strackee).
- * dfl_mesh_bvh_inside uses beta = DFL_MESH_WINDING_BETA and, when
- * |w - 1/2| <= bound + 1e-9, the exact sum over every triangle instead, so
- * its answer is that of the exact winding number (up to the rounding of
- * that sum).
+ * centroid p, radius r (every vertex of the cluster within r of p), area
+ * vector N = sum_t A_t n_t and first moment M = sum_t A_t n_t (c_t - p)^T
+ * (c_t the triangles' centroids).  Exactly, for flat triangles,
+ * w(x) = 1/(4 pi) sum_t n_t . int_t K(y) dA(y), K(y) = (y - x) / |y - x|^3.
+ * A cluster with R = |x - p| > beta r is replaced by the first two terms
+ * of K's Taylor series about p (the expansion of Barill, Dickson, Schmidt,
+ * Levin, Jacobson: "Fast winding numbers for soups and clouds", ACM
+ * Transactions on Graphics 37(4), 43:1-12, 2018, doi:10.1145/3197517.3201337,
+ * to first order):  (N . K(p) + sum_jk J_jk M_jk) / (4 pi) with
+ * J = (I - 3 u u^T) / R^3, u = (p - x) / R; since int_t (y - p) dA =
+ * A_t (c_t - p) that is exact to first order.  The remainder involves
+ * D^2 K = -D^3 (1/|y - x|), whose norm is at most 3! / |y - x|^4 (the
+ * Legendre bound |P_3| <= 1 of the Newton kernel's derivatives), so that
+ * cluster's error is at most 3 A r^2 / (4 pi (R - r)^4).  The sum of these
+ * is the returned bound; leaves that are not accepted are summed exactly
+ * (Van Oosterom-Strackee).
+ * dfl_mesh_bvh_inside tries beta = DFL_MESH_WINDING_BETA, 2 and 4 times
+ * that, and takes the first result with |w - 1/2| > bound + 1e-9; when
+ * none decides, the exact sum over every triangle.  Its answer is
+ * therefore that of the exact winding number (up to the rounding of the
+ * sums, the 1e-9).
  *
  * Thread-safety: after dfl_mesh_bvh_new everything is read-only; queries
  * allocate nothing (a fixed stack of DFL_MESH_BVH_STACK nodes; the tree's
@@ -54,7 +60,7 @@
 #include "core/status.h"
 #include "geom/tridist.h"
 
-#define DFL_MESH_WINDING_BETA 2.5
+#define DFL_MESH_WINDING_BETA 3.0
 #define DFL_MESH_BVH_STACK 128
 
 typedef struct dfl_mesh_bvh dfl_mesh_bvh;
