@@ -3,8 +3,8 @@
  * Keys (contract):
  *   kind = one of geom/shape.h's DFL_SHAPE_KINDS: circle | sphere | torus |
  *          cylinder | plane | cone | box | segment | ellipse | bspline_curve |
- *          bspline_surface | bezier_surface | implicit | csg (shape_cfg.c has
- *          one parser per kind)
+ *          bspline_surface | bezier_surface | implicit | csg | mesh
+ *          (shape_cfg.c has one parser per kind)
  *   circle:   center = x y,      radius = r > 0
  *   sphere:   center = x y z,    radius = r > 0
  *   torus:    center = x y z, axis = ax ay az (non-zero), major = R > 0,
@@ -27,6 +27,34 @@
  *             smooth_intersection | smooth_difference, a = <section>,
  *             b = <section> (each a shape section of its own), k = width > 0
  *             (smooth ops only)
+ *   mesh:     a triangle mesh (geom/mesh.h: exact distance, sign of the
+ *             generalized winding number), from exactly one of
+ *               file = PATH: any format Assimp reads (OBJ, PLY, STL, OFF,
+ *                 AC3D, ...; io/meshfile.h: vertices welded by position,
+ *                 coordinates rounded to float by Assimp).  A relative PATH
+ *                 is resolved against the folder of the file the key is
+ *                 written in (the config, or the included shape file), a
+ *                 --set value against the working directory.  Refused
+ *                 (exit 2, naming the file and the reason): missing or not
+ *                 a regular file, empty, not a mesh, no triangles, a
+ *                 non-finite vertex, a degenerate (zero-area) triangle
+ *                 (geom/trimesh.h says why such files are refused, not
+ *                 repaired).
+ *               polygonize = SECTION: marching cubes of that 3D shape
+ *                 section (field/isomesh.h; implicit surfaces through their
+ *                 polynomial) on a grid over lo = x y z .. hi = x y z
+ *                 (defaults -1 -1 -1 and 1 1 1) with equal spacing,
+ *                 resolution = nodes along the longest side (8..1024,
+ *                 default 96), refine = regula falsi rounds (0..100,
+ *                 default 8).
+ *             fit = none | box (default none: the file's coordinates);
+ *               box: the bounding box's centre moves to center = x y z
+ *               (default 0 0 0) and its longest side is scaled to
+ *               size > 0 (default 1.6), uniformly (center and size are
+ *               refused with fit = none).
+ *             distance = signed | unsigned (default signed).
+ *             The triangles are available to methods through
+ *             dfl_shape_mesh_trimesh (geom/mesh.h).
  *
  * Errors: DFL_E_INPUT naming file:line, [section] and key (missing key,
  * wrong type, radius <= 0, zero axis, unknown kind, CSG cycles).
