@@ -18,7 +18,9 @@ SAN     ?=
 EXR_CFLAGS := $(shell pkg-config --cflags OpenEXR 2>/dev/null)
 DEPFLAGS = -MMD -MP
 CPPFLAGS += -Isrc $(EXR_CFLAGS) -D_POSIX_C_SOURCE=200809L -DIMATH_HALF_NO_LOOKUP_TABLE
-CFLAGS   += -std=c11 -Wall -Wextra $(OPT) -fopenmp $(SAN) -g
+# -ffp-contract=off: no FMA contraction anywhere (ISO C mode implies it; stated
+# so that the per-ISA kernels, core/isa.h, give the same bytes on every ISA).
+CFLAGS   += -std=c11 -Wall -Wextra $(OPT) -ffp-contract=off -fopenmp $(SAN) -g
 CXXFLAGS += -std=c++17 -Wall -Wextra $(OPT) -fopenmp $(SAN) -g -I/usr/include/eigen3
 LDLIBS   += -linih -lceres -lglog -lOpenEXRCore-3_1 -lz -lm
 LDFLAGS  += -fopenmp $(SAN)
@@ -64,7 +66,7 @@ APT_PKGS := libinih-dev libceres-dev libopenexr-dev libimath-dev libcriterion-de
             python3-matplotlib python3-numpy python3-vtk9 openexr pkg-config \
             emscripten chromium python3-scipy parallel slurm-wlm munge clang-14 libomp-14-dev
 
-.PHONY: all deps test sanitize bench reproduce figures clean check-layout web web-test web-bench check-threads mutate
+.PHONY: all deps test sanitize bench reproduce figures clean check-layout web web-test web-bench check-threads check-isa mutate
 all: $(DFLAB) $(LIB)
 
 $(BUILD)/%.o: %.c
@@ -161,6 +163,12 @@ reproduce: deps
 check-threads: deps
 	$(MAKE) --no-print-directory $(DFLAB)
 	$(PYTHON) scripts/check_threads.py $(DFLAB)
+
+# Every paper and smoke config once per ISA this CPU runs (DFL_ISA, core/isa.h),
+# compared byte for byte with the sse2 run (make test runs a quick subset).
+check-isa: deps
+	$(MAKE) --no-print-directory $(DFLAB)
+	$(PYTHON) scripts/check_isa.py $(DFLAB)
 
 figures:
 	@test -n "$(STUDY)" || { echo "usage: make figures STUDY=<results folder or study name>"; exit 2; }

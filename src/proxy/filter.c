@@ -5,6 +5,7 @@
 
 #include <math.h>
 
+#include "core/isa.h"
 #include "core/vec.h"
 
 DFL_NAMES_DEFINE(dfl_proxy_filter, DFL_PROXY_FILTER_LIST, DFL_PROXY_FILTER_COUNT,
@@ -33,7 +34,7 @@ dfl_status dfl_proxy_filter_check(const dfl_proxy_grid *g, const dfl_proxy_filte
     return DFL_OK;
 }
 
-static inline double clipped(const dfl_proxy_geom *pgp, int order, double clip,
+DFL_ISA_BODY double clipped(const dfl_proxy_geom *pgp, int order, double clip,
                              const double x[3], double *grad)
 {
     const dfl_proxy_geom *pg = pgp;
@@ -62,7 +63,7 @@ double dfl_proxy_proxy_dist(const dfl_proxy_grid *g, size_t c, double clip, cons
 }
 
 /* D of cell (i, j, k) */
-static inline double dist_ijk(const dfl_proxy_grid *g, size_t i, size_t j, size_t k,
+DFL_ISA_BODY double dist_ijk(const dfl_proxy_grid *g, size_t i, size_t j, size_t k,
                               double clip, const double x[3], double *grad)
 {
     dfl_proxy_geom pg;
@@ -70,7 +71,7 @@ static inline double dist_ijk(const dfl_proxy_grid *g, size_t i, size_t j, size_
     return clipped(&pg, g->order, clip, x, grad);
 }
 
-static void fold(int is_signed, double *val, double *grad)
+DFL_ISA_BODY void fold(int is_signed, double *val, double *grad)
 {
     if (is_signed || *val >= 0) return;
     *val = -*val;
@@ -78,7 +79,7 @@ static void fold(int is_signed, double *val, double *grad)
         for (int j = 0; j < 3; j++) grad[j] = -grad[j];
 }
 
-static inline void nearest_cell(const dfl_proxy_grid *g, const double x[3], size_t idx[3])
+DFL_ISA_BODY void nearest_cell(const dfl_proxy_grid *g, const double x[3], size_t idx[3])
 {
     for (int j = 0; j < 3; j++) {
         const double s = floor((x[j] - g->lo[j]) / g->h[j]);
@@ -87,7 +88,7 @@ static inline void nearest_cell(const dfl_proxy_grid *g, const double x[3], size
 }
 
 /* weight of the upper neighbour and its derivative in t */
-static inline void weight(dfl_proxy_filter f, int order, double t, double *w, double *dw)
+DFL_ISA_BODY void weight(dfl_proxy_filter f, int order, double t, double *w, double *dw)
 {
     if (f == DFL_PROXY_TRILINEAR) {
         *w = t;
@@ -102,7 +103,7 @@ static inline void weight(dfl_proxy_filter f, int order, double t, double *w, do
     }
 }
 
-static double blend(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, const double x[3],
+DFL_ISA_BODY double blend(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, const double x[3],
                     double *grad)
 {
     const size_t n = (size_t)g->res;
@@ -162,8 +163,9 @@ static double blend(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, con
     return val;
 }
 
-void dfl_proxy_filter_eval(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t m,
-                           const double *x, double *val, double *grad)
+/* The query loop, compiled per ISA (core/isa.h): same bytes on each. */
+DFL_ISA_BODY void queries_body(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t m,
+                               const double *x, double *val, double *grad)
 {
     if (o->filter == DFL_PROXY_NEAREST) {
         for (size_t i = 0; i < m; i++) {
@@ -176,4 +178,14 @@ void dfl_proxy_filter_eval(const dfl_proxy_grid *g, const dfl_proxy_filter_opts 
         return;
     }
     for (size_t i = 0; i < m; i++) val[i] = blend(g, o, x + 3 * i, grad ? grad + 3 * i : NULL);
+}
+DFL_ISA_KERNEL(queries,
+               (const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t m,
+                const double *x, double *val, double *grad),
+               (g, o, m, x, val, grad))
+
+void dfl_proxy_filter_eval(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t m,
+                           const double *x, double *val, double *grad)
+{
+    queries(g, o, m, x, val, grad);
 }

@@ -171,8 +171,9 @@ static void eval_report(const char *name, const dfl_field *f, const dfl_field *e
     free(j.grad);
 }
 
-void bench_pht(void)
+void bench_pht(bench_ctx *c)
 {
+    (void)c;
     bench_report("pht.threads", omp_get_max_threads(), "threads");
     dfl_shape s;
     const double c2[2] = {0.5, 0.5}, c3[3] = {0.5, 0.5, 0.5}, ax[3] = {0, 0, 1};

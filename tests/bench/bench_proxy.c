@@ -216,8 +216,9 @@ static void bench_filters(void)
     free(gr);
 }
 
-void bench_proxy(void)
+void bench_proxy(bench_ctx *c)
 {
+    (void)c;
     bench_builds();
     bench_filters();
 }
