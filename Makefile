@@ -55,6 +55,9 @@ $(TEST_OBJ) $(BENCH_OBJ): CPPFLAGS += -Iexperiments -Itests
 # unchanged (src/rfunc/batch_seg.c strip_term, batch_tri.c).
 $(BUILD)/src/rfunc/batch_seg.o: CFLAGS += -fno-math-errno
 $(BUILD)/src/rfunc/batch_tri.o $(BUILD)/src/rfunc/batch_region.o: CFLAGS += -fno-math-errno -fno-trapping-math
+# The nearest filter's lane loop (src/proxy/filter.c nearest_block): sqrt and
+# the clip's selects vectorize under the same two flags.
+$(BUILD)/src/proxy/filter.o: CFLAGS += -fno-math-errno -fno-trapping-math
 
 # make test and make reproduce build with one job per core.
 NPROC   := $(shell nproc 2>/dev/null || echo 1)
