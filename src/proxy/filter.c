@@ -71,14 +71,6 @@ DFL_ISA_BODY double dist_ijk(const dfl_proxy_grid *g, size_t i, size_t j, size_t
     return clipped(&pg, g->order, clip, x, grad);
 }
 
-DFL_ISA_BODY void fold(int is_signed, double *val, double *grad)
-{
-    if (is_signed || *val >= 0) return;
-    *val = -*val;
-    if (grad)
-        for (int j = 0; j < 3; j++) grad[j] = -grad[j];
-}
-
 DFL_ISA_BODY void nearest_cell(const dfl_proxy_grid *g, const double x[3], size_t idx[3])
 {
     for (int j = 0; j < 3; j++) {
@@ -167,8 +159,9 @@ DFL_ISA_BODY double blend(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *
 #define QL 8
 
 /* The lane loop of nearest_block (order, pos, clipon constants at each
- * call): dfl_proxy_decode, dfl_proxy_geom_eval (decode.h), clipped and
- * fold above, written out on scalars in the same operations and order
+ * call): dfl_proxy_decode, dfl_proxy_geom_eval (decode.h), clipped above
+ * and the fold of unsigned output (a negative value and its gradient
+ * negated, NaN too, as !(phi >= 0)), written out on scalars in the same operations and order
  * (dot products left to right, the cross product of dfl_vec3_cross), so
  * that the lanes vectorize; tests/proxy and scripts/check_isa.py hold them
  * to the per-query bytes. */
@@ -241,15 +234,13 @@ DFL_ISA_BODY void nearest_lanes(const int order, const dfl_proxy_position pos, c
 /* The nearest filter for c <= QL queries at x, across queries: the cells'
  * scalars are gathered into structure-of-arrays lanes (a short block
  * repeats its last query), then decoding, the proxy's distance, the clip
- * and the fold run in one lane loop, branch-free, so that the compiler
- * keeps QL queries in vector registers instead of one serial chain of
- * square roots and divisions per query.  Every lane computes what
- * dist_ijk, clipped and fold compute for its query, operation for
- * operation (dfl_proxy_decode and dfl_proxy_geom_eval are the same inline
- * functions; the clip's and the fold's branches become selects of values
- * computed either way, and fmax(ball, |phi|) a select: where the clip
- * applies phi is finite and ball is not NaN, so they agree), hence the
- * same bytes as one query at a time. */
+ * and the fold run in one lane loop (nearest_lanes), branch-free, so that
+ * the compiler keeps QL queries in vector registers instead of one serial
+ * chain of square roots and divisions per query.  Every lane computes what
+ * one query at a time computed, operation for operation: the branches
+ * become selects of values computed either way, and fmax(ball, |phi|) a
+ * select (where the clip applies phi is finite and ball is not NaN, so
+ * they agree); hence the same bytes. */
 DFL_ISA_BODY void nearest_block(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t c,
                                 const double *x, double *val, double *grad)
 {
