@@ -18,7 +18,9 @@ SAN     ?=
 EXR_CFLAGS := $(shell pkg-config --cflags OpenEXR 2>/dev/null)
 DEPFLAGS = -MMD -MP
 CPPFLAGS += -Isrc $(EXR_CFLAGS) -D_POSIX_C_SOURCE=200809L -DIMATH_HALF_NO_LOOKUP_TABLE
-CFLAGS   += -std=c11 -Wall -Wextra $(OPT) -fopenmp $(SAN) -g
+# -ffp-contract=off: no FMA contraction anywhere (ISO C mode implies it; stated
+# so that the per-ISA kernels, core/isa.h, give the same bytes on every ISA).
+CFLAGS   += -std=c11 -Wall -Wextra $(OPT) -ffp-contract=off -fopenmp $(SAN) -g
 CXXFLAGS += -std=c++17 -Wall -Wextra $(OPT) -fopenmp $(SAN) -g -I/usr/include/eigen3
 # OpenVDB 10 (field/vdb_grid.cc) and the TBB it is built on: its headers
 # instantiate TBB templates, so the program links libtbb itself.
@@ -58,6 +60,12 @@ $(TEST_OBJ) $(BENCH_OBJ): CPPFLAGS += -Iexperiments -Itests
 # unchanged (src/rfunc/batch_seg.c strip_term, batch_tri.c).
 $(BUILD)/src/rfunc/batch_seg.o: CFLAGS += -fno-math-errno
 $(BUILD)/src/rfunc/batch_tri.o $(BUILD)/src/rfunc/batch_region.o: CFLAGS += -fno-math-errno -fno-trapping-math
+# The nearest filter's lane loop (src/proxy/filter.c nearest_block): sqrt and
+# the clip's selects vectorize under the same two flags.
+$(BUILD)/src/proxy/filter.o: CFLAGS += -fno-math-errno -fno-trapping-math
+
+# make test and make reproduce build with one job per core.
+NPROC   := $(shell nproc 2>/dev/null || echo 1)
 
 LIB     := $(BUILD)/libdfl.a
 EXPLIB  := $(BUILD)/libdflexp.a
@@ -70,7 +78,7 @@ APT_PKGS := libinih-dev libceres-dev libopenexr-dev libimath-dev libcriterion-de
             emscripten chromium python3-scipy parallel slurm-wlm munge clang-14 libomp-14-dev \
             libopenvdb-dev libtbb-dev libassimp-dev libembree-dev assimp-testmodels
 
-.PHONY: all deps test sanitize bench reproduce figures clean check-layout web web-test web-bench check-threads mutate
+.PHONY: all deps test sanitize bench reproduce figures clean check-layout web web-test web-bench check-threads check-isa mutate
 all: $(DFLAB) $(LIB)
 
 $(BUILD)/%.o: %.c
@@ -126,10 +134,10 @@ check-layout:
 # The test binary runs from the repository root; DFL_PYTHON and DFL_DFLAB
 # let tests call the VTK validator and the CLI.
 test: deps check-layout
-	$(MAKE) --no-print-directory $(DFLAB) $(TESTS)
+	$(MAKE) --no-print-directory -j$(NPROC) $(DFLAB) $(TESTS)
 	DFL_PYTHON=$(PYTHON) DFL_DFLAB=$(abspath $(DFLAB)) $(TESTS) -j2 --timeout 600
-	$(MAKE) --no-print-directory web-test
-	$(MAKE) --no-print-directory fuzz-short
+	$(MAKE) --no-print-directory -j$(NPROC) web-test
+	$(MAKE) --no-print-directory -j$(NPROC) fuzz-short
 
 sanitize: deps
 	$(MAKE) --no-print-directory BUILD=build-san OPT=-O1 \
@@ -143,9 +151,13 @@ sanitize: deps
 include src/web/web.mk
 include tests/fuzz/fuzz.mk
 
+# The floor (this CPU's measured FMA, mul/add, divide and sqrt throughput per
+# ISA) first, then every group; build/bench/summary.csv holds issue 19's
+# measures (measure,dflab,peer,peer_value,ratio,floor_fraction).
 bench: deps
 	$(MAKE) --no-print-directory OPT=-O3 BUILD=build-bench build-bench/dflab-bench
-	DFL_PYTHON=$(PYTHON) build-bench/dflab-bench $(BENCH)
+	@mkdir -p build/bench
+	DFL_PYTHON=$(PYTHON) build-bench/dflab-bench --summary build/bench/summary.csv $(BENCH)
 	$(if $(BENCH),,$(MAKE) --no-print-directory web-bench)
 
 # One folder per paper under configs/paper/; results/<config name>/ each.
@@ -155,18 +167,33 @@ bench: deps
 # and dflab binary are unchanged (results/<name>.points/), so only changed
 # configs compute.  `make figures STUDY=name` redraws one section.
 PAPER_CONFIGS := $(sort $(wildcard configs/paper/*/*.ini))
+# Wall time of every config and peer goes to $(BUILD)/reproduce_times.txt and
+# is printed at the end, slowest first.
+REPRO_TIMES := $(BUILD)/reproduce_times.txt
 reproduce: deps
-	$(MAKE) --no-print-directory $(DFLAB)
-	@set -e; for c in $(PAPER_CONFIGS); do echo "== $$c"; $(DFLAB) run $$c; done
+	$(MAKE) --no-print-directory -j$(NPROC) $(DFLAB)
+	@: > $(REPRO_TIMES)
+	@set -e; for c in $(PAPER_CONFIGS); do echo "== $$c"; t0=$$(date +%s.%N); \
+	  $(DFLAB) run $$c; echo "$$c $$t0 $$(date +%s.%N)" >> $(REPRO_TIMES); done
 	@set -e; for p in $(sort $(wildcard scripts/peers/*.py)); do echo "== peer $$p"; \
-	  $(PYTHON) $$p --results results; done
+	  t0=$$(date +%s.%N); $(PYTHON) $$p --results results; \
+	  echo "peer:$$p $$t0 $$(date +%s.%N)" >> $(REPRO_TIMES); done
 	$(PYTHON) scripts/report.py --results results --out results/REPORT.md
+	@echo "== wall time per config (s), slowest first"; \
+	  awk '{ printf "%9.1f  %s\n", $$3 - $$2, $$1 }' $(REPRO_TIMES) | sort -rn; \
+	  awk '{ s += $$3 - $$2 } END { printf "%9.1f  total\n", s }' $(REPRO_TIMES)
 
 # Every paper and smoke config at --threads 1, --threads 2 and
 # OMP_NUM_THREADS=1, compared byte for byte (make test runs a quick subset).
 check-threads: deps
 	$(MAKE) --no-print-directory $(DFLAB)
 	$(PYTHON) scripts/check_threads.py $(DFLAB)
+
+# Every paper and smoke config once per ISA this CPU runs (DFL_ISA, core/isa.h),
+# compared byte for byte with the sse2 run (make test runs a quick subset).
+check-isa: deps
+	$(MAKE) --no-print-directory $(DFLAB)
+	$(PYTHON) scripts/check_isa.py $(DFLAB)
 
 figures:
 	@test -n "$(STUDY)" || { echo "usage: make figures STUDY=<results folder or study name>"; exit 2; }

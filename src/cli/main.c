@@ -9,6 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "core/isa.h"
 #include "core/jet.h"
 #include "dfl_version.h"
 #include "harness/experiment.h"
@@ -36,6 +37,10 @@ static const char *const usage_main =
     "  list  studies and the configs that use them\n"
     "  help [COMMAND | STUDY]   this text, a command's help, or the keys a study reads\n"
     "  --version\n"
+    "\n"
+    "environment: DFL_ISA=sse2|avx2|avx512 runs the hot kernels compiled for that\n"
+    "instruction set (default: the widest this CPU runs); results are the same\n"
+    "bytes on every one.  An unknown value, or one this CPU does not run, is exit 2.\n"
     "\n"
     "exit status: 0 success; 2 bad input (config, points file, geometry, usage,\n"
     "an unusable --out such as a file, / or a place where no directory can be\n"
@@ -506,6 +511,14 @@ static int dispatch(int argc, char **argv);
 int main(int argc, char **argv)
 {
     passive_omp(argv);
+    /* DFL_ISA (core/isa.h) is input: a bad value stops every command
+     * before it computes anything. */
+    dfl_isa isa;
+    dfl_err err;
+    if (dfl_isa_from_env(&isa, &err) != DFL_OK) {
+        fprintf(stderr, "dflab: error: %s\n", err.msg);
+        return 2;
+    }
     return flushed(dispatch(argc, argv));
 }
 

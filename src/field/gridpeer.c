@@ -8,6 +8,8 @@
 #include <Imath/half.h>
 #include <omp.h>
 
+#include "core/isa.h"
+
 DFL_NAMES_DEFINE(dfl_gridpeer_kind, DFL_GRIDPEER_KIND_LIST, DFL_GRIDPEER_KIND_COUNT,
                  dfl_gridpeer_kind_names, dfl_gridpeer_kind_name, dfl_gridpeer_kind_parse,
                  "grid peer kind")
@@ -36,7 +38,7 @@ size_t dfl_gridpeer_scalars(dfl_gridpeer_kind kind, int n)
 }
 
 /* Cell index along one axis of the cell holding x (clamped into the box). */
-static inline int cell_of(const gridpeer *g, int a, double x)
+DFL_ISA_BODY int cell_of(const gridpeer *g, int a, double x)
 {
     double t = floor((x - g->lo[a]) / g->h[a]);
     if (!(t >= 0.0)) return 0;  /* also NaN: decodes cell 0, the value stays NaN */
@@ -44,7 +46,7 @@ static inline int cell_of(const gridpeer *g, int a, double x)
     return (int)t;
 }
 
-static void eval_taylor(const gridpeer *g, const double *x, double *val, double *grad)
+DFL_ISA_BODY void eval_taylor(const gridpeer *g, const double *x, double *val, double *grad)
 {
     const int n = g->n;
     int c[3];
@@ -69,7 +71,7 @@ static void eval_taylor(const gridpeer *g, const double *x, double *val, double 
     if (grad) memcpy(grad, gr, sizeof gr);
 }
 
-static void eval_trilinear(const gridpeer *g, const double *x, double *val, double *grad)
+DFL_ISA_BODY void eval_trilinear(const gridpeer *g, const double *x, double *val, double *grad)
 {
     const int n = g->n;
     int i0[3];
@@ -109,7 +111,9 @@ static void eval_trilinear(const gridpeer *g, const double *x, double *val, doub
     grad[2] = n >= 2 ? dfz / g->h[2] : 0.0;
 }
 
-static void gridpeer_eval(const void *ctx, size_t m, const double *pts, double *val, double *grad)
+/* The evaluation loop, compiled per ISA (core/isa.h): same bytes on each. */
+DFL_ISA_BODY void points_body(const void *ctx, size_t m, const double *pts, double *val,
+                              double *grad)
 {
     const gridpeer *g = ctx;
     if (g->kind == DFL_GRIDPEER_TRILINEAR0) {
@@ -119,6 +123,14 @@ static void gridpeer_eval(const void *ctx, size_t m, const double *pts, double *
         for (size_t i = 0; i < m; i++)
             eval_taylor(g, pts + 3 * i, val + i, grad ? grad + 3 * i : NULL);
     }
+}
+DFL_ISA_KERNEL(points,
+               (const void *ctx, size_t m, const double *pts, double *val, double *grad),
+               (ctx, m, pts, val, grad))
+
+static void gridpeer_eval(const void *ctx, size_t m, const double *pts, double *val, double *grad)
+{
+    points(ctx, m, pts, val, grad);
 }
 
 static void gridpeer_destroy(void *ctx)

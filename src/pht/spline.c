@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/isa.h"
 #include "pht/hermite.h"
 
 static const double HB[4][4] = {{1, 0, -3, 2}, {0, 1, -2, 1}, {0, 0, 3, -2}, {0, 0, -1, 1}};
@@ -344,7 +345,7 @@ static inline size_t locate(const dfl_pht_spline *s, const double *x, const doub
  * direction): the grid cell by index arithmetic, corrected against the grid
  * lines so that it agrees with the tree's comparisons, then a branch-free
  * descent. */
-static inline size_t locate_fast(const dfl_pht_spline *s, const double *x)
+DFL_ISA_BODY size_t locate_fast(const dfl_pht_spline *s, const double *x)
 {
     const int gn = s->gn, dim = s->dim;
     size_t g = 0, mul = 1;
@@ -395,7 +396,7 @@ const double *dfl_pht_spline_cell(const dfl_pht_spline *s, size_t i, double *lo,
 #define D3(c, t) (3 * (c)[3] * (t) + 2 * (c)[2]) * (t) + (c)[1]
 #define DD3(c, t) 6 * (c)[3] * (t) + 2 * (c)[2]
 
-static void eval2(const double *cell, const double *x, double *val, double *g, double *H)
+DFL_ISA_BODY void eval2(const double *cell, const double *x, double *val, double *g, double *H)
 {
     const double *c = cell + 4, *ih = cell + 2;
     double u = (x[0] - cell[0]) * ih[0], v = (x[1] - cell[1]) * ih[1];
@@ -417,7 +418,7 @@ static void eval2(const double *cell, const double *x, double *val, double *g, d
     }
 }
 
-static void eval3(const double *cell, const double *x, double *val, double *g, double *H)
+DFL_ISA_BODY void eval3(const double *cell, const double *x, double *val, double *g, double *H)
 {
     const double *c = cell + 6, *ih = cell + 3;
     double u = (x[0] - cell[0]) * ih[0], v = (x[1] - cell[1]) * ih[1],
@@ -453,8 +454,9 @@ static void eval3(const double *cell, const double *x, double *val, double *g, d
     }
 }
 
-void dfl_pht_eval(const dfl_pht_spline *s, size_t m, const double *pts, double *val,
-                  double *grad, double *hess)
+/* The evaluation loop, compiled per ISA (core/isa.h): same bytes on each. */
+DFL_ISA_BODY void eval_points_body(const dfl_pht_spline *s, size_t m, const double *pts,
+                                   double *val, double *grad, double *hess)
 {
     const int d = s->dim;
     for (size_t i = 0; i < m; i++) {
@@ -465,6 +467,16 @@ void dfl_pht_eval(const dfl_pht_spline *s, size_t m, const double *pts, double *
         if (d == 2) eval2(cell, x, v, g, H);
         else eval3(cell, x, v, g, H);
     }
+}
+DFL_ISA_KERNEL(eval_points,
+               (const dfl_pht_spline *s, size_t m, const double *pts, double *val,
+                double *grad, double *hess),
+               (s, m, pts, val, grad, hess))
+
+void dfl_pht_eval(const dfl_pht_spline *s, size_t m, const double *pts, double *val,
+                  double *grad, double *hess)
+{
+    eval_points(s, m, pts, val, grad, hess);
 }
 
 void dfl_pht_eval_cell(const dfl_pht_spline *s, size_t ci, size_t m, const double *pts,

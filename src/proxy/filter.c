@@ -5,6 +5,7 @@
 
 #include <math.h>
 
+#include "core/isa.h"
 #include "core/vec.h"
 
 DFL_NAMES_DEFINE(dfl_proxy_filter, DFL_PROXY_FILTER_LIST, DFL_PROXY_FILTER_COUNT,
@@ -38,8 +39,8 @@ dfl_status dfl_proxy_filter_check(const dfl_proxy_grid *g, const dfl_proxy_filte
     return DFL_OK;
 }
 
-static inline double clipped(const dfl_proxy_geom *pgp, int order, dfl_proxy_clip kind,
-                             double clip, const double x[3], double *grad)
+DFL_ISA_BODY double clipped(const dfl_proxy_geom *pgp, int order, dfl_proxy_clip kind,
+                            double clip, const double x[3], double *grad)
 {
     const dfl_proxy_geom *pg = pgp;
     double phi = dfl_proxy_geom_eval(pg, order, x, grad);
@@ -82,23 +83,15 @@ double dfl_proxy_proxy_dist(const dfl_proxy_grid *g, size_t c, dfl_proxy_clip ki
 }
 
 /* D of cell (i, j, k) */
-static inline double dist_ijk(const dfl_proxy_grid *g, size_t i, size_t j, size_t k,
-                              const dfl_proxy_filter_opts *o, const double x[3], double *grad)
+DFL_ISA_BODY double dist_ijk(const dfl_proxy_grid *g, size_t i, size_t j, size_t k,
+                             const dfl_proxy_filter_opts *o, const double x[3], double *grad)
 {
     dfl_proxy_geom pg;
     dfl_proxy_cell_decode_ijk(g, i, j, k, &pg);
     return clipped(&pg, g->order, o->clip_kind, o->clip, x, grad);
 }
 
-static void fold(int is_signed, double *val, double *grad)
-{
-    if (is_signed || *val >= 0) return;
-    *val = -*val;
-    if (grad)
-        for (int j = 0; j < 3; j++) grad[j] = -grad[j];
-}
-
-static inline void nearest_cell(const dfl_proxy_grid *g, const double x[3], size_t idx[3])
+DFL_ISA_BODY void nearest_cell(const dfl_proxy_grid *g, const double x[3], size_t idx[3])
 {
     for (int j = 0; j < 3; j++) {
         const double s = floor((x[j] - g->lo[j]) / g->h[j]);
@@ -107,7 +100,7 @@ static inline void nearest_cell(const dfl_proxy_grid *g, const double x[3], size
 }
 
 /* weight of the upper neighbour and its derivative in t */
-static inline void weight(dfl_proxy_filter f, int order, double t, double *w, double *dw)
+DFL_ISA_BODY void weight(dfl_proxy_filter f, int order, double t, double *w, double *dw)
 {
     if (f == DFL_PROXY_TRILINEAR) {
         *w = t;
@@ -122,7 +115,7 @@ static inline void weight(dfl_proxy_filter f, int order, double t, double *w, do
     }
 }
 
-static double blend(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, const double x[3],
+DFL_ISA_BODY double blend(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, const double x[3],
                     double *grad)
 {
     const size_t n = (size_t)g->res;
@@ -182,18 +175,176 @@ static double blend(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, con
     return val;
 }
 
-void dfl_proxy_filter_eval(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t m,
-                           const double *x, double *val, double *grad)
+/* Queries per block of the batched nearest filter (SoA lanes). */
+#define QL 8
+
+/* The lane loop of nearest_block (order, pos, clipon constants at each
+ * call): dfl_proxy_decode, dfl_proxy_geom_eval (decode.h), clipped above
+ * and the fold of unsigned output (a negative value and its gradient
+ * negated, NaN too, as !(phi >= 0)), written out on scalars in the same operations and order
+ * (dot products left to right, the cross product of dfl_vec3_cross), so
+ * that the lanes vectorize; tests/proxy and scripts/check_isa.py hold them
+ * to the per-query bytes. */
+DFL_ISA_BODY void nearest_lanes(const int order, const dfl_proxy_position pos, const int clipon,
+                                const double clip, const int sgnd,
+                                double (*S)[QL], double (*XC)[QL], double (*X)[QL],
+                                const double *SIDE, double *V, double (*G)[QL])
+{
+#pragma omp simd
+    for (int l = 0; l < QL; l++) {
+        const int disp = pos == DFL_PROXY_DISPLACEMENT;
+        const double d0 = disp ? S[0][l] : S[0][l] - XC[0][l],
+                     d1 = disp ? S[1][l] : S[1][l] - XC[1][l],
+                     d2 = disp ? S[2][l] : S[2][l] - XC[2][l];
+        const double p0 = disp ? XC[0][l] + S[0][l] : S[0][l],
+                     p1 = disp ? XC[1][l] + S[1][l] : S[1][l],
+                     p2 = disp ? XC[2][l] + S[2][l] : S[2][l];
+        const double dl = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+        const double v0 = X[0][l] - p0, v1 = X[1][l] - p1, v2 = X[2][l] - p2;
+        double phi, g0, g1, g2;
+        if (order == 1) {
+            const double f = -SIDE[l] / dl;
+            const double n0 = f * d0, n1 = f * d1, n2 = f * d2;
+            phi = v0 * n0 + v1 * n1 + v2 * n2;
+            g0 = n0, g1 = n1, g2 = n2;
+        } else {
+            const double l0 = S[5][l], l1 = S[6][l], l2v = S[7][l];
+            const double l2 = l0 * l0 + l1 * l1 + l2v * l2v;
+            const double in = (l2 > 2.25 ? -1.0 : 1.0) / dl;
+            const double n0 = in * d0, n1 = in * d1, n2 = in * d2;
+            const double tn = l0 * n0 + l1 * n1 + l2v * n2;
+            const double u0 = l0 - tn * n0, u1 = l1 - tn * n1, u2 = l2v - tn * n2;
+            const double it = 1.0 / sqrt(u0 * u0 + u1 * u1 + u2 * u2);
+            const double t0 = it * u0, t1 = it * u1, t2 = it * u2;
+            const double b0 = n1 * t2 - n2 * t1, b1 = n2 * t0 - n0 * t2, b2 = n0 * t1 - n1 * t0;
+            const double kr = S[3][l], kR = S[4][l];
+            const double vn = v0 * n0 + v1 * n1 + v2 * n2;
+            const double vt = v0 * t0 + v1 * t1 + v2 * t2, vb = v0 * b0 + v1 * b1 + v2 * b2;
+            const double uR = 1.0 + kR * vn, wR = kR * vb;
+            const double SR = sqrt(uR * uR + wR * wR);
+            const double a = (kR * (vn * vn + vb * vb) + 2.0 * vn) / (1.0 + SR);
+            const double ur = 1.0 + kr * a, wr = kr * vt;
+            const double Sr = sqrt(ur * ur + wr * wr);
+            phi = (kr * (a * a + vt * vt) + 2.0 * a) / (1.0 + Sr);
+            const double iR = 1.0 / SR, ir = 1.0 / Sr;
+            const double a0 = SR > 0 ? iR * (uR * n0 + wR * b0) : n0,
+                         a1 = SR > 0 ? iR * (uR * n1 + wR * b1) : n1,
+                         a2 = SR > 0 ? iR * (uR * n2 + wR * b2) : n2;
+            g0 = Sr > 0 ? ir * (ur * a0 + wr * t0) : a0;
+            g1 = Sr > 0 ? ir * (ur * a1 + wr * t1) : a1;
+            g2 = Sr > 0 ? ir * (ur * a2 + wr * t2) : a2;
+        }
+        if (clipon) {
+            const double ap = fabs(phi), lim = clip + ap, r2 = v0 * v0 + v1 * v1 + v2 * v2;
+            const double r = sqrt(r2), ball = r - clip, sg = phi < 0 ? -1.0 : 1.0;
+            const int far = r2 > lim * lim;
+            g0 = far ? sg * v0 / r : g0;
+            g1 = far ? sg * v1 / r : g1;
+            g2 = far ? sg * v2 / r : g2;
+            phi = far ? sg * (ball > ap ? ball : ap) : phi;
+        }
+        const int flip = !sgnd && !(phi >= 0);
+        V[l] = flip ? -phi : phi;
+        G[0][l] = flip ? -g0 : g0;
+        G[1][l] = flip ? -g1 : g1;
+        G[2][l] = flip ? -g2 : g2;
+    }
+}
+
+/* The nearest filter for c <= QL queries at x, across queries: the cells'
+ * scalars are gathered into structure-of-arrays lanes (a short block
+ * repeats its last query), then decoding, the proxy's distance, the clip
+ * and the fold run in one lane loop (nearest_lanes), branch-free, so that
+ * the compiler keeps QL queries in vector registers instead of one serial
+ * chain of square roots and divisions per query.  Every lane computes what
+ * one query at a time computed, operation for operation: the branches
+ * become selects of values computed either way, and fmax(ball, |phi|) a
+ * select (where the clip applies phi is finite and ball is not NaN, so
+ * they agree); hence the same bytes. */
+DFL_ISA_BODY void nearest_block(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t c,
+                                const double *x, double *val, double *grad)
+{
+    const int order = g->order, ns = g->nscalar;
+    const dfl_proxy_position pos = g->position;
+    /* the lanes compute the bound clip (or none): off is radius 0 */
+    const double clip = o->clip_kind == DFL_PROXY_CLIP_OFF ? 0.0 : o->clip;
+    double S[DFL_PROXY_NSCALAR_MAX][QL], XC[3][QL], X[3][QL], SIDE[QL], V[QL], G[3][QL];
+    for (size_t l = 0; l < QL; l++) {
+        const size_t i = l < c ? l : c - 1;
+        size_t id[3];
+        nearest_cell(g, x + 3 * i, id);
+        const size_t n = (size_t)g->res, cell = id[0] + n * (id[1] + n * id[2]);
+        double sc[DFL_PROXY_NSCALAR_MAX];
+        dfl_proxy_cell_load(g, cell, sc);
+        for (int q = 0; q < ns; q++) S[q][l] = sc[q];
+        for (int q = ns; q < DFL_PROXY_NSCALAR_MAX; q++) S[q][l] = 0.0;
+        for (int j = 0; j < 3; j++) {
+            XC[j][l] = g->lo[j] + ((double)id[j] + 0.5) * g->h[j];
+            X[j][l] = x[3 * i + (size_t)j];
+        }
+        SIDE[l] = g->side ? g->side[cell] : 1;
+    }
+    const int sgnd = o->is_signed;
+    /* the uniform choices as constants, so that the lane loop has no branch */
+    if (order == 1 && pos == DFL_PROXY_DISPLACEMENT && clip > 0)
+        nearest_lanes(1, DFL_PROXY_DISPLACEMENT, 1, clip, sgnd, S, XC, X, SIDE, V, G);
+    else if (order == 1 && pos == DFL_PROXY_DISPLACEMENT)
+        nearest_lanes(1, DFL_PROXY_DISPLACEMENT, 0, clip, sgnd, S, XC, X, SIDE, V, G);
+    else if (order == 1 && clip > 0)
+        nearest_lanes(1, DFL_PROXY_ABSOLUTE, 1, clip, sgnd, S, XC, X, SIDE, V, G);
+    else if (order == 1)
+        nearest_lanes(1, DFL_PROXY_ABSOLUTE, 0, clip, sgnd, S, XC, X, SIDE, V, G);
+    else if (pos == DFL_PROXY_DISPLACEMENT && clip > 0)
+        nearest_lanes(2, DFL_PROXY_DISPLACEMENT, 1, clip, sgnd, S, XC, X, SIDE, V, G);
+    else if (pos == DFL_PROXY_DISPLACEMENT)
+        nearest_lanes(2, DFL_PROXY_DISPLACEMENT, 0, clip, sgnd, S, XC, X, SIDE, V, G);
+    else if (clip > 0)
+        nearest_lanes(2, DFL_PROXY_ABSOLUTE, 1, clip, sgnd, S, XC, X, SIDE, V, G);
+    else
+        nearest_lanes(2, DFL_PROXY_ABSOLUTE, 0, clip, sgnd, S, XC, X, SIDE, V, G);
+    for (size_t l = 0; l < c; l++) {
+        val[l] = V[l];
+        if (grad)
+            for (int j = 0; j < 3; j++) grad[3 * l + (size_t)j] = G[j][l];
+    }
+}
+
+/* The query loop, compiled per ISA (core/isa.h): same bytes on each. */
+DFL_ISA_BODY void queries_body(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t m,
+                               const double *x, double *val, double *grad)
 {
     if (o->filter == DFL_PROXY_NEAREST) {
-        for (size_t i = 0; i < m; i++) {
-            double *gi = grad ? grad + 3 * i : NULL;
-            size_t c[3];
-            nearest_cell(g, x + 3 * i, c);
-            val[i] = dist_ijk(g, c[0], c[1], c[2], o, x + 3 * i, gi);
-            fold(o->is_signed, &val[i], gi);
+        if (o->clip_kind == DFL_PROXY_CLIP_PAPER && o->clip > 0) {
+            /* the paper's reading of the clip has no lane loop: one query
+             * at a time, the same formula as dfl_proxy_proxy_dist */
+            for (size_t i = 0; i < m; i++) {
+                double *gi = grad ? grad + 3 * i : NULL;
+                size_t c[3];
+                nearest_cell(g, x + 3 * i, c);
+                double v = dist_ijk(g, c[0], c[1], c[2], o, x + 3 * i, gi);
+                if (!o->is_signed && !(v >= 0)) {
+                    v = -v;
+                    if (gi)
+                        for (int j = 0; j < 3; j++) gi[j] = -gi[j];
+                }
+                val[i] = v;
+            }
+            return;
         }
+        for (size_t i = 0; i < m; i += QL)
+            nearest_block(g, o, m - i < QL ? m - i : QL, x + 3 * i, val + i,
+                          grad ? grad + 3 * i : NULL);
         return;
     }
     for (size_t i = 0; i < m; i++) val[i] = blend(g, o, x + 3 * i, grad ? grad + 3 * i : NULL);
+}
+DFL_ISA_KERNEL(queries,
+               (const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t m,
+                const double *x, double *val, double *grad),
+               (g, o, m, x, val, grad))
+
+void dfl_proxy_filter_eval(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t m,
+                           const double *x, double *val, double *grad)
+{
+    queries(g, o, m, x, val, grad);
 }

@@ -22,8 +22,10 @@
  *    squaring; FMA would not help: it runs on the multiply pipes.
  *  - The order p is a compile-time constant in the common cases (1..8, 12)
  *    so that the powers are straight-line multiplications.
- *  - target_clones compiles the kernel for AVX-512, AVX2 and the baseline
- *    and lets the loader pick (the Makefile builds for baseline x86-64).
+ *  - DFL_ISA_KERNEL (core/isa.h) compiles each kernel for AVX-512, AVX2
+ *    and the baseline; the process's ISA picks one (DFL_ISA forces it), and
+ *    every variant computes the same bytes (the Makefile builds for
+ *    baseline x86-64 with -ffp-contract=off).
  */
 #include "rfunc/batch.h"
 
@@ -49,14 +51,7 @@ static void sums(const dfl_rfunc_batch *b, size_t m, const double *pts, double *
 
 int dfl_rfunc_batch_simd_width(void)
 {
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
-    !defined(DFL_NO_CLONES)
-    /* The dispatcher's order: x86-64-v4, then v3, then the baseline. */
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("x86-64-v4")) return 8;
-    if (__builtin_cpu_supports("x86-64-v3")) return 4;
-#endif
-    return 2;
+    return dfl_isa_width(dfl_isa_active());
 }
 
 /* u and grad u (dim entries) from the sums, or 0 when they are not

@@ -292,11 +292,13 @@ DFL_INLINE void block_p(const dfl_rfunc_batch *b, size_t m, const double *pts, d
     }
 
 #define CORR_FN(name, dim, strip, eq20)                                                     \
-    DFL_CLONES static void name(const dfl_rfunc_batch *b, size_t m, const double *pts,      \
+    DFL_INLINE void name##_body(const dfl_rfunc_batch *b, size_t m, const double *pts,      \
                                 double *out)                                                \
     {                                                                                       \
         CORR_CASES(dim, strip, eq20)                                                        \
-    }
+    }                                                                                       \
+    DFL_ISA_KERNEL(name, (const dfl_rfunc_batch *b, size_t m, const double *pts, double *out), \
+                   (b, m, pts, out))
 CORR_FN(blk_d2g, 2, 0, 0)
 CORR_FN(blk_d2e, 2, 0, 1)
 CORR_FN(blk_s2g, 2, 1, 0)

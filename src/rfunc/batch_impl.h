@@ -4,7 +4,7 @@
  *
  * Index:
  *   struct dfl_rfunc_batch       arrays (structure of arrays) and kind hooks
- *   DFL_CLONES, DFL_INLINE       target_clones dispatch, forced inlining
+ *   DFL_INLINE                   forced inlining (kernels: DFL_ISA_KERNEL, core/isa.h)
  *   rsqrt_newton, ipow_sq        1/sqrt without libm, x^k by squaring
  *   pow_term                     h^-p and h^-(p+2) from h^2
  *   DFL_BATCH_SUMS               the lane loop of the R-equivalence kernels
@@ -21,6 +21,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "core/isa.h"
 #include "rfunc/batch.h"
 
 #define LANES 8
@@ -70,12 +71,6 @@ struct dfl_rfunc_batch {
 /* Arrays of a batch: the 2D disk kernel's eight, then the others. */
 #define NARR 17
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
-    !defined(DFL_NO_CLONES)
-#define DFL_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define DFL_CLONES
-#endif
 
 #if defined(__GNUC__)
 #define DFL_INLINE static inline __attribute__((always_inline))

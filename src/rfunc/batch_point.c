@@ -28,17 +28,17 @@ DFL_INLINE void sums_gen_p(const dfl_rfunc_batch *b, size_t m, const double *pts
                        point_term(X[l], Y[l], Z[l], b, k, p, 3, &S[l], &Vx[l], &Vy[l], &Vz[l]));
 }
 
-DFL_CLONES
-static void sums_points2(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+DFL_INLINE void sums_points2_body(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {
     DFL_GEN_CASES(2, -1)
 }
+DFL_ISA_KERNEL(sums_points2, (const dfl_rfunc_batch *b, size_t m, const double *pts, double *out), (b, m, pts, out))
 
-DFL_CLONES
-static void sums_points3(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+DFL_INLINE void sums_points3_body(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {
     DFL_GEN_CASES(3, -1)
 }
+DFL_ISA_KERNEL(sums_points3, (const dfl_rfunc_batch *b, size_t m, const double *pts, double *out), (b, m, pts, out))
 
 void dfl_rfunc_batch_sums_pts(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {

@@ -281,33 +281,33 @@ DFL_INLINE void run_p(const dfl_rfunc_batch *b, size_t m, const double *pts, dou
     default: run_p(b, m, pts, val, grad, ok, b->p, dim, strip); break;           \
     }
 
-DFL_CLONES
-static void run_disk2(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
+DFL_INLINE void run_disk2_body(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
                       double *grad, int *ok)
 {
     RCONJ_CASES(2, 0)
 }
+DFL_ISA_KERNEL(run_disk2, (const dfl_rfunc_batch *b, size_t m, const double *pts, double *val, double *grad, int *ok), (b, m, pts, val, grad, ok))
 
-DFL_CLONES
-static void run_strip2(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
+DFL_INLINE void run_strip2_body(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
                        double *grad, int *ok)
 {
     RCONJ_CASES(2, 1)
 }
+DFL_ISA_KERNEL(run_strip2, (const dfl_rfunc_batch *b, size_t m, const double *pts, double *val, double *grad, int *ok), (b, m, pts, val, grad, ok))
 
-DFL_CLONES
-static void run_disk3(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
+DFL_INLINE void run_disk3_body(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
                       double *grad, int *ok)
 {
     RCONJ_CASES(3, 0)
 }
+DFL_ISA_KERNEL(run_disk3, (const dfl_rfunc_batch *b, size_t m, const double *pts, double *val, double *grad, int *ok), (b, m, pts, val, grad, ok))
 
-DFL_CLONES
-static void run_strip3(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
+DFL_INLINE void run_strip3_body(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
                        double *grad, int *ok)
 {
     RCONJ_CASES(3, 1)
 }
+DFL_ISA_KERNEL(run_strip3, (const dfl_rfunc_batch *b, size_t m, const double *pts, double *val, double *grad, int *ok), (b, m, pts, val, grad, ok))
 
 static void run(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
                 double *grad, int *ok)

@@ -88,8 +88,7 @@ DFL_INLINE void edges_e(const reg_group *g, size_t k0, size_t kc, const double *
 }
 
 /* The edge loop of a chunk (kc <= KR regions of group g from k0). */
-DFL_CLONES
-static void reg_phase_edges(const reg_group *g, size_t k0, size_t kc, const double *X,
+DFL_INLINE void reg_phase_edges_body(const reg_group *g, size_t k0, size_t kc, const double *X,
                             const double *Y, double (*H)[LANES], double (*GX)[LANES],
                             double (*GY)[LANES], double (*ZS)[LANES])
 {
@@ -103,6 +102,11 @@ static void reg_phase_edges(const reg_group *g, size_t k0, size_t kc, const doub
     default: edges_e(g, k0, kc, X, Y, H, GX, GY, ZS, g->e); break;
     }
 }
+DFL_ISA_KERNEL(reg_phase_edges,
+               (const reg_group *g, size_t k0, size_t kc, const double *X, const double *Y,
+                double (*H)[LANES], double (*GX)[LANES], double (*GY)[LANES],
+                double (*ZS)[LANES]),
+               (g, k0, kc, X, Y, H, GX, GY, ZS))
 
 DFL_INLINE void join_p(size_t kc, double (*H)[LANES], double (*GX)[LANES], double (*GY)[LANES],
                        double (*ZS)[LANES], double *S, double *Vx, double *Vy, double *I,
@@ -120,8 +124,7 @@ DFL_INLINE void join_p(size_t kc, double (*H)[LANES], double (*GX)[LANES], doubl
 }
 
 /* The join loop of a chunk: adds h^-p to S, h^-(p+2) h grad h to V. */
-DFL_CLONES
-static void reg_phase_join(int p, size_t kc, double (*H)[LANES], double (*GX)[LANES],
+DFL_INLINE void reg_phase_join_body(int p, size_t kc, double (*H)[LANES], double (*GX)[LANES],
                            double (*GY)[LANES], double (*ZS)[LANES], double *S, double *Vx,
                            double *Vy, double *I)
 {
@@ -138,6 +141,10 @@ static void reg_phase_join(int p, size_t kc, double (*H)[LANES], double (*GX)[LA
     default: join_p(kc, H, GX, GY, ZS, S, Vx, Vy, I, p); break;
     }
 }
+DFL_ISA_KERNEL(reg_phase_join,
+               (int p, size_t kc, double (*H)[LANES], double (*GX)[LANES], double (*GY)[LANES],
+                double (*ZS)[LANES], double *S, double *Vx, double *Vy, double *I),
+               (p, kc, H, GX, GY, ZS, S, Vx, Vy, I))
 
 /* S, V and the number of regions containing the point (4 doubles per point). */
 static void reg_sums(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)

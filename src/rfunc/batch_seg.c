@@ -148,23 +148,23 @@ DFL_INLINE void sums_gen_p(const dfl_rfunc_batch *b, size_t m, const double *pts
                        seg_term3(X[l], Y[l], Z[l], b, k, p, strip, &S[l], &Vx[l], &Vy[l], &Vz[l]));
 }
 
-DFL_CLONES
-static void sums_strip2(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+DFL_INLINE void sums_strip2_body(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {
     DFL_GEN_CASES(2, 1)
 }
+DFL_ISA_KERNEL(sums_strip2, (const dfl_rfunc_batch *b, size_t m, const double *pts, double *out), (b, m, pts, out))
 
-DFL_CLONES
-static void sums_disk3(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+DFL_INLINE void sums_disk3_body(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {
     DFL_GEN_CASES(3, 0)
 }
+DFL_ISA_KERNEL(sums_disk3, (const dfl_rfunc_batch *b, size_t m, const double *pts, double *out), (b, m, pts, out))
 
-DFL_CLONES
-static void sums_strip3(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+DFL_INLINE void sums_strip3_body(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {
     DFL_GEN_CASES(3, 1)
 }
+DFL_ISA_KERNEL(sums_strip3, (const dfl_rfunc_batch *b, size_t m, const double *pts, double *out), (b, m, pts, out))
 
 /* Sums S and V (3 doubles per point) for m points. */
 DFL_INLINE void sums_p(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out,
@@ -193,8 +193,7 @@ DFL_INLINE void sums_p(const dfl_rfunc_batch *b, size_t m, const double *pts, do
     }
 }
 
-DFL_CLONES
-static void sums_disk2(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+DFL_INLINE void sums_disk2_body(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {
     switch (b->p) {
     case 1: sums_p(b, m, pts, out, 1); break;
@@ -209,6 +208,7 @@ static void sums_disk2(const dfl_rfunc_batch *b, size_t m, const double *pts, do
     default: sums_p(b, m, pts, out, b->p); break;
     }
 }
+DFL_ISA_KERNEL(sums_disk2, (const dfl_rfunc_batch *b, size_t m, const double *pts, double *out), (b, m, pts, out))
 
 void dfl_rfunc_batch_sums_seg(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {

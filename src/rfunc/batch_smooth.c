@@ -163,29 +163,29 @@ DFL_INLINE void sums_sm_p(const dfl_rfunc_batch *b, size_t m, const double *pts,
     default: sums_sm_p(b, m, pts, out, b->p, dim, strip); break;  \
     }
 
-DFL_CLONES
-static void sums_disk_sm2(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+DFL_INLINE void sums_disk_sm2_body(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {
     SM_CASES(2, 0)
 }
+DFL_ISA_KERNEL(sums_disk_sm2, (const dfl_rfunc_batch *b, size_t m, const double *pts, double *out), (b, m, pts, out))
 
-DFL_CLONES
-static void sums_strip_sm2(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+DFL_INLINE void sums_strip_sm2_body(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {
     SM_CASES(2, 1)
 }
+DFL_ISA_KERNEL(sums_strip_sm2, (const dfl_rfunc_batch *b, size_t m, const double *pts, double *out), (b, m, pts, out))
 
-DFL_CLONES
-static void sums_disk_sm3(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+DFL_INLINE void sums_disk_sm3_body(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {
     SM_CASES(3, 0)
 }
+DFL_ISA_KERNEL(sums_disk_sm3, (const dfl_rfunc_batch *b, size_t m, const double *pts, double *out), (b, m, pts, out))
 
-DFL_CLONES
-static void sums_strip_sm3(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+DFL_INLINE void sums_strip_sm3_body(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {
     SM_CASES(3, 1)
 }
+DFL_ISA_KERNEL(sums_strip_sm3, (const dfl_rfunc_batch *b, size_t m, const double *pts, double *out), (b, m, pts, out))
 
 /* Takes R-equivalence of segments that all have the same eq. 5 trim. */
 dfl_status dfl_rfunc_batch_try_smooth(const dfl_rfunc_batch_desc *d, dfl_rfunc_batch **out,

@@ -240,17 +240,17 @@ DFL_INLINE void sums_tri_p(const dfl_rfunc_batch *b, size_t m, const double *pts
     default: sums_tri_p(b, m, pts, out, b->p, cond); break;          \
     }
 
-DFL_CLONES
-static void sums_prism(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+DFL_INLINE void sums_prism_body(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {
     TRI_CASES(0)
 }
+DFL_ISA_KERNEL(sums_prism, (const dfl_rfunc_batch *b, size_t m, const double *pts, double *out), (b, m, pts, out))
 
-DFL_CLONES
-static void sums_cond(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
+DFL_INLINE void sums_cond_body(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {
     TRI_CASES(1)
 }
+DFL_ISA_KERNEL(sums_cond, (const dfl_rfunc_batch *b, size_t m, const double *pts, double *out), (b, m, pts, out))
 
 void dfl_rfunc_batch_sums_tri(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)
 {

@@ -31,8 +31,9 @@ static void run_naive(void *a)
     }
 }
 
-void bench_field(void)
+void bench_field(bench_ctx *ctx)
 {
+    (void)ctx;
     dfl_shape s;
     dfl_field f;
     const double c[2] = {0.5, 0.5};

@@ -79,8 +79,9 @@ static void compare_backends(const char *name, foot_job job[2])
     bench_report(col, fabs(job[0].sum - job[1].sum) / NPTS, "units");
 }
 
-void bench_footpoint(void)
+void bench_footpoint(bench_ctx *ctx)
 {
+    (void)ctx;
     double pts[3 * NPTS];
     unsigned seed = 7;
     dfl_err err;

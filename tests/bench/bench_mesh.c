@@ -53,8 +53,9 @@ static void run_brute(void *arg)
     }
 }
 
-void bench_mesh(void)
+void bench_mesh(bench_ctx *c)
 {
+    (void)c;
     dfl_trimesh m;
     dfl_err err;
     double t0 = dfl_wall_seconds();

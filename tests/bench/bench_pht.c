@@ -22,6 +22,7 @@
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include "bench.h"
@@ -136,7 +137,22 @@ static dfl_field fit_report(const char *name, const dfl_shape *s, double eps, in
     return fld;
 }
 
-static void eval_report(const char *name, const dfl_field *f, const dfl_field *exact)
+/* Operations of one value + gradient evaluation (pht/spline.c eval2,
+ * eval3; the Hessian's terms, which the code also computes, and the cell
+ * location are not counted): per Horner cubic H3 3 mul + 3 add, its
+ * derivative D3 4 mul + 2 add.  2D: the local coordinates (2 sub, 2 mul),
+ * H3 and D3 of 4 rows in u, H3 of both in v and D3 of the values in v, 2
+ * scalings.  3D: the local coordinates (3, 3), H3 and D3 of 16 rows in u,
+ * H3 (of both) and D3 (of the values) of 4 rows in v, then H3 x 3 and D3
+ * in w, 3 scalings. */
+static bench_ops eval_ops(int dim)
+{
+    if (dim == 2) return (bench_ops){2 + 4 * 7 + 3 + 3 + 4 + 2, 2 + 4 * 5 + 3 + 3 + 2, 0, 0};
+    return (bench_ops){3 + 16 * 7 + 4 * 10 + 3 * 3 + 4 + 3, 3 + 16 * 5 + 4 * 8 + 3 * 3 + 2, 0, 0};
+}
+
+static void eval_report(bench_ctx *c, const char *name, const dfl_field *f,
+                        const dfl_field *exact)
 {
     eval_job j = {f, random_points(f->dim, NEVAL, 11), NULL, NULL, NEVAL};
     j.val = malloc(NEVAL * sizeof *j.val);
@@ -151,6 +167,12 @@ static void eval_report(const char *name, const dfl_field *f, const dfl_field *e
     char buf[160];
     snprintf(buf, sizeof buf, "pht.eval.%s.value_grad.per_cpu_second", name);
     bench_report(buf, NEVAL / cpu, "points/s");
+    snprintf(buf, sizeof buf, "pht.eval.%s.value_grad.per_cpu_second", name);
+    const bench_ops op = eval_ops(f->dim);
+    const double fp = bench_kernel_floor(c, buf, NEVAL / cpu, &op);
+    if (strcmp(name, "circle") == 0 || strcmp(name, "torus") == 0)
+        bench_summary_add(c, f->dim == 2 ? "pht2d_eval" : "pht3d_eval", NEVAL / cpu, NULL, NAN,
+                          NAN, fp);
     snprintf(buf, sizeof buf, "pht.eval.%s.value_grad.cpu_bound_all_threads", name);
     bench_report(buf, NEVAL / cpu * omp_get_max_threads(), "points/s (aim: >= 3e7 on 2 cores)");
     snprintf(buf, sizeof buf, "pht.eval.%s.value_grad", name);
@@ -171,14 +193,14 @@ static void eval_report(const char *name, const dfl_field *f, const dfl_field *e
     free(j.grad);
 }
 
-void bench_pht(void)
+void bench_pht(bench_ctx *c)
 {
     bench_report("pht.threads", omp_get_max_threads(), "threads");
     dfl_shape s;
     const double c2[2] = {0.5, 0.5}, c3[3] = {0.5, 0.5, 0.5}, ax[3] = {0, 0, 1};
     if (dfl_shape_circle(c2, 0.3, &s, NULL) != DFL_OK) abort();
     dfl_field circle = fit_report("circle.eps1e-5", &s, 1e-5, 22);
-    eval_report("circle", &circle, NULL);
+    eval_report(c, "circle", &circle, NULL);
     dfl_field_destroy(&circle);
     dfl_shape_free(&s);
 
@@ -187,7 +209,7 @@ void bench_pht(void)
     dfl_field exact;
     dfl_shape s2 = closed_curve(BLOB);
     if (dfl_field_exact_new(&s2, &exact, NULL) != DFL_OK) abort();
-    eval_report("blob", &blob, &exact);
+    eval_report(c, "blob", &blob, &exact);
     dfl_field_destroy(&exact);
     dfl_field_destroy(&blob);
     dfl_shape_free(&s);
@@ -201,7 +223,7 @@ void bench_pht(void)
 
     if (dfl_shape_torus(c3, ax, 0.3, 0.1, &s, NULL) != DFL_OK) abort();
     dfl_field torus = fit_report("torus.eps1e-3", &s, 1e-3, 14);
-    eval_report("torus", &torus, NULL);
+    eval_report(c, "torus", &torus, NULL);
     dfl_field_destroy(&torus);
     dfl_shape_free(&s);
 }

@@ -2,6 +2,7 @@
  * against a serial loop that queries one cell at a time), and decoded
  * queries per second per filter (against the exact SDF of the same
  * sphere, batched and parallel the same way). */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
@@ -108,7 +109,7 @@ static void make_input(int row, dfl_proxy_input *in)
     if (st != DFL_OK) abort();
 }
 
-static void bench_builds(void)
+static void bench_builds(bench_ctx *c)
 {
     static const struct {
         const char *name;
@@ -131,6 +132,10 @@ static void bench_builds(void)
         const double t = best_both(3, run_build, &j, &cpu);
         const double tn = bench_best(1, run_build_naive, &j);
         report_pair(rows[r].name, n, t, cpu, tn);
+        /* summary (issue 19): cells per CPU second; the OpenVDB fill peer
+         * is added beside it by the OpenVDB bench */
+        if (r == 3) bench_summary_add(c, "proxy_build_param", n / cpu, NULL, NAN, NAN, NAN);
+        if (r == 4) bench_summary_add(c, "proxy_build_implicit", n / cpu, NULL, NAN, NAN, NAN);
         dfl_proxy_grid_free(&j.g);
         dfl_proxy_input_free(&in);
     }
@@ -167,7 +172,7 @@ static void run_exact(void *a)
                             j->grad ? j->gr + 3 * k * QCHUNK : NULL);
 }
 
-static void bench_filters(void)
+static void bench_filters(bench_ctx *c)
 {
     double *x = malloc(3 * NQ * sizeof *x), *v = malloc(NQ * sizeof *v),
            *gr = malloc(3 * NQ * sizeof *gr);
@@ -206,6 +211,13 @@ static void bench_filters(void)
                              dfl_proxy_storage_name(o.storage), dfl_proxy_filter_name(f),
                              grad ? ".grad" : "");
                     report_pair(name, NQ, t, cpu, te);
+                    /* summary (issue 19): order 2, double storage, value
+                     * only, queries per CPU second */
+                    if (order == 2 && o.storage == DFL_PROXY_DOUBLE && !grad &&
+                        (f == DFL_PROXY_NEAREST || f == DFL_PROXY_HERMITE))
+                        bench_summary_add(c, f == DFL_PROXY_NEAREST ? "proxy_decode_nearest"
+                                                                     : "proxy_decode_hermite",
+                                          NQ / cpu, NULL, NAN, NAN, NAN);
                 }
             dfl_proxy_grid_free(&g);
         }
@@ -216,8 +228,8 @@ static void bench_filters(void)
     free(gr);
 }
 
-void bench_proxy(void)
+void bench_proxy(bench_ctx *c)
 {
-    bench_builds();
-    bench_filters();
+    bench_builds(c);
+    bench_filters(c);
 }

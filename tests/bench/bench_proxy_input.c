@@ -93,8 +93,9 @@ static void failures(const dfl_proxy_input *in, const char *name, int N)
     free(o);
 }
 
-void bench_proxy_input(void)
+void bench_proxy_input(bench_ctx *ctx)
 {
+    (void)ctx;
     const double c[3] = {0, 0, 0}, ax[3] = {0, 0, 1}, R = 0.6, r = 0.25;
     size_t m;
     double *x = cell_centres(64, &m);

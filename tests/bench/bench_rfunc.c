@@ -13,10 +13,10 @@
  *             against the fast path (1e-12 relative), so the rates compare
  *             the same function
  *
- * and the gap to the machine's floating-point peak: flops per segment
- * evaluation (kernel_ops below, counted from the lines of rfunc/batch.c's
- * seg_term) times the measured rate, against cores x GHz x FMA pipes x
- * vector width x 2 from /proc/cpuinfo. */
+ * and the gap to the floor: operations per segment evaluation (kernel_ops
+ * below, counted from the lines of rfunc/batch_seg.c's seg_term) times the
+ * one-thread rate, against the floor measured at the start of the run
+ * (bench_floor.c; nothing about the CPU is assumed). */
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -146,38 +146,7 @@ static double numpy_rate_kind(const dfl_field *f, const char *kind, int p, int n
     return rate;
 }
 
-typedef struct cpu_info {
-    int cores;
-    double ghz;
-    int fma;
-    int amd_zen4;
-} cpu_info;
-
-static cpu_info read_cpu(void)
-{
-    cpu_info c = {0, NAN, 0, 0};
-    FILE *fp = fopen("/proc/cpuinfo", "r");
-    char line[4096];
-    int family = 0, amd = 0;
-    while (fp && fgets(line, sizeof line, fp)) {
-        double mhz;
-        if (strncmp(line, "processor", 9) == 0) c.cores++;
-        if (isnan(c.ghz) && sscanf(line, "cpu MHz : %lf", &mhz) == 1) c.ghz = mhz / 1000.0;
-        if (strncmp(line, "vendor_id", 9) == 0 && strstr(line, "AuthenticAMD")) amd = 1;
-        if (strncmp(line, "cpu family", 10) == 0) {
-            const char *col = strchr(line, ':');
-            if (col) family = atoi(col + 1);
-        }
-        if (strncmp(line, "flags", 5) == 0 && strstr(line, " fma")) c.fma = 1;
-    }
-    if (fp) fclose(fp);
-    /* Zen 4 (family 0x19 with AVX-512) executes 512-bit operations on its
-     * 256-bit pipes in two halves. */
-    c.amd_zen4 = amd && family == 25 && dfl_rfunc_batch_simd_width() == 8;
-    return c;
-}
-
-static void bench_order(int p, const cpu_info *cpu)
+static void bench_order(int p, bench_ctx *c)
 {
     double v[2 * NSEG];
     polyline(v);
@@ -244,31 +213,20 @@ static void bench_order(int p, const cpu_info *cpu)
     snprintf(name, sizeof name, "bs04.rfunc.p%d.segment_evals.vs_numpy", p);
     bench_report(name, rate / np, "x (aim: >= 20)");
 
-    /* The gap to the peak: flops of the kernel against the FMA peak, and
-     * the kernel's own bound, its multiplications on the two multiply
-     * pipes (additions have their own pipes on current x86 cores). */
-    const int width = dfl_rfunc_batch_simd_width();
+    /* The gap to the floor: the kernel's operations at the one-thread
+     * rate against the floor measured on this CPU (bench_floor.c) at the
+     * kernels' ISA, and against the machine's FMA peak. */
     int mul, add, dv;
     kernel_ops(p, &mul, &add, &dv);
-    const int flops = mul + add + dv;
-    const int lanes_per_pipe = cpu->amd_zen4 ? 4 : width;
-    const double peak = cpu->cores * cpu->ghz * 1e9 * 2 /* pipes */ * lanes_per_pipe *
-                        (cpu->fma ? 2 : 1);
-    const double achieved = rate * flops;
-    snprintf(name, sizeof name, "bs04.rfunc.p%d.flops_per_segment_eval", p);
-    bench_report(name, flops, "flop");
+    const bench_ops op = {mul, add, dv, 0};
     printf("# p = %d: %d multiplications, %d additions, %d divisions per segment evaluation\n", p,
            mul, add, dv);
-    snprintf(name, sizeof name, "bs04.rfunc.p%d.achieved", p);
-    bench_report(name, achieved / 1e9, "GFLOP/s");
-    snprintf(name, sizeof name, "bs04.rfunc.p%d.peak", p);
-    bench_report(name, peak / 1e9, "GFLOP/s");
-    snprintf(name, sizeof name, "bs04.rfunc.p%d.fraction_of_peak", p);
-    bench_report(name, achieved / peak, "");
-    snprintf(name, sizeof name, "bs04.rfunc.p%d.cycles_per_segment_eval_per_core", p);
-    bench_report(name, cpu->ghz * 1e9 / rate1, "cycles (one thread)");
-    snprintf(name, sizeof name, "bs04.rfunc.p%d.multiply_bound_cycles", p);
-    bench_report(name, (double)mul / (2.0 * lanes_per_pipe), "cycles (muls / (2 pipes x lanes))");
+    snprintf(name, sizeof name, "bs04.rfunc.p%d.segment_evals.one_thread", p);
+    const double fp = bench_kernel_floor(c, name, rate1, &op);
+    snprintf(name, sizeof name, "bs04.rfunc.p%d.achieved_one_thread", p);
+    bench_report(name, rate1 * (mul + add + dv) / 1e9, "GFLOP/s");
+    if (p == 2)
+        bench_summary_add(c, "bs04_disk2", rate1, "numpy (one thread)", np, rate1 / np, fp);
     free(j.v);
     free(j.gr);
     rfunc_naive_free(&nv);
@@ -491,7 +449,7 @@ static void bench_kinds(void)
 {
     static const kind_row rows[] = {
         {"strip2", "strip2", k_strip2, NSEG, 1e9,
-         "per part 24 muls, 2 divisions and a sqrt on the divider (~4.5 cycles/part/core on Zen 3); ~8.4 measured"},
+         "per part 24 muls, 2 divisions and a sqrt on the divider"},
         {"disk3", "disk3", k_disk3, NSEG, 1e9,
          "per part 27 muls (3D dot products with two normals) and a division; ~6 cycles/part/core measured"},
         {"strip3", "strip3", k_strip3, NSEG, 1e9,
@@ -501,11 +459,10 @@ static void bench_kinds(void)
         {"disk_smooth3", NULL, k_smooth3, NSEG, 1e9, "eq. 5 (batch_smooth.c): ~48 mul (13 in 1/sqrt), 2 div per part"},
         {"rconj2", NULL, k_rconj2, NSEG, 1e9,
          "two roots per part (h and (1 + r^2)^(1/2), Newton steps): 49 multiplications and 2"
-         " divisions per part against R-equivalence's 15; >= 6.1 cycles per part per core on 2"
-         " multiply pipes x 4 doubles, 8.0e8/s on two cores at 2.45 GHz"},
+         " divisions per part against R-equivalence's 15"},
         {"rconj3", NULL, k_rconj3, NSEG, 1e9,
          "as rconj2 with the 3D carrier (two normals): 62 multiplications and 2 divisions per"
-         " part, >= 7.8 cycles per part per core, 6.3e8/s on two cores at 2.45 GHz"},
+         " part"},
         {"corrected2", NULL, k_corrected2, NSEG, 1e9,
          "per part a segment and a guarded vertex term: ~26 mul, 2 div, ~45 add/cmp/blend"
          " (batch_corrected.c): ~2.5x the disk2 kernel's work"},
@@ -565,26 +522,18 @@ static void bench_kinds(void)
     }
 }
 
-void bench_rfunc(void)
+void bench_rfunc(bench_ctx *c)
 {
-    const cpu_info cpu = read_cpu();
-    const int width = dfl_rfunc_batch_simd_width();
-    printf("# bs04 rfunc benchmark: %d cores at %.3g GHz (/proc/cpuinfo), FMA %s, kernel "
-           "vector width %d doubles%s\n",
-           cpu.cores, cpu.ghz, cpu.fma ? "yes" : "no", width,
-           cpu.amd_zen4 ? " (AMD Zen 4: 512-bit ops run as two 256-bit halves)" : "");
-    printf("# peak = cores x GHz x 2 FMA pipes x %d doubles per pipe x 2 flops per FMA\n",
-           cpu.amd_zen4 ? 4 : width);
-    bench_order(2, &cpu);
-    bench_order(7, &cpu);
+    printf("# bs04 rfunc benchmark: kernels' ISA %s (vector width %d doubles)\n",
+           bench_level_name(bench_active_level()), dfl_rfunc_batch_simd_width());
+    bench_order(2, c);
+    bench_order(7, c);
     bench_kinds();
-    printf("# Gap to peak.  The kernel is bound by its multiplications: the two FMA/multiply\n"
-           "# pipes take one multiply per lane per cycle each, the additions run on two other\n"
-           "# pipes, so muls / (2 x lanes) cycles per segment evaluation is its floor (compare\n"
-           "# multiply_bound_cycles with the measured cycles).  The FMA peak counts 2 flops per\n"
-           "# pipe slot; separate mul + add (ISO C: no contraction) reach it only because the adds\n"
-           "# use the other pipes, and FMA would not lower the multiply count.  Odd p pay 13\n"
-           "# multiplications for 1/h (Newton steps for 1/sqrt: gcc does not vectorize sqrt()\n"
-           "# under -fmath-errno), even p one division on the divider.  The rest of the gap: the\n"
-           "# per-point tail (pow, fallback check), OpenMP chunking, and the machine's load.\n");
+    printf("# Gap to the floor.  floor_fraction: the kernel's multiplications and additions\n"
+           "# (no contraction: FMA is not used, core/isa.h) and divisions at the one-thread\n"
+           "# rate against the measured mul/add and divide throughput of the kernels' ISA\n"
+           "# (floor.* above); fma_peak_fraction: all its operations against the measured FMA\n"
+           "# peak of the widest ISA.  Odd p pay 13 multiplications for 1/h (Newton steps for\n"
+           "# 1/sqrt), even p one division.  The rest of the gap: the per-point tail (pow,\n"
+           "# fallback check), OpenMP chunking, and the machine's load.\n");
 }

@@ -33,8 +33,9 @@ static void torus(dfl_shape *s)
     if (dfl_shape_torus(c, ax, 0.6, 0.25, s, NULL) != DFL_OK) abort();
 }
 
-void bench_trace(void)
+void bench_trace(bench_ctx *ctx)
 {
+    (void)ctx;
     dfl_shape s;
     dfl_field exact;
     torus(&s);

@@ -178,7 +178,8 @@ static void errors(const double *v, const double *d, double *linf, double *rms)
     *rms = sqrt(q / NQ);
 }
 
-static void report_query(const char *name, query_job *j, void (*fn)(void *), const double *d)
+/* Prints the rate and errors; returns the rate (queries/s). */
+static double report_query(const char *name, query_job *j, void (*fn)(void *), const double *d)
 {
     char buf[160];
     const double t = bench_best(5, fn, j);
@@ -189,9 +190,10 @@ static void report_query(const char *name, query_job *j, void (*fn)(void *), con
     bench_report(buf, linf, "");
     snprintf(buf, sizeof buf, "%s.err_rms", name);
     bench_report(buf, rms, "");
+    return NQ / t;
 }
 
-void bench_vdb(void)
+void bench_vdb(bench_ctx *c)
 {
     dfl_shape s = torus();
     const double h = voxel_at_bytes(&s);
@@ -239,12 +241,18 @@ void bench_vdb(void)
             query_job j = {g, smp[k], &pg, {0}, x, v, gr, grad};
             snprintf(name, sizeof name, "vdb.query.%s%s", dfl_vdb_sampler_name(smp[k]),
                      grad ? ".grad" : "");
-            report_query(name, &j, run_vdb, d);
+            const double rv = report_query(name, &j, run_vdb, d);
             dfl_proxy_filter_opts_default(pf[k], &pg, &j.po);
             j.po.is_signed = 1;
             snprintf(name, sizeof name, "proxy.torus.query.%s%s", dfl_proxy_filter_name(pf[k]),
                      grad ? ".grad" : "");
-            report_query(name, &j, run_proxy, d);
+            const double rp = report_query(name, &j, run_proxy, d);
+            /* issue 19's peer rows: dflab's decode against OpenVDB's sampler at
+             * (about) equal bytes on the same band points, value only */
+            if (!grad)
+                bench_summary_add(c, k ? "proxy_decode_hermite_vs_vdb" : "proxy_decode_nearest_vs_vdb",
+                                  rp, k ? "OpenVDB QuadraticSampler" : "OpenVDB BoxSampler", rv,
+                                  rp / rv, NAN);
         }
     }
     dfl_proxy_grid_free(&pg);

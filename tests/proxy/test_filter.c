@@ -269,4 +269,63 @@ Test(proxy_filter, paper_clip_is_solid_and_ball_and_off_is_none)
     cr_expect_eq(k, DFL_PROXY_CLIP_PAPER);
     cr_expect_eq(dfl_proxy_clip_parse("ball", &k, &err), DFL_E_INPUT);
     cr_expect(strstr(err.msg, "bound|paper|off") != NULL, "%s", err.msg);
+
+/* The nearest filter is the clipped distance of the containing cell's
+ * proxy (cell floor((x - lo) / h), clamped to the grid), folded to |D|
+ * with its gradient negated for unsigned output: byte for byte (memcmp:
+ * -0 and 0 differ), for every order, position, storage, clip on and off,
+ * every clip kind (bound, paper, off), signed and unsigned, at 61 points (blocks of the batched path and a
+ * short last one), some outside the box. */
+Test(proxy_filter, nearest_is_the_cell_proxy_byte_for_byte)
+{
+    enum { M = 61 };
+    double x[3 * M], v[M], gr[3 * M];
+    uint64_t seed = 9;
+    for (int i = 0; i < 3 * M; i++) x[i] = dfl_rng_splitmix(&seed, -1.3, 1.3);
+    for (int order = 1; order <= 2; order++)
+        for (int pos = 0; pos < 2; pos++)
+            for (int st = 0; st < DFL_PROXY_STORAGE_COUNT; st += 2) {
+                dfl_proxy_input in;
+                ta_input(&torus, &in);
+                dfl_proxy_build_opts bo;
+                dfl_proxy_build_opts_default(&bo);
+                bo.order = order;
+                bo.res = 8;
+                bo.storage = (dfl_proxy_storage)st;
+                bo.position = (dfl_proxy_position)pos;
+                dfl_proxy_grid g;
+                cr_assert_eq(dfl_proxy_grid_build(&in, &bo, &g, NULL), DFL_OK);
+                for (int variant = 0; variant < 4 * DFL_PROXY_CLIP_COUNT; variant++) {
+                    dfl_proxy_filter_opts o;
+                    dfl_proxy_filter_opts_default(DFL_PROXY_NEAREST, &g, &o);
+                    if (variant & 1) o.clip = 0;
+                    o.is_signed = (variant >> 1) & 1;
+                    o.clip_kind = (dfl_proxy_clip)(variant >> 2);
+                    dfl_proxy_filter_eval(&g, &o, M, x, v, gr);
+                    double v2[M];
+                    dfl_proxy_filter_eval(&g, &o, M, x, v2, NULL);
+                    for (int i = 0; i < M; i++) {
+                        size_t id[3];
+                        for (int j = 0; j < 3; j++) {
+                            const double s = floor((x[3 * i + j] - g.lo[j]) / g.h[j]);
+                            id[j] = s < 0 ? 0 : s > g.res - 1 ? (size_t)g.res - 1 : (size_t)s;
+                        }
+                        const size_t n = (size_t)g.res, c = id[0] + n * (id[1] + n * id[2]);
+                        double gw[3];
+                        double w = dfl_proxy_proxy_dist(&g, c, o.clip_kind, o.clip, x + 3 * i, gw);
+                        if (!o.is_signed && !(w >= 0)) {
+                            w = -w;
+                            for (int j = 0; j < 3; j++) gw[j] = -gw[j];
+                        }
+                        cr_expect(memcmp(&w, &v[i], sizeof w) == 0,
+                                  "order %d pos %d storage %d variant %d point %d: %.17g vs %.17g",
+                                  order, pos, st, variant, i, v[i], w);
+                        cr_expect(memcmp(&w, &v2[i], sizeof w) == 0, "value without gradient");
+                        cr_expect(memcmp(gw, gr + 3 * i, sizeof gw) == 0,
+                                  "gradient: order %d pos %d storage %d variant %d point %d",
+                                  order, pos, st, variant, i);
+                    }
+                }
+                dfl_proxy_grid_free(&g);
+            }
 }
