@@ -269,13 +269,14 @@ Test(proxy_filter, paper_clip_is_solid_and_ball_and_off_is_none)
     cr_expect_eq(k, DFL_PROXY_CLIP_PAPER);
     cr_expect_eq(dfl_proxy_clip_parse("ball", &k, &err), DFL_E_INPUT);
     cr_expect(strstr(err.msg, "bound|paper|off") != NULL, "%s", err.msg);
+}
 
 /* The nearest filter is the clipped distance of the containing cell's
  * proxy (cell floor((x - lo) / h), clamped to the grid), folded to |D|
  * with its gradient negated for unsigned output: byte for byte (memcmp:
  * -0 and 0 differ), for every order, position, storage, clip on and off,
- * every clip kind (bound, paper, off), signed and unsigned, at 61 points (blocks of the batched path and a
- * short last one), some outside the box. */
+ * every clip kind (bound, paper, off), signed and unsigned, at 61 points
+ * (blocks of the batched path and a short last one), some outside the box. */
 Test(proxy_filter, nearest_is_the_cell_proxy_byte_for_byte)
 {
     enum { M = 61 };
