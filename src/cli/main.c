@@ -15,6 +15,7 @@
 #include "io/manifest.h"
 #include "io/path.h"
 #include "harness/help.h"
+#include "harness/meaning.h"
 #include "harness/probe.h"
 #include "harness/runner.h"
 #include "io/lines.h"
@@ -34,7 +35,8 @@ static const char *const usage_main =
     "  probe CONFIG.ini --points FILE.csv [--field SECTION] [--jet K] [--set ...]...\n"
     "        evaluate the config's [field] at points; CSV on stdout\n"
     "  list  studies and the configs that use them\n"
-    "  help [COMMAND | STUDY]   this text, a command's help, or the keys a study reads\n"
+    "  help [COMMAND | STUDY [CONFIG.ini] [--columns]]   this text, a command's help, the\n"
+    "        keys a study reads (meaning, value, range; through CONFIG), or its columns\n"
     "  --version\n"
     "\n"
     "exit status: 0 success; 2 bad input (config, points file, geometry, usage,\n"
@@ -449,11 +451,25 @@ static int cmd_list(void)
     return 0;
 }
 
-/* `dflab help STUDY`: the study's keys through a config that uses it. */
-static int cmd_help_study(const dfl_study *s)
+/* `dflab help STUDY [CONFIG] [--columns]`: the study's keys through CONFIG
+ * (default: the first config under configs/ that uses it), or its column
+ * glossary. */
+static int cmd_help_study(const dfl_study *s, int argc, char **argv)
 {
-    char config[4096];
-    list_configs_for(s->name, NULL, config, sizeof config);
+    char config[4096] = "";
+    int columns = 0;
+    for (int i = 0; i < argc; i++) {
+        if (strcmp(argv[i], "--columns") == 0) columns = 1;
+        else if (!config[0] && argv[i][0] != '-') snprintf(config, sizeof config, "%s", argv[i]);
+        else {
+            char esc[1024];
+            fprintf(stderr, "dflab: error: help %s: unexpected argument '%s' (expected CONFIG.ini "
+                            "or --columns)\n", s->name, dfl_text_escape(argv[i], esc, sizeof esc));
+            return 2;
+        }
+    }
+    if (columns) return dfl_study_columns(s, stdout) ? 0 : 2;
+    if (!config[0]) list_configs_for(s->name, NULL, config, sizeof config);
     if (!config[0]) {
         fprintf(stderr, "dflab: error: help %s: no config under configs/ names this study\n",
                 s->name);
@@ -523,7 +539,18 @@ static int dispatch(int argc, char **argv)
     if (strcmp(cmd, "help") == 0) {
         const char *t = argc > 2 ? argv[2] : "";
         const dfl_study *study = dfl_study_find(t);
-        if (study) return cmd_help_study(study);
+        if (study) return cmd_help_study(study, argc - 3, argv + 3);
+        static const char *const topics[] = {"", "run", "probe", "list", "plan", "merge",
+                                             "help", "--help", "-h"};
+        int known = 0;
+        for (size_t i = 0; i < sizeof topics / sizeof topics[0]; i++)
+            known |= strcmp(t, topics[i]) == 0;
+        if (!known) {
+            char esc[1024];
+            fprintf(stderr, "dflab: error: help: no command or study '%s' (see `dflab list`)\n",
+                    dfl_text_escape(t, esc, sizeof esc));
+            return 2;
+        }
         fputs(strcmp(t, "run") == 0     ? usage_run
               : strcmp(t, "probe") == 0 ? usage_probe
               : strcmp(t, "list") == 0  ? usage_list
