@@ -11,6 +11,9 @@
 CC      ?= cc
 CXX     ?= c++
 PYTHON  ?= /usr/bin/python3
+# parallel compile jobs of the targets that build first (reproduce, test,
+# check-threads): the machine's cores unless given (make reproduce JOBS=2)
+JOBS    ?= $(shell nproc 2>/dev/null || echo 2)
 BUILD   ?= build
 OPT     ?= -O2
 SAN     ?=
@@ -120,7 +123,7 @@ check-layout:
 # The test binary runs from the repository root; DFL_PYTHON and DFL_DFLAB
 # let tests call the VTK validator and the CLI.
 test: deps check-layout
-	$(MAKE) --no-print-directory $(DFLAB) $(TESTS)
+	$(MAKE) --no-print-directory -j$(JOBS) $(DFLAB) $(TESTS)
 	DFL_PYTHON=$(PYTHON) DFL_DFLAB=$(abspath $(DFLAB)) $(TESTS) -j2 --timeout 600
 	$(MAKE) --no-print-directory web-test
 	$(MAKE) --no-print-directory fuzz-short
@@ -150,7 +153,7 @@ bench: deps
 # configs compute.  `make figures STUDY=name` redraws one section.
 PAPER_CONFIGS := $(sort $(wildcard configs/paper/*/*.ini))
 reproduce: deps
-	$(MAKE) --no-print-directory $(DFLAB)
+	$(MAKE) --no-print-directory -j$(JOBS) $(DFLAB)
 	@set -e; for c in $(PAPER_CONFIGS); do echo "== $$c"; $(DFLAB) run $$c; done
 	@set -e; for p in $(sort $(wildcard scripts/peers/*.py)); do echo "== peer $$p"; \
 	  $(PYTHON) $$p --results results; done
@@ -159,7 +162,7 @@ reproduce: deps
 # Every paper and smoke config at --threads 1, --threads 2 and
 # OMP_NUM_THREADS=1, compared byte for byte (make test runs a quick subset).
 check-threads: deps
-	$(MAKE) --no-print-directory $(DFLAB)
+	$(MAKE) --no-print-directory -j$(JOBS) $(DFLAB)
 	$(PYTHON) scripts/check_threads.py $(DFLAB)
 
 figures:
