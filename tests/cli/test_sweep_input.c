@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "util/e2e_util.h"
 
@@ -156,5 +157,29 @@ Test(sweep_plan, set_runs_go_to_their_own_folder)
     out = e2e_slurp(path);
     cr_expect(strstr(out, "output results/s\n") != NULL, "%s", out);
     free(out);
+    cr_expect_eq(e2e_rmtree(dir), 0);
+}
+
+/* A subset of a list of case sections: the cases --set leaves out are the
+ * config's, not unknown keys (every point validates); a typo'd section is
+ * still refused. */
+Test(sweep_plan, a_subset_of_cases_validates)
+{
+    char dir[256], path[512], args[1024];
+    e2e_tmpdir(dir, sizeof dir);
+    snprintf(args, sizeof args, "plan %s/configs/paper/sjp10/sjp10_fig1.ini --set study.cases=circle",
+             getcwd(path, sizeof path) ? path : ".");
+    cr_expect_eq(e2e_dflab(dir, args), 0);
+    snprintf(args, sizeof args, "plan %s/configs/paper/sjp10/sjp10_fig1.ini "
+                                "--set 'study.cases=circle, convex'",
+             getcwd(path, sizeof path) ? path : ".");
+    cr_expect_eq(e2e_dflab(dir, args), 0);
+    snprintf(args, sizeof args, "plan %s/configs/paper/sjp10/sjp10_fig1.ini --set study.cases=circle "
+                                "--set circel.x=1", getcwd(path, sizeof path) ? path : ".");
+    cr_expect_eq(e2e_dflab(dir, args), 2);
+    snprintf(path, sizeof path, "%s/err.txt", dir);
+    char *e = e2e_slurp(path);
+    cr_expect(e && strstr(e, "circel.x: unknown key"), "%s", e ? e : "");
+    free(e);
     cr_expect_eq(e2e_rmtree(dir), 0);
 }
