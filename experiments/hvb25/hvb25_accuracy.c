@@ -33,7 +33,7 @@
  * eval_ns_per_query: decoding time per point of the node grid), vti: the
  * decoding's volume.
  * [output] vti = true, vti_n (harness/field_out.h; default: [eval] n, at
- * most 65): volume.vti (the field as [field] decodes it) or
+ * most 33): volume.vti (the field as [field] decodes it) or
  * volume_<filter>.vti per filter, over the [eval] box: value, gradient,
  * reference (|d| for unsigned decodings), error = value - reference.
  */
@@ -52,10 +52,10 @@
 #include "io/manifest.h"
 #include "proxy/proxy_field.h"
 
-/* The default [output] vti_n: the error grid's n, at most this (65^3
- * nodes, about 15 MB a volume before zlib: a paper config's sweep stays
- * within a few hundred MB). */
-#define VOLUME_MAX_N 65
+/* The default [output] vti_n: the error grid's n, at most this (33^3
+ * nodes, about 1 MB a volume after zlib: the 314 volumes of the paper
+ * configs take some 300 MB; at 65^3 a volume is 7.3 MB, 2.3 GB in all). */
+#define VOLUME_MAX_N 33
 
 typedef struct acc_keys {
     const char *ref_sec;

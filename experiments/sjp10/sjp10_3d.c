@@ -28,7 +28,7 @@
  *                           against ref; false for references too slow for it
  *                           (cv_ columns NaN, converged judged by the estimator)
  * [output] vti = true, vti_n (harness/field_out.h; default the case's
- *   val_n, at most 65): per fit volume_<case>_pht_<rule>_<i>.vti (i: the
+ *   val_n, at most 33): per fit volume_<case>_pht_<rule>_<i>.vti (i: the
  *   place of eps in the list) or volume_<case>_uniform_<level>.vti over the
  *   case's box: value, gradient, reference, error = value - reference, and
  *   cell data "level" (the T-mesh level of the leaf holding the cell's
@@ -55,7 +55,7 @@
 #include "sjp10/sjp10_common.h"
 
 /* The default [output] vti_n: the case's val_n, at most this. */
-#define VOLUME_MAX_N 65
+#define VOLUME_MAX_N 33
 
 typedef struct case3 {
     char name[DFL_SECTION_NAME_LEN];
@@ -80,7 +80,7 @@ typedef struct keys3 {
     size_t neps, nlevels;
     long uniform_samples;
     int rules[SJP10_RULES], nrules;
-    dfl_volume_opts vol;     /* [output] vti, vti_n (per case: min(val_n, 65) by default) */
+    dfl_volume_opts vol;     /* [output] vti, vti_n (per case: min(val_n, 33) by default) */
     int vol_n_given;
 } keys3;
 

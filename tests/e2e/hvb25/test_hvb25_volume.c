@@ -8,6 +8,7 @@
  *     (test_hvb25_accuracy.c): |error| is rounding in the whole volume;
  *   - a sweep over res writes one collection per filter whose data sets
  *     are the points' volumes at times 0, 1;
+ *   - without vti_n the volume is the error grid up to 33 nodes per axis;
  *   - vti = false writes none and leaves the vti column empty. */
 #include <criterion/criterion.h>
 #include <stdio.h>
@@ -60,7 +61,7 @@ Test(e2e_hvb25_volume, unsigned_reference_default_n_and_off, .timeout = 120)
 {
     char dir[256], cfg[512], out[512], csv[700], f[900];
     e2e_tmpdir(dir, sizeof dir);
-    /* one decoding as [field] gives it: volume.vti at the error grid (n = 17 < 65) */
+    /* one decoding as [field] gives it: volume.vti at the error grid (n = 17 < 33) */
     e2e_write(dir, "t.ini",
               "[study]\nname = hvb25_accuracy\n" SPHERE
               /* signed = false: the default, as the paper */
@@ -70,6 +71,15 @@ Test(e2e_hvb25_volume, unsigned_reference_default_n_and_off, .timeout = 120)
     e2e_run_table(cfg, NULL, "hvb25_accuracy", 1, out, sizeof out, csv, sizeof csv);
     snprintf(f, sizeof f, "%s/volume.vti", out);
     check(dir, f, "--n 17 --sphere 0 0 0 0.5 --unsigned");
+    /* an error grid above the cap: the volume has 33 nodes per axis */
+    e2e_write(dir, "cap.ini",
+              "[study]\nname = hvb25_accuracy\n" SPHERE
+              "[field]\nkind = proxy\norder = 1\nres = 4\ninput = sdf\nstorage = double\n"
+              "[eval]\nn = 41\n",
+              cfg, sizeof cfg);
+    e2e_run_table(cfg, NULL, "hvb25_accuracy", 1, out, sizeof out, csv, sizeof csv);
+    snprintf(f, sizeof f, "%s/volume.vti", out);
+    check(dir, f, "--n 33 --sphere 0 0 0 0.5 --unsigned");
     e2e_write(dir, "off.ini",
               "[study]\nname = hvb25_accuracy\n" SPHERE
               "[field]\nkind = proxy\norder = 1\nres = 6\ninput = sdf\nstorage = double\n"
