@@ -11,6 +11,9 @@
 CC      ?= cc
 CXX     ?= c++
 PYTHON  ?= /usr/bin/python3
+# parallel compile jobs of the targets that build first (reproduce, test,
+# check-threads): the machine's cores unless given (make reproduce JOBS=2)
+JOBS    ?= $(shell nproc 2>/dev/null || echo 2)
 BUILD   ?= build
 OPT     ?= -O2
 SAN     ?=
@@ -64,8 +67,6 @@ $(BUILD)/src/rfunc/batch_tri.o $(BUILD)/src/rfunc/batch_region.o: CFLAGS += -fno
 # the clip's selects vectorize under the same two flags.
 $(BUILD)/src/proxy/filter.o: CFLAGS += -fno-math-errno -fno-trapping-math
 
-# make test and make reproduce build with one job per core.
-NPROC   := $(shell nproc 2>/dev/null || echo 1)
 
 LIB     := $(BUILD)/libdfl.a
 EXPLIB  := $(BUILD)/libdflexp.a
@@ -134,10 +135,10 @@ check-layout:
 # The test binary runs from the repository root; DFL_PYTHON and DFL_DFLAB
 # let tests call the VTK validator and the CLI.
 test: deps check-layout
-	$(MAKE) --no-print-directory -j$(NPROC) $(DFLAB) $(TESTS)
+	$(MAKE) --no-print-directory -j$(JOBS) $(DFLAB) $(TESTS)
 	DFL_PYTHON=$(PYTHON) DFL_DFLAB=$(abspath $(DFLAB)) $(TESTS) -j2 --timeout 600
-	$(MAKE) --no-print-directory -j$(NPROC) web-test
-	$(MAKE) --no-print-directory -j$(NPROC) fuzz-short
+	$(MAKE) --no-print-directory -j$(JOBS) web-test
+	$(MAKE) --no-print-directory -j$(JOBS) fuzz-short
 
 sanitize: deps
 	$(MAKE) --no-print-directory BUILD=build-san OPT=-O1 \
@@ -171,7 +172,7 @@ PAPER_CONFIGS := $(sort $(wildcard configs/paper/*/*.ini))
 # is printed at the end, slowest first.
 REPRO_TIMES := $(BUILD)/reproduce_times.txt
 reproduce: deps
-	$(MAKE) --no-print-directory -j$(NPROC) $(DFLAB)
+	$(MAKE) --no-print-directory -j$(JOBS) $(DFLAB)
 	@: > $(REPRO_TIMES)
 	@set -e; for c in $(PAPER_CONFIGS); do echo "== $$c"; t0=$$(date +%s.%N); \
 	  $(DFLAB) run $$c; echo "$$c $$t0 $$(date +%s.%N)" >> $(REPRO_TIMES); done
@@ -186,7 +187,7 @@ reproduce: deps
 # Every paper and smoke config at --threads 1, --threads 2 and
 # OMP_NUM_THREADS=1, compared byte for byte (make test runs a quick subset).
 check-threads: deps
-	$(MAKE) --no-print-directory $(DFLAB)
+	$(MAKE) --no-print-directory -j$(JOBS) $(DFLAB)
 	$(PYTHON) scripts/check_threads.py $(DFLAB)
 
 # Every paper and smoke config once per ISA this CPU runs (DFL_ISA, core/isa.h),

@@ -75,3 +75,22 @@ dfl_status dfl_sweep_check_budget(const dfl_sweep *s, const dfl_cfg *pt, const d
     }
     return DFL_OK;
 }
+
+dfl_status dfl_sweep_estimate(const dfl_sweep *s, size_t k, int threads, double *bytes,
+                              double *seconds, dfl_err *err)
+{
+    dfl_cfg *pt = NULL;
+    dfl_status st = dfl_cfg_sweep_point(s->cfg, k, &pt, err);
+    char tag[32];
+    dfl_study_tag(k, s->np, tag, sizeof tag);
+    dfl_study_ctx ctx = {.stage_dir = "/nonexistent/dflab-estimate", .tag = tag, .point = k,
+                         .npoints = s->np, .threads = threads};
+    dfl_cost c = {0};
+    if (!st)
+        st = s->study->estimate ? s->study->estimate(pt, &ctx, &c, err)
+                                : dfl_study_estimate_default(pt, &ctx, &c, err);
+    dfl_cfg_free(pt);
+    *bytes = c.bytes;
+    *seconds = dfl_cost_seconds(&c, threads);
+    return st;
+}

@@ -1,5 +1,6 @@
 #include "harness/field_out.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 dfl_status dfl_field_out_from_cfg(const dfl_cfg *cfg, dfl_field_write_opts *o, dfl_err *err)
@@ -39,4 +40,53 @@ dfl_status dfl_field_out_write(const dfl_study_ctx *ctx, const char *stem, const
     dfl_grid_frame(g, s.dims, s.origin, s.spacing);
     return dfl_field_write(dfl_study_path(ctx, stem, "vti", vti, sizeof vti),
                            dfl_study_path(ctx, stem, "exr", exr, sizeof exr), &s, o, err);
+}
+
+dfl_status dfl_volume_opts_from_cfg(const dfl_cfg *cfg, long def_n, dfl_volume_opts *o,
+                                    dfl_err *err)
+{
+    dfl_status st = dfl_cfg_bool_opt(cfg, "output", "vti", true, &o->vti, err);
+    if (!st) st = dfl_cfg_int_opt(cfg, "output", "vti_n", def_n, 2, 1024, &o->n, err);
+    if (!st) st = dfl_cfg_bool_opt(cfg, "output", "compress", true, &o->compress, err);
+    return st;
+}
+
+/* value, gradient (3), reference; the writer's grad_norm and error; the
+ * zlib copies of the largest array set (at most the raw size): 2 x 7
+ * doubles per node, plus the cell arrays once and compressed once. */
+double dfl_volume_bytes(long n, int ncell_arrays)
+{
+    const double nodes = (double)n * n * n, cells = (double)(n - 1) * (n - 1) * (n - 1);
+    return 8.0 * (14 * nodes + 2 * ncell_arrays * cells);
+}
+
+void dfl_volume_grid(const double lo[3], const double hi[3], long n, dfl_grid *g)
+{
+    g->dim = 3;
+    for (int a = 0; a < 3; a++) g->n[a] = (int)n, g->lo[a] = lo[a], g->hi[a] = hi[a];
+}
+
+dfl_status dfl_volume_write(const dfl_study_ctx *ctx, const char *stem, const dfl_field *f,
+                            const dfl_field *ref, bool unsigned_ref, const dfl_grid *g,
+                            const dfl_vtk_array *cells, int ncells, bool compress, dfl_err *err)
+{
+    const size_t m = dfl_grid_size(g);
+    dfl_field_bufs b = {0};
+    char path[4400];
+    dfl_study_path(ctx, stem, "vti", path, sizeof path);
+    if (!dfl_field_bufs_alloc(&b, m, 3, true)) {
+        dfl_field_bufs_free(&b);
+        return dfl_err_set(err, DFL_E_NOMEM, "out of memory sampling %s", path);
+    }
+    const int threads = ctx->threads > 0 ? ctx->threads : 1;
+    dfl_status st = dfl_field_sample(f, g, threads, b.u, b.gu, err);
+    if (!st) st = dfl_field_sample(ref, g, threads, b.ref, NULL, err);
+    if (!st && unsigned_ref)
+        for (size_t i = 0; i < m; i++) b.ref[i] = fabs(b.ref[i]);
+    dfl_field_samples s = {.gdim = 3, .u = b.u, .gu = b.gu, .ref = b.ref, .cells = cells,
+                           .ncells = ncells};
+    dfl_grid_frame(g, s.dims, s.origin, s.spacing);
+    if (!st) st = dfl_field_write_vti(path, &s, compress, err);
+    dfl_field_bufs_free(&b);
+    return st;
 }

@@ -43,4 +43,38 @@ dfl_status dfl_field_out_write(const dfl_study_ctx *ctx, const char *stem, const
                                const double *u, const double *gu, const double *ref,
                                const dfl_field_write_opts *opts, dfl_err *err);
 
+/* ---- volumes of the 3D studies (hvb25_accuracy, sjp10_3d) ---------------
+ * [output] vti   = true    write a volume per field the study measures
+ *          vti_n = n       its nodes per axis (2..1024; default def_n, the
+ *                          study's choice: its error grid, capped so that
+ *                          make reproduce stays within disk and memory)
+ *          compress = true zlib in the .vti
+ * A volume holds point data value, gradient, grad_norm, reference and
+ * error = value - reference (io/field_write.h) over the box of the study's
+ * error grid, and the study's cell data (e.g. the T-mesh level). */
+typedef struct dfl_volume_opts {
+    bool vti, compress;
+    long n;
+} dfl_volume_opts;
+
+dfl_status dfl_volume_opts_from_cfg(const dfl_cfg *cfg, long def_n, dfl_volume_opts *o,
+                                    dfl_err *err);
+
+/* Peak bytes of dfl_volume_write at n nodes per axis (its sample buffers,
+ * the writer's derived arrays and zlib copies, and cell arrays of ncell_arrays
+ * doubles per cell): for the study's estimate. */
+double dfl_volume_bytes(long n, int ncell_arrays);
+
+/* The n^3 node grid spanning [lo, hi] (3 doubles each). */
+void dfl_volume_grid(const double lo[3], const double hi[3], long n, dfl_grid *g);
+
+/* Samples field f (value and gradient) and the reference ref (value) on g
+ * (3D) and writes <stem><tag>.vti with the cell arrays (dfl_vti_ncells
+ * tuples each; NULL, 0 for none).  unsigned_ref: the reference is |ref|
+ * (an unsigned decoding's error).  DFL_E_NOMEM, the sampling's and the
+ * writer's errors. */
+dfl_status dfl_volume_write(const dfl_study_ctx *ctx, const char *stem, const dfl_field *f,
+                            const dfl_field *ref, bool unsigned_ref, const dfl_grid *g,
+                            const dfl_vtk_array *cells, int ncells, bool compress, dfl_err *err);
+
 #endif

@@ -7,10 +7,39 @@
 
 #include "harness/experiment.h"
 #include "harness/help.h"
+#include "harness/meaning.h"
 #include "harness/nonfinite.h"
 #include "harness/probe.h"
 #include "io/config.h"
 #include "io/table.h"
+
+/* The values of the sweep axis "sec.key" of cfg, in first-seen order,
+ * comma-separated into buf ("..." past the buffer): what a swept key
+ * takes, not its point-0 value.  False when the key is not swept. */
+static bool swept_list(const dfl_cfg *cfg, const char *name, char *buf, size_t size)
+{
+    size_t a = 0, na = dfl_cfg_sweep_axes(cfg);
+    while (a < na && strcmp(dfl_cfg_sweep_axis_name(cfg, a), name) != 0) a++;
+    if (a == na) return false;
+    size_t len = 0;
+    buf[0] = '\0';
+    const size_t np = dfl_cfg_sweep_points(cfg);
+    for (size_t i = 0; i < np && i < 100000; i++) {
+        dfl_cfg *pt;
+        if (dfl_cfg_sweep_point(cfg, i, &pt, NULL) != DFL_OK) break;
+        const char *v = dfl_cfg_axis_value(pt, a);
+        char probe[1100];
+        snprintf(probe, sizeof probe, ", %s, ", v);
+        char have[1100 + 1024];
+        snprintf(have, sizeof have, ", %s, ", buf);
+        if (!strstr(have, probe) && len + strlen(v) + 6 < size)
+            len += (size_t)snprintf(buf + len, size - len, "%s%s", len ? ", " : "", v);
+        else if (!strstr(have, probe) && len + 6 < size)
+            len += (size_t)snprintf(buf + len, size - len, ", ...");
+        dfl_cfg_free(pt);
+    }
+    return true;
+}
 
 dfl_status dfl_study_help(const dfl_study *study, const char *config, FILE *out, dfl_err *err)
 {
@@ -35,17 +64,21 @@ dfl_status dfl_study_help(const dfl_study *study, const char *config, FILE *out,
     }
     if (st == DFL_OK) {
         fprintf(out, "%s: %s\n\nKeys it reads (as read from %s; a key written there shows its\n"
-                     "value, an absent one the default the study takes):\n\n",
-                study->name, study->summary, config);
+                     "value -- a swept key its list --, an absent one the default the study\n"
+                     "takes; below each, what it means; `dflab help %s --columns` explains the\n"
+                     "table):\n\n",
+                study->name, study->summary, config, study->name);
         fprintf(out, "  %-28s %-10s %s\n", "key", "value", "expects");
         const size_t n = dfl_cfg_reads(pt);
         for (size_t i = 0; i < n; i++) {
             dfl_cfg_read r;
             dfl_cfg_read_at(pt, i, &r);
-            char k[256];
+            char k[256], list[1024];
             snprintf(k, sizeof k, "%s.%s", r.sec, r.key);
-            fprintf(out, "  %-28s %-10s %s%s\n", k, r.value, r.expect,
-                    r.is_default ? " (default)" : "");
+            const char *m = dfl_key_meaning(study->name, r.sec, r.key);
+            const char *v = swept_list(cfg, k, list, sizeof list) ? list : r.value;
+            fprintf(out, "  %-28s %-10s %s%s\n", k, v, r.expect, r.is_default ? " (default)" : "");
+            fprintf(out, "  %-28s %s\n", "", m[0] ? m : "(no meaning given)");
         }
         fprintf(out, "\nA comma list in any value makes it a sweep axis (`dflab plan`).\n");
     }

@@ -12,12 +12,14 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "harness/experiment.h"
 #include "harness/sweep.h"
 #include "io/atomic.h"
 #include "io/dirs.h"
 #include "io/json.h"
 #include "io/manifest.h"
 #include "io/table.h"
+#include "io/vtk.h"
 
 #include "dfl_version.h"
 
@@ -203,6 +205,82 @@ static dfl_status link_files(const pt_rec *r, const char *stage, const char *tab
     return st;
 }
 
+/* ---- the sweep's collections: <stem>.pvd per <stem>_ptNNN.vti|.vtp ---- */
+
+typedef struct stem_list {
+    char (*name)[600];
+    char ext[64][4];
+    size_t n;
+} stem_list;
+
+/* Adds the stems of point k's VTK files (<stem><tag>.vti / .vtp) to l. */
+static void add_stems(const pt_rec *r, size_t k, size_t n, stem_list *l)
+{
+    char tag[64];
+    dfl_study_tag(k, n, tag, sizeof tag);
+    DIR *d = opendir(r->dir);
+    if (!d) return;
+    struct dirent *de;
+    while ((de = readdir(d)) && l->n < 64) {
+        const size_t len = strlen(de->d_name), tl = strlen(tag);
+        if (len < tl + 5 || len - tl - 4 >= sizeof l->name[0]) continue;
+        const char *ext = de->d_name + len - 4;
+        if (strcmp(ext, ".vti") != 0 && strcmp(ext, ".vtp") != 0) continue;
+        if (strncmp(ext - tl, tag, tl) != 0) continue;
+        char stem[600];
+        snprintf(stem, sizeof stem, "%.*s", (int)(len - tl - 4), de->d_name);
+        size_t i = 0;
+        while (i < l->n && !(strcmp(l->name[i], stem) == 0 && strcmp(l->ext[i], ext + 1) == 0))
+            i++;
+        if (i == l->n) {
+            snprintf(l->name[l->n], sizeof l->name[0], "%s", stem);
+            snprintf(l->ext[l->n], sizeof l->ext[0], "%s", ext + 1);
+            l->n++;
+        }
+    }
+    closedir(d);
+}
+
+/* A sweep's VTK files as ParaView collections: for every stem, <stem>.pvd
+ * (<stem>_<ext>.pvd when a .vti and a .vtp share the stem) listing
+ * <stem>_ptNNN.<ext> of the points that wrote one, time = the point index,
+ * so the time slider steps through the sweep (the CSV's point column says
+ * what each point sets).  Nothing for a run of one point, nor for a stem
+ * that fewer than two points wrote. */
+static dfl_status write_collections(const pt_rec *r, size_t n, const char *stage, dfl_err *err)
+{
+    if (n < 2) return DFL_OK;
+    stem_list l = {.name = malloc(64 * sizeof *l.name)};
+    if (!l.name) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    for (size_t k = 0; k < n; k++) add_stems(&r[k], k, n, &l);
+    dfl_pvd_entry *e = malloc(n * sizeof *e);
+    char (*files)[700] = malloc(n * sizeof *files);
+    dfl_status st = e && files ? DFL_OK : dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    for (size_t i = 0; i < l.n && st == DFL_OK; i++) {
+        size_t m = 0;
+        for (size_t k = 0; k < n; k++) {
+            char tag[64], p[8192];
+            dfl_study_tag(k, n, tag, sizeof tag);
+            snprintf(files[m], sizeof files[0], "%s%s.%s", l.name[i], tag, l.ext[i]);
+            snprintf(p, sizeof p, "%s/%s", stage, files[m]);
+            if (access(p, F_OK) == 0) e[m] = (dfl_pvd_entry){files[m], (double)k}, m++;
+        }
+        if (m < 2) continue; /* a file of one point (e.g. written once per run) */
+        int shared = 0;
+        for (size_t j = 0; j < l.n; j++) shared |= j != i && strcmp(l.name[j], l.name[i]) == 0;
+        char path[8192];
+        if (shared)
+            snprintf(path, sizeof path, "%s/%s_%s.pvd", stage, l.name[i], l.ext[i]);
+        else
+            snprintf(path, sizeof path, "%s/%s.pvd", stage, l.name[i]);
+        st = dfl_pvd_write(path, e, m, err);
+    }
+    free(e);
+    free(files);
+    free(l.name);
+    return st;
+}
+
 static dfl_status write_manifest(const pt_rec *r, size_t n, const char *stage,
                                  const char *cmdline, dfl_err *err)
 {
@@ -341,6 +419,7 @@ dfl_status dfl_merge_into(const char *dir, const dfl_sweep *expect, int quiet,
     snprintf(a, sizeof a, "%s/config.ini", r[0].dir);
     snprintf(path, sizeof path, "%s/config.ini", stage);
     if (st == DFL_OK) st = dfl_dir_link_or_copy(a, path, err);
+    if (st == DFL_OK) st = write_collections(r, n, stage, err);
     if (st == DFL_OK) st = write_manifest(r, n, stage, cmdline, err);
     if (st == DFL_OK) st = dfl_dir_replace(stage, dir, err);
     if (st != DFL_OK) {

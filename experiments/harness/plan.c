@@ -3,6 +3,7 @@
  * schedules nothing itself; every job is `dflab run --point K` and a final
  * `dflab merge`. */
 #include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -61,8 +62,10 @@ static void absolute(const char *p, char *buf, size_t size)
     else snprintf(buf, size, "%s/%s", cwd, p);
 }
 
-/* `dflab run CONFIG --set ... --out OUT [--threads N] --quiet` without --point. */
-static void put_run(FILE *out, const dfl_plan_opts *o, const char *config, const char *outdir)
+/* `dflab run CONFIG --set ... --out OUT [--threads N] --quiet` without --point
+ * (threads: T of the jobs, <= 0: none given). */
+static void put_run(FILE *out, const dfl_plan_opts *o, const char *config, const char *outdir,
+                    int threads)
 {
     put_sh(out, o->exe);
     fputs(" run ", out);
@@ -73,12 +76,51 @@ static void put_run(FILE *out, const dfl_plan_opts *o, const char *config, const
     }
     fputs(" --out ", out);
     put_sh(out, outdir);
-    if (o->run.threads > 0) fprintf(out, " --threads %d", o->run.threads);
+    if (threads > 0) fprintf(out, " --threads %d", threads);
     fputs(" --quiet", out);
 }
 
+/* What the emitted jobs get: T threads each, K points per job, nb jobs,
+ * and the Slurm resources. */
+typedef struct job_shape {
+    int threads;
+    size_t per_task, njobs;
+    char mem[64], time[64];
+} job_shape;
+
+/* T = --threads or max(1, cores / jobs at once); K, nb; --mem and --time
+ * from the points' estimates unless given: the largest point's bytes
+ * x 1.5 + 512 MB (the binary, libraries, slack), in MB; the slowest batch
+ * (its points run one after another) on T cores x 2 + 10 minutes. */
+static dfl_status shape_jobs(const dfl_plan_opts *o, const dfl_sweep *s, long m, job_shape *j,
+                             dfl_err *err)
+{
+    const int cores = o->cores > 0 ? o->cores : 1;
+    j->threads = o->run.threads > 0 ? o->run.threads : (int)(cores / m > 1 ? cores / m : 1);
+    j->per_task = o->per_task > 0 ? (size_t)o->per_task : 1;
+    j->njobs = (s->np + j->per_task - 1) / j->per_task;
+    double big = 0, slow = 0;
+    for (size_t b = 0; b < j->njobs; b++) {
+        double batch = 0;
+        for (size_t k = b * j->per_task; k < s->np && k < (b + 1) * j->per_task; k++) {
+            double bytes, sec;
+            dfl_status st = dfl_sweep_estimate(s, k, j->threads, &bytes, &sec, err);
+            if (st) return st;
+            if (bytes > big) big = bytes;
+            batch += sec;
+        }
+        if (batch > slow) slow = batch;
+    }
+    if (o->mem) snprintf(j->mem, sizeof j->mem, "%s", o->mem);
+    else snprintf(j->mem, sizeof j->mem, "%.0fM", ceil((1.5 * big + 512e6) / 1e6));
+    if (o->time) snprintf(j->time, sizeof j->time, "%s", o->time);
+    else snprintf(j->time, sizeof j->time, "%.0f", ceil(2 * slow / 60 + 10));
+    return DFL_OK;
+}
+
 static dfl_status emit_slurm(FILE *out, const dfl_plan_opts *o, const dfl_sweep *s,
-                             const char *config, const char *outdir, long m, dfl_err *err)
+                             const char *config, const char *outdir, long m, const job_shape *j,
+                             dfl_err *err)
 {
     char stem[512], job[512], logs[4200], cwd[PATH_MAX];
     dfl_path_stem(config, stem, sizeof stem);
@@ -100,21 +142,28 @@ static dfl_status emit_slurm(FILE *out, const dfl_plan_opts *o, const dfl_sweep 
     fprintf(out, "#!/bin/bash\n");
     fputs("# dflab sweep of ", out);
     put_comment(out, config);
-    fprintf(out, ": %zu points as a Slurm job array, then a merge job.\n", s->np);
+    fprintf(out, ": %zu points as a Slurm job array of %zu task%s (%zu point%s each), then a "
+                 "merge job.\n", s->np, j->njobs, j->njobs == 1 ? "" : "s", j->per_task,
+            j->per_task == 1 ? "" : "s");
     fprintf(out, "#   bash THIS_FILE     creates the log folder, submits the array and the merge\n"
-                 "#                      (which starts when every task succeeded)\n"
-                 "#   sbatch THIS_FILE   submits the array only; then `dflab merge OUT`\n");
+                 "#                      (which starts when the array ends; it refuses, naming\n"
+                 "#                      them, when points are missing: rerun, then merge)\n"
+                 "#   sbatch THIS_FILE   submits the array only; then `dflab merge OUT`\n"
+                 "# --mem and --time come from dflab's conservative estimate unless given to\n"
+                 "# `dflab plan` (--mem, --time).\n");
     fprintf(out, "#SBATCH --job-name=dflab-%s\n", job);
-    fprintf(out, "#SBATCH --array=0-%zu%%%ld\n", s->np - 1, m);
-    fprintf(out, "#SBATCH --output=%s/point_%%a.log\n", logs);
+    fprintf(out, "#SBATCH --array=0-%zu%%%ld\n", j->njobs - 1, m);
+    fprintf(out, "#SBATCH --output=%s/task_%%a.log\n", logs);
     fprintf(out, "#SBATCH --ntasks=1\n");
-    if (o->run.threads > 0) fprintf(out, "#SBATCH --cpus-per-task=%d\n", o->run.threads);
+    fprintf(out, "#SBATCH --cpus-per-task=%d\n", j->threads);
+    fprintf(out, "#SBATCH --mem=%s\n", j->mem);
+    fprintf(out, "#SBATCH --time=%s\n", j->time);
     fprintf(out, "#SBATCH --chdir=%s\n", cwd);
     fputs("set -euo pipefail\n", out);
     fputs("if [ -z \"${SLURM_ARRAY_TASK_ID:-}\" ]; then\n  mkdir -p ", out);
     put_sh(out, logs);
     fputs("\n  array=$(sbatch --parsable \"$0\")\n", out);
-    fprintf(out, "  sbatch --parsable --dependency=afterok:\"${array%%%%;*}\" --job-name=dflab-%s-merge "
+    fprintf(out, "  sbatch --parsable --dependency=afterany:\"${array%%%%;*}\" --job-name=dflab-%s-merge "
                  "--output=", job);
     put_sh(out, logs);
     fputs("/merge.log --wrap=", out);
@@ -129,9 +178,12 @@ static dfl_status emit_slurm(FILE *out, const dfl_plan_opts *o, const dfl_sweep 
     fclose(mem);
     put_sh(out, cmd);
     free(cmd);
-    fputs("\n  exit 0\nfi\nexec ", out);
-    put_run(out, o, config, outdir);
-    fputs(" --point \"$SLURM_ARRAY_TASK_ID\"\n", out);
+    fprintf(out, "\n  exit 0\nfi\n"
+                 "a=$((SLURM_ARRAY_TASK_ID * %zu))\nb=$((a + %zu))\n"
+                 "if [ \"$b\" -gt %zu ]; then b=%zu; fi\nexec ",
+            j->per_task, j->per_task - 1, s->np - 1, s->np - 1);
+    put_run(out, o, config, outdir, j->threads);
+    fputs(" --point \"$a-$b\"\n", out);
     return DFL_OK;
 }
 
@@ -141,7 +193,7 @@ static dfl_status emit_slurm(FILE *out, const dfl_plan_opts *o, const dfl_sweep 
  * environment variables (quoted once, for the shell that runs this line)
  * and the command names only the variables. */
 static void emit_parallel(FILE *out, const dfl_plan_opts *o, const dfl_sweep *s,
-                          const char *config, const char *outdir, long m)
+                          const char *config, const char *outdir, long m, const job_shape *j)
 {
     char log[8400], pdir[8300];
     snprintf(pdir, sizeof pdir, "%s.points", outdir);
@@ -163,8 +215,17 @@ static void emit_parallel(FILE *out, const dfl_plan_opts *o, const dfl_sweep *s,
     fprintf(out, " --resume-failed -j %ld '\"$DFLAB_EXE\"' run '\"$DFLAB_CONFIG\"'", m);
     for (int i = 0; i < o->run.nsets; i++) fprintf(out, " --set '\"$DFLAB_SET_%d\"'", i);
     fputs(" --out '\"$DFLAB_OUT\"'", out);
-    if (o->run.threads > 0) fprintf(out, " --threads %d", o->run.threads);
-    fprintf(out, " --quiet --point {} ::: $(seq 0 %zu) && ", s->np - 1);
+    fprintf(out, " --threads %d", j->threads);
+    if (j->per_task == 1) {
+        fprintf(out, " --quiet --point {} ::: $(seq 0 %zu) && ", s->np - 1);
+    } else { /* the batches A-B, one word each */
+        fputs(" --quiet --point {} :::", out);
+        for (size_t b = 0; b < j->njobs; b++) {
+            const size_t a = b * j->per_task, e = a + j->per_task - 1;
+            fprintf(out, " %zu-%zu", a, e < s->np ? e : s->np - 1);
+        }
+        fputs(" && ", out);
+    }
     put_sh(out, o->exe);
     fputs(" merge ", out);
     put_sh(out, outdir);
@@ -183,11 +244,13 @@ dfl_status dfl_plan(const dfl_plan_opts *o, FILE *out, dfl_err *err)
     absolute(o->run.config, config, sizeof config);
     absolute(s.outdir, outdir, sizeof outdir);
     const long m = o->max_parallel > 0 ? o->max_parallel : 4;
-    if (o->emit && strcmp(o->emit, "slurm") == 0) {
-        st = emit_slurm(out, o, &s, config, outdir, m, err);
-    } else if (o->emit) {
-        emit_parallel(out, o, &s, config, outdir, m);
-    } else {
+    job_shape j = {0};
+    if (o->emit) st = shape_jobs(o, &s, m, &j, err);
+    if (st == DFL_OK && o->emit && strcmp(o->emit, "slurm") == 0) {
+        st = emit_slurm(out, o, &s, config, outdir, m, &j, err);
+    } else if (st == DFL_OK && o->emit) {
+        emit_parallel(out, o, &s, config, outdir, m, &j);
+    } else if (st == DFL_OK) {
         if (!o->commands)
         {
             fputs("# ", out);
@@ -199,7 +262,7 @@ dfl_status dfl_plan(const dfl_plan_opts *o, FILE *out, dfl_err *err)
         }
         for (size_t k = 0; k < s.np && st == DFL_OK; k++) {
             if (o->commands) {
-                put_run(out, o, config, outdir);
+                put_run(out, o, config, outdir, o->run.threads);
                 fprintf(out, " --point %zu\n", k);
                 continue;
             }

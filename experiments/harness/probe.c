@@ -11,6 +11,7 @@
 #include "rfunc/rfield.h"
 #include "io/config.h"
 #include "io/points.h"
+#include "io/table.h"
 
 /* A point of the points file inside dflab's domain (core/domain.h), and
  * with --jet a direction that is finite, inside it and not zero. */
@@ -151,7 +152,12 @@ dfl_status dfl_probe(const dfl_probe_opts *o, FILE *out, dfl_err *err)
     for (int k = 1; k <= K; k++) fprintf(out, ",d%d", k);
     fputc('\n', out);
     for (size_t i = 0; i < p.n; i++) {
-        for (int c = 0; c < w; c++) fprintf(out, "%s%.17g", c ? "," : "", res[i * (size_t)w + c]);
+        /* the CSVs' form: the shortest text that reads back exactly */
+        for (int c = 0; c < w; c++) {
+            char b[32];
+            fprintf(out, "%s%s", c ? "," : "",
+                    dfl_table_format_double(res[i * (size_t)w + c], b, sizeof b));
+        }
         fputc('\n', out);
     }
     if (fflush(out) != 0) st = dfl_err_set(err, DFL_E_IO, "cannot write probe output");

@@ -16,7 +16,8 @@
  * Input CSV: a header naming columns x,y[,z] and, with jet order K > 0,
  * dx,dy[,dz] (any order, no other columns); one point per row; blank lines
  * ignored.  Output CSV (to out, only after every point succeeded):
- * x,y,z,value,gx,gy,gz[,d1..dK] with z = gz = 0 for 2D fields, %.17g;
+ * x,y,z,value,gx,gy,gz[,d1..dK] with z = gz = 0 for 2D fields, every number in the
+ * shortest form that reads back exactly (io/table.h, as the CSVs);
  * dk = d^k/ds^k u(x + s*dir) at s = 0+, exact (jets).
  *
  * Checks (exit status 2, naming the file and point): the file's text and

@@ -158,10 +158,12 @@ dfl_status dfl_sweep_open(const dfl_run_opts *o, dfl_sweep *s, dfl_err *err)
     for (size_t a = 0; a < s->na; a++)
         if (strcmp(dfl_cfg_sweep_axis_name(s->cfg, a), "study.name") == 0)
             return dfl_err_set(err, DFL_E_INPUT, "%s: [study] name cannot be a sweep", o->config);
-    if (o->has_point && (o->point < 0 || (size_t)o->point >= s->np))
+    const long last = o->point_last > o->point ? o->point_last : o->point;
+    if (o->has_point && (o->point < 0 || (size_t)last >= s->np))
         return dfl_err_set(err, DFL_E_INPUT,
-                           "--point %ld: out of range: %s has %zu sweep point%s (0..%zu)", o->point,
-                           o->config, s->np, s->np == 1 ? "" : "s", s->np - 1);
+                           "--point %ld: out of range: %s has %zu sweep point%s (0..%zu)",
+                           (size_t)o->point >= s->np ? o->point : last, o->config, s->np,
+                           s->np == 1 ? "" : "s", s->np - 1);
     s->threads = o->threads > 0 ? o->threads : omp_get_max_threads();
     dfl_sweep_outdir(o, s->outdir, sizeof s->outdir);
     snprintf(s->points, sizeof s->points, "%s.points", s->outdir);
@@ -291,7 +293,8 @@ dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
     }
     dfl_sweep_clean_stale(s.outdir);
     const size_t lo = o->has_point ? (size_t)o->point : 0;
-    const size_t hi = o->has_point ? lo + 1 : s.np;
+    const size_t hi = !o->has_point ? s.np
+                      : o->point_last > o->point ? (size_t)o->point_last + 1 : lo + 1;
     progress p = {.s = &s, .t0 = dfl_wall_seconds(), .k = (size_t)-1};
     pthread_mutex_init(&p.mu, NULL);
     pthread_cond_init(&p.cv, NULL);
@@ -302,6 +305,10 @@ dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
         if (!o->force) st = dfl_point_check(&s, k, o->quiet, &cur, err);
         skip[k] = cur;
         p.todo += !skip[k];
+        /* a job's log says which of its points it did not compute */
+        if (cur && o->has_point)
+            fprintf(stderr, "dflab: %s: point %zu up to date in %s, skipped (--force "
+                            "recomputes)\n", s.study->name, k, s.points);
     }
     /* a large sweep says what it is about to do, even with --quiet */
     if (st == DFL_OK && p.todo >= 1000)
@@ -326,12 +333,16 @@ dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
         st = dfl_merge_into(s.outdir, &s, o->quiet, o->cmdline, err);
     if (st == DFL_OK && !o->quiet) {
         char pd[4400];
-        fprintf(stderr, "dflab: wrote %s/\n", o->has_point ? dfl_point_dir(&s, lo, pd, sizeof pd)
-                                                            : s.outdir);
+        if (o->has_point && hi > lo + 1)
+            fprintf(stderr, "dflab: wrote points %zu-%zu into %s/\n", lo, hi - 1, s.points);
+        else
+            fprintf(stderr, "dflab: wrote %s/\n", o->has_point ? dfl_point_dir(&s, lo, pd, sizeof pd)
+                                                                : s.outdir);
     }
-    if (st == DFL_OK) { /* after the outputs are written: exit 1 for a non-finite error */
+    /* after the outputs are written: exit 1 for a non-finite error */
+    for (size_t k = lo; st == DFL_OK && k < (o->has_point ? hi : lo + 1); k++) {
         char pd[4400];
-        st = check_nonfinite(&s, o->has_point ? dfl_point_dir(&s, lo, pd, sizeof pd) : s.outdir,
+        st = check_nonfinite(&s, o->has_point ? dfl_point_dir(&s, k, pd, sizeof pd) : s.outdir,
                              err);
     }
     dfl_sweep_close(&s);

@@ -37,7 +37,8 @@ typedef struct dfl_run_opts {
     const char *outdir;        /* NULL: see above */
     int threads;               /* <= 0: OpenMP default */
     int quiet;                 /* no progress lines on stderr */
-    long point;                /* with has_point: run only this point, no merge */
+    long point;                /* with has_point: run only points point..point_last, no merge */
+    long point_last;           /* >= point (== point: one point) */
     int has_point;
     int force;                 /* recompute points that are up to date */
     const char *cmdline;       /* for the manifest (NULL: "") */
@@ -56,9 +57,21 @@ typedef struct dfl_plan_opts {
     const char *emit;   /* NULL, "slurm" or "parallel" */
     long max_parallel;  /* Slurm %M / parallel -j (<= 0: 4) */
     const char *exe;    /* the dflab to call (absolute path) */
+    long per_task;      /* points per job (<= 0: 1): job i runs --point iK-(i+1)K-1 */
+    const char *time;   /* Slurm --time (NULL: from the estimate) */
+    const char *mem;    /* Slurm --mem (NULL: from the estimate) */
+    int cores;          /* this machine's cores (<= 0: 1), for the default threads */
 } dfl_plan_opts;
 
-/* Prints the plan on out.  Validates every point first (as dfl_run). */
+/* Prints the plan on out.  Validates every point first (as dfl_run).
+ * Emitted jobs: each runs a batch of per_task points (`--point A-B`, one
+ * process) with --threads T (run.threads, default max(1, cores / jobs at
+ * once)).  Slurm: --cpus-per-task = T; --mem (default: the largest point
+ * estimate x 1.5 + 512 MB, in MB) and --time (default: the slowest batch's
+ * estimate on T cores x 2 + 10 minutes) unless given; the merge job runs
+ * afterany (after the array ends, whatever its tasks did), and the merge
+ * refuses with one line naming the missing points when a task failed or
+ * was cancelled. */
 dfl_status dfl_plan(const dfl_plan_opts *opts, FILE *out, dfl_err *err);
 
 #endif

@@ -13,6 +13,7 @@
  *   dfl_sweep_clean_stale  remove dead runs' stage folders of OUT (merge.c)
  *   dfl_sweep_budgets      [study] memory_budget (GB) and work_budget (hours)
  *   dfl_sweep_check_budget a point's estimate against them (budget_check.c)
+ *   dfl_sweep_estimate     a point's estimated peak bytes and seconds (for launchers)
  */
 #ifndef DFL_EXPERIMENTS_SWEEP_H
 #define DFL_EXPERIMENTS_SWEEP_H
@@ -99,5 +100,11 @@ dfl_status dfl_sweep_budgets(const dfl_cfg *pt, double *mem_bytes, double *work_
  * ctx->threads cores is above them.  Builds nothing. */
 dfl_status dfl_sweep_check_budget(const dfl_sweep *s, const dfl_cfg *pt, const dfl_study_ctx *ctx,
                                   dfl_err *err);
+
+/* Point k's estimate (its study's estimate hook or the [field] cost): peak
+ * bytes and seconds on `threads` cores (core/budget.h: conservative, errs
+ * long).  Fails as the estimate's getters do. */
+dfl_status dfl_sweep_estimate(const dfl_sweep *s, size_t k, int threads, double *bytes,
+                              double *seconds, dfl_err *err);
 
 #endif

@@ -30,7 +30,12 @@
  * *_off off the medial region, the worst point and its footpoint jump.
  * The time columns are for the report's Table 4 (gen_seconds: building
  * the field from the input, one thread per the run's thread count;
- * eval_ns_per_query: decoding time per point of the node grid).
+ * eval_ns_per_query: decoding time per point of the node grid), vti: the
+ * decoding's volume.
+ * [output] vti = true, vti_n (harness/field_out.h; default: [eval] n, at
+ * most 33): volume.vti (the field as [field] decodes it) or
+ * volume_<filter>.vti per filter, over the [eval] box: value, gradient,
+ * reference (|d| for unsigned decodings), error = value - reference.
  */
 #include <math.h>
 #include <stdio.h>
@@ -41,10 +46,16 @@
 #include "cfg/proxy_input_cfg.h"
 #include "field/gridpeer.h"
 #include "harness/experiment.h"
+#include "harness/field_out.h"
 #include "hvb25/hvb25.h"
 #include "hvb25/hvb25_eval.h"
 #include "io/manifest.h"
 #include "proxy/proxy_field.h"
+
+/* The default [output] vti_n: the error grid's n, at most this (33^3
+ * nodes, about 1 MB a volume after zlib: the 314 volumes of the paper
+ * configs take some 300 MB; at 65^3 a volume is 7.3 MB, 2.3 GB in all). */
+#define VOLUME_MAX_N 33
 
 typedef struct acc_keys {
     const char *ref_sec;
@@ -52,6 +63,7 @@ typedef struct acc_keys {
     dfl_proxy_filter filters[HVB25_MAX_DECODINGS];
     double band, medial;
     dfl_grid eval;
+    dfl_volume_opts vol;
 } acc_keys;
 
 static dfl_status read_eval(const dfl_cfg *cfg, dfl_grid *g, dfl_err *err)
@@ -81,6 +93,10 @@ static dfl_status read_keys(const dfl_cfg *cfg, acc_keys *k, dfl_err *err)
     if (!st) st = dfl_cfg_double_opt(cfg, "study", "band", 0.05, 0, 1e300, &k->band, err);
     if (!st) st = dfl_cfg_double_opt(cfg, "study", "medial", 1, 0, 1e300, &k->medial, err);
     if (!st) st = read_eval(cfg, &k->eval, err);
+    /* the volume: at the error grid up to VOLUME_MAX_N nodes per axis */
+    if (!st)
+        st = dfl_volume_opts_from_cfg(cfg, k->eval.n[0] < VOLUME_MAX_N ? k->eval.n[0] : VOLUME_MAX_N,
+                                      &k->vol, err);
     return st;
 }
 
@@ -175,6 +191,9 @@ static dfl_status put_build(dfl_table *t, const dfl_field *f, const build_info *
     return st;
 }
 
+static dfl_status write_volume(const acc_keys *k, const hvb25_acc_spec *s, int i,
+                               const dfl_study_ctx *ctx, dfl_err *err);
+
 static dfl_status acc_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
                           dfl_err *err)
 {
@@ -231,10 +250,38 @@ static dfl_status acc_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tabl
         if (!st) st = dfl_table_set_double(table, "band", k.band, err);
         if (!st) st = dfl_table_set_int(table, "eval_n", k.eval.n[0], err);
         if (!st) st = hvb25_acc_put(table, &res[i], npts, err);
+        char stem[64] = "volume";
+        if (k.nfilters) snprintf(stem, sizeof stem, "volume_%s", dfl_proxy_filter_name(o->filter));
+        if (!st) st = dfl_study_put_file(table, "vti", ctx, stem, "vti", k.vol.vti, err);
     }
+    for (int i = 0; !st && k.vol.vti && i < (k.nfilters ? k.nfilters : 1); i++)
+        st = write_volume(&k, &s, i, ctx, err);
     dfl_field_destroy(&f);
     dfl_field_destroy(&ref);
     return st;
+}
+
+/* The volume of decoding i: "volume" for the field as [field] decodes
+ * it, "volume_<filter>" for each of [study] filters; over the box of
+ * [eval] at [output] vti_n nodes per axis, the reference |d| for unsigned
+ * decodings (the error the rows measure). */
+static dfl_status write_volume(const acc_keys *k, const hvb25_acc_spec *s, int i,
+                               const dfl_study_ctx *ctx, dfl_err *err)
+{
+    dfl_grid g;
+    dfl_volume_grid(k->eval.lo, k->eval.hi, k->vol.n, &g);
+    char stem[64] = "volume";
+    dfl_field view = *s->field;
+    hvb25_view v;
+    int is_signed = s->field_signed;
+    if (s->ndec) {
+        v.g = s->grid, v.o = s->dec[i];
+        hvb25_view_field(&v, &view);
+        is_signed = v.o.is_signed;
+        snprintf(stem, sizeof stem, "volume_%s", dfl_proxy_filter_name(v.o.filter));
+    }
+    return dfl_volume_write(ctx, stem, &view, s->ref, !is_signed, &g, NULL, 0, k->vol.compress,
+                            err);
 }
 
 /* Peak memory: the field ([field]'s cost) and the evaluation's slab
@@ -251,6 +298,9 @@ static dfl_status acc_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl
     const double n = k.eval.n[0], nodes = n * n * n;
     dfl_cost_add_bytes(c, "eval", "n", 2 * 83 * n * n, "evaluation slabs of %.0f^2 nodes", n);
     const int dec = k.nfilters ? k.nfilters : 1;
+    if (k.vol.vti)
+        dfl_cost_add_bytes(c, "output", "vti_n", dfl_volume_bytes(k.vol.n, 0),
+                           "a volume of %ld^3 nodes", k.vol.n);
     dfl_cost_add_work(c, "eval", "n", DFL_COST_DECODE, nodes * dec, "%.3g nodes x %d decodings",
                       nodes, dec);
     dfl_cost_add_work(c, "eval", "n", dfl_shape_cost_class(cfg, k.ref_sec), nodes,

@@ -27,7 +27,14 @@
  *   cell_val  = true        also the per-cell protocol (cv_ columns, pht/validate.h)
  *                           against ref; false for references too slow for it
  *                           (cv_ columns NaN, converged judged by the estimator)
- * Rows: one per case and fit (pht rows per rule and eps).  Signs: negative inside (sjp10: positive).
+ * [output] vti = true, vti_n (harness/field_out.h; default the case's
+ *   val_n, at most 33): per fit volume_<case>_pht_<rule>_<i>.vti (i: the
+ *   place of eps in the list) or volume_<case>_uniform_<level>.vti over the
+ *   case's box: value, gradient, reference, error = value - reference, and
+ *   cell data "level" (the T-mesh level of the leaf holding the cell's
+ *   centre); per case and rule a collection volume_<case>_pht_<rule>.pvd
+ *   over eps (and volume_<case>_uniform.pvd over the levels).
+ * Rows: one per case and fit (pht rows per rule and eps), vti naming its volume.  Signs: negative inside (sjp10: positive).
  */
 #include <math.h>
 #include <stdio.h>
@@ -40,9 +47,15 @@
 #include "cfg/pht_cfg.h"
 #include "cfg/shape_cfg.h"
 #include "cfg/list_cfg.h"
+#include "field/exact.h"
+#include "harness/field_out.h"
+#include "io/vtk.h"
 #include "pht/pht_field.h"
 #include "sjp10/sjp10.h"
 #include "sjp10/sjp10_common.h"
+
+/* The default [output] vti_n: the case's val_n, at most this. */
+#define VOLUME_MAX_N 33
 
 typedef struct case3 {
     char name[DFL_SECTION_NAME_LEN];
@@ -67,6 +80,8 @@ typedef struct keys3 {
     size_t neps, nlevels;
     long uniform_samples;
     int rules[SJP10_RULES], nrules;
+    dfl_volume_opts vol;     /* [output] vti, vti_n (per case: min(val_n, 33) by default) */
+    int vol_n_given;
 } keys3;
 
 static void keys_free(keys3 *k)
@@ -150,7 +165,84 @@ static dfl_status read_keys(const dfl_cfg *cfg, keys3 *k, dfl_err *err)
     if ((st = read_lists(cfg, "study", "eps", NULL, &k->eps, &k->neps, err))) return st;
     if ((st = read_lists(cfg, "study", NULL, "uniform_levels", &k->levels, &k->nlevels, err))) return st;
     if ((st = sjp10_rules_from_cfg(cfg, k->rules, &k->nrules, err))) return st;
-    return dfl_cfg_int_opt(cfg, "study", "uniform_samples", 1, 1, 4096, &k->uniform_samples, err);
+    if ((st = dfl_cfg_int_opt(cfg, "study", "uniform_samples", 1, 1, 4096, &k->uniform_samples,
+                              err)))
+        return st;
+    k->vol_n_given = dfl_cfg_has(cfg, "output", "vti_n");
+    return dfl_volume_opts_from_cfg(cfg, VOLUME_MAX_N, &k->vol, err);
+}
+
+/* The volume's nodes per axis for case c: [output] vti_n, else the case's
+ * val_n up to VOLUME_MAX_N. */
+static long volume_n(const keys3 *k, const case3 *c)
+{
+    if (k->vol_n_given) return k->vol.n;
+    return c->val_n < VOLUME_MAX_N ? c->val_n : VOLUME_MAX_N;
+}
+
+/* The volume's stem of one fit: volume_<case>_pht_<rule>_<i> (i: the
+ * threshold's place in the case's eps list) or volume_<case>_uniform_<level>;
+ * the case's collection over its thresholds (or levels) drops the last part. */
+static void volume_stem(const case3 *c, int rule, long level, size_t i, int with_index,
+                        char *buf, size_t size)
+{
+    if (level < 0)
+        snprintf(buf, size, "volume_%s_pht_%s", c->name, sjp10_rule_name(rule));
+    else
+        snprintf(buf, size, "volume_%s_uniform", c->name);
+    const size_t l = strlen(buf);
+    if (with_index) snprintf(buf + l, size - l, "_%zu", level < 0 ? i : (size_t)level);
+}
+
+/* Samples the fit's spline and the case's reference on the case's box and
+ * writes the volume with the T-mesh level of the leaf holding each
+ * volume cell's centre as cell data "level". */
+static dfl_status write_volume(const keys3 *k, const case3 *c, const dfl_pht_fit *fit,
+                               const dfl_field *f, const char *stem, const dfl_study_ctx *ctx,
+                               dfl_err *err)
+{
+    dfl_grid g;
+    dfl_volume_grid(c->lo, c->hi, volume_n(k, c), &g);
+    int dims[3];
+    double org[3], sp[3];
+    dfl_grid_frame(&g, dims, org, sp);
+    const size_t nc = dfl_vti_ncells(dims), cn = (size_t)dims[0] - 1;
+    double *lev = malloc(nc * sizeof *lev);
+    if (!lev) return dfl_err_set(err, DFL_E_NOMEM, "out of memory for the levels of %s", stem);
+    for (size_t q = 0; q < nc; q++) {
+        const size_t ijk[3] = {q % cn, q / cn % cn, q / cn / cn};
+        double x[3];
+        for (int a = 0; a < 3; a++) x[a] = org[a] + ((double)ijk[a] + 0.5) * sp[a];
+        dfl_tmesh_cell cell;
+        dfl_tmesh_cell_get(fit->mesh, dfl_tmesh_locate(fit->mesh, x, NULL), &cell);
+        lev[q] = cell.level;
+    }
+    dfl_field ref;
+    dfl_field_exact_view(&c->ref, &ref);
+    const dfl_vtk_array cells[1] = {{"level", 1, lev}};
+    dfl_status st = dfl_volume_write(ctx, stem, f, &ref, false, &g, cells, 1, k->vol.compress, err);
+    free(lev);
+    return st;
+}
+
+/* The case's collection of volumes over its n thresholds (or levels lev),
+ * time = the place in the list (ParaView's time slider steps through the
+ * list in the config's order). */
+static dfl_status write_collection(const case3 *c, int rule, const double *lev, size_t n,
+                                   const dfl_study_ctx *ctx, dfl_err *err)
+{
+    dfl_pvd_entry e[64];
+    char names[64][DFL_SECTION_NAME_LEN + 64], stem[DFL_SECTION_NAME_LEN + 64], path[4400];
+    if (n > 64) n = 64;
+    for (size_t i = 0; i < n; i++) {
+        volume_stem(c, rule, lev ? (long)lev[i] : -1, i, 1, stem, sizeof stem);
+        if (snprintf(names[i], sizeof names[i], "%s%s.vti", stem, ctx->tag) >=
+            (int)sizeof names[i])
+            return dfl_err_set(err, DFL_E_INTERNAL, "volume name %s%s too long", stem, ctx->tag);
+        e[i] = (dfl_pvd_entry){names[i], (double)i};
+    }
+    volume_stem(c, rule, lev ? 0 : -1, 0, 0, stem, sizeof stem);
+    return dfl_pvd_write(dfl_study_path(ctx, stem, "pvd", path, sizeof path), e, n, err);
 }
 
 static dfl_status put_row(dfl_table *t, const case3 *c, const char *method, int rule, double eps,
@@ -179,8 +271,8 @@ static dfl_status put_row(dfl_table *t, const case3 *c, const char *method, int 
 }
 
 static dfl_status one_fit(const keys3 *k, const case3 *c, const sjp10_ref *ref, int rule,
-                          double eps, long level, const dfl_study_ctx *ctx, dfl_table *t,
-                          dfl_err *err)
+                          double eps, long level, size_t idx, const dfl_study_ctx *ctx,
+                          dfl_table *t, dfl_err *err)
 {
     dfl_pht_fit_opts o = k->fit;
     sjp10_rule_apply(rule, &o);
@@ -212,6 +304,10 @@ static dfl_status one_fit(const keys3 *k, const case3 *c, const sjp10_ref *ref, 
     if (!st)
         st = put_row(t, c, level < 0 ? "pht" : "uniform", rule, level < 0 ? eps : NAN, level, &o,
                      &fit, &v, c->cell_val ? &cv : NULL, t_val, err);
+    char stem[DFL_SECTION_NAME_LEN + 64];
+    volume_stem(c, rule, level, idx, 1, stem, sizeof stem);
+    if (!st) st = dfl_study_put_file(t, "vti", ctx, stem, "vti", k->vol.vti, err);
+    if (!st && k->vol.vti) st = write_volume(k, c, &fit, &f, stem, ctx, err);
     dfl_field_destroy(&f);
     dfl_pht_fit_free(&fit);
     return st;
@@ -229,9 +325,12 @@ static dfl_status run_case(const keys3 *k, const case3 *c, const dfl_study_ctx *
     const size_t neps = c->own_eps ? c->neps : k->neps, nlev = c->own_levels ? c->nlevels : k->nlevels;
     for (int r = 0; r < k->nrules && !st; r++)
         for (size_t i = 0; i < neps && !st; i++)
-            st = one_fit(k, c, c->cache ? &ref : NULL, k->rules[r], eps[i], -1, ctx, t, err);
+            st = one_fit(k, c, c->cache ? &ref : NULL, k->rules[r], eps[i], -1, i, ctx, t, err);
     for (size_t i = 0; i < nlev && !st; i++)
-        st = one_fit(k, c, c->cache ? &ref : NULL, 0, NAN, (long)lev[i], ctx, t, err);
+        st = one_fit(k, c, c->cache ? &ref : NULL, 0, NAN, (long)lev[i], i, ctx, t, err);
+    for (int r = 0; r < k->nrules && !st && k->vol.vti && neps > 1; r++)
+        st = write_collection(c, k->rules[r], NULL, neps, ctx, err);
+    if (!st && k->vol.vti && nlev > 1) st = write_collection(c, 0, lev, nlev, ctx, err);
     sjp10_ref_free(&ref);
     return st;
 }
@@ -291,6 +390,11 @@ static dfl_status estimate3d(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_c
         dfl_cost_add_work(c, cfg_sec(cfg, sec), "val_n", dfl_shape_cost_class(cfg, rsec), m,
                           "%.3g validation points of [%s]", m, sec);
     }
+    dfl_volume_opts vo;
+    if (!st) st = dfl_volume_opts_from_cfg(cfg, VOLUME_MAX_N, &vo, err);
+    if (!st && vo.vti)
+        dfl_cost_add_bytes(c, "output", "vti_n", dfl_volume_bytes(vo.n, 1),
+                           "a volume of %ld^3 nodes", vo.n);
     if (!st && big_sec) {
         const char *ks = cfg_sec(cfg, big_sec);
         dfl_cost_add_bytes(c, ks, strcmp(ks, "study") ? "val_n" : "cases", big,

@@ -4,6 +4,7 @@
 #include <limits.h>
 #include <omp.h>
 #include <stdarg.h>
+#include <ctype.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,6 +17,7 @@
 #include "io/manifest.h"
 #include "io/path.h"
 #include "harness/help.h"
+#include "harness/meaning.h"
 #include "harness/probe.h"
 #include "harness/runner.h"
 #include "io/lines.h"
@@ -35,7 +37,8 @@ static const char *const usage_main =
     "  probe CONFIG.ini --points FILE.csv [--field SECTION] [--jet K] [--set ...]...\n"
     "        evaluate the config's [field] at points; CSV on stdout\n"
     "  list  studies and the configs that use them\n"
-    "  help [COMMAND | STUDY]   this text, a command's help, or the keys a study reads\n"
+    "  help [COMMAND | STUDY [CONFIG.ini] [--columns]]   this text, a command's help, the\n"
+    "        keys a study reads (meaning, value, range; through CONFIG), or its columns\n"
     "  --version\n"
     "\n"
     "environment: DFL_ISA=sse2|avx2|avx512 runs the hot kernels compiled for that\n"
@@ -76,23 +79,32 @@ static const char *const usage_run =
     "lists every other entry; anything else is refused (exit 2) and left alone.\n"
     "DIR cannot end in . or ..  --point K runs only point K\n"
     "into DIR.points/ (for job arrays); `dflab merge DIR` then assembles DIR.\n"
-    "Progress goes to stderr at most every 2 s (--quiet: none).  --threads N: OpenMP\n"
+    "--point A-B runs points A..B one after another (a batch: one process,\n"
+    "one validation).  Progress goes to stderr at most every 2 s (--quiet: none).  --threads N: OpenMP\n"
     "threads (default: OMP_NUM_THREADS, else every core); results are the same bytes\n"
     "at any N.  Exit 2 on bad input (incl. an unusable --out), 1 on machine failures\n"
     "(see `dflab help`).\n";
 
 static const char *const usage_plan =
-    "usage: dflab plan CONFIG.ini [--set section.key=value]... [--out DIR] [--threads N]\n"
+    "usage: dflab plan CONFIG.ini [--set section.key=value]... [--out DIR] [--threads T]\n"
     "                 [--commands | --emit slurm | --emit parallel] [-j M]\n"
+    "                 [--points-per-task K] [--mem MEM] [--time TIME]\n"
     "\n"
     "Validates every sweep point and prints them (index, then every swept\n"
     "section.key=value).  --commands prints one `dflab run ... --point K` line per\n"
     "point and the `dflab merge` line.  --emit slurm prints an sbatch script for a\n"
-    "job array (#SBATCH --array=0-(N-1)%M, one point per SLURM_ARRAY_TASK_ID, a log\n"
-    "per task in DIR.logs/); `bash` it to submit the array and a merge job that runs\n"
-    "when every task succeeded.  --emit parallel prints the GNU parallel line\n"
+    "job array (#SBATCH --array=0-(J-1)%M, a log per task in DIR.logs/); `bash` it\n"
+    "to submit the array and a merge job that runs when the array has ended\n"
+    "(afterany: also after a failed or cancelled task; the merge then refuses,\n"
+    "naming the missing points).  --emit parallel prints the GNU parallel line\n"
     "(--joblog, --resume-failed: rerun it after a failure or kill).  -j M: at most M\n"
-    "points at once (default 4).  Exit 2 on bad input.\n";
+    "jobs at once (default 4).  Each job runs K points (--points-per-task, default\n"
+    "1) in one process (`--point A-B`) with --threads T (default: this machine's\n"
+    "cores / M, at least 1; Slurm: --cpus-per-task=T).  Slurm --mem (default: the\n"
+    "largest point's estimated memory x 1.5 + 512 MB) and --time (default: the\n"
+    "slowest job's estimated time on T cores x 2 + 10 minutes; dflab's estimates\n"
+    "are conservative, see [study] memory_budget / work_budget).  Every name and\n"
+    "path in an emitted script is quoted.  Exit 2 on bad input.\n";
 
 static const char *const usage_merge =
     "usage: dflab merge DIR [--quiet]\n"
@@ -227,10 +239,18 @@ static int take_run(void *opts, const char *opt, const char *v)
     } else if (strcmp(opt, "--point") == 0) {
         char *end;
         const long k = strtol(v, &end, 10);
+        long last = k;
+        if (*end == '-' && end != v) { /* a batch A-B */
+            char *e2;
+            last = strtol(end + 1, &e2, 10);
+            if (*e2 || e2 == end + 1 || last < k) end = (char *)"x";
+            else end = e2;
+        }
         if (*end || end == v || k < 0)
-            return usage_error(usage_run, "--point %s: expected a point index >= 0 (see `dflab plan`)",
-                               v);
+            return usage_error(usage_run, "--point %s: expected a point index >= 0 or a range "
+                                          "A-B with A <= B (see `dflab plan`)", v);
         o->point = k;
+        o->point_last = last;
         o->has_point = 1;
     } else if (strcmp(opt, "--force") == 0) {
         o->force = 1;
@@ -318,6 +338,25 @@ static int take_plan(void *opts, const char *opt, const char *v)
         if (*end || end == v || m < 1 || m > 100000)
             return usage_error(usage_plan, "-j %s: expected an integer in [1, 100000]", v);
         o->max_parallel = m;
+    } else if (strcmp(opt, "--points-per-task") == 0) {
+        char *end;
+        const long k = strtol(v, &end, 10);
+        if (*end || end == v || k < 1 || k > 100000000)
+            return usage_error(usage_plan, "--points-per-task %s: expected an integer >= 1", v);
+        o->per_task = k;
+    } else if (strcmp(opt, "--mem") == 0) {
+        /* sbatch's form: an integer with an optional unit K, M, G or T */
+        size_t n = strspn(v, "0123456789");
+        if (n == 0 || n > 12 || (v[n] && (strchr("KMGT", v[n]) == NULL || v[n + 1])))
+            return usage_error(usage_plan, "--mem %s: expected an integer with an optional unit "
+                                           "K, M, G or T (sbatch --mem)", v);
+        o->mem = v;
+    } else if (strcmp(opt, "--time") == 0) {
+        /* sbatch's forms: minutes, M:S, H:M:S, D-H, D-H:M, D-H:M:S */
+        if (!v[0] || strspn(v, "0123456789:-") != strlen(v) || strlen(v) > 20 || !isdigit((unsigned char)v[0]))
+            return usage_error(usage_plan, "--time %s: expected sbatch's time: minutes, "
+                                           "H:M:S or D-H:M:S", v);
+        o->time = v;
     } else if (strcmp(opt, "--commands") == 0) {
         o->commands = 1;
     } else if (strcmp(opt, "--quiet") != 0 && strcmp(opt, "-q") != 0) {
@@ -331,6 +370,13 @@ static int exec_plan(void *opts)
     dfl_plan_opts *o = opts;
     if (o->commands && o->emit)
         return usage_error(usage_plan, "--commands and --emit exclude each other");
+    if ((o->mem || o->time || o->per_task) && !o->emit)
+        return usage_error(usage_plan, "--mem, --time and --points-per-task shape emitted jobs: "
+                                       "give --emit slurm|parallel");
+    if ((o->mem || o->time) && strcmp(o->emit, "slurm") != 0)
+        return usage_error(usage_plan, "--mem and --time are Slurm's: give --emit slurm");
+    const long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    o->cores = cores > 0 ? (int)cores : 1;
     char exe[4096];
     ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
     exe[n > 0 ? n : 0] = '\0';
@@ -342,7 +388,8 @@ static int exec_plan(void *opts)
 
 static int cmd_plan(int argc, char **argv)
 {
-    static const char *const valued[] = {"--out", "--threads", "--emit", "-j", NULL};
+    static const char *const valued[] = {"--out", "--threads", "--emit", "-j", "--points-per-task",
+                                         "--mem", "--time", NULL};
     static const char *const flags[] = {"--commands", "--quiet", "-q", NULL};
     static const cmd_spec spec = {usage_plan, valued, flags, take_plan, exec_plan};
     dfl_plan_opts o = {0};
@@ -454,11 +501,25 @@ static int cmd_list(void)
     return 0;
 }
 
-/* `dflab help STUDY`: the study's keys through a config that uses it. */
-static int cmd_help_study(const dfl_study *s)
+/* `dflab help STUDY [CONFIG] [--columns]`: the study's keys through CONFIG
+ * (default: the first config under configs/ that uses it), or its column
+ * glossary. */
+static int cmd_help_study(const dfl_study *s, int argc, char **argv)
 {
-    char config[4096];
-    list_configs_for(s->name, NULL, config, sizeof config);
+    char config[4096] = "";
+    int columns = 0;
+    for (int i = 0; i < argc; i++) {
+        if (strcmp(argv[i], "--columns") == 0) columns = 1;
+        else if (!config[0] && argv[i][0] != '-') snprintf(config, sizeof config, "%s", argv[i]);
+        else {
+            char esc[1024];
+            fprintf(stderr, "dflab: error: help %s: unexpected argument '%s' (expected CONFIG.ini "
+                            "or --columns)\n", s->name, dfl_text_escape(argv[i], esc, sizeof esc));
+            return 2;
+        }
+    }
+    if (columns) return dfl_study_columns(s, stdout) ? 0 : 2;
+    if (!config[0]) list_configs_for(s->name, NULL, config, sizeof config);
     if (!config[0]) {
         fprintf(stderr, "dflab: error: help %s: no config under configs/ names this study\n",
                 s->name);
@@ -536,7 +597,18 @@ static int dispatch(int argc, char **argv)
     if (strcmp(cmd, "help") == 0) {
         const char *t = argc > 2 ? argv[2] : "";
         const dfl_study *study = dfl_study_find(t);
-        if (study) return cmd_help_study(study);
+        if (study) return cmd_help_study(study, argc - 3, argv + 3);
+        static const char *const topics[] = {"", "run", "probe", "list", "plan", "merge",
+                                             "help", "--help", "-h"};
+        int known = 0;
+        for (size_t i = 0; i < sizeof topics / sizeof topics[0]; i++)
+            known |= strcmp(t, topics[i]) == 0;
+        if (!known) {
+            char esc[1024];
+            fprintf(stderr, "dflab: error: help: no command or study '%s' (see `dflab list`)\n",
+                    dfl_text_escape(t, esc, sizeof esc));
+            return 2;
+        }
         fputs(strcmp(t, "run") == 0     ? usage_run
               : strcmp(t, "probe") == 0 ? usage_probe
               : strcmp(t, "list") == 0  ? usage_list

@@ -28,6 +28,16 @@ static void exact_destroy(void *ctx)
 
 static const dfl_field_ops exact_ops = {"exact", exact_eval, exact_jet, exact_destroy};
 static const dfl_field_ops exact_nojet_ops = {"exact", exact_eval, NULL, exact_destroy};
+/* borrowed shapes: nothing to free */
+static const dfl_field_ops view_ops = {"exact", exact_eval, exact_jet, NULL};
+static const dfl_field_ops view_nojet_ops = {"exact", exact_eval, NULL, NULL};
+
+void dfl_field_exact_view(const dfl_shape *shape, dfl_field *out)
+{
+    out->dim = shape->dim;
+    out->ops = shape->ops->jet ? &view_ops : &view_nojet_ops;
+    out->ctx = (void *)shape; /* ops only read it; no destroy */
+}
 
 dfl_status dfl_field_exact_new(dfl_shape *shape, dfl_field *out, dfl_err *err)
 {
@@ -45,6 +55,8 @@ dfl_status dfl_field_exact_new(dfl_shape *shape, dfl_field *out, dfl_err *err)
 
 const dfl_shape *dfl_field_exact_shape(const dfl_field *f)
 {
-    if (!f || (f->ops != &exact_ops && f->ops != &exact_nojet_ops)) return NULL;
+    if (!f || (f->ops != &exact_ops && f->ops != &exact_nojet_ops && f->ops != &view_ops &&
+               f->ops != &view_nojet_ops))
+        return NULL;
     return f->ctx;
 }

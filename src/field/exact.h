@@ -20,6 +20,12 @@
  * The field's jet op is NULL when the shape has no jets. */
 dfl_status dfl_field_exact_new(dfl_shape *shape, dfl_field *out, dfl_err *err);
 
+/* The exact field of *shape without taking it: the field borrows the
+ * shape (which must outlive it; dfl_field_destroy leaves it alone).  Same
+ * values, gradients and jets as dfl_field_exact_new's; dfl_field_exact_shape
+ * finds the shape too. */
+void dfl_field_exact_view(const dfl_shape *shape, dfl_field *out);
+
 /* The shape inside an exact field (borrowed; NULL if f is not exact). */
 const dfl_shape *dfl_field_exact_shape(const dfl_field *f);
 

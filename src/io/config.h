@@ -203,7 +203,12 @@ dfl_status dfl_cfg_reject(const dfl_cfg *c, const char *sec, const char *key, df
  * value ("x y; ..." -> 2): tells 2D from 3D lists before parsing them. */
 int dfl_cfg_point_dim(const char *value);
 
-/* DFL_E_INPUT naming the first key (in file order) no getter has read. */
+/* DFL_E_INPUT naming the first key (in file order) no getter has read.
+ * A section none of whose keys was read is the config's, not a typo, when a
+ * key that was read names it (a word of its value, split at blanks, commas
+ * and semicolons), or named it before: the list a --set replaced, a sweep's
+ * other items (e.g. `--set study.cases=circle` leaves the other cases
+ * unselected, not unknown). */
 dfl_status dfl_cfg_check_used(const dfl_cfg *c, dfl_err *err);
 /* Same, restricted to section sec (for commands that read only part of a
  * study config, such as `dflab probe` reading [field] and [shape]). */

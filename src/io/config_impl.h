@@ -43,6 +43,8 @@ typedef struct dfl_cfg_entry {
     char *file; /* origin: config path, included file or "--set" */
     int line;   /* 0 for --set */
     char *via;  /* "file:line" of the include line that brought the key, else NULL */
+    char *named; /* the values the key had before: what --set replaced, a sweep point's
+                    whole list (blank-joined; NULL: none), for dfl_cfg_check_used */
 } dfl_cfg_entry;
 
 /* What the getters read, in the order they first read it (config_log.c):

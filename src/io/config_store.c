@@ -2,6 +2,7 @@
  * the resolved INI text written from it.  Lists hold tens of keys, so
  * linear lookup is simpler than a hash and fast enough. */
 #include <ctype.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -43,7 +44,7 @@ dfl_status dfl_cfgi_insert(dfl_cfg *c, size_t at, const char *sec, const char *k
         c->cap = cap;
     }
     dfl_cfg_entry en = {strdup(sec), strdup(key), strdup(value), strdup(file), line,
-                        via ? strdup(via) : NULL};
+                        via ? strdup(via) : NULL, NULL};
     if (!en.sec || !en.key || !en.value || !en.file || (via && !en.via)) {
         free(en.sec), free(en.key), free(en.value), free(en.file), free(en.via);
         return nomem(err);
@@ -77,6 +78,16 @@ dfl_status dfl_cfgi_set_value(dfl_cfg_entry *en, const char *value, const char *
         free(nv), free(nf);
         return nomem(err);
     }
+    /* the value replaced stays known as one the config wrote */
+    const size_t nl = (en->named ? strlen(en->named) + 1 : 0) + strlen(en->value) + 1;
+    char *named = malloc(nl);
+    if (!named) {
+        free(nv), free(nf);
+        return nomem(err);
+    }
+    snprintf(named, nl, "%s%s%s", en->named ? en->named : "", en->named ? " " : "", en->value);
+    free(en->named);
+    en->named = named;
     free(en->value);
     free(en->file);
     free(en->via);
@@ -104,6 +115,7 @@ void dfl_cfg_free(dfl_cfg *c)
         free(c->e[i].value);
         free(c->e[i].file);
         free(c->e[i].via);
+        free(c->e[i].named);
     }
     free(c->e);
     free(c->used);

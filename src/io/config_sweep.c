@@ -131,6 +131,8 @@ dfl_status dfl_cfg_sweep_point(const dfl_cfg *c, size_t idx, dfl_cfg **out, dfl_
     for (size_t i = 0; i < c->n && st == DFL_OK; i++) {
         const dfl_cfg_entry *e = &c->e[i];
         st = dfl_cfgi_add(p, e->sec, e->key, e->value, e->file, e->line, e->via, err);
+        if (st == DFL_OK && e->named && !(p->e[p->n - 1].named = strdup(e->named)))
+            st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
     }
     if (st != DFL_OK) {
         dfl_cfg_free(p);
@@ -155,6 +157,17 @@ dfl_status dfl_cfg_sweep_point(const dfl_cfg *c, size_t idx, dfl_cfg **out, dfl_
             return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
         }
         list_item(en->value, j, item, vlen);
+        /* the whole list: sections it names stay the config's (check_used) */
+        const size_t nl = (en->named ? strlen(en->named) + 1 : 0) + vlen;
+        char *named = malloc(nl);
+        if (!named) {
+            free(item);
+            dfl_cfg_free(p);
+            return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+        }
+        snprintf(named, nl, "%s%s%s", en->named ? en->named : "", en->named ? " " : "", en->value);
+        free(en->named);
+        en->named = named;
         free(en->value);
         en->value = item;
         p->axis[a] = c->axis[a];

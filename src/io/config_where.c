@@ -72,14 +72,42 @@ const char *dfl_cfg_unused_deferred(const dfl_cfg *c)
     return NULL;
 }
 
+/* Whether word w (a section name) is one of the words of text (split at
+ * blanks, commas and semicolons). */
+static bool has_word(const char *text, const char *w)
+{
+    const size_t n = strlen(w);
+    for (const char *s = text; s && *s;) {
+        s += strspn(s, " \t,;");
+        const size_t l = strcspn(s, " \t,;");
+        if (l == n && strncmp(s, w, n) == 0) return true;
+        s += l;
+    }
+    return false;
+}
+
+/* Section sec is the config's though the study read none of it: no key of
+ * it was read, and a key the study did read names it in its value or in a
+ * value it had before (a list --set narrowed, a sweep's other items): a
+ * case the run did not select, not a typo. */
+static bool unselected(const dfl_cfg *c, const char *sec)
+{
+    for (size_t i = 0; i < c->n; i++)
+        if (c->used[i] && strcmp(c->e[i].sec, sec) == 0) return false;
+    for (size_t i = 0; i < c->n; i++)
+        if (c->used[i] && (has_word(c->e[i].value, sec) || has_word(c->e[i].named, sec)))
+            return true;
+    return false;
+}
+
 /* The first unread key of section sec (any section but the deferred ones
- * when sec is NULL). */
+ * and the unselected ones when sec is NULL). */
 static dfl_status first_unused(const dfl_cfg *c, const char *sec, const char *what,
                                dfl_err *err)
 {
     for (size_t i = 0; i < c->n; i++) {
         if (c->used[i] || (sec && strcmp(c->e[i].sec, sec) != 0)) continue;
-        if (!sec && deferred(c, c->e[i].sec)) continue;
+        if (!sec && (deferred(c, c->e[i].sec) || unselected(c, c->e[i].sec))) continue;
         char w[1024];
         dfl_cfgi_where(&c->e[i], w, sizeof w);
         return dfl_err_set(err, DFL_E_INPUT, "%s: %s", w, what);

@@ -53,7 +53,8 @@ dfl_status dfl_field_write_vti(const char *path, const dfl_field_samples *s, int
     if (s->gu) arr[na++] = (dfl_vtk_array){"grad_norm", 1, gn};
     if (s->ref) arr[na++] = (dfl_vtk_array){"error", 1, er};
     if (s->ref) arr[na++] = (dfl_vtk_array){"reference", 1, s->ref};
-    st = dfl_vti_write(path, s->dims, s->origin, s->spacing, arr, na, compress, err);
+    st = dfl_vti_write_cells(path, s->dims, s->origin, s->spacing, arr, na, s->cells, s->ncells,
+                             compress, err);
 done:
     free(g3), free(gn), free(er);
     return st;

@@ -6,7 +6,8 @@
  *   .vti  VTK ImageData (io/vtk.h) over the whole lattice, point data
  *         value, gradient (3 components; 2D gradients get z = 0) and
  *         grad_norm when a gradient is given, error = value - reference
- *         and reference when a reference is given.
+ *         and reference when a reference is given; the caller's cell data
+ *         (e.g. a T-mesh level per cell) as <CellData>.
  *   .exr  one section of the lattice as an OpenEXR image (io/exr.h):
  *         channels value, grad_norm (with a gradient) and error (with a
  *         reference), FLOAT or HALF.  The section is normal to the last
@@ -29,6 +30,7 @@
 #define DFL_IO_FIELD_WRITE_H
 
 #include "core/status.h"
+#include "io/vtk.h"
 
 /* Which files and how: vti, exr (write the file when != 0), compress (zlib
  * in the .vti), half (HALF channels in the .exr). */
@@ -46,6 +48,9 @@ typedef struct dfl_field_samples {
     const double *u;     /* value per node */
     const double *gu;    /* gdim components per node, or NULL */
     const double *ref;   /* reference value per node, or NULL */
+    const dfl_vtk_array *cells; /* .vti cell data (io/vtk.h dfl_vti_write_cells: one tuple
+                                   per cell of the lattice), or NULL; not in the .exr */
+    int ncells;                 /* number of cell arrays */
 } dfl_field_samples;
 
 dfl_status dfl_field_write_vti(const char *path, const dfl_field_samples *s, int compress,

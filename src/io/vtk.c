@@ -215,9 +215,24 @@ static dfl_status finish(dfl_atomic_file *af, vtk_blob *blobs, int nblobs, dfl_e
     return dfl_atomic_commit(af, err);
 }
 
+size_t dfl_vti_ncells(const int dims[3])
+{
+    size_t n = 1;
+    for (int i = 0; i < 3; i++) n *= dims[i] > 1 ? (size_t)dims[i] - 1 : 1;
+    return n;
+}
+
 dfl_status dfl_vti_write(const char *path, const int dims[3], const double origin[3],
                          const double spacing[3], const dfl_vtk_array *arrays, int narrays,
                          int compress, dfl_err *err)
+{
+    return dfl_vti_write_cells(path, dims, origin, spacing, arrays, narrays, NULL, 0, compress,
+                               err);
+}
+
+dfl_status dfl_vti_write_cells(const char *path, const int dims[3], const double origin[3],
+                               const double spacing[3], const dfl_vtk_array *arrays, int narrays,
+                               const dfl_vtk_array *cells, int ncells, int compress, dfl_err *err)
 {
     if (!path || !path[0]) return dfl_err_set(err, DFL_E_INPUT, "vti: empty output path");
     if (!dims || !origin || !spacing)
@@ -238,17 +253,26 @@ dfl_status dfl_vti_write(const char *path, const int dims[3], const double origi
             return dfl_err_set(err, DFL_E_INPUT, "%s: spacing[%d] = %g (must be finite, > 0)",
                                path, i, spacing[i]);
     }
+    const size_t ncell = dfl_vti_ncells(dims);
     dfl_status st = check_arrays(arrays, narrays, npoints, path, err);
+    if (!st) st = check_arrays(cells, ncells, ncell, path, err);
+    for (int i = 0; !st && i < ncells; i++)
+        for (int j = 0; j < narrays; j++)
+            if (strcmp(cells[i].name, arrays[j].name) == 0)
+                return dfl_err_set(err, DFL_E_INPUT, "%s: '%s' is both a point and a cell array",
+                                   path, cells[i].name);
     if (st) return st;
 
-    vtk_blob *blobs = calloc((size_t)narrays, sizeof *blobs);
+    const int nb = narrays + ncells;
+    vtk_blob *blobs = calloc((size_t)nb, sizeof *blobs);
     if (!blobs) return dfl_err_set(err, DFL_E_NOMEM, "%s: out of memory", path);
-    for (int i = 0; i < narrays; i++) {
-        blobs[i].data = arrays[i].data;
-        blobs[i].nbytes = npoints * (size_t)arrays[i].ncomp * sizeof(double);
+    for (int i = 0; i < nb; i++) {
+        const dfl_vtk_array *a = i < narrays ? &arrays[i] : &cells[i - narrays];
+        blobs[i].data = a->data;
+        blobs[i].nbytes = (i < narrays ? npoints : ncell) * (size_t)a->ncomp * sizeof(double);
     }
     dfl_atomic_file af;
-    st = start(path, blobs, narrays, compress, &af, err);
+    st = start(path, blobs, nb, compress, &af, err);
     if (st) return st;
 
     FILE *fp = af.fp;
@@ -260,8 +284,33 @@ dfl_status dfl_vti_write(const char *path, const int dims[3], const double origi
             ext, origin[0], origin[1], origin[2], spacing[0], spacing[1], spacing[2]);
     fprintf(fp, "  <Piece Extent=\"%s\">\n", ext);
     xml_point_data(fp, arrays, narrays, blobs);
-    fputs("   <CellData>\n   </CellData>\n  </Piece>\n </ImageData>\n", fp);
-    return finish(&af, blobs, narrays, err);
+    fputs("   <CellData>\n", fp);
+    for (int i = 0; i < ncells; i++)
+        xml_data_array(fp, "    ", "Float64", cells[i].name, cells[i].ncomp, &blobs[narrays + i]);
+    fputs("   </CellData>\n  </Piece>\n </ImageData>\n", fp);
+    return finish(&af, blobs, nb, err);
+}
+
+dfl_status dfl_pvd_write(const char *path, const dfl_pvd_entry *e, size_t n, dfl_err *err)
+{
+    if (!path || !path[0]) return dfl_err_set(err, DFL_E_INPUT, "pvd: empty output path");
+    if (n > 0 && !e) return dfl_err_set(err, DFL_E_INPUT, "%s: no data sets", path);
+    for (size_t i = 0; i < n; i++)
+        if (!e[i].file || !e[i].file[0] || !isfinite(e[i].time))
+            return dfl_err_set(err, DFL_E_INPUT, "%s: data set %zu has no file or a non-finite "
+                                                 "time", path, i);
+    dfl_atomic_file af;
+    dfl_status st = dfl_atomic_open(path, &af, err);
+    if (st) return st;
+    fputs("<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" "
+          "byte_order=\"LittleEndian\">\n <Collection>\n", af.fp);
+    for (size_t i = 0; i < n; i++) {
+        fprintf(af.fp, "  <DataSet timestep=\"%.17g\" group=\"\" part=\"0\" file=\"", e[i].time);
+        xml_escaped(af.fp, e[i].file);
+        fputs("\"/>\n", af.fp);
+    }
+    fputs(" </Collection>\n</VTKFile>\n", af.fp);
+    return dfl_atomic_commit(&af, err);
 }
 
 static dfl_status check_vtp(const char *path, const dfl_vtp_data *d, dfl_err *err)

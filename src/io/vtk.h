@@ -1,5 +1,5 @@
 /* VTK XML writers: .vti (ImageData) for sampled fields, .vtp (PolyData) for
- * polylines and triangulations.
+ * polylines and triangulations, .pvd (Collection) for a sequence of them.
  *
  * Files are VTK XML version 1.0, little endian, header_type UInt64, with all
  * arrays in one binary <AppendedData encoding="raw"> block, so ParaView and
@@ -46,6 +46,34 @@ typedef struct dfl_vtk_array {
 dfl_status dfl_vti_write(const char *path, const int dims[3], const double origin[3],
                          const double spacing[3], const dfl_vtk_array *arrays, int narrays,
                          int compress, dfl_err *err);
+
+/* The number of cells of ImageData with dims points: the product over the
+ * axes of dims[i] - 1, an axis of one point counting 1 (a 2D image's cells
+ * are its squares).  dims[i] >= 1. */
+size_t dfl_vti_ncells(const int dims[3]);
+
+/* dfl_vti_write with cell data too: ncells arrays (cells may be NULL when
+ * ncells == 0) of dfl_vti_ncells(dims) tuples each, cell (i,j,k) at tuple
+ * i + c0*(j + c1*k) with c = the per-axis cell counts, written as Float64
+ * <CellData>.  Cell array names are unique among themselves and distinct
+ * from the point arrays' (DFL_E_INPUT otherwise). */
+dfl_status dfl_vti_write_cells(const char *path, const int dims[3], const double origin[3],
+                               const double spacing[3], const dfl_vtk_array *arrays, int narrays,
+                               const dfl_vtk_array *cells, int ncells, int compress, dfl_err *err);
+
+/* One data set of a ParaView collection: file (relative to the .pvd's
+ * folder, as ParaView resolves it) at time `time` (finite). */
+typedef struct dfl_pvd_entry {
+    const char *file;
+    double time;
+} dfl_pvd_entry;
+
+/* Writes a VTK Collection (.pvd) listing the n data sets in order, each a
+ * <DataSet timestep=time file=...> (the time is what ParaView's time
+ * slider scrubs through).  n may be 0.  DFL_E_INPUT for an empty path, a
+ * missing file name or a non-finite time; DFL_E_IO naming path.  Atomic as
+ * the other writers. */
+dfl_status dfl_pvd_write(const char *path, const dfl_pvd_entry *e, size_t n, dfl_err *err);
 
 typedef struct dfl_vtp_data {
     size_t npoints; const double *points;          /* 3*npoints */

@@ -56,8 +56,10 @@ bash p.sh > p.out 2>&1 || die "parallel line failed: $(cat p.out)"
 [ -f "$OUT/manifest.json" ] || die "no merged folder at the hostile --out"
 [ "$(config_of "$OUT")" = "$CFG" ] || die "dflab got another config name: $(config_of "$OUT")"
 mapfile -d '' -t got < logs/parallel
+# the default threads per job: this machine's online cores / 4 jobs, at least 1
+T=$(( $(getconf _NPROCESSORS_ONLN) / 4 )); [ "$T" -ge 1 ] || T=1
 want=(--joblog "$OUT.points/parallel.joblog" --resume-failed -j 4 '"$DFLAB_EXE"' run '"$DFLAB_CONFIG"'
-      --set '"$DFLAB_SET_0"' --out '"$DFLAB_OUT"' --quiet --point '{}' ::: 0 1)
+      --set '"$DFLAB_SET_0"' --out '"$DFLAB_OUT"' --threads "$T" --quiet --point '{}' ::: 0 1)
 [ "${got[*]}" = "${want[*]}" ] && [ ${#got[@]} = ${#want[@]} ] \
     || die "parallel got: $(args_of logs/parallel)"
 
@@ -76,7 +78,7 @@ mapfile -d '' -t a0 < logs/sbatch.0
 [ "${#a0[@]}" = 2 ] && [ "${a0[0]}" = --parsable ] && [ "${a0[1]}" = s.sbatch ] \
     || die "array submission got: $(args_of logs/sbatch.0)"
 mapfile -d '' -t a1 < logs/sbatch.1
-[ "${#a1[@]}" = 5 ] && [ "${a1[1]}" = --dependency=afterok:1000 ] \
+[ "${#a1[@]}" = 5 ] && [ "${a1[1]}" = --dependency=afterany:1000 ] \
     && [ "${a1[3]}" = "--output=$W/sl.logs/merge.log" ] || die "merge submission got: $(args_of logs/sbatch.1)"
 [[ "${a1[2]}" =~ ^--job-name=dflab-[A-Za-z0-9._-]*-merge$ ]] || die "job name: ${a1[2]}"
 for k in 0 1; do

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "util/e2e_util.h"
 
@@ -27,6 +28,14 @@ static const sweep_case cases[] = {
     {"plan bad emit", "plan %1$s/s.ini --emit cron", "--emit cron", "slurm or parallel"},
     {"plan bad -j", "plan %1$s/s.ini --emit slurm -j 0", "-j 0", "[1, 100000]"},
     {"plan commands and emit", "plan %1$s/s.ini --commands --emit slurm", "--commands", "exclude"},
+    {"plan bad mem", "plan %1$s/s.ini --emit slurm --mem 2GB", "--mem 2GB", "K, M, G or T"},
+    {"plan mem with a blank", "plan %1$s/s.ini --emit slurm --mem '2 G'", "--mem 2 G", "K, M, G or T"},
+    {"plan bad time", "plan %1$s/s.ini --emit slurm --time 'now;x'", "--time now;x", "H:M:S"},
+    {"plan time without slurm", "plan %1$s/s.ini --emit parallel --time 10", "--time", "Slurm"},
+    {"plan per task without emit", "plan %1$s/s.ini --points-per-task 2", "--points-per-task", "--emit"},
+    {"plan per task 0", "plan %1$s/s.ini --emit slurm --points-per-task 0", "--points-per-task 0", ">= 1"},
+    {"run bad range", "run %1$s/s.ini --point 2-1", "--point 2-1", "A <= B"},
+    {"run range past the sweep", "run %1$s/s.ini --point 1-9", "--point 9", "out of range"},
     {"out under a file", "run %1$s/s.ini --out %1$s/s.ini/o", "--out", "not a directory"},
     {"out unwritable", "run %1$s/s.ini --out /proc/dflab-nope/o", "--out /proc/dflab-nope/o", "cannot create directories"},
     {"merge nothing", "merge %1$s/o", "o.points", "no sweep points"},
@@ -94,8 +103,31 @@ Test(sweep_plan, points_commands_and_jobs)
     cr_assert_eq(e2e_dflab(dir, args), 0);
     out = e2e_slurp(path);
     cr_expect(strstr(out, "\n#SBATCH --array=0-2%2\n") != NULL, "%s", out);
-    cr_expect(strstr(out, "point_%a.log") && strstr(out, "--dependency=afterok:"), "%s", out);
-    cr_expect(strstr(out, "--point \"$SLURM_ARRAY_TASK_ID\"") != NULL, "%s", out);
+    /* the merge runs after the array whatever its tasks did (a failed or
+     * cancelled task leaves points missing: the merge names them) */
+    cr_expect(strstr(out, "task_%a.log") && strstr(out, "--dependency=afterany:"), "%s", out);
+    cr_expect(strstr(out, "--point \"$a-$b\"") != NULL, "%s", out);
+    /* resources: threads = cpus-per-task, memory and time from the estimate */
+    cr_expect(strstr(out, "\n#SBATCH --cpus-per-task=") && strstr(out, "\n#SBATCH --mem=") &&
+                  strstr(out, "\n#SBATCH --time="), "%s", out);
+    free(out);
+    /* given: threads, memory, time; 3 points in batches of 2: tasks 0-1 */
+    snprintf(args, sizeof args, "plan %s/s.ini --emit slurm -j 2 --out %s/o --threads 3 --mem 2G "
+                                "--time 1:30:00 --points-per-task 2", dir, dir);
+    cr_assert_eq(e2e_dflab(dir, args), 0);
+    out = e2e_slurp(path);
+    cr_expect(strstr(out, "\n#SBATCH --array=0-1%2\n") && strstr(out, "\n#SBATCH --cpus-per-task=3\n") &&
+                  strstr(out, "\n#SBATCH --mem=2G\n") && strstr(out, "\n#SBATCH --time=1:30:00\n"),
+              "%s", out);
+    cr_expect(strstr(out, "a=$((SLURM_ARRAY_TASK_ID * 2))\nb=$((a + 1))\nif [ \"$b\" -gt 2 ]; then "
+                          "b=2; fi\n"), "%s", out);
+    cr_expect(strstr(out, " --threads 3 --quiet --point \"$a-$b\"\n"), "%s", out);
+    free(out);
+    snprintf(args, sizeof args, "plan %s/s.ini --emit parallel -j 2 --out %s/o --points-per-task 2",
+             dir, dir);
+    cr_assert_eq(e2e_dflab(dir, args), 0);
+    out = e2e_slurp(path);
+    cr_expect(strstr(out, " --point {} ::: 0-1 2-2 && "), "%s", out);
     free(out);
     snprintf(args, sizeof args, "plan %s/s.ini --emit parallel --out %s/o", dir, dir);
     cr_assert_eq(e2e_dflab(dir, args), 0);
@@ -125,5 +157,29 @@ Test(sweep_plan, set_runs_go_to_their_own_folder)
     out = e2e_slurp(path);
     cr_expect(strstr(out, "output results/s\n") != NULL, "%s", out);
     free(out);
+    cr_expect_eq(e2e_rmtree(dir), 0);
+}
+
+/* A subset of a list of case sections: the cases --set leaves out are the
+ * config's, not unknown keys (every point validates); a typo'd section is
+ * still refused. */
+Test(sweep_plan, a_subset_of_cases_validates)
+{
+    char dir[256], path[512], args[1024];
+    e2e_tmpdir(dir, sizeof dir);
+    snprintf(args, sizeof args, "plan %s/configs/paper/sjp10/sjp10_fig1.ini --set study.cases=circle",
+             getcwd(path, sizeof path) ? path : ".");
+    cr_expect_eq(e2e_dflab(dir, args), 0);
+    snprintf(args, sizeof args, "plan %s/configs/paper/sjp10/sjp10_fig1.ini "
+                                "--set 'study.cases=circle, convex'",
+             getcwd(path, sizeof path) ? path : ".");
+    cr_expect_eq(e2e_dflab(dir, args), 0);
+    snprintf(args, sizeof args, "plan %s/configs/paper/sjp10/sjp10_fig1.ini --set study.cases=circle "
+                                "--set circel.x=1", getcwd(path, sizeof path) ? path : ".");
+    cr_expect_eq(e2e_dflab(dir, args), 2);
+    snprintf(path, sizeof path, "%s/err.txt", dir);
+    char *e = e2e_slurp(path);
+    cr_expect(e && strstr(e, "circel.x: unknown key"), "%s", e ? e : "");
+    free(e);
     cr_expect_eq(e2e_rmtree(dir), 0);
 }

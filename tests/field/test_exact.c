@@ -178,3 +178,28 @@ Test(exact, bad_config_names_file_line_and_key)
     /* missing key */
     expect_bad("[shape]\nkind = circle\ncenter = 0 0\n", "test.ini", "radius");
 }
+
+/* The view gives the shape's values and gradients and leaves the shape to
+ * its owner: destroying the view and then using and freeing the shape is
+ * clean (ASan would see a double free or a use after free). */
+Test(exact, view_borrows_the_shape)
+{
+    dfl_shape s;
+    dfl_err err = {0};
+    const double c[3] = {0.1, -0.2, 0.3};
+    cr_assert_eq(dfl_shape_sphere(c, 0.5, &s, &err), DFL_OK);
+    dfl_field f;
+    dfl_field_exact_view(&s, &f);
+    cr_expect_eq(f.dim, 3);
+    cr_expect_eq(dfl_field_exact_shape(&f), &s);
+    const double x[3] = {1.1, -0.2, 0.3};
+    double g[3];
+    /* |x - c| - r = 1 - 0.5, gradient (x - c)/|x - c| = (1, 0, 0) */
+    cr_expect_float_eq(dfl_field_eval1(&f, x, g), 0.5, 1e-15);
+    cr_expect_float_eq(g[0], 1.0, 1e-15);
+    cr_expect_float_eq(g[1], 0.0, 1e-15);
+    dfl_field_destroy(&f);
+    cr_expect_null(f.ops);
+    cr_expect_float_eq(dfl_shape_eval1(&s, x, NULL), 0.5, 1e-15);
+    dfl_shape_free(&s);
+}

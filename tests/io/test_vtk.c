@@ -409,3 +409,65 @@ Test(vtk, invalid_input_rejected_without_file)
     cr_assert_eq(tmpdir_count(dir), 0);
     tmpdir_remove(dir);
 }
+
+/* Cell counts: (n - 1) per axis of more than one point, 1 for a flat one. */
+Test(vtk, vti_ncells_counts_cells_per_axis)
+{
+    cr_expect_eq(dfl_vti_ncells((int[3]){3, 4, 5}), 2u * 3 * 4);
+    cr_expect_eq(dfl_vti_ncells((int[3]){3, 4, 1}), 2u * 3);
+    cr_expect_eq(dfl_vti_ncells((int[3]){1, 1, 1}), 1u);
+}
+
+/* Cell data: written as <CellData> Float64 arrays; a name shared with a
+ * point array or a missing data pointer is refused and nothing is left. */
+Test(vtk, vti_cell_data_and_refusals)
+{
+    char dir[256], path[512];
+    e2e_tmpdir(dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/c.vti", dir);
+    const int dims[3] = {3, 2, 2};
+    const double o[3] = {0, 0, 0}, h[3] = {1, 1, 1};
+    double u[12] = {0}, lev[2] = {1, 2};
+    dfl_vtk_array pa[1] = {{"value", 1, u}}, ca[1] = {{"level", 1, lev}};
+    dfl_err err = {0};
+    cr_assert_eq(dfl_vti_write_cells(path, dims, o, h, pa, 1, ca, 1, 0, &err), DFL_OK, "%s",
+                 err.msg);
+    char *x = e2e_slurp(path);
+    cr_assert(x);
+    const char *cd = strstr(x, "<CellData>");
+    cr_assert(cd);
+    cr_expect(strstr(cd, "Name=\"level\""), "%s", x);
+    free(x);
+    unlink(path);
+    dfl_vtk_array dup[1] = {{"value", 1, lev}}, nodata[1] = {{"level", 1, NULL}};
+    cr_expect_eq(dfl_vti_write_cells(path, dims, o, h, pa, 1, dup, 1, 0, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "'value'"), "%s", err.msg);
+    cr_expect_eq(dfl_vti_write_cells(path, dims, o, h, pa, 1, nodata, 1, 0, &err), DFL_E_INPUT);
+    cr_expect_eq(access(path, F_OK), -1);
+    e2e_rmtree(dir);
+}
+
+/* A collection lists its data sets in order with their times (XML-escaped
+ * names); a non-finite time or a missing name is refused, nothing left. */
+Test(vtk, pvd_lists_data_sets)
+{
+    char dir[256], path[512];
+    e2e_tmpdir(dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/s.pvd", dir);
+    const dfl_pvd_entry e[2] = {{"a_pt000.vti", 0}, {"b&c.vti", 2.5}};
+    dfl_err err = {0};
+    cr_assert_eq(dfl_pvd_write(path, e, 2, &err), DFL_OK, "%s", err.msg);
+    char *x = e2e_slurp(path);
+    cr_assert(x);
+    const char *a = strstr(x, "timestep=\"0\" group=\"\" part=\"0\" file=\"a_pt000.vti\"");
+    const char *b = strstr(x, "timestep=\"2.5\" group=\"\" part=\"0\" file=\"b&amp;c.vti\"");
+    cr_expect(a && b && a < b, "%s", x);
+    cr_expect(strstr(x, "<VTKFile type=\"Collection\""), "%s", x);
+    free(x);
+    unlink(path);
+    const dfl_pvd_entry bad[1] = {{"a.vti", NAN}}, noname[1] = {{"", 0}};
+    cr_expect_eq(dfl_pvd_write(path, bad, 1, &err), DFL_E_INPUT);
+    cr_expect_eq(dfl_pvd_write(path, noname, 1, &err), DFL_E_INPUT);
+    cr_expect_eq(access(path, F_OK), -1);
+    e2e_rmtree(dir);
+}

@@ -48,6 +48,9 @@ host=$(hostname)
 base=$((20000 + ($$ % 10000) * 2))
 dd if=/dev/urandom of="$dir/munge.key" bs=1024 count=1 2>/dev/null
 chmod 400 "$dir/munge.key"
+# the node's memory (90% of MemTotal, in MB: slurmd drains a node that has
+# less than it is said to have), so that a job's --mem fits
+mem=$(awk '/^MemTotal:/ {print int($2 / 1024 * 0.9)}' /proc/meminfo)
 cat > "$dir/slurm.conf" <<CONF
 ClusterName=dflabtest
 SlurmctldHost=$host
@@ -75,7 +78,7 @@ ReturnToService=2
 SchedulerType=sched/backfill
 SchedulerParameters=sched_interval=1
 MessageTimeout=30
-NodeName=$host CPUs=$(nproc) State=UNKNOWN
+NodeName=$host CPUs=$(nproc) RealMemory=$mem State=UNKNOWN
 PartitionName=debug Nodes=ALL Default=YES MaxTime=INFINITE State=UP
 CONF
 munged --socket="$dir/munge.sock" --key-file="$dir/munge.key" --pid-file="$dir/munged.pid" \

@@ -43,8 +43,9 @@ Test(e2e_bs04_bulging, collinear_closed_forms_and_bounds, .timeout = 120)
              STEPS, SMAX, NSIDE, NSIDE, NCAP, NCAP);
     /* 2 orders x (5 + 5 + 4 offsets) */
     e2e_run_table(CFG, args, "bs04_bulging", 28, out, sizeof out, path, sizeof path);
-    /* per point 3 u images (vti + exr), 3 exact images once, csv, config, manifest */
-    cr_expect_eq(e2e_count_entries(out), 2 * 6 + 6 + 3);
+    /* per point 3 u images (vti + exr), 3 exact images once, csv, config, manifest,
+     * and a collection (.pvd) of each u image over the 2 points */
+    cr_expect_eq(e2e_count_entries(out), 2 * 6 + 6 + 3 + 3);
 
     dfl_bspline W;
     e2e_load_curve("configs/shapes/W.ini", "shape", &W);

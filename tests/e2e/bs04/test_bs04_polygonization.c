@@ -21,10 +21,11 @@ Test(e2e_bs04_poly, study_rows_files_and_growth, .timeout = 300)
     char dir[256], out[512], path[700];
     e2e_tmpdir(dir, sizeof dir);
     /* 5 eps x 2 curves: 10 rows, 10 polylines + csv + config + manifest
+     * + a collection (.pvd) per curve over the 5 eps
      * (the paper config sweeps all 7 fitted eps; 5 keep this test short) */
     e2e_run_table(CFG, "--set 'study.eps=1e-2, 3e-3, 1e-3, 1e-4, 1e-5'", "bs04_polygonization",
                   10, out, sizeof out, path, sizeof path);
-    cr_expect_eq(e2e_count_entries(out), 13);
+    cr_expect_eq(e2e_count_entries(out), 13 + 2);
 
     dfl_bspline S, W;
     e2e_load_curve("configs/shapes/S.ini", "shape", &S);

@@ -38,8 +38,9 @@ Test(e2e_bs04_scurve, curve_bound_bands_and_offsets, .timeout = 120)
     /* 2 joins x 5 offsets */
     const long nrows = e2e_run_table(CFG, args, "bs04_scurve", 2 * 5, out, sizeof out, path,
                                      sizeof path);
-    /* 2 u images (vti + exr) + 1 exact image + csv, config, manifest */
-    cr_expect_eq(e2e_count_entries(out), 4 + 2 + 3);
+    /* 2 u images (vti + exr) + 1 exact image + csv, config, manifest + the u
+     * images' collection over the 2 joins */
+    cr_expect_eq(e2e_count_entries(out), 4 + 2 + 3 + 1);
 
     dfl_cfg *cfg;
     dfl_err err;

@@ -2,7 +2,8 @@
 """Checks the file names of a dflab run against scripts/dflio.py's sweep rule:
 DIR must hold exactly the FIXED files and, for every STEM.EXT of PERPOINT,
 dflio.sweep_name(STEM, i, NPOINTS, EXT) for i = 0..NPOINTS-1, and each of
-those must split back into its stem, point and extension.
+those must split back into its stem, point and extension; with more than
+one point, the merge's collection STEM.pvd of every .vti / .vtp stem too.
 
 usage: check_sweep_names.py DIR NPOINTS PERPOINT [FIXED...]
 PERPOINT is a comma list of STEM.EXT.  Prints "ok" and exits 0, or prints
@@ -27,6 +28,8 @@ def main():
             split = dflio.sweep_split(f)
             if split != (stem, i if n > 1 else None, ext):
                 bad.append(f"{f} splits into {split}")
+        if n > 1 and ext in ("vti", "vtp"):
+            want.add(stem + ".pvd")
     got = set(os.listdir(d))
     bad += [f"missing {f}" for f in sorted(want - got)]
     bad += [f"unexpected {f}" for f in sorted(got - want)]

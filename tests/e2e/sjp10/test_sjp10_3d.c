@@ -84,3 +84,40 @@ Test(e2e_sjp10_3d, uniform_counts_plane_exact, .timeout = 120)
     cr_expect_gt(l1[2] / l1[3], 8.0, "sphere L1 %g -> %g", l1[2], l1[3]);
     e2e_rmtree(dir);
 }
+
+/* The volumes (harness/field_out.h) read back through VTK: the reference
+ * is the sphere's SDF at every node, error = value - reference; the
+ * T-mesh level as cell data is the fit's level everywhere for a uniform fit
+ * (level 2 and 3: constant), within 0..max_level for the adaptive one;
+ * each case's collection over its uniform levels lists both, in order. */
+Test(e2e_sjp10_3d, volumes_with_tmesh_levels, .timeout = 120)
+{
+    char dir[256], cfg[512], out[512], csv[700], f[900];
+    e2e_tmpdir(dir, sizeof dir);
+    e2e_write(dir, "t3.ini",
+              "[study]\nname = sjp10_3d\ncases = sphere_case\nfit = fit\neps = 1e-2\n"
+              "uniform_levels = 2 3\n[fit]\nmax_level = 3\nsamples = 4\nlo = -1 -1 -1\n"
+              "hi = 1 1 1\n[sphere_case]\nshape = sphere\nlo = -1 -1 -1\nhi = 1 1 1\n"
+              "val_n = 17\n[sphere]\nkind = sphere\ncenter = 0.1 0 0\nradius = 0.5\n"
+              "[output]\nvti_n = 11\n",
+              cfg, sizeof cfg);
+    e2e_run_table(cfg, NULL, "sjp10_3d", 3, out, sizeof out, csv, sizeof csv);
+    const char *cases[][2] = {
+        {"volume_sphere_case_pht_dflab_0.vti", "--cell level 0 3"},
+        {"volume_sphere_case_uniform_2.vti", "--cell-const level 2"},
+        {"volume_sphere_case_uniform_3.vti", "--cell-const level 3"},
+        {"volume_sphere_case_uniform.pvd", "--cell level 2 3"},
+    };
+    for (int i = 0; i < 4; i++) {
+        char *o = NULL, opts[200];
+        snprintf(f, sizeof f, "%s/%s", out, cases[i][0]);
+        snprintf(opts, sizeof opts, "--n 11 --sphere 0.1 0 0 0.5 %s", cases[i][1]);
+        const int rc = e2e_python_run(dir, &o, "tests/e2e/common/check_volume.py '%s' %s", f, opts);
+        cr_expect_eq(rc, 0, "%s: %s", f, o ? o : "");
+        free(o);
+    }
+    char *c = e2e_csv_cell(csv, 2, "vti");
+    cr_expect_str_eq(c, "volume_sphere_case_uniform_3.vti");
+    free(c);
+    e2e_rmtree(dir);
+}

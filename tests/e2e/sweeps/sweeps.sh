@@ -96,8 +96,12 @@ slurm)
     cl=$W/cluster
     trap 'tests/slurm/cluster.sh stop "$cl"' EXIT
     one_process "$W/one"
-    "$DFLAB" plan "$CFG" "${SETS[@]}" --out "$W/sl" --emit slurm -j 4 > "$W/sweep.sbatch"
-    grep -qx '#SBATCH --array=0-23%4' "$W/sweep.sbatch" || die "no array line: $(head -12 "$W/sweep.sbatch")"
+    # 24 points in batches of 5: 5 tasks (the last one of 4 points)
+    "$DFLAB" plan "$CFG" "${SETS[@]}" --out "$W/sl" --emit slurm -j 4 --points-per-task 5 \
+        > "$W/sweep.sbatch"
+    grep -qx '#SBATCH --array=0-4%4' "$W/sweep.sbatch" || die "no array line: $(head -16 "$W/sweep.sbatch")"
+    grep -q '^#SBATCH --mem=[0-9]*M$' "$W/sweep.sbatch" || die "no --mem line"
+    grep -q '^#SBATCH --time=[0-9]*$' "$W/sweep.sbatch" || die "no --time line"
     bash -n "$W/sweep.sbatch" || die "script does not parse"
     if ! env_line=$(tests/slurm/cluster.sh start "$cl" 2> "$W/cluster.err"); then
         echo "SLURM-UNAVAILABLE: $(cat "$W/cluster.err")"
@@ -111,11 +115,11 @@ slurm)
         sleep 0.2
     done
     [ -z "$(squeue -h)" ] || die "jobs still queued after 120 s: $(squeue)"
-    [ "$(ls "$W/sl.logs" | grep -c '^point_[0-9]*\.log$')" = 24 ] || die "logs: $(ls "$W/sl.logs")"
+    [ "$(ls "$W/sl.logs" | grep -c '^task_[0-9]*\.log$')" = 5 ] || die "logs: $(ls "$W/sl.logs")"
     [ -e "$W/sl/manifest.json" ] || die "merge job did not run: $(cat "$W/sl.logs/merge.log" 2>&1)"
     same_csvs "$W/one" "$W/sl"
     same_report "$W/one" "$W/sl"
-    echo "slurm: 24 array tasks and the merge ran on $(hostname)"
+    echo "slurm: 24 points in 5 array tasks and the merge ran on $(hostname)"
     ;;
 sigkill)
     big=(--set study.samples=36000)
