@@ -4,7 +4,8 @@
 
 #include "cfg/shape_cfg.h"
 #include "field/exact.h"
-#include "field/iso_mesh.h"
+#include "field/isomesh.h"
+#include "geom/mesh.h"
 
 dfl_status dfl_vdb_cfg_read(const dfl_cfg *cfg, const char *sec, dfl_vdb_cfg *out, dfl_err *err)
 {
@@ -40,13 +41,13 @@ dfl_status dfl_vdb_cfg_read(const dfl_cfg *cfg, const char *sec, dfl_vdb_cfg *ou
     return DFL_OK;
 }
 
-/* build = mesh: the shape's marching-cubes mesh on the voxel lattice of
- * the box, then meshToLevelSet. */
+/* build = mesh: meshToLevelSet of a mesh shape's own triangles (OpenVDB's
+ * build of the user's mesh), else of the shape's marching-cubes mesh on the
+ * voxel lattice of the box (field/isomesh.h). */
 static dfl_status mesh_build(dfl_shape *shape, const dfl_vdb_opts *o, dfl_vdb **g, dfl_err *err)
 {
-    dfl_field exact;
-    dfl_status st = dfl_field_exact_new(shape, &exact, err);
-    if (st) return st;
+    const dfl_trimesh *own = dfl_shape_mesh_trimesh(shape);
+    if (own) return dfl_vdb_from_mesh(own, o, g, err);
     const double sh = o->sampler == DFL_VDB_STAGGERED ? -0.5 : 0.0;
     dfl_grid grid = {3, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     for (int a = 0; a < 3; a++) {
@@ -56,10 +57,9 @@ static dfl_status mesh_build(dfl_shape *shape, const dfl_vdb_opts *o, dfl_vdb **
         grid.hi[a] = (u + sh) * o->voxel;
     }
     dfl_trimesh m;
-    st = dfl_iso_trimesh(&exact, &grid, 30, o->threads, &m, err);
+    dfl_status st = dfl_shape_isomesh(shape, &grid, 30, o->threads, &m, NULL, err);
     if (!st) st = dfl_vdb_from_mesh(&m, o, g, err);
     dfl_trimesh_free(&m);
-    dfl_field_destroy(&exact);
     return st;
 }
 

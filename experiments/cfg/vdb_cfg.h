@@ -10,8 +10,9 @@
  *
  * build = direct fills the band from the shape's exact SDF (coarse-to-fine
  * band search, field/vdb.h); build = mesh hands openvdb::tools::
- * meshToLevelSet the marching-cubes mesh of the SDF on the voxel lattice of
- * the box (field/iso_mesh.h, 30 refinement rounds), so OpenVDB builds the
+ * meshToLevelSet the shape's own triangles when it is a mesh ([shape] kind =
+ * mesh, geom/mesh.h), else its marching-cubes mesh on the voxel lattice of
+ * the box (field/isomesh.h, 30 refinement rounds), so OpenVDB builds the
  * band itself.  Outside |d| < band * voxel the field's value is +-band *
  * voxel (the background): it is a distance only in the band, and
  * dfl_vdb_field_grid / dfl_vdb_background give the band to restrict

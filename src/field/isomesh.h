@@ -19,6 +19,13 @@
  * distance changes.  Unused vertices are dropped.  uv, tri_patch and
  * cell_bound are NULL, bound 0.
  *
+ * Deviation: a triangle's vertices lie on the surface and within one grid
+ * cube, so its edges are at most the cube's diagonal e; for a sphere of
+ * radius R every point of such a triangle is within R - sqrt(R^2 - e^2/3)
+ * of the sphere (|sum l_i v_i - c|^2 = R^2 - sum_{i<j} l_i l_j |v_i - v_j|^2
+ * >= R^2 - e^2/3).  OpenVDB's meshToLevelSet of a shape takes this mesh
+ * (field/vdb.h, experiments/cfg/vdb_cfg.c).
+ *
  * Errors: DFL_E_INPUT for a field that is not 3D, a grid that is not a 3D
  * volume, a non-finite sample or an empty level set (no triangle);
  * DFL_E_NOMEM.  *out zeroed on failure. */

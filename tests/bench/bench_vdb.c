@@ -22,7 +22,7 @@
 
 #include "bench.h"
 #include "field/exact.h"
-#include "field/iso_mesh.h"
+#include "field/isomesh.h"
 #include "field/vdb.h"
 #include "geom/shape.h"
 #include "proxy/filter.h"
@@ -112,7 +112,7 @@ static dfl_trimesh torus_mesh(double h)
         g.hi[a] = u * h;
     }
     dfl_trimesh m;
-    if (dfl_iso_trimesh(&f, &g, 30, 0, &m, NULL) != DFL_OK) abort();
+    if (dfl_field_isomesh(&f, &g, 30, 0, &m, NULL, NULL) != DFL_OK) abort();
     dfl_field_destroy(&f);
     return m;
 }

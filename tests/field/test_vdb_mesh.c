@@ -1,4 +1,4 @@
-/* Tests for field/vdb's mesh build and field/iso_mesh: the marching-cubes
+/* Tests for field/vdb's mesh build and field/isomesh: the marching-cubes
  * mesh of a sphere is closed with its vertices on the sphere; OpenVDB's
  * meshToLevelSet of it gives, at its active voxels, the brute-force
  * distance to the mesh (float rounding) and the sphere's SDF within the
@@ -11,7 +11,7 @@
 #include <string.h>
 
 #include "field/exact.h"
-#include "field/iso_mesh.h"
+#include "field/isomesh.h"
 #include "field/meshdist.h"
 #include "field/vdb.h"
 
@@ -34,7 +34,7 @@ static dfl_trimesh sphere_mesh(double h)
     dfl_grid g = {3, {n, n, n}, {-1, -1, -1}, {1, 1, 1}};
     dfl_trimesh m;
     dfl_err err;
-    cr_assert_eq(dfl_iso_trimesh(&f, &g, 30, 1, &m, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(dfl_field_isomesh(&f, &g, 30, 1, &m, NULL, &err), DFL_OK, "%s", err.msg);
     dfl_field_destroy(&f);
     return m;
 }
@@ -88,7 +88,7 @@ Test(vdb_mesh, mesh_to_level_set_is_the_mesh_distance_and_close_to_the_sdf)
     cr_assert_eq(dfl_vdb_background(g), (double)(float)(3 * h));
     cr_assert_eq(dfl_vdb_evals(g), 0);
     cr_assert_leq((double)dfl_vdb_bytes(g), dfl_vdb_bytes_bound(&o, NULL));
-    /* Mesh deviation (iso_mesh.h): triangle edges <= the cube diagonal
+    /* Mesh deviation (isomesh.h): triangle edges <= the cube diagonal
      * sqrt(3) h, so every mesh point is within dev = R - sqrt(R^2 - h^2)
      * inside the sphere, and every sphere point within dev of the mesh
      * (the ray from the centre crosses the closed mesh): the distance

@@ -102,7 +102,7 @@ Test(e2e_probe_vdb, plane_in_and_out_of_the_band, .timeout = 60)
 /* build = mesh, sphere radius 0.5 at c: at a voxel centre (voxel 1/16, so
  * the sampler's index point is the voxel) the box sampler gives the voxel,
  * OpenVDB's distance to the marching-cubes mesh, within dev = R -
- * sqrt(R^2 - h^2) of the SDF (field/iso_mesh.h: triangle edges <= the cube
+ * sqrt(R^2 - h^2) of the SDF (field/isomesh.h: triangle edges <= the cube
  * diagonal) in the inner band |d| < b - h. */
 Test(e2e_probe_vdb, mesh_build_sphere_at_voxel_centres, .timeout = 60)
 {
