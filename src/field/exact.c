@@ -26,8 +26,8 @@ static void exact_destroy(void *ctx)
     free(s);
 }
 
-static const dfl_field_ops exact_ops = {"exact", exact_eval, exact_jet, exact_destroy};
-static const dfl_field_ops exact_nojet_ops = {"exact", exact_eval, NULL, exact_destroy};
+static const dfl_field_ops exact_ops = {"exact", exact_eval, exact_jet, exact_destroy, NULL};
+static const dfl_field_ops exact_nojet_ops = {"exact", exact_eval, NULL, exact_destroy, NULL};
 
 dfl_status dfl_field_exact_new(dfl_shape *shape, dfl_field *out, dfl_err *err)
 {
