@@ -220,6 +220,19 @@ static dfl_status shape_from_cfg(const dfl_cfg *cfg, const char *ssec, dfl_shape
     return st;
 }
 
+/* A failure of the copy that sets the method's value v: named at the
+ * method's values key (the copy's own message names the set key). */
+static dfl_status value_err(const dfl_cfg *cfg, const method *m, const char *v, dfl_status st,
+                            dfl_err *err)
+{
+    if (st != DFL_E_INPUT || strcmp(m->key, "none") == 0) return st;
+    char msg[DFL_ERR_MSG_MAX];
+    snprintf(msg, sizeof msg, "%s", err ? err->msg : "");
+    char w[1024];
+    dfl_cfg_where(cfg, m->sec, "values", w, sizeof w);
+    return dfl_err_set(err, st, "%s (value %s): %s", w, v, msg);
+}
+
 typedef struct study_cfg {
     words methods, shapes;
     method m[MAX_LIST];
@@ -284,7 +297,7 @@ static dfl_status study_from_cfg(const dfl_cfg *cfg, study_cfg *s, dfl_err *err)
                 memset(&c, 0, sizeof c);
                 st = dfl_field_cost_from_cfg(w, s->m[i].sec, &c, err);
                 dfl_cfg_free(w);
-                if (st) return st;
+                if (st) return value_err(cfg, &s->m[i], s->m[i].values.w[v], st, err);
             }
         }
     }
@@ -345,7 +358,10 @@ static dfl_status run_one(const dfl_cfg *cfg, const method *m, const char *ssec,
     if ((st = method_from_cfg(w, m->sec, &again, err))) goto done;
     dfl_field f = {0};
     const double rss0 = rss_bytes(), t0 = omp_get_wtime();
-    if ((st = dfl_field_from_cfg(w, m->sec, &f, err))) goto done;
+    if ((st = dfl_field_from_cfg(w, m->sec, &f, err))) {
+        st = value_err(cfg, m, v, st, err);
+        goto done;
+    }
     const double build_s = omp_get_wtime() - t0, rss = rss_bytes() - rss0;
     if ((st = dfl_cfg_check_used_in(w, m->sec, err))) goto field;
     if (f.dim != p->dim) {
@@ -464,7 +480,10 @@ static dfl_status compare_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
                 memset(&c, 0, sizeof c);
                 st = dfl_field_cost_from_cfg(w, s->m[i].sec, &c, err);
                 dfl_cfg_free(w);
-                if (st) break;
+                if (st) {
+                    st = value_err(cfg, &s->m[i], s->m[i].values.w[v], st, err);
+                    break;
+                }
                 for (int k = 0; k < DFL_COST_NCLASSES; k++) cost->evals[k] += c.evals[k];
                 if (c.bytes > big) {
                     big = c.bytes;
