@@ -31,7 +31,9 @@
  * and reads its own keys; the copy's method section must then have no
  * unread key (a typo fails there, exit 2).  A method that does not apply to
  * a shape (dims, shape_kinds) gives a row whose `skipped` column says why
- * (and a line on stderr), not an error.
+ * (and a line on stderr), not an error; so does a build that fails with
+ * DFL_E_NUMERIC ("build failed: ...": e.g. a Taylor-2 grid peer whose cell
+ * centre lies where the SDF's Hessian is not finite).
  *
  * Columns: method, kind, shape, dim, setting (KEY=value), skipped, bytes
  * (dfl_field_bytes; empty when the kind does not say), build_s,
@@ -332,7 +334,7 @@ static dfl_status row_head(dfl_table *t, const method *m, const char *kind, cons
                            int dim, const char *v, const char *skipped, dfl_err *err)
 {
     char setting[160];
-    if (strcmp(m->key, "none") == 0) setting[0] = '\0';
+    if (strcmp(m->key, "none") == 0 || !v[0]) setting[0] = '\0';
     else snprintf(setting, sizeof setting, "%s=%s", m->key, v);
     dfl_status st = dfl_table_row(t, err);
     if (!st) st = dfl_table_set_string(t, "method", m->sec, err);
@@ -359,7 +361,17 @@ static dfl_status run_one(const dfl_cfg *cfg, const method *m, const char *ssec,
     dfl_field f = {0};
     const double rss0 = rss_bytes(), t0 = omp_get_wtime();
     if ((st = dfl_field_from_cfg(w, m->sec, &f, err))) {
-        st = value_err(cfg, m, v, st, err);
+        if (st == DFL_E_NUMERIC) {
+            /* the method cannot represent this shape at this setting (a
+             * sample or footpoint it needs is not finite): a row saying so */
+            char why[DFL_ERR_MSG_MAX + 32];
+            snprintf(why, sizeof why, "build failed: %s", err ? err->msg : "");
+            fprintf(stderr, "dflab: compare_methods: [%s] %s=%s on [%s]: %s\n", m->sec, m->key,
+                    v, ssec, why);
+            st = row_head(t, m, kind, ssec, p->dim, v, why, err);
+        } else {
+            st = value_err(cfg, m, v, st, err);
+        }
         goto done;
     }
     const double build_s = omp_get_wtime() - t0, rss = rss_bytes() - rss0;
