@@ -20,7 +20,9 @@ DEPFLAGS = -MMD -MP
 CPPFLAGS += -Isrc $(EXR_CFLAGS) -D_POSIX_C_SOURCE=200809L -DIMATH_HALF_NO_LOOKUP_TABLE
 CFLAGS   += -std=c11 -Wall -Wextra $(OPT) -fopenmp $(SAN) -g
 CXXFLAGS += -std=c++17 -Wall -Wextra $(OPT) -fopenmp $(SAN) -g -I/usr/include/eigen3
-LDLIBS   += -linih -lceres -lglog -lOpenEXRCore-3_1 -lz -lm
+# OpenVDB 10 (field/vdb_grid.cc) and the TBB it is built on: its headers
+# instantiate TBB templates, so the program links libtbb itself.
+LDLIBS   += -linih -lceres -lglog -lopenvdb -ltbb -lOpenEXRCore-3_1 -lz -lm
 LDFLAGS  += -fopenmp $(SAN)
 
 # The git revision goes into one generated header, rewritten only when it
@@ -62,7 +64,8 @@ BENCH_BIN := $(BUILD)/dflab-bench
 
 APT_PKGS := libinih-dev libceres-dev libopenexr-dev libimath-dev libcriterion-dev zlib1g-dev \
             python3-matplotlib python3-numpy python3-vtk9 openexr pkg-config \
-            emscripten chromium python3-scipy parallel slurm-wlm munge clang-14 libomp-14-dev
+            emscripten chromium python3-scipy parallel slurm-wlm munge clang-14 libomp-14-dev \
+            libopenvdb-dev libtbb-dev
 
 .PHONY: all deps test sanitize bench reproduce figures clean check-layout web web-test web-bench check-threads mutate
 all: $(DFLAB) $(LIB)

@@ -6,7 +6,10 @@ comes from the first paper folder sections/<paper>/ (see scripts/README.md)
 holding a module <study>.py: render(ctx) -> markdown, with tables beside the
 paper's values (ctx.ref("bs04_facts.csv")) and figures as PNG
 (ctx.figure(fig, stem)); an optional list ASSUMPTIONS names the settings the
-paper leaves open, gathered per paper.  A study no folder knows gets its CSV
+paper leaves open, gathered per paper; an optional verdicts(ctx) returns
+rows (claim, paper's value, ours, best peer, verdict, why) with verdict one
+of VERDICTS, gathered into one table at the top of its paper's section.
+The report opens with a table of contents.  A study no folder knows gets its CSV
 as a table under "Other studies" (a module without render: under its paper).
 A section that fails (its module or its folder does not import, render
 raises) shows its traceback in place and makes the exit status 1.
@@ -24,6 +27,31 @@ import web_section  # noqa: E402
 
 SECTIONS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "sections")
 OTHER = "other"
+VERDICTS = ("reproduced", "differs", "not reproducible", "not comparable")
+
+
+def slug(title):
+    """The anchor a Markdown renderer (GitHub's rule) gives a heading: lower
+    case, punctuation other than '-' and '_' dropped, spaces to '-'."""
+    out = []
+    for ch in title.strip().lower():
+        if ch.isalnum() or ch in "-_":
+            out.append(ch)
+        elif ch == " ":
+            out.append("-")
+    return "".join(out)
+
+
+def verdict_rows(mod, ctx):
+    """The module's verdict rows for run ctx (none without verdicts());
+    a verdict outside VERDICTS is an error of the section."""
+    fn = getattr(mod, "verdicts", None) if mod else None
+    rows = list(fn(ctx)) if fn else []
+    for r in rows:
+        if len(r) != 6 or r[4] not in VERDICTS:
+            raise ValueError(f"{ctx.name}: verdict row {r!r}: expected (claim, paper, ours, "
+                             f"peer, verdict, why) with verdict in {VERDICTS}")
+    return rows
 
 
 class Paper:
@@ -120,14 +148,17 @@ def generic(ctx):
     return dflio.md_table(header, body) + "\n"
 
 
-def section(r, paper, assumptions):
+def section(r, paper, assumptions, verdicts):
     """Markdown of run r's section (its module's render, else the generic
-    table); collects the module's ASSUMPTIONS into assumptions."""
+    table); collects the module's ASSUMPTIONS into assumptions and its
+    verdict rows (with the run's name) into verdicts."""
     mod = importlib.import_module(f"{paper.pkg}.{r.study}") if paper else None
     for line in getattr(mod, "ASSUMPTIONS", []):
         if line not in assumptions:
             assumptions.append(line)
-    return (getattr(mod, "render", None) or generic)(r)
+    md = (getattr(mod, "render", None) or generic)(r)
+    verdicts += [[f"[{r.name}](#{slug(r.heading)})"] + list(v) for v in verdict_rows(mod, r)]
+    return md
 
 
 def main(argv=None):
@@ -174,30 +205,42 @@ def main(argv=None):
            "inside everywhere in dflab.", ""]
     out += web_section.lines(a.out)
     failures = 0
+    toc = ["## Contents", ""]
+    parts = []
     for p in found + [None]:
         key = p.folder if p else OTHER
         if key not in groups and not (p and p.error):
             continue
-        out += [f"## {p.title if p else 'Other studies'}", ""]
+        title = p.title if p else "Other studies"
+        head = [f"## {title}", ""]
+        toc.append(f"- [{title}](#{slug(title)})")
         if p and p.error:  # a broken folder is never silent, with or without runs
             failures += 1
-            out += [f"Section folder `{p.folder}` failed:", "", "```", p.error, "```", ""]
-        assumptions = []
+            head += [f"Section folder `{p.folder}` failed:", "", "```", p.error, "```", ""]
+        assumptions, verdicts = [], []
         body = []
         for r in groups.get(key, (p, []))[1]:
-            body += [f"### {r.name} (`{r.config}`, study `{r.study}`)", "",
-                     dflio.overrides_md(r.manifest), ""]
+            r.heading = f"{r.name} (`{r.config}`, study `{r.study}`)"
+            toc.append(f"  - [{r.name}](#{slug(r.heading)})")
+            body += [f"### {r.heading}", "", dflio.overrides_md(r.manifest), ""]
             try:
-                body.append(section(r, p, assumptions))
+                body.append(section(r, p, assumptions, verdicts))
             except Exception:  # a broken section must not hide the others
                 failures += 1
                 body += ["```", traceback.format_exc(), "```"]
             body.append(f"Wall time: {r.manifest.get('total_wall_seconds', 0):.2f} s; "
                         f"dflab {r.manifest.get('version')} ({r.manifest.get('git_revision')}).\n")
+        if verdicts:
+            head += ["### Verdicts", "",
+                     "Each claim of the paper a run checks, the paper's value beside ours and the "
+                     "best peer's; verdict: " + " / ".join(VERDICTS) + ", with why.", "",
+                     dflio.md_table(["run", "claim", "paper", "ours", "best peer", "verdict",
+                                     "why"], verdicts), ""]
         if assumptions:
-            out += ["### Assumptions (settings the paper leaves open)", ""]
-            out += [f"- {a}" for a in assumptions] + [""]
-        out += body
+            head += ["### Assumptions (settings the paper leaves open)", ""]
+            head += [f"- {a}" for a in assumptions] + [""]
+        parts += head + body
+    out += toc + [""] + parts
     tmp = a.out + ".tmp"
     with open(tmp, "w") as fp:
         fp.write("\n".join(out) + "\n")

@@ -5,6 +5,7 @@
 #include "cfg/pht_cfg.h"
 #include "cfg/rfunc_cfg.h"
 #include "cfg/shape_cfg.h"
+#include "cfg/vdb_cfg.h"
 #include "field/exact.h"
 #include "geom/shape.h"
 
@@ -34,6 +35,7 @@ static const dfl_field_kind kinds[] = {
     {"proxy", dfl_proxy_field_from_cfg},
     {"gridpeer", dfl_gridpeer_field_from_cfg},
     {"pht", dfl_pht_field_from_cfg},
+    {"openvdb", dfl_vdb_field_from_cfg},
 };
 #define NKINDS (sizeof kinds / sizeof kinds[0])
 

@@ -6,6 +6,7 @@
  *   kind = proxy   an hvb25 proxy grid field (experiments/cfg/proxy_cfg.h)
  *   kind = gridpeer  a simple grid of [shape]'s SDF (experiments/cfg/gridpeer_cfg.h)
  *   kind = pht     an sjp10 PHT spline fitted to [shape] (experiments/cfg/pht_cfg.h)
+ *   kind = openvdb an OpenVDB narrow-band level set of [shape] (experiments/cfg/vdb_cfg.h)
  *
  * Each kind is one row {name, factory} of the table in field_cfg.c; a
  * module that brings a new kind of field adds its row there and its

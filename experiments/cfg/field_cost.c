@@ -9,6 +9,7 @@
 #include "cfg/field_cfg.h"
 #include "cfg/pht_cfg.h"
 #include "cfg/proxy_cfg.h"
+#include "cfg/vdb_cfg.h"
 #include "field/gridpeer.h"
 #include "proxy/decode.h"
 #include "proxy/store.h"
@@ -125,6 +126,32 @@ static dfl_status pht_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c, dfl
     return DFL_OK;
 }
 
+static dfl_status vdb_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c, dfl_err *err)
+{
+    dfl_vdb_cfg v;
+    dfl_status st = dfl_vdb_cfg_read(cfg, sec, &v, err);
+    if (st) return st;
+    double leaves;
+    const double grid = dfl_vdb_bytes_bound(&v.opts, &leaves);
+    dfl_cost_add_bytes(c, sec, "voxel", grid,
+                       "an OpenVDB grid of up to %.3g leaves of 8^3 voxels (voxel %g)", leaves,
+                       v.opts.voxel);
+    const dfl_cost_class cls = dfl_shape_cost_class(cfg, v.shape);
+    if (v.build == DFL_VDB_DIRECT) {
+        const double evals = leaves * (512 + 1) + leaves / 4096 + 1;
+        dfl_cost_add_work(c, sec, "voxel", cls, evals, "%.3g distances of the band search", evals);
+        return DFL_OK;
+    }
+    /* mesh: the voxel lattice of the box sampled, marched, refined */
+    double nodes = 1;
+    for (int a = 0; a < 3; a++) nodes *= floor((v.opts.hi[a] - v.opts.lo[a]) / v.opts.voxel) + 3;
+    dfl_cost_add_bytes(c, sec, "voxel", 24 * nodes,
+                       "the marching-cubes lattice of %.3g nodes and its mesh", nodes);
+    dfl_cost_add_work(c, sec, "voxel", cls, nodes * (1 + 30 * 7),
+                      "%.3g distances of the marching-cubes mesh", nodes * (1 + 30 * 7));
+    return DFL_OK;
+}
+
 dfl_status dfl_field_cost_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_cost *cost,
                                    dfl_err *err)
 {
@@ -134,5 +161,6 @@ dfl_status dfl_field_cost_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_cost
     if (!strcmp(kind->name, "proxy")) return proxy_cost(cfg, sec, cost, err);
     if (!strcmp(kind->name, "gridpeer")) return gridpeer_cost(cfg, sec, cost, err);
     if (!strcmp(kind->name, "pht")) return pht_cost(cfg, sec, cost, err);
+    if (!strcmp(kind->name, "openvdb")) return vdb_cost(cfg, sec, cost, err);
     return DFL_OK;
 }

@@ -13,10 +13,21 @@
  *             reach (every cell misses eps): 2^(dim max_level) leaves
  *             (cross split; binary: 2^max_level) x 8/7 for the inner cells x
  *             DFL_PHT_CELL_BYTES(dim); a fit that converges early holds fewer
+ *   openvdb   dfl_vdb_bytes_bound (field/vdb.h): every 8^3 leaf meeting the
+ *             box's index range (widened by band + 1 voxels for a mesh's
+ *             band) allocated, with the internal nodes above them, from
+ *             OpenVDB's node sizes.  A band can meet every leaf (a fine
+ *             lattice of surfaces), so no smaller bound holds for every
+ *             shape; a surface of area A fills about A (2 band + 12) /
+ *             voxel^2 voxels.  build = mesh adds 24 bytes per node of the
+ *             box's voxel lattice: 8 for the sampled values and an allowance
+ *             of 16 for the mesh (about 120 bytes per cube the surface cuts)
  *   exact, rfunc, normalized: nothing in proportion to a key
  * Work: one distance per proxy or grid-peer cell, and per PHT leaf
  * `samples` distances (the estimator) plus one Hermite footpoint, each of
- * the shape's cost class.  Keys are read with the factories' getters and
+ * the shape's cost class; openvdb direct: 513 per leaf meeting the range
+ * (the band search's worst case), mesh: per lattice node one sample and
+ * 30 refinement rounds over at most 7 vertices.  Keys are read with the factories' getters and
  * ranges, so a bad value fails here as it would in the factory.
  */
 #ifndef DFL_EXPERIMENTS_FIELD_COST_H

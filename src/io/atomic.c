@@ -5,6 +5,16 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+dfl_status dfl_io_errno_status(int e)
+{
+    switch (e) {
+    case EROFS: case EACCES: case EPERM: case ENOTDIR: case ENAMETOOLONG: case ELOOP:
+        return DFL_E_INPUT;
+    default:
+        return DFL_E_IO;
+    }
+}
+
 void dfl_atomic_tmpname(const char *path, char *buf, size_t size)
 {
     snprintf(buf, size, "%s.tmp.%ld", path, (long)getpid());
@@ -18,8 +28,11 @@ dfl_status dfl_atomic_open(const char *path, dfl_atomic_file *af, dfl_err *err)
     strcpy(af->path, path);
     dfl_atomic_tmpname(path, af->tmp, sizeof af->tmp);
     af->fp = fopen(af->tmp, "wb");
-    if (!af->fp)
-        return dfl_err_set(err, DFL_E_IO, "%s: cannot create: %s", af->tmp, strerror(errno));
+    if (!af->fp) {
+        const int e = errno;
+        return dfl_err_set(err, dfl_io_errno_status(e), "%s: cannot create: %s", af->tmp,
+                           strerror(e));
+    }
     return DFL_OK;
 }
 
@@ -62,14 +75,16 @@ dfl_status dfl_mkdir_p(const char *path, dfl_err *err)
         if (buf[i] == '/' || buf[i] == '\0') {
             char saved = buf[i];
             buf[i] = '\0';
-            if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-                return dfl_err_set(err, DFL_E_IO, "%s: cannot create directory: %s", buf,
-                                   strerror(errno));
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST) {
+                const int e = errno;
+                return dfl_err_set(err, dfl_io_errno_status(e),
+                                   "%s: cannot create directory: %s", buf, strerror(e));
+            }
             buf[i] = saved;
         }
     }
     struct stat st;
     if (stat(path, &st) != 0 || !S_ISDIR(st.st_mode))
-        return dfl_err_set(err, DFL_E_IO, "%s: not a directory", path);
+        return dfl_err_set(err, DFL_E_INPUT, "%s: not a directory", path);
     return DFL_OK;
 }

@@ -29,4 +29,11 @@ void dfl_atomic_tmpname(const char *path, char *buf, size_t size);
 /* Creates directory path and its parents (mode 0777 & ~umask). */
 dfl_status dfl_mkdir_p(const char *path, dfl_err *err);
 
+/* The status of a failed create or write with errno e: DFL_E_INPUT when
+ * the place is the user's choice and cannot hold dflab's files there
+ * (EROFS read-only file system, EACCES, EPERM, ENOTDIR, ENAMETOOLONG,
+ * ELOOP: exit 2, another folder fixes it), DFL_E_IO otherwise (ENOSPC,
+ * EIO, ...: the machine, exit 1).  dfl_atomic_open and dfl_mkdir_p use it. */
+dfl_status dfl_io_errno_status(int e);
+
 #endif

@@ -24,7 +24,9 @@ WEB_ENV  := NODE_PATH=/usr/share/nodejs
 WEB_DIR  := $(BUILD)/web
 # gridpeer.c stores half floats through the host's Imath, which emscripten's
 # sysroot lacks; the page does not use it.
-WEB_SKIP := src/field/gridpeer.c
+# vdb.c is the C side of the OpenVDB adapter (field/vdb_grid.cc, C++ and
+# OpenVDB), which the page neither builds nor uses.
+WEB_SKIP := src/field/gridpeer.c src/field/vdb.c
 WEB_SRCS := $(filter-out $(WEB_SKIP),$(shell find src/core src/geom src/field src/rfunc -name '*.c' | sort))
 WEB_OBJ  := $(WEB_SRCS:%.c=$(WEB_DIR)/obj/%.o)
 WEB_API  := $(WEB_DIR)/obj/src/web/dflweb.o $(WEB_DIR)/obj/src/web/lsq_stub.o

@@ -27,5 +27,6 @@ void bench_proxy(void);
 void bench_trace(void);
 void bench_proxy_input(void);
 void bench_pht(void);
+void bench_vdb(void);
 
 #endif

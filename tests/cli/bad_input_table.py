@@ -122,6 +122,22 @@ runc("proxy grid over the default memory budget",
 runc("grid peer 1024^3 over the memory budget",
      ACC + b"memory_budget = 10\n" + SPHERE + b"[field]\nkind = gridpeer\nres = 1024\n",
      "bad.ini:10", "[field] res", "needs about 34.4 GB", "memory budget of 10 GB")
+# [field] kind = openvdb (field/vdb.h): its keys and its bound from the box
+VDB = HEAD + b"memory_budget = 10\n" + SPHERE.replace(b"radius = 1", b"radius = 0.5") + b"[field]\nkind = openvdb\n"
+VGRID = b"[grid]\nn = 8\nlo = -1 -1 -1\nhi = 1 1 1\n"
+runc("openvdb voxel zero", VDB + b"voxel = 0\n" + VGRID, "bad.ini:10", "[field] voxel", "voxel size > 0")
+runc("openvdb voxel negative", VDB + b"voxel = -0.1\n" + VGRID, "bad.ini:10", "[field] voxel", "below")
+runc("openvdb band zero", VDB + b"band = 0\n" + VGRID, "bad.ini:10", "[field] band", "[1, 1000]")
+runc("openvdb unknown sampler", VDB + b"sampler = cubic\n" + VGRID, "bad.ini:10", "[field] sampler",
+     "box|quadratic|staggered")
+runc("openvdb unknown build", VDB + b"build = marching\n" + VGRID, "bad.ini:10", "[field] build",
+     "direct|mesh")
+runc("openvdb voxel 1e-4 over the memory budget", VDB + b"voxel = 1e-4\n" + VGRID, "bad.ini:10",
+     "[field] voxel", "OpenVDB grid", "memory budget of 10 GB")
+runc("openvdb mesh build over the memory budget", VDB + b"voxel = 1e-3\nbuild = mesh\n" + VGRID,
+     "bad.ini:10", "[field] voxel", "marching-cubes lattice", "memory budget of 10 GB")
+runc("openvdb of a 2D shape", HEAD + SHAPE + b"[field]\nkind = openvdb\n" + GRID, "[field] shape",
+     "3D shape")
 runc("pht mesh at max_level 30 over the memory budget",
      HEAD + SHAPE + b"[field]\nkind = pht\neps = 1e-300\nmax_level = 30\n" + GRID,
      "bad.ini:10", "[field] max_level", "1.15e+18 cells", "memory budget")

@@ -58,3 +58,25 @@ def render(ctx):
     ax.set_title(f"segments vs ε\n{ctx.config}", fontsize=8)
     md += ctx.figure(fig, "counts") + "\n"
     return md
+
+
+def verdicts(ctx):
+    import math
+    rows = ctx.csv()
+    paper = bc.s_counts(bc.facts(ctx))
+    pe = sorted(paper)
+    if len(pe) < 2 or not rows:
+        return []
+    xs = [math.log(e) for e in pe]
+    ys = [math.log(paper[e]) for e in pe]
+    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+    kp = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+    out = []
+    for c in sorted({r["curve"] for r in rows}):
+        k = dflio.num(next(r for r in rows if r["curve"] == c)["fit_exponent"])
+        ok = k is not None and abs(k - kp) <= 0.1
+        out.append((f"segments of a smooth curve grow like ε^k ({c})",
+                    f"k = {kp:.3f} (S: 56/157/1499)", f"k = {k:.3f}" if k is not None else "—",
+                    "—", "reproduced" if ok else "differs",
+                    "the growth law; the counts differ (bs04's S is unpublished)"))
+    return out

@@ -25,8 +25,10 @@ ASSUMPTIONS = [
     "Storage: Tables 1–4 store every scalar in half precision (the paper's 16-bit textures), the "
     "footpoint as its displacement from the cell centre; the storage study compares double / float / "
     "half and displacement / absolute.",
-    "Clip (the sphere constraint): radius 1 cell size for nearest, none for trilinear and Hermite "
-    "(proxy/filter.h defines how the clip enters: D = max(|φ|, |x − p| − ρ)); the clip study sweeps it.",
+    "Clip (the sphere constraint, no formula in the paper): radius 1 cell size for nearest, none "
+    "for trilinear and Hermite; dflab's reading D = sgn φ max(|φ|, |x − p| − ρ) by default, the "
+    "reading as proxy solid ∩ ball (max(φ, |x − p| − ρ), clip = paper) beside it in the clip "
+    "study and hvb25_fig10 (proxy/filter.h).",
     "Curvature of parametric input from the fundamental forms with the correct Gaussian curvature "
     "K = (LN − M²)/(EG − F²): the paper prints (LM − N²)/(EG − F²), a typo (for a sphere of radius r, "
     "L = N = E/r, M = F = 0 on a latitude grid, so LM − N² = −N² would give K < 0).",

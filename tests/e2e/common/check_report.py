@@ -10,6 +10,11 @@ and a sections folder made up here (in DIR, which must exist and be empty):
   __init__.py does not import and a folder without __init__.py each show as
   a failed section (their traceback or reason), never as a generic table, and
   the exit status is 1 with the failures counted;
+- a module's verdicts(ctx) rows make one "Verdicts" table at the top of its
+  paper (linked to the run's heading); a verdict outside report.VERDICTS is
+  a failed section;
+- the table of contents lists every paper and run, each link the anchor of
+  its heading;
 - a sections folder whose name another package already takes is refused
   (exit 2).
 
@@ -25,7 +30,11 @@ REPORT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", ".
 SECTIONS = {
     "papa/__init__.py": 'TITLE = "Paper A"\nRANK = 20\n',
     "papa/tp_good.py": 'ASSUMPTIONS = ["assume x"]\n\n\ndef render(ctx):\n'
-                       '    return f"GOOD {ctx.study} {ctx.csv()[0][\'a\']}\\n"\n',
+                       '    return f"GOOD {ctx.study} {ctx.csv()[0][\'a\']}\\n"\n\n\n'
+                       'def verdicts(ctx):\n'
+                       '    return [("claim x", "1", ctx.csv()[0]["b"], "-", "differs", "why x")]\n',
+    "papa/tp_badverdict.py": 'def render(ctx):\n    return "BADV\\n"\n\n\n'
+                             'def verdicts(ctx):\n    return [("c", "1", "2", "-", "maybe", "w")]\n',
     "papa/tp_broken.py": "import no_such_module_dflab\n",
     "papa/tp_norender.py": 'ASSUMPTIONS = ["only assumptions"]\n',
     "papa/tp_raises.py": 'def render(ctx):\n    raise RuntimeError("render boom")\n',
@@ -34,7 +43,8 @@ SECTIONS = {
     "papb/__init__.py": 'raise ImportError("papb init boom")\n',
     "papc/tp_lost.py": 'def render(ctx):\n    return "LOST\\n"\n',
 }
-STUDIES = ["tp_good", "tp_broken", "tp_norender", "tp_raises", "tp_first", "tp_nomodule"]
+STUDIES = ["tp_good", "tp_broken", "tp_norender", "tp_raises", "tp_first", "tp_nomodule",
+           "tp_badverdict"]
 
 
 def write(path, text):
@@ -71,10 +81,10 @@ def main():
             bad.append(what)
 
     want(run.returncode == 1, f"exit status {run.returncode}, expected 1: {run.stderr}")
-    want("(6 runs, 4 failed sections)" in run.stdout, f"summary: {run.stdout!r}")
+    want("(7 runs, 5 failed sections)" in run.stdout, f"summary: {run.stdout!r}")
     text = open(out).read() if os.path.exists(out) else ""
     heads = [ln for ln in text.splitlines() if ln.startswith("## ")]
-    want(heads == ["## Paper Z", "## Paper A", "## papb", "## papc", "## Other studies"],
+    want(heads == ["## Contents", "## Paper Z", "## Paper A", "## papb", "## papc", "## Other studies"],
          f"paper headings {heads}")
     table = "| a | b |\n|---|---|\n| 1 | 2.5 |"
     try:
@@ -92,6 +102,21 @@ def main():
              "tp_nomodule: generic table under Other studies")
         want("papb init boom" in text, "papb: its import error")
         want("papc/ has no __init__.py" in text, "papc: missing __init__.py")
+        a = text.index("## Paper A")
+        v = text.find("### Verdicts", a)
+        want(0 < v < text.index("### tp_good") and
+             "| [tp_good](#" in text[v:] and "| claim x | 1 | 2.5 | - | differs | why x |" in text,
+             "tp_good's verdict row at the top of Paper A")
+        want("maybe" in section(text, "tp_badverdict") and "BADV" not in section(text, "tp_badverdict"),
+             "tp_badverdict: a failed section naming the verdict")
+        sys.path.insert(0, os.path.dirname(REPORT))
+        import report
+        toc = text[text.index("## Contents"):text.index("## Paper Z")]
+        targets = [ln.split("](#", 1)[1].rstrip(")") for ln in toc.splitlines() if "](#" in ln]
+        anchors = {report.slug(ln.lstrip("#").strip()) for ln in text.splitlines()
+                   if ln.startswith(("## ", "### "))}
+        want(len(targets) == 5 + 7 and all(t in anchors for t in targets),
+             f"contents: {len(targets)} links, missing {[t for t in targets if t not in anchors]}")
     except ValueError as e:
         bad.append(f"section missing: {e}")
     # a folder named like an importable package is refused, nothing written

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cfg/field_cost.h"
+#include "field/vdb.h"
 #include "cfg_util.h"
 
 static dfl_cost cost_of(const char *text)
@@ -58,6 +59,34 @@ Test(field_cost, gridpeer_and_pht_level_bound)
     c = cost_of("[field]\nkind = exact\n[shape]\nkind = circle\ncenter = 0 0\nradius = 1\n");
     cr_expect_eq(c.bytes, 0);
     cr_expect_null(c.mem_key);
+}
+
+/* openvdb: the grid bound of field/vdb.h; voxel 0.05 on [-1, 1]^3: I =
+ * [-21, 21] per axis, 6 leaves of 8 per axis meet it (origins -24 .. 16);
+ * the bound holds every leaf of I widened by band + 1 = 4 (origins -32 ..
+ * 24: 8 per axis), so at least their float buffers */
+Test(field_cost, openvdb_bound_from_the_box)
+{
+    char t[512];
+    snprintf(t, sizeof t, "[field]\nkind = openvdb\nvoxel = 0.05\n%s", SPHERE);
+    dfl_cost c = cost_of(t);
+    dfl_vdb_opts o;
+    dfl_vdb_opts_default(&o);
+    double leaves;
+    cr_expect_eq(c.bytes, dfl_vdb_bytes_bound(&o, &leaves));
+    cr_expect_eq(leaves, 216);
+    cr_expect_geq(c.bytes, 512 * 512 * 4.0);
+    cr_expect_str_eq(c.mem_key, "voxel");
+    cr_expect_eq(c.evals[DFL_COST_CHEAP], 216 * 513 + 216.0 / 4096 + 1);
+    /* build = mesh adds the lattice of floor(2 / 0.05) + 3 = 43 nodes per axis */
+    snprintf(t, sizeof t, "[field]\nkind = openvdb\nvoxel = 0.05\nbuild = mesh\n%s", SPHERE);
+    dfl_cost m = cost_of(t);
+    cr_expect_eq(m.bytes, c.bytes + 24.0 * 43 * 43 * 43);
+    /* voxel 0.025: I = [-41, 41] widened to [-45, 45], leaf origins -48 ..
+     * 40, 12 per axis: 1728 - 512 more leaves of at least 2048 bytes (the
+     * internal nodes above them are the same 8 + 8) */
+    snprintf(t, sizeof t, "[field]\nkind = openvdb\nvoxel = 0.025\n%s", SPHERE);
+    cr_expect_geq(cost_of(t).bytes, c.bytes + (1728 - 512) * 2048.0);
 }
 
 Test(field_cost, bad_values_fail_as_in_the_factory)
