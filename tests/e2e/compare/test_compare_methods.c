@@ -43,10 +43,10 @@ static double ipow3(double x) { return x * x * x; }
 Test(e2e_compare, quick_config_derived, .timeout = 300)
 {
     char out[512], csv[700];
-    e2e_run_table("configs/compare/quick.ini", NULL, "compare_methods", 33, out, sizeof out, csv,
+    e2e_run_table("configs/compare/quick.ini", NULL, "compare_methods", 37, out, sizeof out, csv,
                   sizeof csv);
-    int exact = 0, proxies = 0, peers = 0, skipped = 0, trilinear32 = 0;
-    for (long r = 0; r < 33; r++) {
+    int exact = 0, proxies = 0, peers = 0, skipped = 0, trilinear32 = 0, vdb = 0;
+    for (long r = 0; r < 37; r++) {
         char *m = e2e_csv_cell(csv, r, "method"), *sk = e2e_csv_cell(csv, r, "skipped");
         char *set = e2e_csv_cell(csv, r, "setting");
         cr_assert(m && sk && set);
@@ -109,6 +109,10 @@ Test(e2e_compare, quick_config_derived, .timeout = 300)
         } else if (strcmp(m, "m_pht") == 0) {
             cr_expect_lt(c1, 1e-4, "row %ld: PHT is C1", r);
             cr_expect_gt(bytes, 0, "row %ld", r);
+        } else if (strcmp(m, "m_vdb") == 0) {
+            vdb++;
+            cr_expect_gt(bytes, 0, "row %ld: OpenVDB's memUsage", r);
+            cr_expect(torus, "row %ld", r);
         } else {
             cr_expect_str_eq(m, "m_rfunc", "row %ld", r);
             cr_expect_gt(bytes, 0, "row %ld", r);
@@ -119,8 +123,9 @@ Test(e2e_compare, quick_config_derived, .timeout = 300)
     cr_expect_eq(proxies, 4);
     cr_expect_eq(peers, 6);
     cr_expect_eq(trilinear32, 1);
-    /* circle: rfunc, 2 proxies, 3 peers; convex: 5; torus: rfunc */
-    cr_expect_eq(skipped, 6 + 5 + 1);
+    cr_expect_eq(vdb, 2);
+    /* circle: rfunc, 2 proxies, 3 peers, vdb; convex: 6; torus: rfunc */
+    cr_expect_eq(skipped, 7 + 6 + 1);
 }
 
 /* A config around the quick one's keys, with one method and one shape. */
