@@ -27,6 +27,7 @@ void cmp_points_free(cmp_points *p)
     free(p->off);
     free(p->xp);
     free(p->xm);
+    free(p->pa);
     memset(p, 0, sizeof *p);
 }
 
@@ -80,7 +81,8 @@ static size_t surface_points(const dfl_shape *s, const cmp_points_opts *o, uint6
 
 /* Continuity pairs: a random point, an axis, snapped onto the nearest plane
  * of that axis's 2^PLANE_LEVEL grid, moved by +-delta. */
-static void pairs(int dim, const cmp_points_opts *o, uint64_t *rng, double *xp, double *xm)
+static void pairs(int dim, const cmp_points_opts *o, uint64_t *rng, double *xp, double *xm,
+                  unsigned char *pa)
 {
     const double planes = (double)(1 << PLANE_LEVEL);
     for (size_t i = 0; i < o->pairs; i++) {
@@ -93,6 +95,7 @@ static void pairs(int dim, const cmp_points_opts *o, uint64_t *rng, double *xp, 
         if (j < 1) j = 1;
         if (j > planes - 1) j = planes - 1;
         x[a] = o->lo[a] + j * len / planes;
+        pa[i] = (unsigned char)a;
         memcpy(xp + i * dim, x, sizeof(double) * dim);
         memcpy(xm + i * dim, x, sizeof(double) * dim);
         xp[i * dim + a] += PAIR_DELTA * len;
@@ -121,7 +124,8 @@ dfl_status cmp_points_build(const dfl_shape *shape, const cmp_points_opts *o, cm
     unsigned char *near = malloc(nnear ? nnear : 1);
     out->xp = malloc(sizeof(double) * dim * (o->pairs ? o->pairs : 1));
     out->xm = malloc(sizeof(double) * dim * (o->pairs ? o->pairs : 1));
-    if (!out->x || !cand || !near || !out->xp || !out->xm) goto nomem;
+    out->pa = malloc(o->pairs ? o->pairs : 1);
+    if (!out->x || !cand || !near || !out->xp || !out->xm || !out->pa) goto nomem;
 
     for (size_t i = 0; i < ngrid; i++) {
         size_t r = i;
@@ -140,7 +144,7 @@ dfl_status cmp_points_build(const dfl_shape *shape, const cmp_points_opts *o, cm
     for (size_t i = 0; i < o->medial_draws; i++)
         if (near[i])
             memcpy(out->x + (ngrid + ns + nm++) * dim, cand + i * dim, sizeof(double) * dim);
-    pairs(dim, o, &rng, out->xp, out->xm);
+    pairs(dim, o, &rng, out->xp, out->xm, out->pa);
     /* pairs across the medial band are left out: there the SDF itself has
      * a gradient jump (its kink), which says nothing of the method */
     size_t kept = 0;
@@ -151,6 +155,7 @@ dfl_status cmp_points_build(const dfl_shape *shape, const cmp_points_opts *o, cm
             if (near[i]) continue;
             memmove(out->xp + kept * dim, out->xp + i * dim, sizeof(double) * dim);
             memmove(out->xm + kept * dim, out->xm + i * dim, sizeof(double) * dim);
+            out->pa[kept] = out->pa[i];
             kept++;
         }
     }
@@ -220,8 +225,39 @@ static int finite_vec(int dim, const double *v)
     return 1;
 }
 
+/* The largest value and gradient jumps over n pairs. */
+static void jumps(const dfl_field *f, size_t n, const double *xp, const double *xm, double *up,
+                  double *um, double *gp, double *gm, double *c0, double *c1)
+{
+    const int dim = f->dim;
+    field_eval(f, n, xp, up, gp);
+    field_eval(f, n, xm, um, gm);
+    for (size_t i = 0; i < n; i++) {
+        const double j0 = fabs(up[i] - um[i]);
+        const double j1 = vdiff(dim, gp + i * dim, gm + i * dim);
+        *c0 = isfinite(j0) ? fmax(*c0, j0) : INFINITY;
+        *c1 = isfinite(j1) ? fmax(*c1, j1) : INFINITY;
+    }
+}
+
+/* The pairs of p moved along their axes onto the nearest plane of pl. */
+static void moved_pairs(const cmp_points *p, const cmp_planes *pl, double *xp, double *xm)
+{
+    const int dim = p->dim;
+    for (size_t i = 0; i < p->npairs; i++) {
+        const int a = p->pa[i];
+        const double mid = 0.5 * (p->xp[i * dim + a] + p->xm[i * dim + a]);
+        const double half = 0.5 * (p->xp[i * dim + a] - p->xm[i * dim + a]);
+        const double c = pl->origin[a] + round((mid - pl->origin[a]) / pl->step[a]) * pl->step[a];
+        memcpy(xp + i * dim, p->xp + i * dim, sizeof(double) * dim);
+        memcpy(xm + i * dim, p->xm + i * dim, sizeof(double) * dim);
+        xp[i * dim + a] = c + half;
+        xm[i * dim + a] = c - half;
+    }
+}
+
 dfl_status cmp_measure(const dfl_field *f, const cmp_points *p, int unsigned_ref, int repeats,
-                       cmp_result *out, dfl_err *err)
+                       const cmp_planes *planes, cmp_result *out, dfl_err *err)
 {
     const int dim = p->dim;
     const size_t m = p->m;
@@ -231,8 +267,9 @@ dfl_status cmp_measure(const dfl_field *f, const cmp_points *p, int unsigned_ref
     const size_t np = p->npairs ? p->npairs : 1;
     double *up = malloc(sizeof(double) * np), *um = malloc(sizeof(double) * np);
     double *gp = malloc(sizeof(double) * np * dim), *gm = malloc(sizeof(double) * np * dim);
+    double *mp = malloc(sizeof(double) * np * dim), *mm = malloc(sizeof(double) * np * dim);
     dfl_status st = DFL_OK;
-    if (!u || !gu || !ref || !gref || !up || !um || !gp || !gm) {
+    if (!u || !gu || !ref || !gref || !up || !um || !gp || !gm || !mp || !mm) {
         st = dfl_err_set(err, DFL_E_NOMEM, "compare: out of memory for field values");
         goto done;
     }
@@ -265,14 +302,11 @@ dfl_status cmp_measure(const dfl_field *f, const cmp_points *p, int unsigned_ref
     out->grad_linf = gl;
     out->nonfinite = nf;
     if (p->npairs) {
-        field_eval(f, p->npairs, p->xp, up, gp);
-        field_eval(f, p->npairs, p->xm, um, gm);
         double c0 = 0, c1 = 0;
-        for (size_t i = 0; i < p->npairs; i++) {
-            const double j0 = fabs(up[i] - um[i]);
-            const double j1 = vdiff(dim, gp + i * dim, gm + i * dim);
-            c0 = isfinite(j0) ? fmax(c0, j0) : INFINITY;
-            c1 = isfinite(j1) ? fmax(c1, j1) : INFINITY;
+        jumps(f, p->npairs, p->xp, p->xm, up, um, gp, gm, &c0, &c1);
+        if (planes) {
+            moved_pairs(p, planes, mp, mm);
+            jumps(f, p->npairs, mp, mm, up, um, gp, gm, &c0, &c1);
         }
         out->c0_jump = c0;
         out->c1_jump = c1;
@@ -286,5 +320,7 @@ done:
     free(um);
     free(gp);
     free(gm);
+    free(mp);
+    free(mm);
     return st;
 }

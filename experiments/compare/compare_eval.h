@@ -74,6 +74,7 @@ typedef struct cmp_points {
     unsigned char *band, *off;       /* region masks (m) */
     size_t npairs;                   /* pairs kept (off the medial band) */
     double *xp, *xm;                 /* pair sides, npairs * dim each */
+    unsigned char *pa;               /* the axis each pair straddles (npairs) */
     double lo[3], hi[3];
     double bandw;
 } cmp_points;
@@ -94,9 +95,19 @@ typedef struct cmp_result {
     double eval_seconds;     /* best of the repeats */
 } cmp_result;
 
+/* The planes of a method's own cells on every axis: origin + k step
+ * (step > 0), e.g. faces and centres of N cells on [lo, hi]: origin lo,
+ * step (hi - lo) / (2N); of voxels of size v from 0: origin 0, step v / 2. */
+typedef struct cmp_planes {
+    double origin[3], step[3];
+} cmp_planes;
+
 /* Measures f (dim of p, asserted) on p; `unsigned_ref` compares with |d|.
- * repeats >= 1.  DFL_E_NOMEM. */
+ * repeats >= 1.  planes (may be NULL): the continuity pairs are measured a
+ * second time, each moved along its axis onto the nearest of these planes
+ * (so cells that are not dyadic on the box are straddled too), and the
+ * jumps are the larger of the two.  DFL_E_NOMEM. */
 dfl_status cmp_measure(const dfl_field *f, const cmp_points *p, int unsigned_ref, int repeats,
-                       cmp_result *out, dfl_err *err);
+                       const cmp_planes *planes, cmp_result *out, dfl_err *err);
 
 #endif

@@ -25,6 +25,14 @@
  *                                 the method has no box (rfunc)
  *       distance   = signed | unsigned   what the field approximates: d, or
  *                                 |d| (bs04's R-function fields)
+ *       faces      = none | count | size   what the value says of the
+ *                                 method's cells, for the continuity pairs
+ *                                 (compare_eval.h's cmp_planes): count: N
+ *                                 cells per axis on the box (faces and
+ *                                 centres at lo + k (hi - lo) / 2N); size:
+ *                                 voxels of that size from the origin (k v / 2,
+ *                                 OpenVDB); none (default): the dyadic planes
+ *                                 only
  * For each (method, shape, value) the study builds the field from a copy of
  * the config in which [method] KEY = value, shape_key = the shape section
  * and the box keys are set, so a method is built by its kind's own factory
@@ -103,9 +111,11 @@ typedef struct method {
     int dims;                /* bit 2: 2D, bit 3: 3D */
     const char *shape_key;
     int unsigned_ref;
+    int faces;               /* 0 none, 1 count, 2 size */
 } method;
 
 static const char *const distance_names[] = {"signed", "unsigned"};
+static const char *const faces_names[] = {"none", "count", "size"};
 
 static dfl_status method_from_cfg(const dfl_cfg *cfg, const char *sec, method *m, dfl_err *err)
 {
@@ -130,6 +140,9 @@ static dfl_status method_from_cfg(const dfl_cfg *cfg, const char *sec, method *m
     if (!st) st = words_from_cfg(cfg, sec, "shape_kinds", "", 0, &m->shape_kinds, err);
     if (!st) st = words_from_cfg(cfg, sec, "box", "lo hi", 0, &m->box, err);
     if (!st) st = dfl_cfg_enum_opt(cfg, sec, "distance", distance_names, 2, 0, &dist, err);
+    if (!st) st = dfl_cfg_enum_opt(cfg, sec, "faces", faces_names, 3, 0, &m->faces, err);
+    if (!st && m->faces && strcmp(m->key, "none") == 0)
+        return dfl_cfg_reject(cfg, sec, "faces", err, "not with resolution = none");
     if (st) return st;
     m->unsigned_ref = dist == 1;
     for (size_t i = 0; i < dims.n; i++) {
@@ -381,8 +394,19 @@ static dfl_status run_one(const dfl_cfg *cfg, const method *m, const char *ssec,
                             f.dim, ssec, p->dim);
         goto field;
     }
+    cmp_planes pl;
+    const double val = atof(v);
+    for (int a = 0; a < p->dim; a++) {
+        pl.origin[a] = m->faces == 1 ? p->lo[a] : 0.0;
+        pl.step[a] = m->faces == 1 ? (p->hi[a] - p->lo[a]) / (2 * val) : 0.5 * val;
+    }
+    if (m->faces && !(val > 0)) {
+        st = dfl_cfg_reject(cfg, m->sec, "faces", err, "value '%s' is not a positive number", v);
+        goto field;
+    }
     cmp_result r;
-    if ((st = cmp_measure(&f, p, m->unsigned_ref, repeats, &r, err))) goto field;
+    if ((st = cmp_measure(&f, p, m->unsigned_ref, repeats, m->faces ? &pl : NULL, &r, err)))
+        goto field;
     size_t bytes;
     if ((st = row_head(t, m, kind, ssec, p->dim, v, "", err))) goto field;
     if (dfl_field_bytes(&f, &bytes) && (st = dfl_table_set_int(t, "bytes", (long)bytes, err)))

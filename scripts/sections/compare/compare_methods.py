@@ -11,6 +11,13 @@ _f = dflio.cell_nan
 BUDGETS = [("small", 64e3), ("medium", 1e6), ("large", 16e6)]
 REGIONS = [("near surface", "band_linf"), ("whole box", "linf")]
 AIM_BYTES = 8.6e6  # issue 18: the torus at equal stored bytes
+# kinds that are distances only in a narrow band (elsewhere a background
+# value): read in the near-surface band only, never in the whole box
+BAND_ONLY = {"openvdb"}
+
+
+def _in_region(r, col):
+    return col != "linf" or r.get("kind") not in BAND_ONLY
 
 ASSUMPTIONS = [
     "One protocol for every method (experiments/compare/compare_eval.h): per shape a node grid of "
@@ -29,6 +36,10 @@ ASSUMPTIONS = [
     "on the run's threads; build time: the factory call (for grid peers and proxies it includes "
     "the exact distances they sample). Both are wall-clock measurements on a shared machine.",
     "Budgets of the regime table: small ≤ 64 kB, medium ≤ 1 MB, large ≤ 16 MB.",
+    "OpenVDB (kind = openvdb) is a narrow-band level set: outside |d| < band·voxel its value is "
+    "the background, so its rows enter the near-surface columns only (their band of 8 voxels "
+    "covers |d| ≤ 0.05 at every voxel used), never the whole-box ones. Its bytes are OpenVDB's "
+    "memUsage (tree nodes, buffers, masks).",
 ]
 
 
@@ -81,6 +92,9 @@ def _plot_shape(ctx, plt, shape, rows):
             ax = axs[row][k]
             pts, allr = [], []
             for m, rs in sorted(lines.items()):
+                rs = [r for r in rs if _in_region(r, col)]
+                if not rs:
+                    continue
                 xs = [_xval(r, axis) for r in rs]
                 ys = [max(_f(r, col), 1e-17) for r in rs]
                 ax.plot(xs, ys, "o-", ms=3, label=m)
@@ -112,7 +126,8 @@ def _continuity(r):
 
 
 def _best(rows, col, budget):
-    cand = [r for r in rows if _f(r, "bytes") <= budget and math.isfinite(_f(r, col))]
+    cand = [r for r in rows if _f(r, "bytes") <= budget and math.isfinite(_f(r, col))
+            and _in_region(r, col)]
     best = {}
     for r in cand:  # each method's best row within the budget
         m = r["method"]

@@ -16,6 +16,8 @@
  *     0.05 + sqrt(3) h; there the Hessian's eigenvalues are 0, 1/(r + d) and
  *     cos(theta) / rho with rho >= R - r - |d|: |d_aa| <= 1 / (r - 0.05 -
  *     sqrt(3) h) (R = 0.6, r = 0.25);
+ *   - continuity pairs also straddle each grid method's own faces (faces =
+ *     count): a trilinear grid is C0 (c0 <= 20 delta) and kinked (c1 > 1e-2);
  *   - a PHT spline is C1: c1_jump is 2 delta |Hess u|, under 1e-4 unless
  *     |Hess u| > 2.5e4; a trilinear grid is C0 and kinked across its faces;
  *   - the protocol's point counts: 101^2 and 25^3 grid nodes, 4000 surface
