@@ -22,7 +22,10 @@ CFLAGS   += -std=c11 -Wall -Wextra $(OPT) -fopenmp $(SAN) -g
 CXXFLAGS += -std=c++17 -Wall -Wextra $(OPT) -fopenmp $(SAN) -g -I/usr/include/eigen3
 # OpenVDB 10 (field/vdb_grid.cc) and the TBB it is built on: its headers
 # instantiate TBB templates, so the program links libtbb itself.
-LDLIBS   += -linih -lceres -lglog -lopenvdb -ltbb -lOpenEXRCore-3_1 -lz -lm
+# Meshes: Assimp (pkg-config) reads mesh files (src/io/meshfile.c); Embree 3
+# (no .pc file in Debian 12) answers closest-point queries (src/geom/mesh_bvh.c).
+MESH_LIBS := $(shell pkg-config --libs assimp 2>/dev/null || echo -lassimp) -lembree3
+LDLIBS   += -linih -lceres -lglog -lopenvdb -ltbb -lOpenEXRCore-3_1 $(MESH_LIBS) -lz -lm
 LDFLAGS  += -fopenmp $(SAN)
 
 # The git revision goes into one generated header, rewritten only when it
@@ -65,7 +68,7 @@ BENCH_BIN := $(BUILD)/dflab-bench
 APT_PKGS := libinih-dev libceres-dev libopenexr-dev libimath-dev libcriterion-dev zlib1g-dev \
             python3-matplotlib python3-numpy python3-vtk9 openexr pkg-config \
             emscripten chromium python3-scipy parallel slurm-wlm munge clang-14 libomp-14-dev \
-            libopenvdb-dev libtbb-dev
+            libopenvdb-dev libtbb-dev libassimp-dev libembree-dev assimp-testmodels
 
 .PHONY: all deps test sanitize bench reproduce figures clean check-layout web web-test web-bench check-threads mutate
 all: $(DFLAB) $(LIB)

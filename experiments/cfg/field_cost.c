@@ -30,7 +30,7 @@ static dfl_cost_class shape_class(const dfl_cfg *cfg, const char *sec, int depth
         if (!strcmp(k, "implicit") || !strcmp(k, "bezier_surface") ||
             !strcmp(k, "bspline_surface"))
             return DFL_COST_FOOTPOINT;
-        if (!strcmp(k, "bspline_curve")) return DFL_COST_EXACT;
+        if (!strcmp(k, "bspline_curve") || !strcmp(k, "mesh")) return DFL_COST_EXACT;
         if (strcmp(k, "csg") != 0) return *k ? DFL_COST_CHEAP : DFL_COST_EXACT;
         /* csg: the dearer of its operands, bounded by the depth */
         const char *a = NULL, *b = NULL;

@@ -234,6 +234,7 @@ static const kind_row rows[] = {
     {DFL_SHAPE_PLANE, {NULL, build_sdf, NULL}},
     {DFL_SHAPE_BOX, {NULL, build_sdf, NULL}},
     {DFL_SHAPE_CSG, {NULL, build_sdf, NULL}},
+    {DFL_SHAPE_MESH, {NULL, build_sdf, NULL}},
 };
 
 static const kind_row *row_of(int kind)

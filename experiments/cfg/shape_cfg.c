@@ -2,9 +2,13 @@
 
 #include "cfg/curve_cfg.h"
 #include "geom/ellipse.h"
+#include "field/isomesh.h"
 #include "geom/implicit.h"
+#include "geom/mesh.h"
+#include "geom/trimesh.h"
 
 #include <math.h>
+#include <stdbool.h>
 
 #include "core/domain.h"
 #include <stdio.h>
@@ -310,6 +314,93 @@ static dfl_status param_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *e
     return dfl_param_shape_from_cfg(cfg, sec, dfl_shape_kind_name(rq->kind), out, err);
 }
 
+/* mesh: file = PATH | polygonize = SECTION (+ resolution, box, refine),
+ * fit = none | box (+ center, size), distance = signed | unsigned (see
+ * shape_cfg.h) */
+static dfl_status mesh_source(const shape_req *rq, dfl_trimesh *m, dfl_err *err)
+{
+    const dfl_cfg *cfg = rq->cfg;
+    const char *sec = rq->sec;
+    const bool has_file = dfl_cfg_has(cfg, sec, "file"), has_poly = dfl_cfg_has(cfg, sec, "polygonize");
+    dfl_status st;
+    if (has_file == has_poly)
+        return dfl_cfg_reject(cfg, sec, "kind", err,
+                              "a mesh needs exactly one of file = PATH or polygonize = SECTION");
+    if (has_file) {
+        char path[4096];
+        if ((st = dfl_cfg_path_value(cfg, sec, "file", path, sizeof path, err)) != DFL_OK)
+            return st;
+        if ((st = dfl_trimesh_read(path, m, err)) != DFL_OK)
+            return dfl_cfg_err_at(cfg, sec, "file", st, err);
+        return DFL_OK;
+    }
+    const char *src;
+    if ((st = dfl_cfg_string(cfg, sec, "polygonize", &src, err)) != DFL_OK) return st;
+    if (rq->depth >= MAX_CSG_DEPTH)
+        return dfl_cfg_reject(cfg, sec, "polygonize", err, "nesting too deep (a cycle of sections?)");
+    if (!dfl_cfg_has_section(cfg, src))
+        return dfl_cfg_reject(cfg, sec, "polygonize", err, "no such section");
+    long n, refine;
+    double lo[3], hi[3];
+    static const double mone[3] = {-1, -1, -1}, one[3] = {1, 1, 1};
+    if ((st = dfl_cfg_int_opt(cfg, sec, "resolution", 96, 8, 1024, &n, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_int_opt(cfg, sec, "refine", 8, 0, 100, &refine, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_vec_opt(cfg, sec, "lo", 3, mone, lo, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_vec_opt(cfg, sec, "hi", 3, one, hi, err)) != DFL_OK) return st;
+    double ext = 0.0;
+    for (int j = 0; j < 3; j++) {
+        if (!(hi[j] > lo[j])) return dfl_cfg_reject(cfg, sec, "hi", err, "expected hi > lo on every axis");
+        ext = fmax(ext, hi[j] - lo[j]);
+    }
+    /* equal spacing on every axis: n nodes along the longest side */
+    dfl_grid g = {3, {0, 0, 0}, {lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}};
+    for (int j = 0; j < 3; j++)
+        g.n[j] = (int)fmax(2.0, ceil((hi[j] - lo[j]) / ext * (double)(n - 1)) + 1.0);
+    dfl_shape inner = {0};
+    if ((st = from_cfg(cfg, src, rq->depth + 1, &inner, err)) != DFL_OK) return st;
+    if (inner.dim != 3) {
+        dfl_shape_free(&inner);
+        return dfl_cfg_reject(cfg, sec, "polygonize", err, "[%s] is not a 3D shape", src);
+    }
+    st = dfl_shape_isomesh(&inner, &g, (int)refine, 0, m, NULL, err);
+    dfl_shape_free(&inner);
+    return st == DFL_OK ? DFL_OK : dfl_cfg_err_at(cfg, sec, "polygonize", st, err);
+}
+
+static dfl_status mesh_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *err)
+{
+    const dfl_cfg *cfg = rq->cfg;
+    const char *sec = rq->sec;
+    static const char *const fits[] = {"none", "box"};
+    static const char *const dists[] = {"signed", "unsigned"};
+    int fit, dist;
+    double center[3], size;
+    static const double zero[3] = {0, 0, 0};
+    dfl_status st;
+    if ((st = dfl_cfg_enum_opt(cfg, sec, "distance", dists, 2, 0, &dist, err)) != DFL_OK) return st;
+    if ((st = dfl_cfg_enum_opt(cfg, sec, "fit", fits, 2, 0, &fit, err)) != DFL_OK) return st;
+    if (fit == 1) {
+        if ((st = dfl_cfg_vec_opt(cfg, sec, "center", 3, zero, center, err)) != DFL_OK) return st;
+        if ((st = dfl_cfg_double_opt(cfg, sec, "size", 1.6, 0.0, DFL_COORD_MAX, &size, err)) !=
+            DFL_OK)
+            return st;
+        if (!(size > 0.0)) return dfl_cfg_reject(cfg, sec, "size", err, "expected a number > 0");
+    } else if (dfl_cfg_has(cfg, sec, "center") || dfl_cfg_has(cfg, sec, "size")) {
+        const char *k = dfl_cfg_has(cfg, sec, "center") ? "center" : "size";
+        return dfl_cfg_reject(cfg, sec, k, err, "only read with fit = box");
+    }
+    dfl_trimesh m;
+    if ((st = mesh_source(rq, &m, err)) != DFL_OK) return st;
+    if (fit == 1) dfl_trimesh_fit(&m, center, size);
+    st = dfl_shape_mesh(&m, dist == 0 ? DFL_MESH_SIGNED : DFL_MESH_UNSIGNED, out, err);
+    if (st != DFL_OK) {
+        dfl_trimesh_free(&m);
+        return dfl_cfg_err_at(cfg, sec, dfl_cfg_has(cfg, sec, "file") ? "file" : "polygonize", st,
+                              err);
+    }
+    return DFL_OK;
+}
+
 /* ---- the table: one parser per kind of geom/shape.h's DFL_SHAPE_KINDS ---- */
 
 typedef dfl_status (*shape_parser)(const shape_req *rq, dfl_shape *out, dfl_err *err);
@@ -329,6 +420,7 @@ static const shape_parser parsers[DFL_SHAPE_KIND_COUNT] = {
     [DFL_SHAPE_BEZIER_SURFACE] = param_from_cfg,
     [DFL_SHAPE_IMPLICIT] = implicit_from_cfg,
     [DFL_SHAPE_CSG] = csg_from_cfg,
+    [DFL_SHAPE_MESH] = mesh_from_cfg,
 };
 
 static dfl_status from_cfg(const dfl_cfg *cfg, const char *sec, int depth, dfl_shape *out,

@@ -2,6 +2,7 @@
  * proofs of the bounds).  Subdivision is depth-first, left piece first, so
  * curve points come out in parameter order without sorting. */
 #include "geom/polygonize.h"
+#include "geom/tridist.h"
 
 #include <assert.h>
 #include <math.h>
@@ -378,48 +379,7 @@ dfl_status dfl_polyline_deviation(const dfl_bspline *c, const dfl_polyline *p, i
 double dfl_point_triangle_dist(const double *p, const double *a, const double *b,
                                const double *c)
 {
-    /* Ericson, Real-Time Collision Detection, 5.1.5: closest point by
-     * Voronoi regions of the triangle */
-    double ab[3], ac[3], ap[3], q[3];
-    for (int j = 0; j < 3; j++) {
-        ab[j] = b[j] - a[j];
-        ac[j] = c[j] - a[j];
-        ap[j] = p[j] - a[j];
-    }
-#define DOT(u, v) ((u)[0] * (v)[0] + (u)[1] * (v)[1] + (u)[2] * (v)[2])
-    double d1 = DOT(ab, ap), d2 = DOT(ac, ap);
-    if (d1 <= 0.0 && d2 <= 0.0) return sqrt(dist2(3, p, a));
-    double bp[3];
-    for (int j = 0; j < 3; j++) bp[j] = p[j] - b[j];
-    double d3 = DOT(ab, bp), d4 = DOT(ac, bp);
-    if (d3 >= 0.0 && d4 <= d3) return sqrt(dist2(3, p, b));
-    double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
-        double v = d1 / (d1 - d3);
-        for (int j = 0; j < 3; j++) q[j] = a[j] + v * ab[j];
-        return sqrt(dist2(3, p, q));
-    }
-    double cp[3];
-    for (int j = 0; j < 3; j++) cp[j] = p[j] - c[j];
-    double d5 = DOT(ab, cp), d6 = DOT(ac, cp);
-    if (d6 >= 0.0 && d5 <= d6) return sqrt(dist2(3, p, c));
-    double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
-        double w = d2 / (d2 - d6);
-        for (int j = 0; j < 3; j++) q[j] = a[j] + w * ac[j];
-        return sqrt(dist2(3, p, q));
-    }
-    double va = d3 * d6 - d5 * d4;
-    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
-        double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        for (int j = 0; j < 3; j++) q[j] = b[j] + w * (c[j] - b[j]);
-        return sqrt(dist2(3, p, q));
-    }
-    double den = 1.0 / (va + vb + vc);
-    double v = vb * den, w = vc * den;
-    for (int j = 0; j < 3; j++) q[j] = a[j] + ab[j] * v + ac[j] * w;
-#undef DOT
-    return sqrt(dist2(3, p, q));
+    return dfl_tridist_closest(p, a, b, c, NULL, NULL);
 }
 
 /* Bound and directional chord deviations (du along u, dv along v). */

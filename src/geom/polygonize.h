@@ -102,7 +102,8 @@ void dfl_trimesh_free(dfl_trimesh *m);
 dfl_status dfl_trimesh_deviation(const dfl_surface_set *s, const dfl_trimesh *m, int samples,
                                  double *out, dfl_err *err);
 
-/* Distance from x to the triangle abc in R^3. */
+/* Distance from x to the triangle abc in R^3 (geom/tridist.h's
+ * dfl_tridist_closest, bit for bit). */
 double dfl_point_triangle_dist(const double *x, const double *a, const double *b,
                                const double *c);
 

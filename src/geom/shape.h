@@ -32,7 +32,8 @@
  *   of the true distance, not a distance).
  * Kinds built elsewhere on the same interface: ellipse (geom/ellipse.h),
  *   parametric curves and surfaces (geom/param_shape.h), implicit surfaces
- *   (geom/implicit.h).
+ *   (geom/implicit.h), triangle meshes (geom/mesh.h: exact distance, sign of
+ *   the generalized winding number).
  *
  * Domain of validity (core/domain.h): parameters and points with
  * |x_j| <= 1e150.  The analytic kinds square differences of coordinates, so
@@ -71,7 +72,8 @@
     X(BSPLINE_SURFACE, "bspline_surface")  \
     X(BEZIER_SURFACE, "bezier_surface")    \
     X(IMPLICIT, "implicit")                \
-    X(CSG, "csg")
+    X(CSG, "csg")                          \
+    X(MESH, "mesh")
 
 typedef enum dfl_shape_kind {
 #define X(code, name) DFL_SHAPE_##code,

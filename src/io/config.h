@@ -137,6 +137,15 @@ dfl_status dfl_cfg_string(const dfl_cfg *c, const char *sec, const char *key, co
 dfl_status dfl_cfg_string_opt(const dfl_cfg *c, const char *sec, const char *key, const char *def,
                               const char **out, dfl_err *err);
 
+/* A file name; required.  A relative name is resolved like an include
+ * (io/path.h's dfl_path_beside, lexically): against the directory of the
+ * file the key was written in (the config itself or the included shape
+ * file that brought it), a --set value against the working directory.
+ * The resolved name goes to buf (size bytes); DFL_E_INPUT naming the key
+ * for an empty or too long value.  The file itself is not opened. */
+dfl_status dfl_cfg_path_value(const dfl_cfg *c, const char *sec, const char *key, char *buf,
+                              size_t size, dfl_err *err);
+
 /* Integer in [lo, hi]; the _opt form returns def when the key is absent. */
 dfl_status dfl_cfg_int(const dfl_cfg *c, const char *sec, const char *key, long lo, long hi,
                        long *out, dfl_err *err);

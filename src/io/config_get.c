@@ -15,6 +15,7 @@
 
 #include "core/domain.h"
 #include "io/config_impl.h"
+#include "io/path.h"
 #include "io/table.h"
 
 /* The entry of a required single value, marked used.  DFL_E_INPUT when it
@@ -42,6 +43,20 @@ dfl_status dfl_cfg_string(const dfl_cfg *c, const char *sec, const char *key, co
     if (st != DFL_OK) return st;
     if (en->value[0] == '\0') return dfl_cfgi_bad(en, "a non-empty value", err);
     *out = en->value;
+    return DFL_OK;
+}
+
+dfl_status dfl_cfg_path_value(const dfl_cfg *c, const char *sec, const char *key, char *buf,
+                              size_t size, dfl_err *err)
+{
+    const dfl_cfg_entry *en;
+    dfl_status st = fetch(c, sec, key, "a file name", &en, err);
+    if (st != DFL_OK) return st;
+    if (en->value[0] == '\0') return dfl_cfgi_bad(en, "a file name", err);
+    /* --set entries have no line and their "file" is the word "--set" */
+    const char *base = en->line > 0 ? en->file : "";
+    if (!dfl_path_beside(base, en->value, buf, size))
+        return dfl_cfgi_bad(en, "a shorter file name", err);
     return DFL_OK;
 }
 

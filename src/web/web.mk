@@ -25,8 +25,9 @@ WEB_DIR  := $(BUILD)/web
 # gridpeer.c stores half floats through the host's Imath, which emscripten's
 # sysroot lacks; the page does not use it.
 # vdb.c is the C side of the OpenVDB adapter (field/vdb_grid.cc, C++ and
-# OpenVDB), which the page neither builds nor uses.
-WEB_SKIP := src/field/gridpeer.c src/field/vdb.c
+# OpenVDB), which the page neither builds nor uses; the mesh shape (Embree)
+# is native only: the page has no meshes.
+WEB_SKIP := src/field/gridpeer.c src/field/vdb.c src/geom/mesh_bvh.c src/geom/mesh.c
 WEB_SRCS := $(filter-out $(WEB_SKIP),$(shell find src/core src/geom src/field src/rfunc -name '*.c' | sort))
 WEB_OBJ  := $(WEB_SRCS:%.c=$(WEB_DIR)/obj/%.o)
 WEB_API  := $(WEB_DIR)/obj/src/web/dflweb.o $(WEB_DIR)/obj/src/web/lsq_stub.o

@@ -28,5 +28,6 @@ void bench_trace(void);
 void bench_proxy_input(void);
 void bench_pht(void);
 void bench_vdb(void);
+void bench_mesh(void);
 
 #endif

@@ -35,7 +35,7 @@ void bench_pair(const char *name, double rate, double naive_rate, const char *un
 }
 
 /* dflab-bench [GROUP...]: every group, or only those named (field,
- * footpoint, rfunc, proxy, trace, proxy_input, pht, vdb). */
+ * footpoint, rfunc, proxy, trace, proxy_input, pht, vdb, mesh). */
 int main(int argc, char **argv)
 {
     static const struct {
@@ -44,14 +44,14 @@ int main(int argc, char **argv)
     } groups[] = {{"field", bench_field}, {"footpoint", bench_footpoint}, {"rfunc", bench_rfunc},
                   {"proxy", bench_proxy}, {"trace", bench_trace},
                   {"proxy_input", bench_proxy_input}, {"pht", bench_pht},
-                  {"vdb", bench_vdb}};
+                  {"vdb", bench_vdb}, {"mesh", bench_mesh}};
     const size_t ng = sizeof groups / sizeof groups[0];
     for (int a = 1; a < argc; a++) {
         size_t g = 0;
         while (g < ng && strcmp(argv[a], groups[g].name) != 0) g++;
         if (g == ng) {
             fprintf(stderr, "dflab-bench: no group '%s' (field footpoint rfunc proxy trace "
-                            "proxy_input pht vdb)\n", argv[a]);
+                            "proxy_input pht vdb mesh)\n", argv[a]);
             return 2;
         }
     }

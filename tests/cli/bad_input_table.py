@@ -332,6 +332,48 @@ probec("probe unknown field key", b"x,y\n0.1,0.2\n", "bad.ini:9", "[field] foo",
 probec("probe 3D field 2D points", b"x,y\n0.1,0.2\n", "pts.csv:1", "missing column 'z'", ini=HEAD + SPHERE + FIELD)
 probec("probe bad config", PTS, "bad.ini:1", "NUL", ini=b"\0")
 
+# ---- mesh shapes: bad files name the file and what is wrong ----------------
+P3 = b"x,y,z\n0.1,0.2,0.3\n"
+TRI = b"v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+
+
+def meshc(name, fname, data, *want, keys=b""):
+    """A probe of [shape] kind = mesh, file = fname (written with data
+    beside bad.ini unless data is None)."""
+    ini = HEAD + b"[shape]\nkind = mesh\nfile = " + fname.encode() + b"\n" + keys + FIELD
+    case(name, PROBE, want, ini=ini, pts=P3, files={} if data is None else {fname: data})
+
+
+meshc("mesh file missing", "nope.obj", None, "bad.ini:5", "[shape] file", "nope.obj", "cannot open")
+meshc("mesh file empty", "e.obj", b"", "bad.ini:5", "e.obj", "empty file")
+meshc("mesh file not a mesh", "junk.stl", b"solid x\n garbage\n", "bad.ini:5", "junk.stl", "not a mesh")
+meshc("mesh file too small to be OBJ", "junk.obj", b"hello\n", "junk.obj", "not a mesh")
+meshc("mesh file text without faces", "junk.obj", b"hello world\nthis is not\n", "junk.obj", "no triangles")
+meshc("mesh file NaN vertex", "nan.obj", b"v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "nan.obj",
+      "non-finite coordinate")
+meshc("mesh file beyond float range", "big.obj", b"v 1e300 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+      "big.obj", "non-finite coordinate")
+meshc("mesh file lines only", "l.obj", TRI + b"l 1 2\n", "l.obj", "no triangles", "1 point or line faces")
+meshc("mesh file degenerate triangle", "d.obj", TRI + b"v 2 0 0\nf 1 2 3\nf 1 2 4\n", "d.obj",
+      "triangle 1 is degenerate (zero area)")
+meshc("mesh file a directory", ".", None, "bad.ini:5", "a directory")
+meshc("mesh center without fit", "t.obj", TRI + b"f 1 2 3\n", "bad.ini:6", "[shape] center",
+      "only read with fit = box", keys=b"center = 0 0 0\n")
+meshc("mesh size zero", "t.obj", TRI + b"f 1 2 3\n", "bad.ini:7", "[shape] size", "> 0",
+      keys=b"fit = box\nsize = 0\n")
+meshc("mesh distance unknown", "t.obj", TRI + b"f 1 2 3\n", "bad.ini:6", "[shape] distance",
+      keys=b"distance = both\n")
+case("mesh file and polygonize", PROBE, ["bad.ini", "exactly one of file"], pts=P3,
+     ini=HEAD + b"[shape]\nkind = mesh\nfile = t.obj\npolygonize = s\n" + FIELD)
+case("mesh polygonize missing section", PROBE, ["bad.ini:5", "[shape] polygonize", "no such section"],
+     pts=P3, ini=HEAD + b"[shape]\nkind = mesh\npolygonize = s\n" + FIELD)
+case("mesh polygonize 2D shape", PROBE, ["[shape] polygonize", "not a 3D shape"], pts=P3,
+     ini=HEAD + b"[shape]\nkind = mesh\npolygonize = s\n" + FIELD +
+     b"[s]\nkind = circle\ncenter = 0 0\nradius = 0.5\n")
+case("mesh polygonize empty level set", PROBE, ["[shape] polygonize", "does not cross the grid"],
+     pts=P3, ini=HEAD + b"[shape]\nkind = mesh\npolygonize = s\nresolution = 8\n" + FIELD +
+     b"[s]\nkind = sphere\ncenter = 5 5 5\nradius = 0.5\n")
+
 
 def run_case(c, dflab, base):
     d = tempfile.mkdtemp(prefix="dfl_bad_", dir=base)

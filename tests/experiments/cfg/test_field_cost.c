@@ -104,11 +104,14 @@ Test(field_cost, shape_class_and_dim)
     dfl_cfg *cfg = tu_cfg("c.ini", "[a]\nkind = circle\n[b]\nkind = implicit\n"
                                    "[u]\nkind = csg\nop = union\na = a\nb = b\n"
                                    "[p]\nkind = box\ndim = 2\n[s]\nkind = segment\n"
-                                   "[m]\nkind = bspline_curve\n[loop]\nkind = csg\na = loop\nb = loop\n");
+                                   "[m]\nkind = bspline_curve\n[loop]\nkind = csg\na = loop\nb = loop\n"
+                                   "[mesh]\nkind = mesh\nfile = w.obj\n");
     cr_expect_eq(dfl_shape_cost_class(cfg, "a"), DFL_COST_CHEAP);
     cr_expect_eq(dfl_shape_cost_class(cfg, "b"), DFL_COST_FOOTPOINT);
     cr_expect_eq(dfl_shape_cost_class(cfg, "u"), DFL_COST_FOOTPOINT, "csg: its dearer operand");
     cr_expect_eq(dfl_shape_cost_class(cfg, "m"), DFL_COST_EXACT);
+    cr_expect_eq(dfl_shape_cost_class(cfg, "mesh"), DFL_COST_EXACT, "meshes: exact distances");
+    cr_expect_eq(dfl_shape_dim_guess(cfg, "mesh"), 3);
     cr_expect_eq(dfl_shape_cost_class(cfg, "nowhere"), DFL_COST_EXACT);
     cr_expect_eq(dfl_shape_cost_class(cfg, "loop"), DFL_COST_FOOTPOINT, "a cycle ends (depth bound)");
     cr_expect_eq(dfl_shape_dim_guess(cfg, "a"), 2);

@@ -1,0 +1,83 @@
+/* The two spatial queries of a triangle mesh, on Embree 3 (libembree-dev):
+ * the exact closest point (rtcPointQuery over a user geometry with one
+ * primitive per triangle) and the generalized winding number
+ * (geom/winding.h) summed over a BVH that rtcBuildBVH builds, with a
+ * certified error bound.
+ *
+ *   dfl_mesh_bvh_new(verts, nverts, tris, ntris, out, err)
+ *   dfl_mesh_bvh_closest(b, x, hit)          exact distance, closest point, triangle, feature
+ *   dfl_mesh_bvh_winding(b, x, beta, bound)  clustered winding number and its error bound
+ *   dfl_mesh_bvh_inside(b, x)                w(x) > 1/2, certified
+ *   dfl_mesh_bvh_free(b)
+ *
+ * Closest point.  Every triangle's distance is geom/tridist.h's
+ * dfl_tridist_closest in double precision; Embree only prunes.  Its boxes
+ * and query radius are floats, so they are made conservative: each
+ * triangle's box is rounded outwards and widened by 2^-20 of the largest
+ * coordinate magnitude of the mesh and of the query point, and the radius
+ * is the current best distance rounded up and widened the same way.  No
+ * triangle that could be closer is pruned, so the distance equals the
+ * brute-force minimum of dfl_tridist_closest over all triangles bit for
+ * bit (field/meshdist.h); on ties the triangle of smallest index is kept.
+ * Points beyond 1e30 in some coordinate (outside float range after the
+ * widening) are answered by brute force, with the same result.  A
+ * non-finite x gives d = NaN (hit->tri = SIZE_MAX).
+ *
+ * Winding number.  Clusters are BVH nodes with area A, area-weighted
+ * centroid p, radius r (every vertex of the cluster within r of p), area
+ * vector N = sum_t A_t n_t and first moment M = sum_t A_t n_t (c_t - p)^T
+ * (c_t the triangles' centroids).  Exactly, for flat triangles,
+ * w(x) = 1/(4 pi) sum_t n_t . int_t K(y) dA(y), K(y) = (y - x) / |y - x|^3.
+ * A cluster with R = |x - p| > beta r is replaced by the first two terms
+ * of K's Taylor series about p (the expansion of Barill, Dickson, Schmidt,
+ * Levin, Jacobson: "Fast winding numbers for soups and clouds", ACM
+ * Transactions on Graphics 37(4), 43:1-12, 2018, doi:10.1145/3197517.3201337,
+ * to first order):  (N . K(p) + sum_jk J_jk M_jk) / (4 pi) with
+ * J = (I - 3 u u^T) / R^3, u = (p - x) / R; since int_t (y - p) dA =
+ * A_t (c_t - p) that is exact to first order.  The remainder involves
+ * D^2 K = -D^3 (1/|y - x|), whose norm is at most 3! / |y - x|^4 (the
+ * Legendre bound |P_3| <= 1 of the Newton kernel's derivatives), so that
+ * cluster's error is at most 3 A r^2 / (4 pi (R - r)^4).  The sum of these
+ * is the returned bound; leaves that are not accepted are summed exactly
+ * (Van Oosterom-Strackee).
+ * dfl_mesh_bvh_inside tries beta = DFL_MESH_WINDING_BETA, 2 and 4 times
+ * that, and takes the first result with |w - 1/2| > bound + 1e-9; when
+ * none decides, the exact sum over every triangle.  Its answer is
+ * therefore that of the exact winding number (up to the rounding of the
+ * sums, the 1e-9).
+ *
+ * Thread-safety: after dfl_mesh_bvh_new everything is read-only; queries
+ * allocate nothing (a fixed stack of DFL_MESH_BVH_STACK nodes; the tree's
+ * depth is capped below it at build).  The arrays passed to _new are
+ * borrowed and must outlive b.  Errors of _new: DFL_E_INPUT for no
+ * triangles or more than 2^32 - 1; DFL_E_NOMEM; DFL_E_NUMERIC when Embree
+ * reports an error (its message in err). */
+#ifndef DFL_GEOM_MESH_BVH_H
+#define DFL_GEOM_MESH_BVH_H
+
+#include <stddef.h>
+
+#include "core/status.h"
+#include "geom/tridist.h"
+
+#define DFL_MESH_WINDING_BETA 3.0
+#define DFL_MESH_BVH_STACK 128
+
+typedef struct dfl_mesh_bvh dfl_mesh_bvh;
+
+typedef struct dfl_mesh_hit {
+    double d;             /* distance >= 0 (NaN for non-finite x) */
+    double q[3];          /* closest point */
+    size_t tri;           /* its triangle */
+    dfl_tri_feature feat; /* the triangle's feature q lies on */
+} dfl_mesh_hit;
+
+dfl_status dfl_mesh_bvh_new(const double *verts, size_t nverts, const size_t *tris, size_t ntris,
+                            dfl_mesh_bvh **out, dfl_err *err);
+void dfl_mesh_bvh_closest(const dfl_mesh_bvh *b, const double *x, dfl_mesh_hit *hit);
+/* beta > 1; *bound (may be NULL) gets the error bound of the result. */
+double dfl_mesh_bvh_winding(const dfl_mesh_bvh *b, const double *x, double beta, double *bound);
+int dfl_mesh_bvh_inside(const dfl_mesh_bvh *b, const double *x);
+void dfl_mesh_bvh_free(dfl_mesh_bvh *b);
+
+#endif
