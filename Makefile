@@ -127,8 +127,14 @@ deps:
 
 # src/ is the library: it must not reach into experiments/ or tests/ (src/cli,
 # the top of the dependency chain, is the one exception).
+# The folder names are those of experiments/ (harness, cfg and every study
+# folder), so a new study folder is covered without an edit here.
+EMPTY :=
+SPACE := $(EMPTY) $(EMPTY)
+STUDY_DIRS := $(sort $(notdir $(patsubst %/,%,$(wildcard experiments/*/))))
+LAYOUT_RE := $(subst $(SPACE),|,experiments tests $(STUDY_DIRS))
 check-layout:
-	@bad=$$(grep -rnE '#[[:space:]]*include[[:space:]]*"[^"]*(experiments|tests|harness|cfg|bs04|sjp10|hvb25|smoke)/' src --exclude-dir=cli || true); \
+	@bad=$$(grep -rnE '#[[:space:]]*include[[:space:]]*"[^"]*($(LAYOUT_RE))/' src --exclude-dir=cli || true); \
 	if [ -n "$$bad" ]; then echo "check-layout: src/ includes study code:"; echo "$$bad"; exit 1; fi; \
 	echo "check-layout: src/ includes no study code"
 
@@ -167,7 +173,11 @@ bench: deps
 # run` skips every sweep point whose config (with its included shape files)
 # and dflab binary are unchanged (results/<name>.points/), so only changed
 # configs compute.  `make figures STUDY=name` redraws one section.
-PAPER_CONFIGS := $(sort $(wildcard configs/paper/*/*.ini))
+# Every study config: configs/paper/<paper>/*.ini and the configs of the
+# study folders beside it (configs/<folder>/*.ini, e.g. configs/compare/),
+# not the shared shape files nor the smoke configs.
+PAPER_CONFIGS := $(sort $(wildcard configs/paper/*/*.ini) \
+  $(filter-out configs/shapes/% configs/smoke/% configs/paper/%,$(wildcard configs/*/*.ini)))
 # Wall time of every config and peer goes to $(BUILD)/reproduce_times.txt and
 # is printed at the end, slowest first.
 REPRO_TIMES := $(BUILD)/reproduce_times.txt

@@ -4,8 +4,8 @@ and with OMP_NUM_THREADS=1 (no --threads) and compares every output file
 byte for byte; in manifest.json only the wall times, the date, the
 thread count and the command line may differ, and in CSV tables only the
 columns that hold wall-clock measurements (TIMING below: `seconds`,
-`*_seconds`, `*_ms`, `t_*`, `*ns_per_*` -- the timings of hvb25's Table 4 and of
-sjp10's fits), which no two runs share; a CSV's sha256 in the manifest is
+`*_seconds`, `*_ms`, `t_*`, `*ns_per_*`, `*_s`, `*_per_s`, `*_rss_*` -- the timings of
+hvb25's Table 4, of sjp10's fits and of compare_methods), which no two runs share; a CSV's sha256 in the manifest is
 then checked through that comparison instead.
 
     check_threads.py DFLAB [--quick] [--keep DIR] [CONFIG.ini ...]
@@ -29,7 +29,9 @@ QUICK = ["bs04_hetero", "bs04_normalization", "bs04_polygonization", "smoke", "s
 VOLATILE = {"date", "wall_seconds", "total_wall_seconds", "threads", "omp_threads", "command_line"}
 
 
-TIMING = re.compile(r"^(seconds|.*_seconds|.*_ms|t_.*|.*ns_per_.*)$")
+# Machine measurements: wall-clock times (`*_s` seconds, `*_per_s` rates
+# included) and the resident-set growth of a build (`*_rss_*`).
+TIMING = re.compile(r"^(seconds|.*_seconds|.*_ms|t_.*|.*ns_per_.*|.*_s|.*_per_s|.*_rss_.*)$")
 
 
 def strip(o):
@@ -97,7 +99,10 @@ def main():
         argv.remove("--keep"), argv.remove(keep)
     cfgs = [a for a in argv if not a.startswith("--")]
     if not cfgs:
-        cfgs = sorted(glob.glob("configs/paper/*/*.ini")) + sorted(glob.glob("configs/smoke/*.ini"))
+        study = [c for c in glob.glob("configs/*/*.ini")
+                 if c.split(os.sep)[1] not in ("shapes", "smoke", "paper")]
+        cfgs = (sorted(glob.glob("configs/paper/*/*.ini") + study)
+                + sorted(glob.glob("configs/smoke/*.ini")))
         if quick:
             cfgs = [c for c in cfgs if os.path.splitext(os.path.basename(c))[0] in QUICK]
     base = keep or tempfile.mkdtemp(prefix="dfl_threads_")

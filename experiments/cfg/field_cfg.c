@@ -9,14 +9,18 @@
 #include "field/exact.h"
 #include "geom/shape.h"
 
-/* kind = exact: the [shape] section's exact distance (the [field] section
- * has no other keys). */
+/* kind = exact: the exact distance of the section its key `shape` names
+ * (default [shape], as kind = proxy, gridpeer and pht). */
 static dfl_status exact_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *out,
                                  dfl_err *err)
 {
-    (void)sec;
+    const char *ssec;
+    dfl_status st = dfl_cfg_string_opt(cfg, sec, "shape", "shape", &ssec, err);
+    if (st != DFL_OK) return st;
+    if (!dfl_cfg_has_section(cfg, ssec))
+        return dfl_cfg_reject(cfg, sec, "shape", err, "no section [%s]", ssec);
     dfl_shape shape;
-    dfl_status st = dfl_shape_from_cfg(cfg, "shape", &shape, err);
+    st = dfl_shape_from_cfg(cfg, ssec, &shape, err);
     if (st != DFL_OK) return st;
     st = dfl_field_exact_new(&shape, out, err);
     if (st != DFL_OK) dfl_shape_free(&shape);

@@ -1,6 +1,7 @@
 /* [field] section -> dfl_field, through a table of field kinds.
  *
- *   kind = exact   the exact signed distance of the [shape] section
+ *   kind = exact   the exact signed distance of the [shape] section (key
+ *                  shape names another section)
  *   kind = rfunc   a bs04 R-function field (experiments/cfg/rfunc_cfg.h)
  *   kind = proxy   an hvb25 proxy grid field (experiments/cfg/proxy_cfg.h)
  *   kind = gridpeer  a simple grid of [shape]'s SDF (experiments/cfg/gridpeer_cfg.h)

@@ -74,10 +74,11 @@ static dfl_status proxy_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c, d
     dfl_cost_add_bytes(c, sec, "res", cells * (ns * (double)dfl_proxy_storage_size(p.build.storage) + 1),
                        "a proxy grid of %.0f^3 cells, order %d, %s", r, p.build.order,
                        dfl_proxy_storage_name(p.build.storage));
-    const char *input = "sdf";
+    const char *input = "sdf", *shape = "shape";
     if (dfl_cfg_has(cfg, sec, "input")) dfl_cfg_string(cfg, sec, "input", &input, NULL);
+    if (dfl_cfg_has(cfg, sec, "shape")) dfl_cfg_string(cfg, sec, "shape", &shape, NULL);
     const dfl_cost_class cls =
-        strcmp(input, "sdf") ? DFL_COST_FOOTPOINT : dfl_shape_cost_class(cfg, "shape");
+        strcmp(input, "sdf") ? DFL_COST_FOOTPOINT : dfl_shape_cost_class(cfg, shape);
     dfl_cost_add_work(c, sec, "res", cls, cells * (p.build.order == 2 ? 2 : 1),
                       "%.3g %s footpoints", cells, input);
     return DFL_OK;

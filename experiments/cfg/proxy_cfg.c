@@ -135,7 +135,12 @@ dfl_status dfl_proxy_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_fie
 {
     dfl_proxy_grid g;
     dfl_proxy_filter_opts fo;
-    dfl_status st = dfl_proxy_grid_from_cfg(cfg, sec, "shape", &g, &fo, err);
+    const char *shape = "shape";
+    dfl_status st = dfl_cfg_string_opt(cfg, sec, "shape", "shape", &shape, err);
+    if (st) return st;
+    if (!dfl_cfg_has_section(cfg, shape))
+        return dfl_cfg_reject(cfg, sec, "shape", err, "no section [%s]", shape);
+    st = dfl_proxy_grid_from_cfg(cfg, sec, shape, &g, &fo, err);
     if (st) return st;
     st = dfl_proxy_field_new(&g, &fo, out, err);
     if (st) dfl_proxy_grid_free(&g);

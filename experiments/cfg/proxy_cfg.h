@@ -23,6 +23,7 @@
  *   clip_radius the sphere constraint's radius in CELL SIZES (max_j h_j),
  *               > 0 (default: 1 for nearest, no clip for trilinear and
  *               hermite); refused with clip = off
+ *   shape       the section holding the shape          (default shape)
  *   signed      true: signed output (needs an input with an inside)
  *               (default false: unsigned, as the paper)
  *   noise       footpoint noise length >= 0, in config length units
@@ -65,8 +66,10 @@ dfl_status dfl_proxy_grid_from_cfg(const dfl_cfg *cfg, const char *sec, const ch
                                    dfl_proxy_grid *grid, dfl_proxy_filter_opts *fo,
                                    dfl_err *err);
 
-/* The factory of kind = proxy: dfl_proxy_grid_from_cfg(cfg, sec, "shape")
- * wrapped by dfl_proxy_field_new. */
+/* The factory of kind = proxy: dfl_proxy_grid_from_cfg(cfg, sec, S)
+ * wrapped by dfl_proxy_field_new, where S is [sec] shape (default "shape",
+ * as kind = gridpeer and kind = pht; a missing section is DFL_E_INPUT at
+ * key shape). */
 dfl_status dfl_proxy_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *out,
                                     dfl_err *err);
 

@@ -88,4 +88,13 @@ size_t dfl_study_count(void);
 const dfl_study *dfl_study_at(size_t i);
 const dfl_study *dfl_study_find(const char *name);
 
+/* One study folder experiments/<folder>/ and its NULL-terminated list;
+ * every study's name begins with the folder's name. */
+typedef struct dfl_study_group {
+    const char *folder;
+    const dfl_study *const *studies;
+} dfl_study_group;
+/* The folders in `dflab list` order (*count of them). */
+const dfl_study_group *dfl_study_groups(size_t *count);
+
 #endif

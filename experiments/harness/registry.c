@@ -1,45 +1,55 @@
-/* The registry: one row per paper, each a NULL-terminated list that the
- * paper's folder defines (bs04/bs04.h, ...).  Add a paper: create
- * experiments/<paper>/ with its list and add one row to `papers` below.
- * Study names are unique across papers (tests/experiments/harness checks). */
+/* The registry: one row per study folder (a paper, or compare/), each its
+ * folder name and the NULL-terminated list that the folder defines
+ * (bs04/bs04.h, ...).  Add a folder: create experiments/<folder>/ with its
+ * list and add one row to `groups` below.  Study names are unique and
+ * begin with their folder's name (tests/experiments/harness checks every
+ * row, whatever the rows are). */
 #include <stdio.h>
 #include <string.h>
 
 #include "bs04/bs04.h"
+#include "compare/compare.h"
 #include "hvb25/hvb25.h"
 #include "harness/experiment.h"
 #include "io/path.h"
 #include "sjp10/sjp10.h"
 #include "smoke/smoke.h"
 
-static const dfl_study *const *const papers[] = {
-    dfl_smoke_studies,
-    dfl_bs04_studies,
-    dfl_sjp10_studies,
-    dfl_hvb25_studies,
-    NULL,
+static const dfl_study_group groups[] = {
+    {"smoke", dfl_smoke_studies},
+    {"bs04", dfl_bs04_studies},
+    {"sjp10", dfl_sjp10_studies},
+    {"hvb25", dfl_hvb25_studies},
+    {"compare", dfl_compare_studies},
 };
+#define NGROUPS (sizeof groups / sizeof groups[0])
+
+const dfl_study_group *dfl_study_groups(size_t *count)
+{
+    *count = NGROUPS;
+    return groups;
+}
 
 size_t dfl_study_count(void)
 {
     size_t n = 0;
-    for (const dfl_study *const *const *p = papers; *p; p++)
-        for (const dfl_study *const *s = *p; *s; s++) n++;
+    for (size_t g = 0; g < NGROUPS; g++)
+        for (const dfl_study *const *s = groups[g].studies; *s; s++) n++;
     return n;
 }
 
 const dfl_study *dfl_study_at(size_t i)
 {
-    for (const dfl_study *const *const *p = papers; *p; p++)
-        for (const dfl_study *const *s = *p; *s; s++)
+    for (size_t g = 0; g < NGROUPS; g++)
+        for (const dfl_study *const *s = groups[g].studies; *s; s++)
             if (i-- == 0) return *s;
     return NULL;
 }
 
 const dfl_study *dfl_study_find(const char *name)
 {
-    for (const dfl_study *const *const *p = papers; *p; p++)
-        for (const dfl_study *const *s = *p; *s; s++)
+    for (size_t g = 0; g < NGROUPS; g++)
+        for (const dfl_study *const *s = groups[g].studies; *s; s++)
             if (strcmp((*s)->name, name) == 0) return *s;
     return NULL;
 }

@@ -36,7 +36,7 @@ static void view_eval(const void *ctx, size_t m, const double *pts, double *val,
     dfl_proxy_filter_eval(v->g, &v->o, m, pts, val, grad);
 }
 
-static const dfl_field_ops view_ops = {"proxy", view_eval, NULL, NULL};
+static const dfl_field_ops view_ops = {"proxy", view_eval, NULL, NULL, NULL};
 
 void hvb25_view_field(const hvb25_view *v, dfl_field *out)
 {

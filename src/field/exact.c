@@ -26,11 +26,11 @@ static void exact_destroy(void *ctx)
     free(s);
 }
 
-static const dfl_field_ops exact_ops = {"exact", exact_eval, exact_jet, exact_destroy};
-static const dfl_field_ops exact_nojet_ops = {"exact", exact_eval, NULL, exact_destroy};
+static const dfl_field_ops exact_ops = {"exact", exact_eval, exact_jet, exact_destroy, NULL};
+static const dfl_field_ops exact_nojet_ops = {"exact", exact_eval, NULL, exact_destroy, NULL};
 /* borrowed shapes: nothing to free */
-static const dfl_field_ops view_ops = {"exact", exact_eval, exact_jet, NULL};
-static const dfl_field_ops view_nojet_ops = {"exact", exact_eval, NULL, NULL};
+static const dfl_field_ops view_ops = {"exact", exact_eval, exact_jet, NULL, NULL};
+static const dfl_field_ops view_nojet_ops = {"exact", exact_eval, NULL, NULL, NULL};
 
 void dfl_field_exact_view(const dfl_shape *shape, dfl_field *out)
 {

@@ -15,6 +15,13 @@ dfl_status dfl_field_jet(const dfl_field *f, const double *x, const double *dir,
     return dfl_jet_dir_call(f->ops->jet, f->ctx, "field", f->ops->name, x, dir, K, out, err);
 }
 
+int dfl_field_bytes(const dfl_field *f, size_t *out)
+{
+    if (!f->ops->bytes) return 0;
+    *out = f->ops->bytes(f->ctx);
+    return 1;
+}
+
 void dfl_field_destroy(dfl_field *f)
 {
     if (!f) return;

@@ -27,6 +27,10 @@ typedef struct dfl_field_ops {
     dfl_dir_jet_fn jet;
     /* Frees ctx.  May be NULL. */
     void (*destroy)(void *ctx);
+    /* Stored bytes: what must be kept to evaluate the field (coefficients,
+     * samples, proxies, cell tree, parameters), not scratch or caches of
+     * the build.  NULL: unknown (dfl_field_bytes says so). */
+    size_t (*bytes)(const void *ctx);
 } dfl_field_ops;
 
 typedef struct dfl_field {
@@ -43,6 +47,10 @@ double dfl_field_eval1(const dfl_field *f, const double *x, double *g);
  * [0, DFL_JET_MAX] (dfl_jet_dir_call). */
 dfl_status dfl_field_jet(const dfl_field *f, const double *x, const double *dir, int K,
                          dfl_jet *out, dfl_err *err);
+
+/* The stored bytes of f (ops->bytes) into *out and 1; 0 (out untouched)
+ * when the field's kind does not say (ops->bytes NULL). */
+int dfl_field_bytes(const dfl_field *f, size_t *out);
 
 /* Releases ctx and zeroes *f.  f may be NULL or already destroyed. */
 void dfl_field_destroy(dfl_field *f);

@@ -140,7 +140,17 @@ static void gridpeer_destroy(void *ctx)
     free(g);
 }
 
-static const dfl_field_ops gridpeer_ops = {"gridpeer", gridpeer_eval, NULL, gridpeer_destroy};
+/* Stored: the scalars in their storage (float16: 2 bytes each, although
+ * the decoder keeps their exact values as doubles). */
+static size_t gridpeer_bytes(const void *ctx)
+{
+    const gridpeer *g = ctx;
+    const size_t each = g->opts.storage == DFL_GRIDPEER_FLOAT16 ? 2 : 8;
+    return dfl_gridpeer_scalars(g->kind, g->n) * each;
+}
+
+static const dfl_field_ops gridpeer_ops = {"gridpeer", gridpeer_eval, NULL, gridpeer_destroy,
+                                           gridpeer_bytes};
 
 /* Rounds v to the storage; 0 when it does not fit (a half overflows). */
 static int store(dfl_gridpeer_storage st, double v, double *out)

@@ -87,8 +87,8 @@ static void shape_view_eval(const void *ctx, size_t m, const double *pts, double
     dfl_shape_eval(ctx, m, pts, val, grad);
 }
 
-static const dfl_field_ops implicit_g_ops = {"implicit_g", implicit_g_eval, NULL, NULL};
-static const dfl_field_ops shape_view_ops = {"shape", shape_view_eval, NULL, NULL};
+static const dfl_field_ops implicit_g_ops = {"implicit_g", implicit_g_eval, NULL, NULL, NULL};
+static const dfl_field_ops shape_view_ops = {"shape", shape_view_eval, NULL, NULL, NULL};
 
 dfl_status dfl_shape_isomesh(const dfl_shape *s, const dfl_grid *g, int refine, int threads,
                              dfl_trimesh *out, size_t *dropped, dfl_err *err)

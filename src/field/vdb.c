@@ -28,7 +28,14 @@ static void vdb_destroy(void *ctx)
     free(f);
 }
 
-static const dfl_field_ops vdb_ops = {"openvdb", vdb_eval, NULL, vdb_destroy};
+/* Stored: OpenVDB's memUsage of the grid's tree (dfl_vdb_bytes). */
+static size_t vdb_bytes(const void *ctx)
+{
+    const vdb_field *f = ctx;
+    return dfl_vdb_bytes(f->grid);
+}
+
+static const dfl_field_ops vdb_ops = {"openvdb", vdb_eval, NULL, vdb_destroy, vdb_bytes};
 
 dfl_status dfl_vdb_field_new(dfl_vdb **g, dfl_vdb_sampler s, dfl_field *out, dfl_err *err)
 {

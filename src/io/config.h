@@ -13,6 +13,7 @@
  *                                    dfl_cfg_points, dfl_cfg_doubles, dfl_cfg_point_dim
  *   locations      config_where.c    dfl_cfg_where, dfl_cfg_err_at, dfl_cfg_reject,
  *                                    dfl_cfg_check_used, dfl_cfg_check_used_in,
+ *                                    dfl_cfg_claim_section,
  *                                    dfl_cfg_defer_sections, dfl_cfg_unused_deferred
  *   read record    config_log.c      dfl_cfg_reads, dfl_cfg_read_at,
  *                                    dfl_cfg_validate_only, dfl_cfg_validated
@@ -213,6 +214,11 @@ dfl_status dfl_cfg_check_used(const dfl_cfg *c, dfl_err *err);
 /* Same, restricted to section sec (for commands that read only part of a
  * study config, such as `dflab probe` reading [field] and [shape]). */
 dfl_status dfl_cfg_check_used_in(const dfl_cfg *c, const char *sec, dfl_err *err);
+/* Marks every key of section sec read (none: nothing happens), for a
+ * caller that hands the section to a reader working on a copy (a sweep
+ * point of c, changed by dfl_cfg_set) and checks the copy's section with
+ * dfl_cfg_check_used_in itself.  Records nothing in the read record. */
+void dfl_cfg_claim_section(const dfl_cfg *c, const char *sec);
 /* Defers the sections named `name` and `name_*` (name: at most 40 bytes;
  * NULL or "" undoes it): dfl_cfg_check_used skips their keys, which another
  * reader checks later (dflab's runner: the probe's [field] and [field_*]

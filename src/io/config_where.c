@@ -60,6 +60,12 @@ static bool deferred(const dfl_cfg *c, const char *sec)
     return n > 0 && strncmp(sec, c->defer, n) == 0 && (sec[n] == '\0' || sec[n] == '_');
 }
 
+void dfl_cfg_claim_section(const dfl_cfg *c, const char *sec)
+{
+    for (size_t i = 0; i < c->n; i++)
+        if (strcmp(c->e[i].sec, sec) == 0) c->used[i] = 1;
+}
+
 void dfl_cfg_defer_sections(dfl_cfg *c, const char *name)
 {
     snprintf(c->defer, sizeof c->defer, "%s", name ? name : "");

@@ -10,7 +10,9 @@ static void pht_eval(const void *ctx, size_t m, const double *pts, double *val, 
 
 static void pht_destroy(void *ctx) { dfl_pht_spline_free(ctx); }
 
-static const dfl_field_ops pht_ops = {"pht", pht_eval, dfl_pht_jet, pht_destroy};
+static size_t pht_bytes(const void *ctx) { return dfl_pht_spline_bytes(ctx); }
+
+static const dfl_field_ops pht_ops = {"pht", pht_eval, dfl_pht_jet, pht_destroy, pht_bytes};
 
 dfl_status dfl_pht_field_new(dfl_pht_spline **s, dfl_field *out, dfl_err *err)
 {

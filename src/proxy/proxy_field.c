@@ -1,5 +1,7 @@
 #include "proxy/proxy_field.h"
 
+#include "proxy/store.h"
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -21,7 +23,16 @@ static void pf_destroy(void *ctx)
     free(c);
 }
 
-static const dfl_field_ops pf_ops = {"proxy", pf_eval, NULL, pf_destroy};
+/* Stored: the cells' scalars in their storage, and the sign byte per cell
+ * an order-1 grid with an inside keeps. */
+static size_t pf_bytes(const void *ctx)
+{
+    const pf_ctx *c = ctx;
+    return dfl_proxy_grid_scalars(&c->grid) * dfl_proxy_storage_size(c->grid.storage) +
+           (c->grid.side ? c->grid.ncells : 0);
+}
+
+static const dfl_field_ops pf_ops = {"proxy", pf_eval, NULL, pf_destroy, pf_bytes};
 
 dfl_status dfl_proxy_field_new(dfl_proxy_grid *grid, const dfl_proxy_filter_opts *o,
                                dfl_field *out, dfl_err *err)

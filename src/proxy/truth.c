@@ -37,7 +37,7 @@ static void input_destroy(void *ctx)
     free(ctx);
 }
 
-static const dfl_field_ops input_ops = {"proxy_truth", input_eval, NULL, input_destroy};
+static const dfl_field_ops input_ops = {"proxy_truth", input_eval, NULL, input_destroy, NULL};
 
 dfl_status dfl_proxy_truth_input(dfl_proxy_input *in, dfl_field *out, dfl_err *err)
 {

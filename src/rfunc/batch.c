@@ -309,7 +309,15 @@ static dfl_status field_jet(const void *ctx, const double *x, const double *dir,
 
 static void field_destroy(void *ctx) { dfl_rfunc_batch_free(ctx); }
 
-static const dfl_field_ops batch_ops = {"rfunc_batch", field_eval, field_jet, field_destroy};
+/* Stored: the segments' end points (everything else is derived from them). */
+static size_t field_bytes(const void *ctx)
+{
+    const dfl_rfunc_batch *b = ctx;
+    return b->n * 2 * (size_t)b->dim * sizeof(double);
+}
+
+static const dfl_field_ops batch_ops = {"rfunc_batch", field_eval, field_jet, field_destroy,
+                                        field_bytes};
 
 dfl_status dfl_rfunc_batch_field(const double *v, size_t n, bool closed, int p, dfl_field *out,
                                  dfl_err *err)

@@ -59,7 +59,7 @@ static void spoly_destroy(void *ctx)
     free(s);
 }
 
-static const dfl_field_ops spoly_ops = {"exact_polyline", spoly_eval, NULL, spoly_destroy};
+static const dfl_field_ops spoly_ops = {"exact_polyline", spoly_eval, NULL, spoly_destroy, NULL};
 
 dfl_status dfl_rfunc_exact_polyline_field(int dim, const double *v, size_t n,
                                           dfl_rfunc_join join, int p, dfl_field *out,

@@ -306,7 +306,7 @@ static void nfield_destroy(void *ctx)
 }
 
 static const dfl_field_ops nfield_ops = {"rfunc_normalized", nfield_eval, nfield_jet,
-                                         nfield_destroy};
+                                         nfield_destroy, NULL};
 
 dfl_status dfl_rfunc_normalized_field(const dfl_rfunc_poly *poly, int m, dfl_field *out,
                                       dfl_err *err)

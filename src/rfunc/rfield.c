@@ -346,9 +346,19 @@ static dfl_status rfield_jet(const void *ctx, const double *x, const double *dir
 static void rfield_destroy(void *ctx) { dfl_rfield_free(ctx); }
 
 
-static const dfl_field_ops rfield_ops = {"rfunc", rfield_eval, rfield_jet, rfield_destroy};
+/* Stored: the part records and the joining vertices (the parameters the
+ * field is evaluated from; the batch path's derived arrays are a cache). */
+static size_t rfield_bytes(const void *ctx)
+{
+    const dfl_rfield *r = ctx;
+    return r->n * sizeof(part) + r->nv * sizeof(vertex);
+}
+
+static const dfl_field_ops rfield_ops = {"rfunc", rfield_eval, rfield_jet, rfield_destroy,
+                                         rfield_bytes};
 /* The per-point path of a finished field, borrowed by its batch. */
-static const dfl_field_ops rfield_slow_ops = {"rfunc_per_point", rfield_eval_slow, rfield_jet, NULL};
+static const dfl_field_ops rfield_slow_ops = {"rfunc_per_point", rfield_eval_slow, rfield_jet, NULL,
+                                              NULL};
 
 dfl_status dfl_rfield_check_point(const dfl_field *f, const double *x, bool jet, dfl_err *err)
 {

@@ -37,7 +37,7 @@ static void tf_eval(const void *ctx, size_t m, const double *p, double *val, dou
     }
 }
 
-static const dfl_field_ops tf_ops = {"test", tf_eval, NULL, NULL};
+static const dfl_field_ops tf_ops = {"test", tf_eval, NULL, NULL, NULL};
 
 static dfl_field tfield_make(tfield *t) { return (dfl_field){2, &tf_ops, t}; }
 

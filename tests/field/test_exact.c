@@ -203,3 +203,18 @@ Test(exact, view_borrows_the_shape)
     cr_expect_float_eq(dfl_shape_eval1(&s, x, NULL), 0.5, 1e-15);
     dfl_shape_free(&s);
 }
+
+/* dfl_field_bytes: a kind without a bytes op says "unknown" (0) and leaves
+ * the output alone; the exact field is one (its shape is the reference). */
+Test(exact, bytes_unknown)
+{
+    double c[3] = {0, 0, 0};
+    dfl_shape s;
+    cr_assert_eq(dfl_shape_sphere(c, 0.5, &s, NULL), DFL_OK);
+    dfl_field f;
+    cr_assert_eq(dfl_field_exact_new(&s, &f, NULL), DFL_OK);
+    size_t b = 12345;
+    cr_expect_eq(dfl_field_bytes(&f, &b), 0);
+    cr_expect_eq(b, 12345);
+    dfl_field_destroy(&f);
+}

@@ -191,3 +191,25 @@ Test(gridpeer, bad_input)
     dfl_shape_free(&s2);
     dfl_shape_free(&big);
 }
+
+/* Stored bytes: n^3 cells x the kind's scalars (1, 4, 10) x 8 (float64) or
+ * 2 (float16) bytes: the scalars kept, not the doubles the decoder holds. */
+Test(gridpeer, bytes_are_the_stored_scalars)
+{
+    const double p[3] = {0.1, -0.2, 0.3}, nrm[3] = {1, 2, -2};
+    dfl_shape s;
+    cr_assert_eq(dfl_shape_plane(3, p, nrm, &s, NULL), DFL_OK);
+    static const int per_cell[DFL_GRIDPEER_KIND_COUNT] = {1, 4, 10};
+    for (int k = 0; k < DFL_GRIDPEER_KIND_COUNT; k++)
+        for (int st = 0; st < DFL_GRIDPEER_STORAGE_COUNT; st++) {
+            dfl_gridpeer_opts o = opts((dfl_gridpeer_kind)k, (dfl_gridpeer_storage)st, 6);
+            dfl_field f;
+            cr_assert_eq(dfl_gridpeer_new(&s, &o, &f, NULL), DFL_OK);
+            size_t b = 0;
+            cr_assert_eq(dfl_field_bytes(&f, &b), 1);
+            const size_t each = st == DFL_GRIDPEER_FLOAT64 ? 8 : 2;
+            cr_expect_eq(b, (size_t)6 * 6 * 6 * per_cell[k] * each, "kind %d storage %d", k, st);
+            dfl_field_destroy(&f);
+        }
+    dfl_shape_free(&s);
+}

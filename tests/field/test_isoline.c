@@ -20,7 +20,7 @@ static void ball_eval(const void *ctx, size_t m, const double *p, double *v, dou
         (void)g;
     }
 }
-static const dfl_field_ops ball_ops = {"ball", ball_eval, NULL, NULL};
+static const dfl_field_ops ball_ops = {"ball", ball_eval, NULL, NULL, NULL};
 
 /* torus R = 0.6, r = 0.25, axis z */
 static void torus_eval(const void *ctx, size_t m, const double *p, double *v, double *g)
@@ -31,7 +31,7 @@ static void torus_eval(const void *ctx, size_t m, const double *p, double *v, do
         v[i] = hypot(q, p[3 * i + 2]) - 0.25;
     }
 }
-static const dfl_field_ops torus_ops = {"torus", torus_eval, NULL, NULL};
+static const dfl_field_ops torus_ops = {"torus", torus_eval, NULL, NULL, NULL};
 
 static double *sample(const dfl_field *f, const dfl_grid *g)
 {

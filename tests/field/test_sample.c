@@ -13,7 +13,7 @@ static void lin_eval(const void *ctx, size_t m, const double *p, double *v, doub
         if (g) g[3 * i] = 1, g[3 * i + 1] = 2, g[3 * i + 2] = 3;
     }
 }
-static const dfl_field_ops lin_ops = {"linear", lin_eval, NULL, NULL};
+static const dfl_field_ops lin_ops = {"linear", lin_eval, NULL, NULL, NULL};
 
 /* Sampling visits every node once at the right coordinates, x fastest,
  * whatever the thread count. */
@@ -131,7 +131,7 @@ static void record_eval(const void *ctx, size_t m, const double *p, double *v, d
         if (g) g[3 * i] = 1, g[3 * i + 1] = 0, g[3 * i + 2] = -1;
     }
 }
-static const dfl_field_ops record_ops = {"record", record_eval, NULL, NULL};
+static const dfl_field_ops record_ops = {"record", record_eval, NULL, NULL, NULL};
 
 /* A plane is sampled in chunks of 256 nodes in index order, one eval call
  * per chunk, at the grid's nodes; the values land at their node. */

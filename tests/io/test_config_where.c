@@ -76,3 +76,19 @@ Test(config, deferred_sections)
     dfl_cfg_defer_sections(c, NULL);
     dfl_cfg_free(c);
 }
+
+/* claim_section marks exactly the keys of one section read, and records
+ * nothing in the read record. */
+Test(config, claim_section_marks_one_section)
+{
+    dfl_cfg *c = cfgu_parse("[a]\nx = 1\ny = 2\n[b]\nz = 3\n");
+    dfl_err err;
+    const size_t reads = dfl_cfg_reads(c);
+    dfl_cfg_claim_section(c, "a");
+    dfl_cfg_claim_section(c, "nosuch");
+    cr_expect_eq(dfl_cfg_reads(c), reads);
+    cr_expect_eq(dfl_cfg_check_used_in(c, "a", &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(dfl_cfg_check_used(c, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "t.ini:5: [b] z") != NULL, "%s", err.msg);
+    dfl_cfg_free(c);
+}

@@ -1,13 +1,14 @@
-/* The study registry: every paper's list reaches `dflab list`, names are
- * unique, and lookup by name finds each study. */
+/* The study registry: every folder's list reaches `dflab list`, names are
+ * unique, lookup by name finds each study, and the folders are exactly the
+ * study folders of experiments/ (so a new folder needs its one row and
+ * nothing here). */
 #include <criterion/criterion.h>
+#include <dirent.h>
+#include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
-#include "bs04/bs04.h"
 #include "harness/experiment.h"
-#include "hvb25/hvb25.h"
-#include "sjp10/sjp10.h"
-#include "smoke/smoke.h"
 
 Test(registry, names_unique_and_found)
 {
@@ -26,23 +27,45 @@ Test(registry, names_unique_and_found)
     cr_assert_null(dfl_study_find("no_such_study"));
 }
 
-/* Each paper's list is concatenated whole: the registry holds exactly the
- * studies of the per-paper lists. */
-Test(registry, concatenates_paper_lists)
+/* Each folder's list is concatenated whole, in group order, and every
+ * study's name begins with its folder's name. */
+Test(registry, concatenates_group_lists)
 {
-    const dfl_study *const *lists[] = {dfl_smoke_studies, dfl_bs04_studies, dfl_sjp10_studies,
-                                       dfl_hvb25_studies};
+    size_t ng;
+    const dfl_study_group *g = dfl_study_groups(&ng);
     size_t total = 0;
-    for (size_t l = 0; l < sizeof lists / sizeof lists[0]; l++)
-        for (const dfl_study *const *s = lists[l]; *s; s++) {
+    for (size_t k = 0; k < ng; k++)
+        for (const dfl_study *const *s = g[k].studies; *s; s++) {
+            cr_assert_eq(dfl_study_at(total), *s, "%s at %zu", (*s)->name, total);
             cr_assert_eq(dfl_study_find((*s)->name), *s);
+            cr_assert(strncmp((*s)->name, g[k].folder, strlen(g[k].folder)) == 0,
+                      "%s in the %s list", (*s)->name, g[k].folder);
             total++;
         }
     cr_assert_eq(total, dfl_study_count());
-    for (const dfl_study *const *s = dfl_bs04_studies; *s; s++)
-        cr_assert(strncmp((*s)->name, "bs04_", 5) == 0, "%s in the bs04 list", (*s)->name);
-    for (const dfl_study *const *s = dfl_hvb25_studies; *s; s++)
-        cr_assert(strncmp((*s)->name, "hvb25_", 6) == 0, "%s in the hvb25 list", (*s)->name);
-    for (const dfl_study *const *s = dfl_sjp10_studies; *s; s++)
-        cr_assert(strncmp((*s)->name, "sjp10_", 6) == 0, "%s in the sjp10 list", (*s)->name);
+}
+
+/* The groups are the folders of experiments/ that hold a <folder>.h list
+ * (cfg/ and harness/ are glue, not study folders), one row each. */
+Test(registry, one_row_per_study_folder)
+{
+    size_t ng;
+    const dfl_study_group *g = dfl_study_groups(&ng);
+    DIR *d = opendir("experiments");
+    cr_assert_not_null(d, "run from the repository root");
+    size_t found = 0;
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        if (e->d_name[0] == '.') continue;
+        char list[600];
+        snprintf(list, sizeof list, "experiments/%s/%s.h", e->d_name, e->d_name);
+        struct stat st;
+        if (stat(list, &st) != 0) continue;
+        found++;
+        size_t k = 0;
+        while (k < ng && strcmp(g[k].folder, e->d_name) != 0) k++;
+        cr_expect_lt(k, ng, "experiments/%s/ has no row in the registry", e->d_name);
+    }
+    closedir(d);
+    cr_assert_eq(found, ng, "%zu study folders, %zu registry rows", found, ng);
 }

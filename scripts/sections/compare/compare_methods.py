@@ -1,0 +1,217 @@
+"""compare_methods: Pareto plots per shape (error vs stored bytes, query time,
+build time) and the best method per budget and region."""
+import math
+
+import dflio
+from sections.common.plot import pyplot
+
+_f = dflio.cell_nan
+
+# budgets in stored bytes: small / medium / large
+BUDGETS = [("small", 64e3), ("medium", 1e6), ("large", 16e6)]
+REGIONS = [("near surface", "band_linf"), ("whole box", "linf")]
+AIM_BYTES = 8.6e6  # issue 18: the torus at equal stored bytes
+# kinds that are distances only in a narrow band (elsewhere a background
+# value): read in the near-surface band only, never in the whole box
+BAND_ONLY = {"openvdb"}
+
+
+def _in_region(r, col):
+    return col != "linf" or r.get("kind") not in BAND_ONLY
+
+ASSUMPTIONS = [
+    "One protocol for every method (experiments/compare/compare_eval.h): per shape a node grid of "
+    "its box (301² in 2D, 61³ in 3D in methods.ini), near-surface points (footpoint + t·n, "
+    "|t| ≤ 0.05) and near-medial points (pht/validate.h's medial band, width 0.02); regions: "
+    "whole, band |d| ≤ 0.05, off the medial band. Non-finite values are errors of +inf and "
+    "counted.",
+    "Stored bytes are what must be kept to evaluate (dfl_field_ops.bytes): proxies and grid "
+    "peers their scalars in their storage (plus one sign byte per order-1 proxy), PHT its cell "
+    "tree, boxes and coefficients, R-function fields their part records. The exact field's "
+    "bytes are not counted (it is the reference).",
+    "Continuity by measurement: pairs x ± 1e-9·box straddling axis planes of a 1024-per-axis "
+    "grid (every face of a dyadic cell grid on the box), pairs in the medial band left out; "
+    "c0_jump = max |Δu|, c1_jump = max |Δ∇u|.",
+    "Query rate: best of `repeats` batched evaluations (value and gradient) of all error points "
+    "on the run's threads; build time: the factory call (for grid peers and proxies it includes "
+    "the exact distances they sample). Both are wall-clock measurements on a shared machine.",
+    "Budgets of the regime table: small ≤ 64 kB, medium ≤ 1 MB, large ≤ 16 MB.",
+    "OpenVDB (kind = openvdb) is a narrow-band level set: outside |d| < band·voxel its value is "
+    "the background, so its rows enter the near-surface columns only (their band of 8 voxels "
+    "covers |d| ≤ 0.05 at every voxel used), never the whole-box ones. Its bytes are OpenVDB's "
+    "memUsage (tree nodes, buffers, masks).",
+]
+
+
+def _measured(rows):
+    return [r for r in rows if not r.get("skipped")]
+
+
+def _lines(rows):
+    """method -> its rows in increasing bytes (rows with known bytes)."""
+    out = {}
+    for r in rows:
+        if math.isnan(_f(r, "bytes")):
+            continue
+        out.setdefault(r["method"], []).append(r)
+    for m in out:
+        out[m].sort(key=lambda r: _f(r, "bytes"))
+    return out
+
+
+def _pareto(points):
+    """Indices of the points (x, y) no other point beats in both (smaller is better)."""
+    order = sorted(range(len(points)), key=lambda i: (points[i][0], points[i][1]))
+    front, best = [], math.inf
+    for i in order:
+        if points[i][1] < best:
+            front.append(i)
+            best = points[i][1]
+    return front
+
+
+def _xval(r, axis):
+    if axis == "bytes":
+        return _f(r, "bytes")
+    if axis == "query":
+        q = _f(r, "queries_per_s")
+        return 1.0 / q if q > 0 else math.nan
+    return _f(r, "build_s")
+
+
+AXES = [("bytes", "stored bytes"), ("query", "seconds per query"), ("build", "build seconds")]
+
+
+def _plot_shape(ctx, plt, shape, rows):
+    lines = _lines(rows)
+    if not lines:
+        return ""
+    fig, axs = plt.subplots(2, 3, figsize=(15, 8.5))
+    for row, (rname, col) in enumerate(REGIONS):
+        for k, (axis, label) in enumerate(AXES):
+            ax = axs[row][k]
+            pts, allr = [], []
+            for m, rs in sorted(lines.items()):
+                rs = [r for r in rs if _in_region(r, col)]
+                if not rs:
+                    continue
+                xs = [_xval(r, axis) for r in rs]
+                ys = [max(_f(r, col), 1e-17) for r in rs]
+                ax.plot(xs, ys, "o-", ms=3, label=m)
+                pts += list(zip(xs, ys))
+                allr += rs
+            ok = [i for i, p in enumerate(pts) if all(math.isfinite(v) and v > 0 for v in p)]
+            front = [ok[i] for i in _pareto([pts[i] for i in ok])]
+            if front:
+                ax.plot([pts[i][0] for i in front], [pts[i][1] for i in front], "k--", lw=0.8)
+                ax.scatter([pts[i][0] for i in front], [pts[i][1] for i in front], s=60,
+                           facecolors="none", edgecolors="k", label="Pareto front")
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlabel(label)
+            ax.set_ylabel(f"{rname}: {col}")
+            ax.grid(True, which="both", alpha=0.3)
+    axs[0][0].legend(fontsize=7)
+    fig.suptitle(f"{shape}: error vs cost ({ctx.config})")
+    return ctx.figure(fig, f"pareto_{shape}") + "\n\n"
+
+
+def _continuity(r):
+    c0, c1 = _f(r, "c0_jump"), _f(r, "c1_jump")
+    if c0 > 1e-6:
+        return f"discontinuous (c0_jump {c0:.2g})"
+    if c1 > 1e-4:
+        return f"C0 with gradient jumps up to {c1:.2g}"
+    return "C1 by measurement"
+
+
+def _best(rows, col, budget):
+    cand = [r for r in rows if _f(r, "bytes") <= budget and math.isfinite(_f(r, col))
+            and _in_region(r, col)]
+    best = {}
+    for r in cand:  # each method's best row within the budget
+        m = r["method"]
+        if m not in best or _f(r, col) < _f(best[m], col):
+            best[m] = r
+    return sorted(best.values(), key=lambda r: _f(r, col))
+
+
+def _regime_table(shapes, rows):
+    body = []
+    for shape in shapes:
+        rs = [r for r in rows if r["shape"] == shape]
+        for bname, budget in BUDGETS:
+            for rname, col in REGIONS:
+                ranked = _best(rs, col, budget)
+                if not ranked:
+                    body.append([shape, bname, rname, "—", "—", "no method fits the budget"])
+                    continue
+                w = ranked[0]
+                why = (f"{w['method']} ({w['setting']}, {dflio.fmt(_f(w, 'bytes'))} B) has "
+                       f"{col} {_f(w, col):.3g}")
+                if len(ranked) > 1:
+                    s = ranked[1]
+                    ratio = _f(s, col) / _f(w, col) if _f(w, col) > 0 else math.inf
+                    why += f", {ratio:.3g}× below the next, {s['method']} ({_f(s, col):.3g})"
+                why += f"; {_continuity(w)}"
+                body.append([shape, bname, rname, w["method"], f"{_f(w, col):.3g}", why])
+    return dflio.md_table(["shape", "budget", "region", "best", "error", "reason"], body)
+
+
+def _interp(rs, col, x):
+    """col at bytes x, linear in log-log between the bracketing rows; NaN
+    outside the measured range (no extrapolation)."""
+    pts = [(_f(r, "bytes"), _f(r, col)) for r in rs]
+    pts = [p for p in pts if p[0] > 0 and p[1] > 0 and math.isfinite(p[1])]
+    for (x0, y0), (x1, y1) in zip(pts, pts[1:]):
+        if x0 <= x <= x1:
+            if x1 == x0:
+                return y0
+            t = (math.log(x) - math.log(x0)) / (math.log(x1) - math.log(x0))
+            return math.exp(math.log(y0) + t * (math.log(y1) - math.log(y0)))
+    return math.nan
+
+
+def _aim(rows):
+    rs = [r for r in rows if r["shape"] == "s_torus"]
+    lines = _lines(rs)
+    if not lines:
+        return ""
+    vals = {m: _interp(l, "band_linf", AIM_BYTES) for m, l in lines.items()}
+    fin = {m: v for m, v in vals.items() if math.isfinite(v)}
+    if not fin:
+        return ""
+    best = min(fin, key=fin.get)
+    body = []
+    for m in sorted(vals, key=lambda m: (not math.isfinite(vals[m]), vals[m])):
+        v = vals[m]
+        near = min(lines[m], key=lambda r: abs(math.log(_f(r, "bytes") / AIM_BYTES)))
+        body.append([m, f"{v:.3g}" if math.isfinite(v) else "— (out of range)",
+                     f"{v / fin[best]:.3g}" if math.isfinite(v) else "—",
+                     f"{near['setting']} ({dflio.fmt(_f(near, 'bytes'))} B)",
+                     f"{_f(near, 'queries_per_s'):.3g}", _continuity(near)])
+    md = (f"**The torus at {AIM_BYTES / 1e6:.1f} MB, band |d| ≤ 0.05** (band L∞ interpolated "
+          "log-log between each method's measured sizes; '—' outside them). Best: "
+          f"**{best}** ({fin[best]:.3g}).\n\n")
+    return md + dflio.md_table(["method", "band_linf at 8.6 MB", "× best",
+                                "nearest setting", "queries/s there", "continuity"], body) + "\n\n"
+
+
+def render(ctx):
+    plt = pyplot()
+    rows = ctx.csv()
+    meas = _measured(rows)
+    shapes = dflio.unique(r["shape"] for r in rows)
+    skipped = [r for r in rows if r.get("skipped")]
+    md = (f"{len(meas)} measured rows, {len(dflio.unique(r['method'] for r in meas))} methods, "
+          f"{len(shapes)} shapes; non-finite values: "
+          f"{sum(int(_f(r, 'nonfinite')) for r in meas)}.\n\n")
+    if skipped:
+        md += ("Not run (the method does not apply, or its build failed): " +
+               "; ".join(f"{r['method']} on {r['shape']} {r['setting']}: {r['skipped']}"
+                         for r in skipped) + ".\n\n")
+    md += "### Best method per regime\n\n" + _regime_table(shapes, meas) + "\n\n"
+    md += _aim(meas)
+    for s in shapes:
+        md += f"### {s}\n\n" + _plot_shape(ctx, plt, s, [r for r in meas if r["shape"] == s])
+    return md

@@ -1,0 +1,173 @@
+/* End-to-end: compare_methods on configs/compare/quick.ini (every method on
+ * the circle, the sjp10 convex curve, the torus and the Wuson mesh; on
+ * Wuson every method runs and every number is finite).  Expected values are
+ * derived, not copied from a run:
+ *   - rows: per shape one row per (applicable method, value) and one
+ *     skipped row per method that does not apply (dims, shape_kinds);
+ *   - the exact field has error 0 in every region and a gradient equal to
+ *     the reference's; its pair jumps are those of a C1 function at the
+ *     pair separation 2 delta = 2e-9 box lengths: c0 <= 2 delta |grad d|,
+ *     c1 <= 2 delta |Hess d| with |Hess d| <= 1 / 0.02 off the medial band;
+ *   - bytes: a proxy grid holds res^3 cells x DFL_PROXY_NSCALAR(order)
+ *     doubles, plus one sign byte per cell for order 1 with an inside
+ *     (proxy/proxy.h); a grid peer res^3 x its scalars (1, 4, 10) doubles;
+ *   - trilinear interpolation of the torus SDF on the centre grid of
+ *     h = 2/32: |e| <= h^2/8 (|d_xx| + |d_yy| + |d_zz|) over the cell, and
+ *     the cell's centres lie within sqrt(3) h of a band point, where |d| <=
+ *     0.05 + sqrt(3) h; there the Hessian's eigenvalues are 0, 1/(r + d) and
+ *     cos(theta) / rho with rho >= R - r - |d|: |d_aa| <= 1 / (r - 0.05 -
+ *     sqrt(3) h) (R = 0.6, r = 0.25);
+ *   - continuity pairs also straddle each grid method's own faces (faces =
+ *     count): a trilinear grid is C0 (c0 <= 20 delta) and kinked (c1 > 1e-2);
+ *   - a PHT spline is C1: c1_jump is 2 delta |Hess u|, under 1e-4 unless
+ *     |Hess u| > 2.5e4; a trilinear grid is C0 and kinked across its faces;
+ *   - the protocol's point counts: 101^2 and 25^3 grid nodes, 4000 surface
+ *     points (all stay in the boxes: the shapes lie 0.15 inside them),
+ *     count = grid + surface + medial, no non-finite value anywhere. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "proxy/decode.h"
+#include "util/e2e_util.h"
+
+static int is(const char *csv, long r, const char *col, const char *want)
+{
+    char *v = e2e_csv_cell(csv, r, col);
+    const int eq = v && strcmp(v, want) == 0;
+    free(v);
+    return eq;
+}
+
+static double ipow3(double x) { return x * x * x; }
+
+Test(e2e_compare, quick_config_derived, .timeout = 300)
+{
+    char out[512], csv[700];
+    e2e_run_table("configs/compare/quick.ini", NULL, "compare_methods", 53, out, sizeof out, csv,
+                  sizeof csv);
+    int exact = 0, proxies = 0, peers = 0, skipped = 0, trilinear32 = 0, vdb = 0;
+    for (long r = 0; r < 53; r++) {
+        char *m = e2e_csv_cell(csv, r, "method"), *sk = e2e_csv_cell(csv, r, "skipped");
+        char *set = e2e_csv_cell(csv, r, "setting");
+        cr_assert(m && sk && set);
+        const int torus = is(csv, r, "shape", "s_torus");
+        const int space = torus || is(csv, r, "shape", "s_wuson");
+        const int dim = (int)e2e_csv_get(csv, (size_t)r, "dim");
+        cr_expect_eq(dim, space ? 3 : 2, "row %ld", r);
+        if (sk[0]) {
+            skipped++;
+            const int rf = strcmp(m, "m_rfunc") == 0;
+            cr_expect(rf ? !is(csv, r, "shape", "s_convex") : dim == 2, "row %ld %s skipped", r,
+                      m);
+            free(m), free(sk), free(set);
+            continue;
+        }
+        const double len = space ? 2.0 : 1.0, delta = 1e-9 * len;
+        cr_expect_eq(e2e_csv_get(csv, (size_t)r, "nonfinite"), 0, "row %ld", r);
+        const double ng = e2e_csv_get(csv, (size_t)r, "n_grid");
+        cr_expect_eq(ng, space ? 25 * 25 * 25 : 101 * 101, "row %ld", r);
+        cr_expect_eq(e2e_csv_get(csv, (size_t)r, "n_surface"), 4000, "row %ld", r);
+        cr_expect_eq(e2e_csv_get(csv, (size_t)r, "count"),
+                     ng + 4000 + e2e_csv_get(csv, (size_t)r, "n_medial"), "row %ld", r);
+        const double c0 = e2e_csv_get(csv, (size_t)r, "c0_jump");
+        const double c1 = e2e_csv_get(csv, (size_t)r, "c1_jump");
+        const double bytes = e2e_csv_get(csv, (size_t)r, "bytes");
+        if (strcmp(m, "m_exact") == 0) {
+            exact++;
+            static const char *const zero[] = {"l1", "rms", "linf", "band_linf", "off_linf",
+                                               "grad_linf"};
+            for (size_t k = 0; k < sizeof zero / sizeof zero[0]; k++)
+                cr_expect_eq(e2e_csv_get(csv, (size_t)r, zero[k]), 0.0, "row %ld %s", r, zero[k]);
+            cr_expect_lt(e2e_csv_get(csv, (size_t)r, "eikonal_max"), 1e-14, "row %ld", r);
+            cr_expect_leq(c0, 2 * delta * (1 + 1e-6), "row %ld", r);
+            /* smooth shapes only: a mesh's SDF bends around its edges and
+             * vertices with curvature 1 / |d|, unbounded near the surface */
+            if (!is(csv, r, "shape", "s_wuson"))
+                cr_expect_leq(c1, 2 * delta / 0.02, "row %ld", r);
+            cr_expect(isnan(bytes), "row %ld: exact bytes are not known", r);
+        } else if (strncmp(m, "m_proxy", 7) == 0) {
+            proxies++;
+            const int order = m[7] - '0';
+            const double res = atof(set + strlen("res="));
+            const double cells = ipow3(res);
+            cr_expect_eq(bytes, cells * DFL_PROXY_NSCALAR(order) * 8 + (order == 1 ? cells : 0),
+                         "row %ld", r);
+        } else if (strncmp(m, "m_gp_", 5) == 0) {
+            peers++;
+            const double res = atof(set + strlen("res="));
+            const int k = strcmp(m, "m_gp_tri") == 0 ? 1 : strcmp(m, "m_gp_t1") == 0 ? 4 : 10;
+            cr_expect_eq(bytes, ipow3(res) * k * 8, "row %ld", r);
+            if (k == 1) {
+                cr_expect_leq(c0, 2 * delta * 10, "row %ld: trilinear is C0", r);
+                cr_expect_gt(c1, 1e-2, "row %ld: trilinear is kinked across faces", r);
+            }
+            if (k == 1 && res == 32 && torus) {
+                trilinear32++;
+                const double h = 2.0 / 32, dmax = 0.05 + sqrt(3.0) * h;
+                const double hmax = 1.0 / (0.25 - dmax);
+                cr_assert_gt(0.25 - dmax, 0);
+                cr_assert_gt(0.6 - 0.25 - dmax, 1.0 / hmax);
+                cr_expect_leq(e2e_csv_get(csv, (size_t)r, "band_linf"), h * h / 8 * 3 * hmax,
+                              "row %ld", r);
+            }
+        } else if (strcmp(m, "m_pht") == 0) {
+            cr_expect_lt(c1, 1e-4, "row %ld: PHT is C1", r);
+            cr_expect_gt(bytes, 0, "row %ld", r);
+        } else if (strcmp(m, "m_vdb") == 0) {
+            vdb++;
+            cr_expect_gt(bytes, 0, "row %ld: OpenVDB's memUsage", r);
+            cr_expect(space, "row %ld", r);
+        } else {
+            cr_expect_str_eq(m, "m_rfunc", "row %ld", r);
+            cr_expect_gt(bytes, 0, "row %ld", r);
+        }
+        free(m), free(sk), free(set);
+    }
+    cr_expect_eq(exact, 4);
+    cr_expect_eq(proxies, 8);
+    cr_expect_eq(peers, 12);
+    cr_expect_eq(trilinear32, 1);
+    cr_expect_eq(vdb, 4);
+    /* circle: rfunc, 2 proxies, 3 peers, vdb; convex: 6; torus, Wuson: rfunc */
+    cr_expect_eq(skipped, 7 + 6 + 1 + 1);
+}
+
+/* A config around the quick one's keys, with one method and one shape. */
+#define BASE                                                                                  \
+    "[study]\nname = compare_methods\nmethods = m\nshapes = s\n"                               \
+    "[compare]\ngrid3d = 5\nsurface = 10\nmedial_draws = 10\npairs = 10\n"                      \
+    "[s]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\nlo = -1 -1 -1\nhi = 1 1 1\n"
+
+Test(e2e_compare, bad_method_sections_exit_2, .timeout = 60)
+{
+    /* a typo in a method section is the factory's unknown key, in the copy */
+    e2e_expect_bad_config(BASE "[m]\nkind = gridpeer\nresolution = res\nvalues = 4\nmethd = x\n",
+                          "[m] methd", "unknown key");
+    e2e_expect_bad_config(BASE "[m]\nkind = exact\nresolution = none\nvalues = 4\n",
+                          "[m] values", "not with resolution = none");
+    e2e_expect_bad_config(BASE "[m]\nkind = gridpeer\nresolution = res\nvalues = 0\n",
+                          "[m] values (value 0)", "expected an integer in [1, 1024]");
+    e2e_expect_bad_config(BASE "[m]\nkind = gridpeer\nresolution = res\nvalues = 4\ndims = 4\n",
+                          "[m] dims", NULL);
+    e2e_expect_bad_config(BASE "[m]\nkind = nosuch\nresolution = res\nvalues = 4\n",
+                          "[m] kind", NULL);
+}
+
+Test(e2e_compare, bad_shape_sections_exit_2, .timeout = 60)
+{
+    e2e_expect_bad_config("[study]\nname = compare_methods\nmethods = m\nshapes = s\n"
+                          "[s]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\nlo = 1 1 1\n"
+                          "hi = -1 -1 -1\n[m]\nkind = exact\nresolution = none\n",
+                          "[s] hi", "hi > lo");
+    e2e_expect_bad_config("[study]\nname = compare_methods\nmethods = m\nshapes = s nos\n"
+                          "[s]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\nlo = -1 -1 -1\n"
+                          "hi = 1 1 1\n[m]\nkind = exact\nresolution = none\n",
+                          "[study] shapes", "no section [nos]");
+    e2e_expect_bad_config("[study]\nname = compare_methods\nmethods = m\nshapes = s\n"
+                          "[s]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\nlo = -1 -1 -1\n"
+                          "hi = 1 1 1\ncolour = red\n[m]\nkind = exact\nresolution = none\n",
+                          "[s] colour", "unknown key");
+}
