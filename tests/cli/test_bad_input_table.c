@@ -9,7 +9,7 @@
 
 #include "util/e2e_util.h"
 
-Test(bad_input, table_through_the_binary, .timeout = 600)
+Test(bad_input, table_through_the_binary, .timeout = 1800)
 {
     e2e_expect_binary_script("tests/cli/bad_input_table.py", NULL, "bad-input table failed");
 }
