@@ -287,11 +287,13 @@ static int ends_with(const char *s, const char *suffix)
 static dfl_status annotate(const dfl_sweep *s, const char *dir, const prefix *p, const char *label,
                            dfl_err *err)
 {
-    const char *names[] = {"dflab_study", "dflab_config", "dflab_point", "dflab_sweep",
-                           "dflab_revision"};
+    const char *names[] = {"dflab_study",  "dflab_config",  "dflab_config_sha256",
+                           "dflab_point",  "dflab_sweep",   "dflab_revision"};
     char point[64];
     snprintf(point, sizeof point, "%s of %zu", p->point, s->np);
-    const char *values[] = {s->study->name, s->o->config, point, label, DFL_GIT_REV};
+    const char *values[] = {s->study->name, s->config_stamp, s->sweep_sha,
+                            point,          label,           DFL_GIT_REV};
+    enum { NATTR = sizeof names / sizeof names[0] };
     DIR *d = opendir(dir);
     if (!d) return dfl_err_set(err, DFL_E_IO, "%s: cannot list", dir);
     dfl_status st = DFL_OK;
@@ -301,9 +303,9 @@ static dfl_status annotate(const dfl_sweep *s, const char *dir, const prefix *p,
         char path[8192];
         snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
         if (ends_with(de->d_name, ".vti") || ends_with(de->d_name, ".vtp"))
-            st = dfl_vtk_add_field_data(path, 5, names, values, err);
+            st = dfl_vtk_add_field_data(path, NATTR, names, values, err);
         else if (ends_with(de->d_name, ".exr"))
-            st = dfl_exr_add_attrs(path, 5, names, values, err);
+            st = dfl_exr_add_attrs(path, NATTR, names, values, err);
     }
     closedir(d);
     return st;
@@ -399,7 +401,7 @@ static dfl_status write_record(const dfl_sweep *s, const dfl_cfg *pt, size_t k, 
     dfl_manifest_put_int(m, "index", (long)k);
     dfl_manifest_put_int(m, "npoints", (long)s->np);
     dfl_manifest_put_string(m, "study", s->study->name);
-    dfl_manifest_put_string(m, "config", s->o->config);
+    dfl_manifest_put_string(m, "config", s->config_stamp);
     dfl_manifest_put_strings(m, "overrides", (size_t)s->o->nsets, s->o->sets);
     dfl_manifest_put_string(m, "sweep_sha256", s->sweep_sha);
     dfl_manifest_put_string(m, "binary_sha256", s->binary_sha);
@@ -462,7 +464,7 @@ static dfl_status compute(const dfl_sweep *s, dfl_cfg *pt, size_t k, const char 
     dfl_sweep_label(s, pt, label, sizeof label);
     if (st == DFL_OK) st = annotate(s, stage, &p, label, err);
     snprintf(path, sizeof path, "%s/config.ini", stage);
-    if (st == DFL_OK) st = dfl_cfg_write(s->cfg, path, err);
+    if (st == DFL_OK) st = dfl_cfg_write(s->cfg, s->config_stamp, path, err);
     if (st == DFL_OK) st = write_record(s, pt, k, &p, *seconds, stage, err);
     return st;
 }

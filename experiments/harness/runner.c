@@ -178,7 +178,8 @@ dfl_status dfl_sweep_open(const dfl_run_opts *o, dfl_sweep *s, dfl_err *err)
     st = dfl_dir_check_name(s->outdir, "--out", err);
     if (st != DFL_OK) return st;
     dfl_cfg_sweep_hash(s->cfg, s->sweep_sha);
-    st = dfl_sha256_file("/proc/self/exe", s->binary_sha, err);
+    st = dfl_path_stamp(o->config, s->config_stamp, sizeof s->config_stamp, err);
+    if (st == DFL_OK) st = dfl_sha256_file("/proc/self/exe", s->binary_sha, err);
     if (st == DFL_OK) st = validate_points(s, err);
     return st;
 }

@@ -33,6 +33,7 @@ typedef struct dfl_sweep {
     char outdir[4096];
     char points[4200];      /* OUT.points */
     char sweep_sha[65];     /* dfl_cfg_sweep_hash of the whole sweep */
+    char config_stamp[4096]; /* o->config as provenance names it (dfl_path_stamp) */
     char binary_sha[65];    /* sha256 of the running dflab */
     int threads;            /* what the study gets (>= 1) */
 } dfl_sweep;

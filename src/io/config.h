@@ -251,8 +251,10 @@ void dfl_cfg_validate_only(dfl_cfg *c);
 bool dfl_cfg_validated(const dfl_cfg *c);
 
 /* Writes the configuration (single-valued or not) as INI text to path,
- * through a temporary file renamed on success: every key as written, set
- * or included, in entry order, without include lines. */
-dfl_status dfl_cfg_write(const dfl_cfg *c, const char *path, dfl_err *err);
+ * through a temporary file renamed on success: a first comment line
+ * "# resolved configuration of ORIGIN" (origin NULL: the path the config
+ * was loaded from, dfl_cfg_path), then every key as written, set or
+ * included, in entry order, without include lines. */
+dfl_status dfl_cfg_write(const dfl_cfg *c, const char *origin, const char *path, dfl_err *err);
 
 #endif

@@ -141,12 +141,12 @@ bool dfl_cfg_has_section(const dfl_cfg *c, const char *sec)
 
 /* Included keys are written as the section's own: the file reruns without
  * the shape files it was made from. */
-dfl_status dfl_cfg_write(const dfl_cfg *c, const char *path, dfl_err *err)
+dfl_status dfl_cfg_write(const dfl_cfg *c, const char *origin, const char *path, dfl_err *err)
 {
     dfl_atomic_file af;
     dfl_status st = dfl_atomic_open(path, &af, err);
     if (st != DFL_OK) return st;
-    fprintf(af.fp, "# resolved configuration of %s\n", c->path);
+    fprintf(af.fp, "# resolved configuration of %s\n", origin ? origin : c->path);
     const char *cur = NULL;
     for (size_t i = 0; i < c->n; i++) {
         if (!cur || strcmp(cur, c->e[i].sec) != 0) {

@@ -394,3 +394,45 @@ dfl_status dfl_dir_check_replaceable(const char *dir, const char *marker, const 
     free_names(ents, (size_t)ne);
     return st;
 }
+
+/* Provenance must not depend on how a user spelled the path (a merged
+ * sweep launched with absolute paths and a one-process run with relative
+ * ones must stamp the same bytes), nor on where the checkout lives: the
+ * path below the repository root is what another clone reproduces. */
+dfl_status dfl_path_stamp(const char *path, char *buf, size_t size, dfl_err *err)
+{
+    char *real = realpath(path, NULL);
+    if (!real)
+        return dfl_err_set(err, DFL_E_INPUT, "%s: cannot resolve: %s", path, strerror(errno));
+    const size_t n = strlen(real);
+    size_t root = 0; /* length of the root prefix; 0: none found */
+    char *probe = malloc(n + 8);
+    if (!probe) {
+        free(real);
+        return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    }
+    /* the ancestors of real, nearest first: its directory [0, d), then
+     * each shorter prefix ending before a '/'; d == 0 is "/" itself */
+    size_t d = (size_t)(strrchr(real, '/') - real);
+    for (;;) {
+        memcpy(probe, real, d);
+        memcpy(probe + d, "/.git", 6);
+        struct stat sb;
+        if (lstat(probe, &sb) == 0) {
+            root = d + 1;
+            break;
+        }
+        if (d == 0) break;
+        while (d > 0 && real[--d] != '/') {}
+    }
+    free(probe);
+    const char *out = root ? real + root : real;
+    dfl_status st = DFL_OK;
+    if (strlen(out) + 1 > size)
+        st = dfl_err_set(err, DFL_E_INPUT, "%s: its path is longer than %zu characters", path,
+                         size - 1);
+    else
+        memcpy(buf, out, strlen(out) + 1);
+    free(real);
+    return st;
+}

@@ -14,6 +14,8 @@
  *                           ancestor) accepts new entries
  *   dfl_file_read_all       a whole (small) file as a string
  *   dfl_dir_check_replaceable  whether a folder may be replaced by a run
+ *   dfl_path_stamp          a file's path as provenance: relative to the
+ *                           repository holding it, else absolute
  *
  * Staging directories and files carry the host and process id of their
  * writer, so a later run can tell a dead run's leftovers (same host, no
@@ -92,5 +94,17 @@ dfl_status dfl_dir_check_replaceable(const char *dir, const char *marker, const 
  * *len (may be NULL) receives the byte count.  NULL when the file cannot
  * be read, is not a regular file (dfl_rfile_read) or memory runs out. */
 char *dfl_file_read_all(const char *path, size_t *len);
+
+/* The path by which provenance names a file (a config), the same whatever
+ * spelling reached it: path's symbolic links and "."/".." are resolved
+ * (realpath), then the nearest ancestor directory holding an entry named
+ * ".git" (a repository or a git worktree) is the root and the result is
+ * the path below it ("configs/paper/x.ini" whether reached as
+ * "./configs/paper/x.ini", "/abs/repo/configs/../configs/paper/x.ini" or
+ * from a sub-folder); without such an ancestor it is the absolute resolved
+ * path.  DFL_E_INPUT when path cannot be resolved (missing: named with
+ * the system's reason); DFL_E_INPUT when the result needs more than
+ * size - 1 characters. */
+dfl_status dfl_path_stamp(const char *path, char *buf, size_t size, dfl_err *err);
 
 #endif

@@ -54,7 +54,7 @@ static char *written(const dfl_cfg *c, const tree *t)
     char path[300];
     snprintf(path, sizeof path, "%s/config.ini", t->dir);
     dfl_err err;
-    cr_assert_eq(dfl_cfg_write(c, path, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(dfl_cfg_write(c, NULL, path, &err), DFL_OK, "%s", err.msg);
     char *s = e2e_slurp(path);
     cr_assert_not_null(s);
     return s;

@@ -19,7 +19,7 @@ Test(config, write_reads_back)
     cr_assert(dfl_cfg_has_section(c, "h") && !dfl_cfg_has_section(c, "x"));
     char dir[64], path[128];
     tmpdir_file(dir, sizeof dir, "config.ini", path, sizeof path);
-    cr_assert_eq(dfl_cfg_write(c, path, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(dfl_cfg_write(c, NULL, path, &err), DFL_OK, "%s", err.msg);
     char *text = e2e_slurp(path);
     cr_assert_str_eq(text, "# resolved configuration of t.ini\n"
                            "[s]\nname = x\nlist = 1, 2\n\n[g]\nn = 5\n\n[h]\nk = on\n");
@@ -30,6 +30,12 @@ Test(config, write_reads_back)
     cr_assert_str_eq(cfgu_string(r, "g", "n"), "5");
     cr_assert_str_eq(cfgu_string(r, "h", "k"), "on");
     dfl_cfg_free(r);
+    /* an origin names the file instead of the load path */
+    cr_assert_eq(dfl_cfg_write(c, "configs/x.ini", path, &err), DFL_OK, "%s", err.msg);
+    text = e2e_slurp(path);
+    cr_assert(strncmp(text, "# resolved configuration of configs/x.ini\n[s]\n", 46) == 0, "%s",
+              text);
+    free(text);
     dfl_cfg_free(c);
     tmpdir_remove(dir);
 }

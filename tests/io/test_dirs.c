@@ -2,6 +2,7 @@
  * states: a dflab manifest listing every other entry), which names can be
  * results folders, the swap, the restore of a cut-off replacement's
  * backup, and the probe that leaves nothing. */
+#define _DEFAULT_SOURCE /* realpath */
 #include <criterion/criterion.h>
 #include <limits.h>
 #include <stdio.h>
@@ -281,4 +282,61 @@ Test(dirs, probe_leaves_nothing)
     cr_expect_neq(dfl_dir_probe(d), 0);
     cr_expect_eq(tmpdir_count(t), 0);
     tmpdir_remove(t);
+}
+
+/* dfl_path_stamp: every spelling of one file gives one stamp; below a
+ * ".git" (folder or a worktree's file) it is relative to that root, the
+ * nearest one winning; elsewhere the absolute resolved path. */
+Test(dirs, path_stamp_is_one_name_whatever_the_spelling)
+{
+    char dir[64], p[600], real_dir[PATH_MAX], buf[4096], want[PATH_MAX + 64];
+    dfl_err err;
+    tmpdir_new(dir, sizeof dir);
+    cr_assert_not_null(realpath(dir, real_dir));
+    tmpdir_write(dir, "repo/configs/paper/x.ini", "[study]\n", p, sizeof p);
+    tmpdir_write(dir, "plain/y.ini", "[study]\n", p, sizeof p);
+    snprintf(p, sizeof p, "%s/repo/.git", dir);
+    cr_assert_eq(mkdir(p, 0755), 0);
+    snprintf(p, sizeof p, "%s/link", dir);
+    cr_assert_eq(symlink("repo/configs", p), 0);
+    const char *spell[] = {"%s/repo/configs/paper/x.ini", "%s/repo/configs/../configs/paper/x.ini",
+                           "%s//repo/./configs/paper//x.ini", "%s/link/paper/x.ini"};
+    for (size_t i = 0; i < sizeof spell / sizeof spell[0]; i++) {
+        char path[700];
+        snprintf(path, sizeof path, spell[i], dir);
+        dfl_err_clear(&err);
+        cr_assert_eq(dfl_path_stamp(path, buf, sizeof buf, &err), DFL_OK, "%s: %s", path, err.msg);
+        cr_expect_str_eq(buf, "configs/paper/x.ini", "spelling %s", path);
+    }
+    /* from inside the repository, a relative spelling */
+    char cwd[PATH_MAX];
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    snprintf(p, sizeof p, "%s/repo/configs", dir);
+    cr_assert_eq(chdir(p), 0);
+    dfl_status st = dfl_path_stamp("./paper/../paper/x.ini", buf, sizeof buf, &err);
+    cr_assert_eq(chdir(cwd), 0);
+    cr_assert_eq(st, DFL_OK, "%s", err.msg);
+    cr_expect_str_eq(buf, "configs/paper/x.ini");
+    /* a nearer root wins: a worktree's ".git" is a file */
+    snprintf(p, sizeof p, "%s/repo/configs/paper/.git", dir);
+    FILE *f = fopen(p, "w");
+    cr_assert_not_null(f);
+    fputs("gitdir: elsewhere\n", f);
+    fclose(f);
+    snprintf(p, sizeof p, "%s/repo/configs/paper/x.ini", dir);
+    cr_assert_eq(dfl_path_stamp(p, buf, sizeof buf, &err), DFL_OK, "%s", err.msg);
+    cr_expect_str_eq(buf, "x.ini");
+    /* no repository above: the absolute resolved path */
+    snprintf(p, sizeof p, "%s/plain/../plain/y.ini", dir);
+    cr_assert_eq(dfl_path_stamp(p, buf, sizeof buf, &err), DFL_OK, "%s", err.msg);
+    snprintf(want, sizeof want, "%s/plain/y.ini", real_dir);
+    cr_expect_str_eq(buf, want);
+    /* too long for buf; a missing file */
+    cr_expect_eq(dfl_path_stamp(p, buf, strlen(want), &err), DFL_E_INPUT);
+    cr_expect_eq(dfl_path_stamp(p, buf, strlen(want) + 1, &err), DFL_OK, "%s", err.msg);
+    snprintf(p, sizeof p, "%s/plain/none.ini", dir);
+    dfl_err_clear(&err);
+    cr_expect_eq(dfl_path_stamp(p, buf, sizeof buf, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "none.ini") != NULL, "%s", err.msg);
+    tmpdir_remove(dir);
 }
