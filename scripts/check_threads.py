@@ -100,7 +100,7 @@ def main():
     cfgs = [a for a in argv if not a.startswith("--")]
     if not cfgs:
         study = [c for c in glob.glob("configs/*/*.ini")
-                 if c.split(os.sep)[1] not in ("shapes", "smoke", "paper")]
+                 if c.split(os.sep)[1] not in ("shapes", "fields", "smoke", "paper")]
         cfgs = (sorted(glob.glob("configs/paper/*/*.ini") + study)
                 + sorted(glob.glob("configs/smoke/*.ini")))
         if quick:

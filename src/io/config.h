@@ -101,8 +101,19 @@ dfl_status dfl_cfg_load(const char *path, dfl_cfg **out, dfl_err *err);
  * "file" that relative includes are resolved against. */
 dfl_status dfl_cfg_parse_string(const char *name, const char *text, dfl_cfg **out, dfl_err *err);
 /* Applies "section.key=value".  The key need not exist in the file; an
- * included key is overridden like any other.  DFL_E_INPUT for a malformed
- * assignment, an empty value or the key `include`. */
+ * included key is overridden like any other.  A key `kind` whose new value
+ * shares no comma item with its old one switches kind: every other key of
+ * the section not itself given by --set is dropped (it was the old kind's;
+ * set the new kind's keys after the switch).
+ * "section=@FILE" replaces every key of [section] (any origin) by the keys
+ * of FILE's [section] (FILE loaded as dfl_cfg_load does, includes read,
+ * relative to the working directory; its other sections are not taken),
+ * in place of the first key removed (or at the end), with FILE's origins.
+ * Dropped values are remembered as values the config named, so sections
+ * they named are unselected for dfl_cfg_check_used, not unknown.
+ * DFL_E_INPUT for a malformed assignment, an empty value, the key
+ * `include`, a FILE that cannot be loaded or has no [section]; c is then
+ * unchanged. */
 dfl_status dfl_cfg_set(dfl_cfg *c, const char *assignment, dfl_err *err);
 void dfl_cfg_free(dfl_cfg *c);
 

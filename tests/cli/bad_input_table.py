@@ -181,6 +181,16 @@ case("--set empty value", RUN + ["--set", "grid.n="], ["empty value"], ini=GOOD)
 case("--set unknown key", RUN + ["--set", "grid.foo=1"], ["grid.foo", "unknown key"], ini=GOOD)
 case("--set out of range", RUN + ["--set", "grid.n=0"], ["grid.n", "[2, 4096]"], ini=GOOD)
 case("--set include", RUN + ["--set", "shape.include=x.ini"], ["include"], ini=GOOD)
+case("--set group missing", RUN + ["--set", "field=@{D}/none.ini"], ["--set field=@", "none.ini"],
+     ini=GOOD)
+case("--set group without its section", RUN + ["--set", "field=@{D}/bad.ini"],
+     ["--set field=@", "has no [field] section"], ini=HEAD + SHAPE + GRID)
+case("--set group empty name", RUN + ["--set", "=@x.ini"], ["section.key=value or section=@FILE"],
+     ini=GOOD)
+case("--set group unknown key", RUN + ["--set", "shape=@{D}/g.ini"], ["g.ini:2", "[shape] radiu",
+     "unknown key"], ini=GOOD, files={"g.ini": b"[shape]\nradiu = 1\nkind = circle\ncenter = 0 0\nradius = 1\n"})
+case("--set kind switch: the new kind's missing key", RUN + ["--set", "shape.kind=sphere"],
+     ["[shape] center", "missing key"], ini=GOOD)
 case("--set control char", RUN + ["--set", "grid.n=8\x01"], ["grid.n", "\\x01"], ini=GOOD)
 case("--set with newline", RUN + ["--set", "grid.n=8\nX"], ["\\x0a"], ini=GOOD)
 case("--set 1e200 vector", RUN + ["--set", "shape.center=1e200 0"], ["center", "1e150"], ini=GOOD)

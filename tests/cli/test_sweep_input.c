@@ -183,3 +183,42 @@ Test(sweep_plan, a_subset_of_cases_validates)
     free(e);
     cr_expect_eq(e2e_rmtree(dir), 0);
 }
+
+/* --set S=@FILE is the same run as a config with FILE's [S] written in
+ * (same CSV bytes); a switch of kind by --set drops the old kind's keys, so
+ * a proxy config runs as an exact one. */
+Test(sweep_plan, a_field_group_equals_the_section_written_in)
+{
+    char dir[256], path[512], cwd[512], args[2048];
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    e2e_tmpdir(dir, sizeof dir);
+    const char *base = "[study]\nname = smoke\n[shape]\nkind = sphere\ncenter = 0.5 0.5 0.5\n"
+                       "radius = 0.3\n%s[grid]\nn = 12\nlo = 0 0 0\nhi = 1 1 1\n";
+    char text[1024];
+    snprintf(text, sizeof text, base, "[field]\nkind = exact\n");
+    e2e_write(dir, "g.ini", text, path, sizeof path);
+    snprintf(text, sizeof text, base,
+             "[field]\nkind = proxy\norder = 2\nres = 32\ninput = sdf\nstorage = half\n");
+    e2e_write(dir, "inline.ini", text, path, sizeof path);
+    snprintf(args, sizeof args, "run %s/g.ini --set field=@%s/configs/fields/proxy_o2.ini "
+                                "--out %s/a --quiet", dir, cwd, dir);
+    cr_assert_eq(e2e_dflab(dir, args), 0, "%s", e2e_err_text(dir));
+    snprintf(args, sizeof args, "run %s/inline.ini --out %s/b --quiet", dir, dir);
+    cr_assert_eq(e2e_dflab(dir, args), 0, "%s", e2e_err_text(dir));
+    snprintf(path, sizeof path, "%s/a/smoke.csv", dir);
+    char *a = e2e_slurp(path);
+    snprintf(path, sizeof path, "%s/b/smoke.csv", dir);
+    char *b = e2e_slurp(path);
+    cr_assert(a && b);
+    cr_expect_str_eq(a, b);
+    free(a), free(b);
+    /* the proxy config switched to kind = exact: its order, res, ... dropped */
+    snprintf(args, sizeof args, "run %s/inline.ini --set field.kind=exact --out %s/c --quiet", dir,
+             dir);
+    cr_expect_eq(e2e_dflab(dir, args), 0, "%s", e2e_err_text(dir));
+    snprintf(path, sizeof path, "%s/c/config.ini", dir);
+    char *c = e2e_slurp(path);
+    cr_expect(c && strstr(c, "[field]\nkind = exact\n\n[grid]"), "%s", c ? c : "");
+    free(c);
+    cr_expect_eq(e2e_rmtree(dir), 0);
+}
