@@ -177,7 +177,7 @@ bench: deps
 # study folders beside it (configs/<folder>/*.ini, e.g. configs/compare/),
 # not the shared shape files nor the smoke configs.
 PAPER_CONFIGS := $(sort $(wildcard configs/paper/*/*.ini) \
-  $(filter-out configs/shapes/% configs/smoke/% configs/paper/%,$(wildcard configs/*/*.ini)))
+  $(filter-out configs/shapes/% configs/fields/% configs/smoke/% configs/paper/%,$(wildcard configs/*/*.ini)))
 # Wall time of every config and peer goes to $(BUILD)/reproduce_times.txt and
 # is printed at the end, slowest first.
 REPRO_TIMES := $(BUILD)/reproduce_times.txt
