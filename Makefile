@@ -207,7 +207,7 @@ check-isa: deps
 	$(PYTHON) scripts/check_isa.py $(DFLAB)
 
 figures:
-	@test -n "$(STUDY)" || { echo "usage: make figures STUDY=<results folder or study name>"; exit 2; }
+	@test -n "$(STUDY)" || { echo "usage: make figures STUDY=<study, results folder name, runs/ folder name or path of a results folder>"; exit 2; }
 	$(PYTHON) scripts/report.py --results results --only $(STUDY)
 
 # Mutation testing: tests/mutate/mutants/$(MODULE).ini applied one at a time

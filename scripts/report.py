@@ -108,9 +108,16 @@ class Ctx:
     def __init__(self, result_dir, manifest, ref_dir, fig_dir):
         self.dir = result_dir
         self.name = os.path.basename(result_dir.rstrip("/"))
+        parent = os.path.dirname(os.path.normpath(result_dir))
+        if os.path.basename(os.path.dirname(parent)) == "runs":  # runs/<config>/<set>
+            self.name = os.path.basename(parent) + "_" + self.name
         self.manifest = manifest
         self.study = manifest["study"]
-        self.config = manifest["config"]
+        # the config as figure titles name it: the file, and the values a
+        # --set run changed (so a figure of a sweep point says which)
+        self.config_file = manifest["config"]
+        ov = dflio.overrides(manifest)
+        self.config = self.config_file + "".join(f" --set {o}" for o in ov)
         self.ref_dir = ref_dir
         self.fig_dir = fig_dir
 
@@ -129,7 +136,17 @@ class Ctx:
 
     def figure(self, fig, stem):
         """Saves a matplotlib figure as results/figures/<run>_<stem>.png and
-        returns the markdown image line (path relative to REPORT.md)."""
+        returns the markdown image line (path relative to REPORT.md).  A
+        figure that breaks the figure rules (sections/common/plot.py,
+        figure_problems: axis labels and colour bars on field images, no
+        label over a neighbouring panel, legible legends) is not saved: the
+        section fails, naming what is wrong."""
+        from sections.common.plot import figure_problems
+        probs = figure_problems(fig)
+        if probs:
+            import matplotlib.pyplot as plt
+            plt.close(fig)
+            raise ValueError(f"figure {stem}: " + "; ".join(probs))
         os.makedirs(self.fig_dir, exist_ok=True)
         fn = f"{self.name}_{stem}.png"
         fig.savefig(os.path.join(self.fig_dir, fn), dpi=110, bbox_inches="tight")
@@ -161,27 +178,49 @@ def section(r, paper, assumptions, verdicts):
     return md
 
 
+def result_dirs(results, only):
+    """The results folders a report looks at: results/<run>/ (the whole
+    report); with --only also the --set runs, results/runs/<config>/<set>/,
+    and only itself when it is the path of a folder elsewhere."""
+    def under(root):
+        if not os.path.isdir(root):
+            return []
+        return [os.path.join(root, d) for d in sorted(os.listdir(root))
+                if os.path.isdir(os.path.join(root, d)) and d not in ("reference", "figures", "runs")
+                and ".stage." not in d and not d.endswith((".points", ".logs"))]
+    dirs = under(results)
+    if only:
+        for c in under(os.path.join(results, "runs")):
+            dirs += under(c)
+        if os.path.isfile(os.path.join(only, "manifest.json")) and not any(
+                os.path.realpath(only) == os.path.realpath(d) for d in dirs):
+            dirs.append(only)
+    return dirs
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser()
     ap.add_argument("--results", default="results")
     ap.add_argument("--out", default=None,
                     help="default results/REPORT.md, with --only results/REPORT_<SECTION>.md")
     ap.add_argument("--only", metavar="SECTION",
-                    help="redraw one section: a results folder name or a study name")
+                    help="redraw one section: a results folder name, a study name, a --set "
+                         "run's folder (results/runs/CONFIG/OVERRIDES, by that path or its "
+                         "name) or the path of any results folder")
     ap.add_argument("--sections", default=SECTIONS,
                     help="folder of the paper folders (default: scripts/sections)")
     a = ap.parse_args(argv)
     if a.out is None:
-        a.out = os.path.join(a.results, f"REPORT_{a.only}.md" if a.only else "REPORT.md")
+        tag = os.path.basename(os.path.normpath(a.only)) if a.only else None
+        a.out = os.path.join(a.results, f"REPORT_{tag}.md" if tag else "REPORT.md")
     ref_dir = os.path.join(a.results, "reference")
     fig_dir = os.path.join(a.results, "figures")
     runs = []
-    for d in sorted(os.listdir(a.results)):
-        full = os.path.join(a.results, d)
-        if not os.path.isdir(full) or d in ("reference", "figures") or ".stage." in d:
-            continue
+    for full in result_dirs(a.results, a.only):
         man = dflio.read_manifest(full)
-        if man and (not a.only or a.only in (d, man.get("study"))):
+        d = os.path.basename(full)
+        if man and (not a.only or a.only in (d, man.get("study")) or
+                    os.path.realpath(a.only) == os.path.realpath(full)):
             runs.append(Ctx(full, man, ref_dir, fig_dir))
     if a.only and not runs:
         print(f"report: error: --only {a.only}: no results folder or study of that name "
@@ -220,7 +259,7 @@ def main(argv=None):
         assumptions, verdicts = [], []
         body = []
         for r in groups.get(key, (p, []))[1]:
-            r.heading = f"{r.name} (`{r.config}`, study `{r.study}`)"
+            r.heading = f"{r.name} (`{r.config_file}`, study `{r.study}`)"
             toc.append(f"  - [{r.name}](#{slug(r.heading)})")
             body += [f"### {r.heading}", "", dflio.overrides_md(r.manifest), ""]
             try:

@@ -229,7 +229,7 @@ def render(ctx):
                 undef = np.isnan(v)
                 if undef.any():
                     ax.imshow(np.where(undef, 1.0, np.nan), origin="lower", extent=ext,
-                              cmap="Greys", vmin=0, vmax=2, alpha=0.9)
+                              cmap="Greys", vmin=0, vmax=2, alpha=0.9, gid="overlay")
                     ax.contourf(x, y, undef.astype(float), levels=[0.5, 1.5], colors="none",
                                 hatches=["////"])
                 ax.contour(x, y, np.where(undef, np.nan, v), levels=np.linspace(0.1, 1.0, 10),
@@ -246,6 +246,8 @@ def render(ctx):
                 ax.set_title(f"{name}, {part},\nα = {a:g}°, p = {p0}", fontsize=7)
                 ax.set_xticks([])
                 ax.set_yticks([])
+                ax.set_xlabel("x", fontsize=6, labelpad=1)
+                ax.set_ylabel("y", fontsize=6, labelpad=1)
         if im is not None:
             fig.colorbar(im, ax=axs, shrink=0.7, label="|∇u|")
         fig.suptitle("|∇u| (colour, white = 1), isolines of u (black), hatched-sector edges (green "

@@ -128,7 +128,9 @@ def render(ctx):
         _draw_segments(ctx, ax, "join")
         ax.set_title(f"|∇u| of the join, trim {t}", fontsize=8)
         ax.tick_params(labelsize=6)
-    fig.colorbar(im, ax=axes[0].tolist(), shrink=0.8)
+        ax.set_xlabel("x", fontsize=7)
+        ax.set_ylabel("y", fontsize=7)
+    fig.colorbar(im, ax=axes[0].tolist(), shrink=0.8, label="|∇u|")
     fig.suptitle(f"|∇u| of {join} p={p} (1 = distance-like; < 1: bulging)\n{ctx.config}",
                  fontsize=9)
     md += ctx.figure(fig, "gradnorm") + "\n"

@@ -135,9 +135,10 @@ def render(ctx):
                     ls[t], marker=mk.get(j, "x"), ms=3.5, lw=1, label=f"{j}, {t}")
     ax.plot(ps, ps, color="0.7", lw=4, alpha=0.4, zorder=0, label="p (theory, R-equivalence)")
     ax.set_xlabel("p")
-    ax.set_ylabel("measured order (min over rays; offset ±0.1 per curve)")
+    ax.set_ylabel("measured order")
     ax.legend(fontsize=6)
-    ax.set_title("normalization order vs p\n" + ctx.config, fontsize=8)
+    ax.set_title("normalization order vs p (min over rays; curves offset ±0.09 so that "
+                 "coinciding ones show)\n" + ctx.config, fontsize=8)
     ax = axes[1]
     for j in joins:
         t = trims[0]
@@ -146,9 +147,10 @@ def render(ctx):
                 ls="none", label=f"{j} measured")
         ax.plot(pp, [f(by[(j, p, t)]["joint_d1_theory"]) for p in pp], "-", color="0.5", lw=0.8)
     ax.set_xlabel("p")
-    ax.set_ylabel("d1 at the joining points (outer bisector)")
+    ax.set_ylabel("d1 at the joining points")
     ax.legend(fontsize=7)
-    ax.set_title(f"first derivative at joining points, trim {trims[0]} (lines: theory)\n"
+    ax.set_title(f"first derivative along the outer bisector at the joining points, trim "
+                 f"{trims[0]} (lines: theory)\n"
                  + ctx.config, fontsize=8)
     md += ctx.figure(fig, "orders") + "\n"
     return md

@@ -216,7 +216,7 @@ def render(ctx):
     for a in ax:
         a.set_xscale("log")
         a.set_xlabel("segments")
-        a.legend(fontsize=5)
+        a.legend(fontsize=6)
     ax[0].set_ylabel("level-set offset r = (s − δ)/δ")
     ax[1].set_ylabel("|∇u| in the band d ≤ δ")
     ax[1].set_yscale("log")

@@ -19,8 +19,10 @@ def slice_image(path):
     return img, ext, ("xyz"[a0], "xyz"[a1])
 
 
-def show(ax, fig, data, ext, labels, title, cmap="viridis", vmin=None, vmax=None, iso=None):
-    """imshow with a colour bar and optional isolines of `iso`."""
+def show(ax, fig, data, ext, labels, title, cmap="viridis", vmin=None, vmax=None, iso=None,
+         bar=None):
+    """imshow with a colour bar (labelled bar, default: the title) and
+    optional isolines of `iso`."""
     import numpy as np
     im = ax.imshow(data, origin="lower", extent=ext, cmap=cmap, vmin=vmin, vmax=vmax,
                    interpolation="nearest", aspect="equal")
@@ -32,7 +34,9 @@ def show(ax, fig, data, ext, labels, title, cmap="viridis", vmin=None, vmax=None
     ax.set_ylabel(labels[1], fontsize=7)
     ax.tick_params(labelsize=6)
     ax.set_title(title, fontsize=7)
-    fig.colorbar(im, ax=ax, shrink=0.75).ax.tick_params(labelsize=6)
+    cb = fig.colorbar(im, ax=ax, shrink=0.75)
+    cb.ax.tick_params(labelsize=6)
+    cb.set_label(bar or title, fontsize=6)
 
 
 def show_grad(ax, fig, img, ext, labels, title="|∇u| (white = 1)"):

@@ -288,7 +288,7 @@ def _clip(ctx):
     for a, t in zip(ax, ("L1", "L∞")):
         a.set_xlabel("clip radius / cell size")
         a.set_title(f"{t} vs clip radius", fontsize=8)
-        a.legend(fontsize=5)
+        a.legend(fontsize=6)
     fig.suptitle(ctx.config, fontsize=8)
     # From which radius on the band L-inf stops changing, per order, filter
     # and clip kind (read off the rows: equal to 12 digits for every larger
@@ -358,7 +358,7 @@ def _convergence(ctx, shape):
     for a, t in zip(ax, ("L1", "L∞")):
         a.set_xlabel("stored scalars")
         a.set_title(f"{shape}: {t} vs stored scalars", fontsize=8)
-    ax[1].legend(fontsize=5)
+    ax[1].legend(fontsize=6)
     fig.suptitle(ctx.config, fontsize=8)
     # order 2 beside Discregrid at (nearly) equal stored scalars, on the same
     # 217^3 grid: ahead or behind, per metric, read off the rows

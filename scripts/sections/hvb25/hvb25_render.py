@@ -60,14 +60,19 @@ def _frames_png(ctx, rows):
         d = hvb25_exr.read(path)
         depth = np.where(np.isfinite(d["depth"]), d["depth"], np.nan)
         nrm = np.stack([d["normal.x"], d["normal.y"], d["normal.z"]], axis=-1)
-        axs[i, 0].imshow(depth, cmap="viridis")
+        imd = axs[i, 0].imshow(depth, cmap="viridis")
+        fig.colorbar(imd, ax=axs[i, 0], fraction=0.046).set_label("depth (ray parameter)",
+                                                                 fontsize=7)
         axs[i, 1].imshow(np.clip(0.5 + 0.5 * nrm, 0, 1))
         im = axs[i, 2].imshow(d["steps"], cmap="magma")
-        fig.colorbar(im, ax=axs[i, 2], fraction=0.046)
-        for j, t in enumerate(("depth", "normal", "steps")):
+        fig.colorbar(im, ax=axs[i, 2], fraction=0.046).set_label("sphere-tracing steps",
+                                                                fontsize=7)
+        for j, t in enumerate(("depth", "normal (RGB = xyz)", "steps")):
             axs[i, j].set_title(f"{r['filter']} {r['res']}³: {t}", fontsize=7)
             axs[i, j].set_xticks([])
             axs[i, j].set_yticks([])
+            axs[i, j].set_xlabel("image x (pixels)", fontsize=6)
+            axs[i, j].set_ylabel("image y (pixels)", fontsize=6)
     fig.suptitle(ctx.config, fontsize=8)
     return ctx.figure(fig, "frames")
 

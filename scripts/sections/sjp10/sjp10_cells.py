@@ -223,10 +223,10 @@ def render(ctx):
         ax[j].set_ylim(1, 1e6)
     ax[0].set_xlabel("1 / validation max error (whole square)")
     ax[1].set_xlabel("1 / validation max error (off the medial band)")
-    ax[0].legend(fontsize=5, ncol=2)
+    ax[0].legend(fontsize=6, ncol=2)
     ax[2].set_xlabel("validation max error off the band")
     ax[2].set_ylabel("stored scalars")
-    ax[2].legend(fontsize=5, ncol=2)
+    ax[2].legend(fontsize=6, ncol=2)
     ax[2].invert_xaxis()
     fig.suptitle("sjp10 Fig. 2: cells vs error, whole square (left) and off the medial band (middle); "
                  "stored scalars (PHT/uniform dofs, FITPACK coefficients + knots) vs error (right)\n"

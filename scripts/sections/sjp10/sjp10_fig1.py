@@ -60,7 +60,12 @@ def _panels(ctx, rows):
         ax.set_aspect("equal")
         ax.set_xlim(0, 1), ax.set_ylim(0, 1)
         ax.set_title(f"T-mesh: {len(cells)} cells, levels {lev.min()}–{lev.max()}", fontsize=8)
-        fig.colorbar(pc, ax=ax, shrink=0.7, label="level")
+        ax.set_xlabel("x", fontsize=7)
+        ax.set_ylabel("y", fontsize=7)
+        ax.tick_params(labelsize=6)
+        cb = fig.colorbar(pc, ax=ax, fraction=0.046, pad=0.03)
+        cb.set_label("level", fontsize=7, labelpad=1)
+        cb.ax.tick_params(labelsize=6)
         ax = fig.add_subplot(3, n, 2 * n + i + 1, projection="3d")
         if arr is not None:
             X, Y = np.meshgrid(x, y)

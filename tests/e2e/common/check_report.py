@@ -40,6 +40,7 @@ SECTIONS = {
     "papa/tp_raises.py": 'def render(ctx):\n    raise RuntimeError("render boom")\n',
     "papz/__init__.py": 'TITLE = "Paper Z"\nRANK = 10\n',
     "papz/tp_first.py": 'def render(ctx):\n    return "FIRST\\n"\n',
+    "papz/tp_title.py": 'def render(ctx):\n    return f"TITLE {ctx.name} [{ctx.config}]\\n"\n',
     "papb/__init__.py": 'raise ImportError("papb init boom")\n',
     "papc/tp_lost.py": 'def render(ctx):\n    return "LOST\\n"\n',
 }
@@ -119,6 +120,31 @@ def main():
              f"contents: {len(targets)} links, missing {[t for t in targets if t not in anchors]}")
     except ValueError as e:
         bad.append(f"section missing: {e}")
+    # --only finds a --set run under runs/ (by name or path) and a results
+    # folder anywhere; its figure titles (ctx.config) carry the overrides
+    setrun = os.path.join(res, "runs", "tp_title", "grid.n=16")
+    far = os.path.join(d, "elsewhere", "myrun")
+    for folder, ov in ((setrun, ["grid.n=16"]), (far, [])):
+        write(os.path.join(folder, "manifest.json"),
+              json.dumps({"study": "tp_title", "config": "configs/tp_title.ini", "overrides": ov,
+                          "total_wall_seconds": 0.5, "version": "0", "git_revision": "x"}))
+        write(os.path.join(folder, "tp_title.csv"), "a,b\n1,2.5\n")
+    for only, name, title, rep in (
+            ("grid.n=16", "tp_title_grid.n=16", "configs/tp_title.ini --set grid.n=16",
+             "REPORT_grid.n=16.md"),
+            (setrun, "tp_title_grid.n=16", "configs/tp_title.ini --set grid.n=16",
+             "REPORT_grid.n=16.md"),
+            (far, "myrun", "configs/tp_title.ini", "REPORT_myrun.md")):
+        run = subprocess.run([sys.executable, REPORT, "--results", res, "--only", only,
+                              "--sections", secs], capture_output=True, text=True)
+        rp = os.path.join(res, rep)
+        got = open(rp).read() if os.path.exists(rp) else ""
+        want(run.returncode in (0, 1) and f"TITLE {name} [{title}]" in got,  # 1: papb, papc
+             f"--only {only}: exit {run.returncode} {run.stderr!r}, report {got[-300:]!r}")
+    subprocess.run([sys.executable, REPORT, "--results", res, "--out", out, "--sections", secs],
+                   capture_output=True, text=True)
+    want("TITLE tp_" not in open(out).read() and "TITLE my" not in open(out).read(),
+         "the whole report holds no --set run or far folder")
     # a folder named like an importable package is refused, nothing written
     taken = os.path.join(d, "json")
     os.makedirs(os.path.join(taken, "papq"))

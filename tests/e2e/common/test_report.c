@@ -29,3 +29,18 @@ Test(e2e_report, hvb25_l2_reading_bounds, .timeout = 60)
     free(py);
     cr_expect_eq(e2e_rmtree(dir), 0);
 }
+
+/* The report's figure rules (axis labels and colour bars on field images,
+ * no label over a neighbouring panel, legible legends), each broken once
+ * and kept once (check_figures.py); report.py refuses to save a figure that
+ * breaks one. */
+Test(e2e_report, figure_rules_fail_when_broken, .timeout = 60)
+{
+    char dir[256], *py;
+    e2e_tmpdir(dir, sizeof dir);
+    cr_assert(dir[0], "no temporary directory");
+    const int rc = e2e_python_run(dir, &py, "tests/e2e/common/check_figures.py");
+    cr_expect_eq(rc, 0, "%s", py);
+    free(py);
+    cr_expect_eq(e2e_rmtree(dir), 0);
+}
