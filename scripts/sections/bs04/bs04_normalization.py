@@ -137,7 +137,7 @@ def render(ctx):
     ax.set_xlabel("p")
     ax.set_ylabel("measured order")
     ax.legend(fontsize=6)
-    ax.set_title("normalization order vs p (min over rays; curves offset ±0.09 so that "
+    ax.set_title("normalization order vs p (min over rays;\ncurves offset ±0.09 so that "
                  "coinciding ones show)\n" + ctx.config, fontsize=8)
     ax = axes[1]
     for j in joins:
@@ -149,7 +149,7 @@ def render(ctx):
     ax.set_xlabel("p")
     ax.set_ylabel("d1 at the joining points")
     ax.legend(fontsize=7)
-    ax.set_title(f"first derivative along the outer bisector at the joining points, trim "
+    ax.set_title(f"first derivative along the outer bisector\nat the joining points, trim "
                  f"{trims[0]} (lines: theory)\n"
                  + ctx.config, fontsize=8)
     md += ctx.figure(fig, "orders") + "\n"

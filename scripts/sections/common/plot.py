@@ -37,8 +37,9 @@ def figure_problems(fig):
         both axes (x and y labels);
       - every such field has a colour bar with a label, its own or one shared
         with a field of the same colour map and limits;
-      - no axis or colour-bar label lies over another axes (a neighbouring
-        panel) by more than a fifth of its area;
+      - no axis label, colour-bar label or axes title lies over another axes
+        (a neighbouring panel) by more than a fifth of its area, nor over
+        another axes' label or title by more than 2 pixels each way;
       - legend text is at least 6 pt.
     Not fields: RGB(A) pictures, 3D surface graphs and artists marked
     gid="overlay" (a mask drawn over a field, e.g. where it is undefined)."""
@@ -64,21 +65,27 @@ def figure_problems(fig):
     fig.canvas.draw()
     r = fig.canvas.get_renderer()
     boxes = [(a, a.get_window_extent(r)) for a in fig.axes if a.get_visible()]
+    texts = [(ax, t, t.get_window_extent(r)) for ax in fig.axes
+             for t in (ax.xaxis.label, ax.yaxis.label, ax.title)
+             if t.get_text() and t.get_visible()]
+
+    def over(tb, ob):
+        # a text grazing a neighbour by a pixel or two still reads; a fifth
+        # of it under another panel or text does not
+        inter = tb.intersection(tb, ob)
+        return inter is not None and inter.width * inter.height > 0.2 * tb.width * tb.height
+
+    for ax, t, tb in texts:
+        for other, ob in boxes:
+            if other is not ax and over(tb, ob):
+                probs.append(f"label '{t.get_text()}' overlaps the axes "
+                             f"'{other.get_title() or other.get_label()}'")
+        for other, u, ub in texts:  # text over text is unreadable at any size
+            inter = tb.intersection(tb, ub)
+            if other is not ax and id(t) < id(u) and inter is not None and \
+                    inter.width > 2 and inter.height > 2:
+                probs.append(f"label '{t.get_text()}' overlaps the label '{u.get_text()}'")
     for ax in fig.axes:
-        labels = [ax.xaxis.label, ax.yaxis.label]
-        for t in labels:
-            if not t.get_text() or not t.get_visible():
-                continue
-            tb = t.get_window_extent(r)
-            for other, ob in boxes:
-                if other is ax:
-                    continue
-                inter = tb.intersection(tb, ob)
-                # a label grazing a neighbour by a pixel or two still reads;
-                # a fifth of it under another panel does not
-                if inter is not None and inter.width * inter.height > 0.2 * tb.width * tb.height:
-                    probs.append(f"label '{t.get_text()}' overlaps the axes "
-                                 f"'{other.get_title() or other.get_label()}'")
         leg = ax.get_legend()
         if leg is not None:
             for t in leg.get_texts():

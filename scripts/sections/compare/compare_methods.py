@@ -86,7 +86,7 @@ def _plot_shape(ctx, plt, shape, rows):
     lines = _lines(rows)
     if not lines:
         return ""
-    fig, axs = plt.subplots(2, 3, figsize=(15, 8.5))
+    fig, axs = plt.subplots(2, 3, figsize=(15, 8.5), layout="constrained")
     for row, (rname, col) in enumerate(REGIONS):
         for k, (axis, label) in enumerate(AXES):
             ax = axs[row][k]

@@ -3,7 +3,8 @@
 figure_problems), each broken once on a figure made here, and a figure that
 keeps them all: a field image without axis labels, one without a colour bar,
 a colour bar without a label, a shared colour bar (allowed), an RGB picture
-(needs no bar), a y label over the neighbouring panel, a 4-pt legend.
+(needs no bar), a y label over the neighbouring panel, two titles over each other, a
+4-pt legend.
 
 usage: check_figures.py.  Prints "ok" and exits 0, or what failed and 1."""
 import os
@@ -83,6 +84,12 @@ for a in axs:
 axs[1].set_ylabel("a very long label that runs into the left panel", fontsize=14,
                   labelpad=60)
 expect("label over the next panel", fig, "overlaps the axes")
+
+fig, axs = plt.subplots(1, 2, figsize=(4, 2))
+for a in axs:
+    a.plot([0, 1], [0, 1])
+    a.set_title("a title far too long for its panel, running into the next one")
+expect("titles over each other", fig, "overlaps the label")
 
 fig, ax = plt.subplots()
 ax.plot([0, 1], [0, 1], label="c")
