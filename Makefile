@@ -154,6 +154,10 @@ sanitize: deps
 	  LSAN_OPTIONS=suppressions=$(abspath tests/lsan.supp) \
 	  DFL_PYTHON=$(PYTHON) DFL_DFLAB=$(abspath build-san/dflab) DFL_SANITIZE=1 \
 	  build-san/dflab-tests -j2 --timeout 1200
+	@echo "== key sweep: every study key given a value its expects refuses (tests/cli/key_sweep.py)"
+	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1 \
+	  LSAN_OPTIONS=suppressions=$(abspath tests/lsan.supp) \
+	  $(PYTHON) tests/cli/key_sweep.py build-san/dflab --jobs 2
 
 include src/web/web.mk
 include tests/fuzz/fuzz.mk

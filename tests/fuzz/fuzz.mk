@@ -7,8 +7,13 @@
 #                      FUZZ_SHORT seconds (default 30); part of make test
 #
 # The library is built a second time with clang into build-fuzz/.  Seeds:
-# configs/**/*.ini (config, sweep, field) and tests/fuzz/seeds/<name>/
-# (points; record: point.json records, fuzz_record.c merges each);
+# configs/**/*.ini (config, sweep, field), and tests/fuzz/seeds/<name>/
+# (points; record: point.json records, fuzz_record.c merges each; field:
+# besides the configs, one small single-valued field of every kind, pht and
+# proxy inputs included, as most configs are sweeps the harness skips).
+# The INI harnesses get a dictionary of every key a getter reads and every
+# name a kind, storage or filter takes (tests/fuzz/make_dict.py, made from
+# the sources: build-fuzz/dflab.dict);
 # every input that ever crashed a harness is kept in
 # tests/fuzz/regress/<name>/ and run first, so a regression fails at once.
 
@@ -38,8 +43,9 @@ $(FUZZ_BUILD)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_util.h $(FUZZ_BUILD)/l
 # corpus/<name>: seeds copied in once; libFuzzer adds what it finds
 $(FUZZ_BUILD)/corpus/%/.seeded:
 	@mkdir -p $(dir $@)
-	@if [ -d tests/fuzz/seeds/$* ]; then cp tests/fuzz/seeds/$*/* $(dir $@); \
-	 else for f in $$(find configs -name '*.ini'); do cp $$f $(dir $@)/$$(echo $$f | tr / _); done; fi
+	@if [ -d tests/fuzz/seeds/$* ]; then cp tests/fuzz/seeds/$*/* $(dir $@); fi
+	@if [ ! -d tests/fuzz/seeds/$* ] || [ $* = field ]; then \
+	 for f in $$(find configs -name '*.ini'); do cp $$f $(dir $@)/$$(echo $$f | tr / _); done; fi
 	@touch $@
 
 fuzz-regress: fuzz-build
@@ -51,17 +57,22 @@ fuzz-regress: fuzz-build
 
 # One harness for $(1) seconds; fails on any finding (the input is left in
 # $(FUZZ_BUILD)/ as crash-*, leak-*, timeout-*: add it to tests/fuzz/regress/).
-fuzz_run = ( $(FUZZ_ENV) $(FUZZ_BUILD)/fuzz_$(2) $(FUZZ_FLAGS) -max_total_time=$(1) \
+FUZZ_DICT := $(FUZZ_BUILD)/dflab.dict
+$(FUZZ_DICT): tests/fuzz/make_dict.py $(wildcard src/*/*.c src/*/*.h experiments/*/*.c)
+	@mkdir -p $(dir $@)
+	$(PYTHON) tests/fuzz/make_dict.py $@
+fuzz_dict = $(if $(filter config sweep field,$(1)),-dict=$(FUZZ_DICT))
+fuzz_run = ( $(FUZZ_ENV) $(FUZZ_BUILD)/fuzz_$(2) $(FUZZ_FLAGS) $(call fuzz_dict,$(2)) -max_total_time=$(1) \
 	  -artifact_prefix=$(FUZZ_BUILD)/ $(FUZZ_BUILD)/corpus/$(2) </dev/null \
 	  >$(FUZZ_BUILD)/fuzz_$(2).log 2>&1 || { echo "fuzz: $(2) found a crash"; tail -40 $(FUZZ_BUILD)/fuzz_$(2).log; exit 1; }; \
 	  grep -E 'stat::number_of_executed_units|DONE' $(FUZZ_BUILD)/fuzz_$(2).log | tail -2 | sed 's/^/fuzz $(2): /' )
 
-fuzz-short: fuzz-regress $(FUZZERS:%=$(FUZZ_BUILD)/corpus/%/.seeded)
+fuzz-short: fuzz-regress $(FUZZ_DICT) $(FUZZERS:%=$(FUZZ_BUILD)/corpus/%/.seeded)
 	@set -e; $(call fuzz_run,$(FUZZ_SHORT),config) & p1=$$!; $(call fuzz_run,$(FUZZ_SHORT),points) & p2=$$!; \
 	  wait $$p1 && wait $$p2; \
 	  $(call fuzz_run,$(FUZZ_SHORT_RECORD),record); \
 	  $(call fuzz_run,$(FUZZ_SHORT),sweep) & p1=$$!; $(call fuzz_run,$(FUZZ_SHORT),field) & p2=$$!; \
 	  wait $$p1 && wait $$p2
 
-fuzz: fuzz-regress $(FUZZERS:%=$(FUZZ_BUILD)/corpus/%/.seeded)
+fuzz: fuzz-regress $(FUZZ_DICT) $(FUZZERS:%=$(FUZZ_BUILD)/corpus/%/.seeded)
 	@set -e; for f in $(FUZZERS); do $(call fuzz_run,$(FUZZ_SECONDS),$$f); done
