@@ -22,9 +22,10 @@ typedef struct patch {
 } patch;
 
 typedef struct param_ctx {
-    int npatch, grid, max_iter, closed, starts;
+    int npatch, grid, max_iter, closed, starts, prune;
     patch *pt;
     double *samp;        /* npatch * grid * grid points */
+    double *rowbox;      /* per (patch, row j): lo[3], hi[3] of its grid nodes */
     double scale;
     dfl_surface_set set; /* owned patches (P_SURFACE) */
 } param_ctx;
@@ -34,6 +35,7 @@ void dfl_param_input_opts_default(dfl_param_input_opts *o)
     o->grid = 16;
     o->max_iter = 60;
     o->starts = 3;
+    o->prune = 1;
 }
 
 /* S, Su, Sv, Suu, Suv, Svv at (u, v) into D[18]. */
@@ -95,6 +97,22 @@ typedef struct start {
     double d2;
 } start;
 
+/* A lower bound of dist2(x, s) over the nodes s of row (p, j), in floating
+ * point too: per axis the gap to the box is no larger in magnitude than
+ * x - s (rounding is monotone), squares and the same left-to-right sum are
+ * monotone, so the bound never exceeds a node's computed dist2.  NaN
+ * (x not finite): no pruning follows, as every comparison is false. */
+static double row_bound(const param_ctx *c, int p, int j, const double x[3])
+{
+    const double *b = c->rowbox + 6 * ((size_t)p * c->grid + j);
+    double s = 0;
+    for (int a = 0; a < 3; a++) {
+        double g = x[a] < b[a] ? x[a] - b[a] : x[a] > b[3 + a] ? x[a] - b[3 + a] : 0.0;
+        s += g * g;
+    }
+    return s;
+}
+
 /* The c->starts nearest grid nodes, pairwise at least two grid steps apart
  * (or on different patches); returns their count. */
 static int find_starts(const param_ctx *c, const double x[3], start *st)
@@ -102,7 +120,9 @@ static int find_starts(const param_ctx *c, const double x[3], start *st)
     int n = 0;
     const int G = c->grid;
     for (int p = 0; p < c->npatch; p++)
-        for (int j = 0; j < G; j++)
+        for (int j = 0; j < G; j++) {
+            /* every node of the row would take the `continue` below */
+            if (c->prune && n == c->starts && row_bound(c, p, j, x) >= st[n - 1].d2) continue;
             for (int i = 0; i < G; i++) {
                 double d2 = dist2(x, c->samp + 3 * ((size_t)(p * G + j) * G + i));
                 if (n == c->starts && d2 >= st[n - 1].d2) continue;
@@ -124,6 +144,7 @@ static int find_starts(const param_ctx *c, const double x[3], start *st)
                     k--;
                 }
             }
+        }
     return n;
 }
 
@@ -245,11 +266,13 @@ static int add_patch_starts(const param_ctx *c, const double x[3], start *st, in
         for (int k = 0; k < n; k++) have |= st[k].patch == p;
         if (have) continue;
         start b = {p, 0, 0, HUGE_VAL};
-        for (int j = 0; j < G; j++)
+        for (int j = 0; j < G; j++) {
+            if (c->prune && row_bound(c, p, j, x) >= b.d2) continue; /* no node beats b */
             for (int i = 0; i < G; i++) {
                 double d2 = dist2(x, c->samp + 3 * ((size_t)(p * G + j) * G + i));
                 if (d2 < b.d2) b = (start){p, i, j, d2};
             }
+        }
         st[n++] = b;
     }
     return n;
@@ -313,6 +336,7 @@ static void param_destroy(void *vctx)
     param_ctx *c = vctx;
     free(c->pt);
     free(c->samp);
+    free(c->rowbox);
     dfl_surface_set_free(&c->set);
     free(c);
 }
@@ -333,8 +357,10 @@ static dfl_status finish(param_ctx *c, const dfl_param_input_opts *opt, dfl_prox
     c->starts = d.starts;
     c->grid = d.grid;
     c->max_iter = d.max_iter;
+    c->prune = d.prune != 0;
     size_t G = (size_t)d.grid;
-    if (!(c->samp = malloc((size_t)c->npatch * G * G * 3 * sizeof *c->samp))) {
+    if (!(c->samp = malloc((size_t)c->npatch * G * G * 3 * sizeof *c->samp)) ||
+        !(c->rowbox = malloc((size_t)c->npatch * G * 6 * sizeof *c->rowbox))) {
         param_destroy(c);
         return dfl_err_set(err, DFL_E_NOMEM, "parametric input: out of memory");
     }
@@ -346,9 +372,12 @@ static dfl_status finish(param_ctx *c, const dfl_param_input_opts *opt, dfl_prox
                 patch_eval(&c->pt[p], grid_u(c, &c->pt[p], (int)i), grid_v(c, &c->pt[p], (int)j),
                            D);
                 memcpy(s, D, 3 * sizeof *s);
+                double *rb = c->rowbox + 6 * (p * G + j);
                 for (int a = 0; a < 3; a++) {
                     lo[a] = fmin(lo[a], s[a]);
                     hi[a] = fmax(hi[a], s[a]);
+                    rb[a] = i == 0 ? s[a] : fmin(rb[a], s[a]);
+                    rb[3 + a] = i == 0 ? s[a] : fmax(rb[3 + a], s[a]);
                 }
             }
     c->scale = 1.0 + sqrt(dist2(lo, hi));

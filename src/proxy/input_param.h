@@ -3,7 +3,7 @@
  *
  * Function index
  *   dfl_param_input_opts          starts grid and iteration limit
- *   dfl_param_input_opts_default  grid 16, 60 iterations, 3 starts
+ *   dfl_param_input_opts_default  grid 16, 60 iterations, 3 starts, pruned scans
  *   dfl_proxy_input_param_sphere  S = c + r (cos v rho(u) + sin v w)
  *   dfl_proxy_input_param_torus   S = c + (R + r cos v) rho(u) + r sin v w
  *   dfl_proxy_input_param_cone    S = a + v (b - a) + (ra + v (rb - ra)) rho(u)
@@ -53,6 +53,11 @@ typedef struct dfl_param_input_opts {
     int grid;       /* parameter-grid nodes per patch and direction, 4..512 */
     int max_iter;   /* Newton iterations per start, >= 1 */
     int starts;     /* nearest grid nodes refined, 1 (the paper's) .. 3 */
+    int prune;      /* 1 (default): the node scans skip a grid row whose
+                       bounding box is no nearer than the worst start kept
+                       (the same nodes, in the same order, win: every answer
+                       is bit for bit the brute-force scan's); 0: brute force,
+                       for tests */
 } dfl_param_input_opts;
 
 void dfl_param_input_opts_default(dfl_param_input_opts *o);

@@ -4,7 +4,9 @@
  * form. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "core/rng.h"
 #include "core/vec.h"
@@ -181,4 +183,81 @@ Test(input_param, sphere_all_cell_centres)
                           "(%g %g %g): d %g", x[0], x[1], x[2], o.d);
             }
     dfl_proxy_input_free(&ip);
+}
+
+/* The pruned node scans (opts.prune = 1, the default) answer every query
+ * bit for bit as the brute-force scans do: sphere (two charts), torus,
+ * cone, one- and several-patch Bezier sets, at points near the surface, far
+ * away, on the axis and at a pole, with 1 and 3 starts and a fine grid. */
+static void expect_bitwise(const dfl_surfpoint *a, const dfl_surfpoint *b, const double x[3])
+{
+    cr_assert(memcmp(a, b, offsetof(dfl_surfpoint, certified)) == 0 &&
+                  a->certified == b->certified,
+              "pruned and brute-force answers differ at (%.17g, %.17g, %.17g): d %.17g vs %.17g",
+              x[0], x[1], x[2], a->d, b->d);
+}
+
+static void make_input(int kind, const dfl_param_input_opts *o, dfl_proxy_input *ip)
+{
+    const double c[3] = {0.05, -0.02, 0.01}, ax[3] = {0.2, 0.1, 1};
+    const double a[3] = {0, 0, -0.5}, b[3] = {0.1, 0, 0.5};
+    dfl_surface_set set;
+    switch (kind) {
+    case 0: cr_assert_eq(dfl_proxy_input_param_sphere(c, 0.5, o, ip, NULL), DFL_OK); break;
+    case 1: cr_assert_eq(dfl_proxy_input_param_torus(c, ax, 0.6, 0.2, o, ip, NULL), DFL_OK); break;
+    case 2: cr_assert_eq(dfl_proxy_input_param_cone(a, b, 0.4, 0.1, o, ip, NULL), DFL_OK); break;
+    case 3:
+        cr_assert_eq(dfl_surface_random_bezier(7, 4, 0.8, 0.4, &set, NULL), DFL_OK);
+        cr_assert_eq(dfl_proxy_input_param_surfaces(&set, o, ip, NULL), DFL_OK);
+        break;
+    default: { /* three biquadratic patches side by side, wavy heights */
+        dfl_surface pt[3];
+        for (int q = 0; q < 3; q++) {
+            double cp[27];
+            for (int j = 0; j < 3; j++)
+                for (int i = 0; i < 3; i++) {
+                    double *v = cp + 3 * (i + 3 * j);
+                    v[0] = -0.9 + 0.6 * q + 0.3 * i;
+                    v[1] = -0.6 + 0.6 * j;
+                    v[2] = 0.2 * sin(3.0 * v[0] + 2.0 * v[1] + q);
+                }
+            cr_assert_eq(dfl_surface_init_bezier(3, 3, cp, &pt[q], NULL), DFL_OK);
+        }
+        cr_assert_eq(dfl_surface_set_init(3, pt, &set, NULL), DFL_OK);
+        cr_assert_eq(dfl_proxy_input_param_surfaces(&set, o, ip, NULL), DFL_OK);
+    }
+    }
+}
+
+Test(input_param, pruned_scans_equal_brute_force_bit_for_bit)
+{
+    static const int grids[] = {16, 5, 40}, starts[] = {3, 1, 3};
+    for (int kind = 0; kind < 5; kind++)
+        for (int g = 0; g < 3; g++) {
+            dfl_param_input_opts po, bo;
+            dfl_param_input_opts_default(&po);
+            cr_assert_eq(po.prune, 1, "the default prunes");
+            po.grid = grids[g];
+            po.starts = starts[g];
+            bo = po;
+            bo.prune = 0;
+            dfl_proxy_input pi, bi;
+            make_input(kind, &po, &pi);
+            make_input(kind, &bo, &bi);
+            uint64_t seed = 77 + (uint64_t)(10 * kind + g);
+            enum { NQ = 300 };
+            for (int k = 0; k < NQ; k++) {
+                double s = k < NQ / 2 ? 0.8 : 4.0; /* near, then far */
+                double x[3] = {dfl_rng_splitmix(&seed, -s, s), dfl_rng_splitmix(&seed, -s, s),
+                               dfl_rng_splitmix(&seed, -s, s)};
+                if (k == 0) x[0] = 0.05, x[1] = -0.02, x[2] = 0.3; /* on an axis */
+                if (k == 1) x[0] = 0.05, x[1] = -0.02, x[2] = 0.51; /* over a pole */
+                dfl_surfpoint op, ob;
+                cr_assert_eq(dfl_proxy_input_query(&pi, 1, x, 1, &op, NULL), DFL_OK);
+                cr_assert_eq(dfl_proxy_input_query(&bi, 1, x, 1, &ob, NULL), DFL_OK);
+                expect_bitwise(&op, &ob, x);
+            }
+            dfl_proxy_input_free(&pi);
+            dfl_proxy_input_free(&bi);
+        }
 }
