@@ -153,7 +153,11 @@ dfl_status dfl_cfg_string_opt(const dfl_cfg *c, const char *sec, const char *key
  * file the key was written in (the config itself or the included shape
  * file that brought it), a --set value against the working directory.
  * The resolved name goes to buf (size bytes); DFL_E_INPUT naming the key
- * for an empty or too long value.  The file itself is not opened. */
+ * for an empty or too long value.  The file itself is not opened.  Only the
+ * keys of DFL_CFG_PATH_KEYS are file names (asserted): dfl_cfg_write writes
+ * their values resolved, so a run's config.ini names the same file from
+ * its own folder. */
+#define DFL_CFG_PATH_KEYS {"file"}
 dfl_status dfl_cfg_path_value(const dfl_cfg *c, const char *sec, const char *key, char *buf,
                               size_t size, dfl_err *err);
 
@@ -265,7 +269,10 @@ bool dfl_cfg_validated(const dfl_cfg *c);
  * through a temporary file renamed on success: a first comment line
  * "# resolved configuration of ORIGIN" (origin NULL: the path the config
  * was loaded from, dfl_cfg_path), then every key as written, set or
- * included, in entry order, without include lines. */
+ * included, in entry order, without include lines; the value of a file-name
+ * key (DFL_CFG_PATH_KEYS) resolved as dfl_cfg_path_value resolves it, then
+ * made absolute (realpath when the file exists, else against the working
+ * directory), each item of a sweep list on its own. */
 dfl_status dfl_cfg_write(const dfl_cfg *c, const char *origin, const char *path, dfl_err *err);
 
 #endif

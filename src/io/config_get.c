@@ -5,6 +5,7 @@
  * found.  The _opt forms return the default without inventing the key.
  * Every read goes to the config's read record (dfl_cfgi_log) with the
  * same `expect` text the messages use, and the default when one is taken. */
+#include <assert.h>
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -49,6 +50,7 @@ dfl_status dfl_cfg_string(const dfl_cfg *c, const char *sec, const char *key, co
 dfl_status dfl_cfg_path_value(const dfl_cfg *c, const char *sec, const char *key, char *buf,
                               size_t size, dfl_err *err)
 {
+    assert(dfl_cfgi_is_path_key(key)); /* else config.ini would not rerun */
     const dfl_cfg_entry *en;
     dfl_status st = fetch(c, sec, key, "a file name", &en, err);
     if (st != DFL_OK) return st;

@@ -88,6 +88,8 @@ typedef struct dfl_cfg_include {
 
 /* NULL when out of memory. */
 dfl_cfg *dfl_cfgi_new(const char *name);
+/* Whether key is one of DFL_CFG_PATH_KEYS (config.h). */
+bool dfl_cfgi_is_path_key(const char *key);
 /* Appends a copy of the strings (via may be NULL).  DFL_E_NOMEM on failure,
  * c unchanged. */
 dfl_status dfl_cfgi_add(dfl_cfg *c, const char *sec, const char *key, const char *value,

@@ -1,13 +1,16 @@
 /* The configuration's storage: a flat list of entries in file order, and
  * the resolved INI text written from it.  Lists hold tens of keys, so
  * linear lookup is simpler than a hash and fast enough. */
+#define _DEFAULT_SOURCE /* realpath */
 #include <ctype.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "io/atomic.h"
 #include "io/config_impl.h"
+#include "io/path.h"
 
 dfl_cfg *dfl_cfgi_new(const char *name)
 {
@@ -139,8 +142,39 @@ bool dfl_cfg_has_section(const dfl_cfg *c, const char *sec)
     return false;
 }
 
+bool dfl_cfgi_is_path_key(const char *key)
+{
+    static const char *const keys[] = DFL_CFG_PATH_KEYS;
+    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
+        if (strcmp(keys[i], key) == 0) return true;
+    return false;
+}
+
+/* One item of a file-name value, resolved against the entry's origin and
+ * made absolute, to fp. */
+static void put_path(FILE *fp, const dfl_cfg_entry *en, const char *item, size_t len)
+{
+    char rel[4096], lex[4096], cwd[4096];
+    snprintf(rel, sizeof rel, "%.*s", (int)len, item);
+    const char *base = en->line > 0 ? en->file : "";
+    if (!dfl_path_beside(base, dfl_cfgi_trim(rel), lex, sizeof lex)) {
+        fputs(rel, fp); /* too long to resolve: as written */
+        return;
+    }
+    char *real = realpath(lex, NULL);
+    if (real) {
+        fputs(real, fp);
+        free(real);
+    } else if (lex[0] != '/' && getcwd(cwd, sizeof cwd)) {
+        fprintf(fp, "%s/%s", cwd, lex);
+    } else {
+        fputs(lex, fp);
+    }
+}
+
 /* Included keys are written as the section's own: the file reruns without
- * the shape files it was made from. */
+ * the shape files it was made from; file names are written resolved, so it
+ * reruns from its own folder. */
 dfl_status dfl_cfg_write(const dfl_cfg *c, const char *origin, const char *path, dfl_err *err)
 {
     dfl_atomic_file af;
@@ -153,7 +187,19 @@ dfl_status dfl_cfg_write(const dfl_cfg *c, const char *origin, const char *path,
             cur = c->e[i].sec;
             fprintf(af.fp, "%s[%s]\n", i ? "\n" : "", cur);
         }
-        fprintf(af.fp, "%s = %s\n", c->e[i].key, c->e[i].value);
+        if (!dfl_cfgi_is_path_key(c->e[i].key)) {
+            fprintf(af.fp, "%s = %s\n", c->e[i].key, c->e[i].value);
+            continue;
+        }
+        fprintf(af.fp, "%s = ", c->e[i].key);
+        for (const char *v = c->e[i].value;;) {
+            const size_t len = strcspn(v, ",");
+            put_path(af.fp, &c->e[i], v, len);
+            if (!v[len]) break;
+            fputs(", ", af.fp);
+            v += len + 1;
+        }
+        fputc('\n', af.fp);
     }
     return dfl_atomic_commit(&af, err);
 }

@@ -1,5 +1,10 @@
 /* Tests for src/io/config_store.c: the entry list and the resolved INI. */
+#define _DEFAULT_SOURCE /* realpath */
 #include <criterion/criterion.h>
+#include <limits.h>
+#include <stdio.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -36,6 +41,58 @@ Test(config, write_reads_back)
     cr_assert(strncmp(text, "# resolved configuration of configs/x.ini\n[s]\n", 46) == 0, "%s",
               text);
     free(text);
+    dfl_cfg_free(c);
+    tmpdir_remove(dir);
+}
+
+/* A file-name key (DFL_CFG_PATH_KEYS) is written resolved and absolute, so
+ * config.ini names the same file from its own folder: written relative to
+ * the config's folder, a --set value relative to the working directory, a
+ * sweep list item by item; a file that does not exist is made absolute
+ * against the working directory.  The written config, loaded from another
+ * folder, resolves to the same file. */
+Test(config, write_resolves_file_names)
+{
+    char dir[64], p[600], real[PATH_MAX], cwd[PATH_MAX];
+    tmpdir_new(dir, sizeof dir);
+    cr_assert_not_null(realpath(dir, real));
+    tmpdir_write(dir, "m/x.obj", "v 0 0 0\n", p, sizeof p);
+    tmpdir_write(dir, "m/y.obj", "v 0 0 0\n", p, sizeof p);
+    char cfgp[700];
+    tmpdir_write(dir, "a/c.ini", "[shape]\nkind = mesh\nfile = ../m/x.obj, ../m/y.obj\n[s2]\n"
+                 "file = ../m/none.obj\n", cfgp, sizeof cfgp);
+    dfl_cfg *c = cfgu_load(cfgp);
+    dfl_err err;
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    char d2[700];
+    snprintf(d2, sizeof d2, "%s/m", dir);
+    cr_assert_eq(chdir(d2), 0);
+    cr_assert_eq(dfl_cfg_set(c, "s3.file=y.obj", &err), DFL_OK, "%s", err.msg);
+    char out[700];
+    snprintf(out, sizeof out, "%s/out/config.ini", dir);
+    snprintf(d2, sizeof d2, "%s/out", dir);
+    mkdir(d2, 0755);
+    dfl_status st = dfl_cfg_write(c, NULL, out, &err);
+    cr_assert_eq(chdir(cwd), 0);
+    cr_assert_eq(st, DFL_OK, "%s", err.msg);
+    char *text = e2e_slurp(out);
+    char want[3 * PATH_MAX];
+    snprintf(want, sizeof want, "file = %s/m/x.obj, %s/m/y.obj\n", real, real);
+    cr_expect(strstr(text, want), "want %s in %s", want, text);
+    snprintf(want, sizeof want, "file = %s/m/none.obj\n", real);
+    cr_expect(strstr(text, want), "missing file: want %s in %s", want, text);
+    snprintf(want, sizeof want, "[s3]\nfile = %s/m/y.obj\n", real);
+    cr_expect(strstr(text, want), "--set: want %s in %s", want, text);
+    free(text);
+    /* reread from its own folder: the same files */
+    dfl_cfg *r = cfgu_load(out), *pt = NULL;
+    cr_assert_eq(dfl_cfg_sweep_point(r, 1, &pt, &err), DFL_OK);
+    char got[PATH_MAX];
+    cr_assert_eq(dfl_cfg_path_value(pt, "shape", "file", got, sizeof got, &err), DFL_OK);
+    snprintf(want, sizeof want, "%s/m/y.obj", real);
+    cr_expect_str_eq(got, want);
+    dfl_cfg_free(pt);
+    dfl_cfg_free(r);
     dfl_cfg_free(c);
     tmpdir_remove(dir);
 }
