@@ -122,6 +122,13 @@ def _continuity(r):
         return f"discontinuous (c0_jump {c0:.2g})"
     if c1 > 1e-4:
         return f"C0 with gradient jumps up to {c1:.2g}"
+    if r.get("kind") == "openvdb":
+        # field/vdb.h: OpenVDB's samplers give values only; the gradient is a
+        # central difference of the sampler (step voxel/2), itself continuous
+        # wherever the sampler is, so c1_jump measures that difference, not
+        # the sampler's own derivative (trilinear: it jumps at voxel faces)
+        return ("C0; its gradient, a central difference of the sampler (step voxel/2), is "
+                "continuous by construction, so no C1 claim for the sampler itself")
     return "C1 by measurement"
 
 
