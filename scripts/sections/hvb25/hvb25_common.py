@@ -8,6 +8,9 @@ NORMS = [("L1", "l1", "L1 = mean |e|"), ("L2", "mse", "MSE, set beside the paper
          ("Linf", "linf", "L∞ = max |e|")]
 
 ASSUMPTIONS = [
+    "Verdict rule (hvb25): a table claim is reproduced when every cell's ours/paper ratio lies in "
+    "[×0.5, ×2] (printed as the range of ratios); the paper prints 2–3 digits on an unknown "
+    "error grid, so a factor of two is the resolution of the comparison.",
     "Shapes and domain (the paper gives neither): sphere radius 0.5 and torus R = 0.6, r = 0.25 "
     "(axis z), both centred in the field box [−1, 1]³; with these our order-1 SDF sphere at 16³ "
     "matches the paper's 0.0017 / 0.05 (see Table 1). Cone, Bézier surfaces: configs/shapes/hvb25_*.ini.",

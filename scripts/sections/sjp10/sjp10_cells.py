@@ -9,6 +9,9 @@ from sections.sjp10 import sjp10_fitpack_cmp as fpc
 _f = dflio.cell_nan
 
 ASSUMPTIONS = [
+    "Verdict rule (sjp10 Fig. 2): the smooth function's slope is reproduced within ±0.05 of 1/2; "
+    "the SDF slopes 'grow faster than 1/2 but relatively close' is read as every curve's slope "
+    "in (1/2, 3/4].",
     "Fig. 2 thresholds: eps = 1e-2, 1e-3, 1e-4, 1e-5, 1e-6 (sjp10: four values, not given); "
     "max_level 10. Slopes are least-squares fits of log10(cells) against log10(1/error) over "
     "all thresholds, with error = the per-cell validation max (whole square), the per-cell max off "
