@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "harness/experiment.h"
+#include "harness/nonfinite.h"
 #include "harness/sweep.h"
 #include "io/atomic.h"
 #include "io/dirs.h"
@@ -434,6 +435,31 @@ dfl_status dfl_merge_into(const char *dir, const dfl_sweep *expect, int quiet,
     return st;
 }
 
+/* The run's exit-status rule of harness/nonfinite.h over a folder `dflab
+ * merge` assembled: each point's allow_nonfinite from the sweep's own
+ * config.ini, as the run of that config would have read it. */
+static dfl_status merged_nonfinite(const char *dir, dfl_err *err)
+{
+    char path[4200];
+    snprintf(path, sizeof path, "%s/config.ini", dir);
+    dfl_cfg *c = NULL;
+    dfl_status st = dfl_cfg_load(path, &c, err);
+    if (st != DFL_OK) return st;
+    const size_t np = dfl_cfg_sweep_points(c);
+    bool *allow = calloc(np ? np : 1, sizeof *allow);
+    if (!allow) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    for (size_t k = 0; k < np && st == DFL_OK; k++) {
+        dfl_cfg *pt = NULL;
+        st = dfl_cfg_sweep_point(c, k, &pt, err);
+        if (st == DFL_OK) st = dfl_study_allow_nonfinite(pt, &allow[k], err);
+        dfl_cfg_free(pt);
+    }
+    if (st == DFL_OK) st = dfl_nonfinite_check(dir, allow, np, err);
+    free(allow);
+    dfl_cfg_free(c);
+    return st;
+}
+
 dfl_status dfl_merge(const char *dir, int quiet, const char *cmdline, dfl_err *err)
 {
     char d[4096];
@@ -444,5 +470,6 @@ dfl_status dfl_merge(const char *dir, int quiet, const char *cmdline, dfl_err *e
     if (st == DFL_OK) st = dfl_dir_check_replaceable(d, "manifest.json", "merge", err);
     if (st != DFL_OK) return st;
     dfl_sweep_clean_stale(d);
-    return dfl_merge_into(d, NULL, quiet, cmdline, err);
+    st = dfl_merge_into(d, NULL, quiet, cmdline, err);
+    return st == DFL_OK ? merged_nonfinite(d, err) : st;
 }

@@ -48,7 +48,10 @@ dfl_status dfl_run(const dfl_run_opts *opts, dfl_err *err);
 
 /* Assembles dir.points/ into dir, replacing its other contents.  DFL_E_INPUT
  * naming the folder when a point is missing, claimed twice, or comes from
- * another config, study, sweep size or dflab binary than the others. */
+ * another config, study, sweep size or dflab binary than the others.  Then
+ * the run's non-finite rule (harness/nonfinite.h) over the merged folder,
+ * each point's allow_nonfinite from its config.ini: DFL_E_NUMERIC (exit 1,
+ * the folder written) as the run would have ended. */
 dfl_status dfl_merge(const char *dir, int quiet, const char *cmdline, dfl_err *err);
 
 typedef struct dfl_plan_opts {

@@ -253,6 +253,9 @@ dfl_status sjp10_put_val(dfl_table *t, const char *prefix, const dfl_pht_val *v,
     if (!st) st = dfl_table_set_int(t, col, (long)v->all.n, err);
     snprintf(col, sizeof col, "%sband_points", prefix);
     if (!st) st = dfl_table_set_int(t, col, (long)v->band, err);
+    /* read by the runner's non-finite rule (harness/nonfinite.h) */
+    snprintf(col, sizeof col, "%snonfinite", prefix);
+    if (!st) st = dfl_table_set_int(t, col, (long)v->nonfinite, err);
     return st;
 }
 
@@ -285,6 +288,7 @@ dfl_status sjp10_put_cellval(dfl_table *t, const dfl_pht_cellval *cv, double eps
     const double share = eps > 0 && cv->n ? (double)cv->above / (double)cv->n : NAN;
     if (!st) st = dfl_table_set_double(t, "cv_above_eps", share, err);
     if (!st) st = dfl_table_set_double(t, "cv_gmax", cv->gmax, err);
+    if (!st) st = dfl_table_set_int(t, "cv_nonfinite", (long)cv->nonfinite, err);
     return st;
 }
 

@@ -14,7 +14,7 @@
 #define CHUNK 256
 
 typedef struct part {
-    size_t n, noff, band, skipped;
+    size_t n, noff, band, skipped, nonfinite;
     double max, sum, sq, gmax, gsum;
     double omax, osum, osq, ogmax, ogsum;
 } part;
@@ -90,7 +90,10 @@ static void chunk_stats(const dfl_field *f, const dfl_shape *s, size_t n, const 
             ge += dj * dj;
         }
         ge = sqrt(ge);
+        /* a NaN must not vanish from a maximum (fmax and > drop it) */
+        if (!isfinite(e) || !isfinite(ge)) p->nonfinite++;
         if (!isfinite(e)) e = INFINITY;
+        if (!isfinite(ge)) ge = INFINITY;
         p->n++;
         add(e, ge, &p->max, &p->sum, &p->sq, &p->gmax, &p->gsum);
         if (near[i]) {
@@ -112,6 +115,7 @@ static void finish(const part *parts, size_t np, dfl_pht_val *out)
         t.noff += p->noff;
         t.band += p->band;
         t.skipped += p->skipped;
+        t.nonfinite += p->nonfinite;
         t.sum += p->sum;
         t.sq += p->sq;
         t.gsum += p->gsum;
@@ -126,6 +130,7 @@ static void finish(const part *parts, size_t np, dfl_pht_val *out)
     memset(out, 0, sizeof *out);
     out->band = t.band;
     out->skipped = t.skipped;
+    out->nonfinite = t.nonfinite;
     out->all.n = t.n;
     out->off.n = t.noff;
     if (t.n) {
@@ -226,7 +231,7 @@ void dfl_pht_cellval_opts_default(int dim, dfl_pht_cellval_opts *o)
 
 /* One cell's partial results (combined in cell order). */
 typedef struct cpart {
-    size_t n, skipped, band, off, medial, above;
+    size_t n, skipped, band, off, medial, above, nonfinite;
     double max, gmax, band_max, off_max, medial_max;
     int medial_cell, nomem;
 } cpart;
@@ -411,6 +416,7 @@ static void one_cell(const dfl_pht_spline *sp, const dfl_shape *s, const dfl_pht
             ge += dj * dj;
         }
         ge = isfinite(ge) ? sqrt(ge) : INFINITY;
+        p->nonfinite += !isfinite(e) || !isfinite(ge);
         p->n++;
         p->max = fmax(p->max, e);
         p->gmax = fmax(p->gmax, ge);
@@ -470,6 +476,7 @@ dfl_status dfl_pht_validate_cells(const dfl_pht_spline *s, const dfl_shape *shap
         out->off += p->off;
         out->medial += p->medial;
         out->above += p->above;
+        out->nonfinite += p->nonfinite;
         out->medial_cells += (size_t)p->medial_cell;
         out->max = fmax(out->max, p->max);
         out->gmax = fmax(out->gmax, p->gmax);

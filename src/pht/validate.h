@@ -79,6 +79,8 @@ typedef struct dfl_pht_val {
     dfl_pht_val_stats off;   /* the points off the medial band */
     size_t band;             /* points in the band */
     size_t skipped;          /* points where the exact SDF is not finite */
+    size_t nonfinite;        /* of all.n: points where f or grad f is not finite;
+                                each is an error of +inf in max (and mean, rms) */
 } dfl_pht_val;
 
 typedef struct dfl_pht_val_opts {
@@ -126,6 +128,8 @@ typedef struct dfl_pht_cellval {
     double medial_max;   /* max |f - d| over them (0 if none) */
     size_t medial_cells; /* leaf cells that got the dense sub-grid */
     size_t above;        /* points with |f - d| > eps */
+    size_t nonfinite;    /* of n: points where the spline's value or gradient is
+                            not finite (errors of +inf, in every max they enter) */
 } dfl_pht_cellval;
 
 /* Defaults above for dimension dim (band 0, eps NaN). */

@@ -295,6 +295,10 @@ case("allow_nonfinite swept: the point that does not allow it", RUN + [
      ["row 2", "point 1"], ini=NF, rc=1, keep=OUTS)
 case("--point run: non-finite is exit 1", RUN + ["--set", "field.noise=1e300", "--point", "0"],
      ["row 1", "4913 non-finite points"], ini=NF, rc=1, keep=["o.points"])
+case("merge: non-finite is exit 1 as the run's", ["merge", "{D}/o"],
+     ["row 1", "point 0", "4913 non-finite points", "allow_nonfinite"], ini=NF, rc=1,
+     keep=OUTS, shell_prefix='"$DFL_TABLE_DFLAB" run bad.ini --set field.noise=1e300 '
+     '--point 0 --out o --quiet 2>/dev/null;')
 runc("allow_nonfinite not a bool", NF, "allow_nonfinite",
      "boolean", extra=["--set", "study.allow_nonfinite=maybe"])
 
@@ -399,7 +403,7 @@ def run_case(c, dflab, base):
             open(os.path.join(d, "pts.csv"), "wb").write(c["pts"])
             inputs.add("pts.csv")
         args = [a.replace("{D}", d) for a in c["args"]]
-        env = dict(os.environ, **c["env"])
+        env = dict(os.environ, DFL_TABLE_DFLAB=dflab, **c["env"])  # for shell prefixes
         out_path = c["stdout_to"] or os.path.join(d, "out.txt")
         with open(out_path, "wb") as out, open(os.path.join(d, "err.txt"), "wb") as err:
             if c["shell_prefix"]:

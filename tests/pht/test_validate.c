@@ -247,3 +247,59 @@ Test(pht_validate, cell_protocol_is_thread_count_independent)
     dfl_pht_source_free(src);
     dfl_shape_free(&s);
 }
+
+/* A NaN is an error of +inf, counted, never dropped: one cell's polynomial
+ * poisoned with a NaN makes exactly its own protocol points non-finite in
+ * the per-cell protocol (9 + random points of a non-medial cell), and in the
+ * grid protocol as many points as a brute-force count of non-finite field
+ * values finds; every maximum they enter is +inf, gradients included. */
+Test(pht_validate, nonfinite_values_are_counted_and_infinite)
+{
+    dfl_shape s;
+    const double c[2] = {-0.4, 0.5};
+    cr_assert_eq(dfl_shape_circle(c, 0.1, &s, NULL), DFL_OK);
+    dfl_pht_source *src;
+    dfl_pht_fit fit;
+    small_fit(&s, 1e-3, 5, &src, &fit);
+    const size_t nc = dfl_pht_spline_ncells(fit.spline);
+    dfl_pht_cellval_opts o;
+    dfl_pht_cellval_opts_default(2, &o);
+    dfl_pht_cellval v;
+    cr_assert_eq(dfl_pht_validate_cells(fit.spline, &s, &o, &v, NULL), DFL_OK);
+    cr_assert_eq(v.nonfinite, 0);
+    cr_assert(isfinite(v.max) && isfinite(v.gmax));
+    /* poison the last cell (the test reaches into the borrowed storage) */
+    double *coef = (double *)dfl_pht_spline_cell(fit.spline, nc - 1, NULL, NULL, NULL);
+    for (int k = 0; k < DFL_PHT_NCOEF(2); k++) coef[k] = NAN; /* value and gradient */
+    cr_assert_eq(dfl_pht_validate_cells(fit.spline, &s, &o, &v, NULL), DFL_OK);
+    cr_expect_eq(v.nonfinite, 9 + (size_t)o.random, "the poisoned cell's own points");
+    cr_expect(isinf(v.max) && v.max > 0 && isinf(v.off_max) && isinf(v.gmax));
+    /* grid protocol through the field adapter */
+    dfl_field f;
+    dfl_pht_spline *sp = fit.spline;
+    cr_assert_eq(dfl_pht_field_new(&fit.spline, &f, NULL), DFL_OK);
+    dfl_pht_val_opts go = {{0, 0, 0}, {1, 1, 0}, 41, 0.0};
+    dfl_pht_val gv;
+    cr_assert_eq(dfl_pht_validate_grid(&f, &s, &go, &gv, NULL), DFL_OK);
+    size_t bad = 0;
+    double x[2], g[2];
+    for (int pass = 0; pass < 2; pass++) { /* nodes, then cell midpoints */
+        const int n = pass ? 40 : 41;
+        for (int j = 0; j < n; j++)
+            for (int i = 0; i < n; i++) {
+                x[0] = (i + 0.5 * pass) / 40.0;
+                x[1] = (j + 0.5 * pass) / 40.0;
+                const double val = dfl_field_eval1(&f, x, g);
+                bad += !isfinite(val) || !isfinite(g[0]) || !isfinite(g[1]);
+            }
+    }
+    (void)sp;
+    cr_assert(bad > 0, "the poisoned cell holds grid points");
+    cr_expect_eq(gv.nonfinite, bad);
+    cr_expect(isinf(gv.all.max) && isinf(gv.all.gmax) && isinf(gv.all.mean), "max %g gmax %g mean %g",
+              gv.all.max, gv.all.gmax, gv.all.mean);
+    dfl_field_destroy(&f);
+    dfl_pht_fit_free(&fit);
+    dfl_pht_source_free(src);
+    dfl_shape_free(&s);
+}
