@@ -66,6 +66,7 @@
 #include "harness/field_out.h"
 #include "geom/polygonize.h"
 #include "io/path.h"
+#include "cfg/field_cost.h"
 #include "cfg/grid_cfg.h"
 #include "cfg/list_cfg.h"
 #include "cfg/rfunc_cfg.h"
@@ -284,5 +285,42 @@ static dfl_status bulging_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_
     return st;
 }
 
-DFL_STUDY_DEFINE(bs04_bulging, bulging_run,
+/* Peak memory: the cases run one after another; a case holds its field
+ * (the polygonization, at most dfl_polygonize_curve_segments_bound
+ * segments at eps, DFL_RFUNC_PART_BYTES each), the offset measurement's
+ * grid and rays (dfl_bs04_offsets_cost: 2 rays per side origin, per cap
+ * ray and per joint, a vertex of the polygon) and the writer's buffers.
+ * Work: dfl_bs04_offsets_cost (an evaluation: one CHEAP per part and
+ * DFL_RFUNC_EVAL_UNITS) and the files (the exact one at point 0). */
+static dfl_status bulging_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                                   dfl_err *err)
+{
+    bulge_keys k;
+    dfl_status st = read_keys(cfg, &k, err);
+    for (int i = 0; i < k.ncases && !st; i++) {
+        const bulge_case *b = &k.c[i];
+        const char *sec = dfl_cfg_section_name(cfg, b->name), *gsec = "grid";
+        dfl_cfg_string(cfg, sec, "grid", &gsec, NULL);
+        gsec = dfl_cfg_section_name(cfg, gsec);
+        const double parts = dfl_polygonize_curve_segments_bound(&b->curve, b->eps) + 1;
+        const double nodes = (double)dfl_grid_size(&b->grid);
+        const double rays = 2.0 * (double)(b->rays + b->cap_rays) + 2 * parts;
+        dfl_cost one;
+        memset(&one, 0, sizeof one);
+        dfl_cost_add_bytes(&one, sec, "eps", parts * DFL_RFUNC_PART_BYTES,
+                           "an R-function field of up to %.3g segments", parts);
+        dfl_cost_add_bytes(&one, gsec, "n", dfl_field_out_bytes(&k.out, nodes),
+                           "the field files' buffers");
+        dfl_bs04_offsets_cost(gsec, nodes, sec, rays, parts + DFL_RFUNC_EVAL_UNITS, b->nlevels,
+                              &k.search, &one);
+        dfl_cost_add_work(&one, gsec, "n", DFL_COST_CHEAP,
+                          (ctx->point == 0 ? 2 : 1) * dfl_field_out_units(&k.out, nodes),
+                          "the files of %.3g nodes", nodes);
+        dfl_cost_add_step(c, &one);
+    }
+    keys_free(&k);
+    return st;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(bs04_bulging, bulging_run, bulging_estimate,
                  "bs04 Fig. 6 / Fig. 2: bulging of R-function level sets vs order p and offset");

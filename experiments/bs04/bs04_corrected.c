@@ -49,6 +49,7 @@
 #include "harness/experiment.h"
 #include "field/sample.h"
 #include "harness/field_out.h"
+#include "cfg/field_cost.h"
 #include "cfg/grid_cfg.h"
 #include "bs04/vjoin.h"
 #include "core/vec.h"
@@ -356,5 +357,32 @@ done:
     return st;
 }
 
-DFL_STUDY_DEFINE(bs04_corrected, cj_run,
+/* Peak memory: the sector samples, sector_nr x max(sector_nt, 2) points
+ * with value and gradient (40 bytes each), the grid's samples (u, grad u,
+ * d: 32 bytes a node) and the writer's buffers, all held together.  Work:
+ * three joins, each evaluated (two parts, CHEAP each, and
+ * DFL_RFUNC_EVAL_UNITS; the part gradients once more at the sector) at
+ * every sector sample and grid node, and written; d once per node. */
+static dfl_status cj_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                              dfl_err *err)
+{
+    (void)ctx;
+    cj_keys k;
+    dfl_status st = read_keys(cfg, &k, err);
+    if (st) return st;
+    const double ns = (double)k.nr * (double)(k.nt > 2 ? k.nt : 2);
+    const double m = (double)dfl_grid_size(&k.grid);
+    dfl_cost_add_bytes(c, "study", k.nr >= k.nt ? "sector_nr" : "sector_nt", 40 * ns,
+                       "%.3g sector samples", ns);
+    dfl_cost_add_bytes(c, "grid", "n", 32 * m + dfl_field_out_bytes(&k.oo, m),
+                       "the samples and files of %d^2 nodes", k.grid.n[0]);
+    dfl_cost_add_work(c, "study", k.nr >= k.nt ? "sector_nr" : "sector_nt", DFL_COST_CHEAP,
+                      3 * (4 + DFL_RFUNC_EVAL_UNITS) * ns, "3 joins at %.3g sector samples", ns);
+    dfl_cost_add_work(c, "grid", "n", DFL_COST_CHEAP,
+                      3 * (2 + DFL_RFUNC_EVAL_UNITS) * m + m + 3 * dfl_field_out_units(&k.oo, m),
+                      "3 joins at %.3g nodes and their files", m);
+    return DFL_OK;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(bs04_corrected, cj_run, cj_estimate,
                  "bs04 Fig. 14, eq. 20: corrected join, |grad u| = 1 in the hatched sector");

@@ -42,6 +42,7 @@
 #include "harness/experiment.h"
 #include "field/sample.h"
 #include "harness/field_out.h"
+#include "cfg/field_cost.h"
 #include "cfg/grid_cfg.h"
 #include "cfg/list_cfg.h"
 #include "cfg/rfunc_cfg.h"
@@ -295,5 +296,31 @@ done:
     return st;
 }
 
-DFL_STUDY_DEFINE(bs04_fields, fields_run,
+/* Peak memory: the join ([field]'s parts) and the three fields' samples
+ * on [grid], held together (u, grad u, reference: 32 bytes a node each),
+ * and the writer's buffers of one file (dfl_field_out_bytes).  Work per
+ * node: the join (dfl_field_eval_cost), the two one-part fields and the two
+ * exact segment distances; three files. */
+static dfl_status fields_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                                  dfl_err *err)
+{
+    dfl_field_write_opts out;
+    dfl_grid g;
+    dfl_cost_class cls;
+    double units;
+    dfl_status st = dfl_study_estimate_default(cfg, ctx, c, err);
+    if (!st) st = dfl_field_eval_cost(cfg, "field", &cls, &units, err);
+    if (!st) st = dfl_grid_cost_from_cfg(cfg, "grid", 2, 3 * 32.0, "three fields' samples", c, &g, err);
+    if (!st) st = dfl_field_out_from_cfg(cfg, &out, err);
+    if (st) return st;
+    const double m = (double)dfl_grid_size(&g);
+    dfl_cost_add_bytes(c, "grid", "n", dfl_field_out_bytes(&out, m), "the field files' buffers");
+    dfl_cost_add_work(c, "grid", "n", cls, m * (units + 2 * (1 + DFL_RFUNC_EVAL_UNITS) + 2),
+                      "%.3g nodes x 3 fields", m);
+    dfl_cost_add_work(c, "grid", "n", DFL_COST_CHEAP, 3 * dfl_field_out_units(&out, m),
+                      "the files of 3 fields");
+    return DFL_OK;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(bs04_fields, fields_run, fields_estimate,
                  "bs04 Fig. 1, 3b: two segment fields, their join, the trims; |grad u| statistics");

@@ -54,6 +54,7 @@
 
 #include "core/vec.h"
 #include "harness/experiment.h"
+#include "cfg/field_cost.h"
 #include "rfunc/gradbound.h"
 #include "bs04/vjoin.h"
 
@@ -413,5 +414,42 @@ done:
     return st;
 }
 
-DFL_STUDY_DEFINE(bs04_gradbounds, gb_run,
+/* Peak memory: the circle's workspace, samples x (point, value, gradient,
+ * 4 shifted points and their values: 17 doubles), reused by every radius;
+ * with a profile, its table of profile_samples rows per radius, 11 cells
+ * of about 64 bytes (a short string, its pointer, the allocator's header);
+ * the Fig. 5 tables (2 joins x fig5_p x fig5_nphi rows of 10 cells) at the
+ * first point.  Work per radius and sample: 5 evaluations of the
+ * two-part join (2 + DFL_RFUNC_EVAL_UNITS CHEAP each) and the parts' own
+ * and the bounds' (6). */
+static dfl_status gb_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                              dfl_err *err)
+{
+    gb_keys k;
+    dfl_status st = read_keys(cfg, &k, err);
+    if (!st) {
+        const double n = (double)k.samples, radii = (double)k.nradii;
+        int prof = 0;
+        for (size_t i = 0; i < k.nprofile; i++)
+            if (fabs(k.profile_alpha[i] - k.alpha_deg) <= 1e-9) prof = 1;
+        dfl_cost_add_bytes(c, "study", "samples", 8 * 17 * n, "a circle of %ld samples",
+                           k.samples);
+        if (prof)
+            dfl_cost_add_bytes(c, "study", "profile_samples",
+                               64 * 11 * radii * (double)k.profile_samples,
+                               "a profile of %.3g rows", radii * (double)k.profile_samples);
+        if (ctx->point == 0)
+            dfl_cost_add_bytes(c, "study", "fig5_nphi",
+                               64 * 10 * 2 * (double)k.nfig5 * (double)k.fig5_nphi,
+                               "the Fig. 5 table of %.3g rows",
+                               2 * (double)k.nfig5 * (double)k.fig5_nphi);
+        dfl_cost_add_work(c, "study", "samples", DFL_COST_CHEAP,
+                          (5 * (2 + DFL_RFUNC_EVAL_UNITS) + 6) * n * radii,
+                          "%.3g radii x %ld samples", radii, k.samples);
+    }
+    keys_free(&k);
+    return st;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(bs04_gradbounds, gb_run, gb_estimate,
                  "bs04 Fig. 4-5, eq. 13-14: |grad u| on circles around a joining point vs the bounds");

@@ -47,6 +47,7 @@
 #include "field/metrics.h"
 #include "field/sample.h"
 #include "harness/field_out.h"
+#include "cfg/field_cost.h"
 #include "geom/polygon.h"
 #include "geom/segdist.h"
 #include "io/vtk.h"
@@ -258,5 +259,30 @@ done:
     return st;
 }
 
-DFL_STUDY_DEFINE(bs04_hetero, hetero_run,
+/* Peak memory: the grid's samples (u, grad u, d and the band mask: 33
+ * bytes a node) and the writer's buffers.  Work: the field (one CHEAP per
+ * region edge, the segment and the point each, and DFL_RFUNC_EVAL_UNITS)
+ * and d at every node, the file, and the field at boundary_samples probes
+ * per region edge, segment and point. */
+static dfl_status hetero_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                                  dfl_err *err)
+{
+    (void)ctx;
+    keys k;
+    dfl_status st = read_keys(cfg, &k, err);
+    if (!st) {
+        const double m = (double)dfl_grid_size(&k.grid), parts = (double)k.nreg + 2;
+        dfl_cost_add_bytes(c, "grid", "n", 33 * m + dfl_field_out_bytes(&k.out, m),
+                           "the samples and files of %d^2 nodes", k.grid.n[0]);
+        const double units = parts + DFL_RFUNC_EVAL_UNITS;
+        dfl_cost_add_work(c, "grid", "n", DFL_COST_CHEAP,
+                          (units + parts) * m + dfl_field_out_units(&k.out, m), "%.3g nodes", m);
+        dfl_cost_add_work(c, "study", "boundary_samples", DFL_COST_CHEAP,
+                          parts * units * (double)k.nb, "%ld boundary samples per part", k.nb);
+    }
+    dfl_rfunc_spec_free(&k.spec);
+    return st;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(bs04_hetero, hetero_run, hetero_estimate,
                  "bs04 Fig. 13a: one field for a region, a segment and a point");

@@ -79,6 +79,7 @@
 #include "core/vec.h"
 #include "harness/experiment.h"
 #include "cfg/field_cfg.h"
+#include "cfg/field_cost.h"
 #include "cfg/rfunc_cfg.h"
 #include "field/normorder.h"
 #include "rfunc/join.h"
@@ -537,5 +538,35 @@ done:
     return st;
 }
 
-DFL_STUDY_DEFINE(bs04_normalization, norm_run,
+/* Peak memory: nothing in proportion to a key beyond the field ([field]'s
+ * parts) and one library segment per part (144 bytes); jets hold K + 1
+ * coefficients.  Work: rays along both normals at every fraction of every
+ * segment, fan rays per free end, 4 end normals and one per joint; each a
+ * jet of order K of the join of all parts (K^2 CHEAP per part, the Taylor
+ * products) and the theory's sums over the parts (one CHEAP each). */
+static dfl_status norm_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                                dfl_err *err)
+{
+    double parts = 0;
+    const char *key;
+    norm_keys k;
+    memset(&k, 0, sizeof k);
+    dfl_status st = dfl_study_estimate_default(cfg, ctx, c, err);
+    if (!st && dfl_cfg_has(cfg, "field", "vertices"))
+        st = dfl_rfunc_parts_bound(cfg, "field", &parts, &key, err);
+    if (!st) st = dfl_cfg_doubles(cfg, "study", "fractions", 1, &k.frac, &k.nfrac, err);
+    if (!st) st = dfl_cfg_int_opt(cfg, "study", "K", 16, 2, DFL_JET_MAX, &k.K, err);
+    if (!st) st = dfl_cfg_int_opt(cfg, "study", "fan", 9, 1, 1000, &k.fan, err);
+    if (!st) {
+        const double rays = parts * ((double)k.nfrac * 2 + 1) + 2.0 * (double)k.fan + 4;
+        dfl_cost_add_bytes(c, "field", "vertices", 144 * parts, "%.3g library segments", parts);
+        dfl_cost_add_work(c, "field", "vertices", DFL_COST_CHEAP,
+                          rays * (parts * ((double)k.K * (double)k.K + 1) + DFL_RFUNC_EVAL_UNITS),
+                          "%.3g rays of jets of order %ld over %.3g parts", rays, k.K, parts);
+    }
+    free(k.frac);
+    return st;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(bs04_normalization, norm_run, norm_estimate,
                  "bs04: normalization order of joined segment fields by jets, join x p x trim");

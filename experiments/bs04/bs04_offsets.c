@@ -63,3 +63,17 @@ void dfl_bs04_offsets_free(dfl_bs04_offsets *o)
     free(o->valid), free(o->branch);
     memset(o, 0, sizeof *o);
 }
+
+void dfl_bs04_offsets_cost(const char *gsec, double nodes, const char *rsec, double rays,
+                           double units, size_t nlevels, const dfl_bs04_offset_opts *o,
+                           dfl_cost *c)
+{
+    dfl_cost_add_bytes(c, gsec, "n", 48 * nodes, "u and d on %.3g nodes", nodes);
+    dfl_cost_add_bytes(c, rsec, "rays", 128 * rays, "%.3g rays", rays);
+    dfl_cost_add_work(c, gsec, "n", DFL_COST_CHEAP, nodes * units, "u at %.3g nodes", nodes);
+    dfl_cost_add_work(c, gsec, "n", DFL_COST_FOOTPOINT, nodes, "d at %.3g nodes", nodes);
+    const double n = rays * (double)nlevels;
+    dfl_cost_add_work(c, rsec, "rays", DFL_COST_FOOTPOINT, 3 * n, "%.3g ray tests", n);
+    dfl_cost_add_work(c, rsec, "rays", DFL_COST_CHEAP, n * (o->steps + 16.0 * o->rounds) * units,
+                      "%.3g rays x %zu offsets x %d steps", rays, nlevels, o->steps);
+}

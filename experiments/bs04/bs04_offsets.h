@@ -18,6 +18,7 @@
 
 #include <stddef.h>
 
+#include "core/budget.h"
 #include "core/status.h"
 #include "field/metrics.h"
 #include "field/curveprobe.h"
@@ -65,5 +66,20 @@ dfl_status dfl_bs04_offsets_level(dfl_bs04_offsets *o, size_t m, double delta,
                                   dfl_ray_stats *rs, dfl_bandstats *bs, dfl_err *err);
 
 void dfl_bs04_offsets_free(dfl_bs04_offsets *o);
+
+/* For a study's estimate (core/budget.h): what the measurement holds and
+ * does for a grid of `nodes` nodes (its section gsec, key n), `rays` rays
+ * (key rays of section rsec), a field whose evaluation costs `units` CHEAP
+ * (its parts + DFL_RFUNC_EVAL_UNITS, cfg/field_cost.h) and nlevels offsets:
+ *   bytes  48 a node (u, d and their gradients) and 128 a ray (origin,
+ *          direction, parameter, curvature, side, kind, crossing, flags:
+ *          72, with the allocator's slack);
+ *   work   per node u and d once (d: FOOTPOINT, on the curve);
+ *          per offset and ray the validity and branch tests (3 FOOTPOINT) and
+ *          the crossing search, steps + 16 rounds evaluations of u.
+ * Section names must outlive c (the config's own: dfl_cfg_section_name). */
+void dfl_bs04_offsets_cost(const char *gsec, double nodes, const char *rsec, double rays,
+                           double units, size_t nlevels, const dfl_bs04_offset_opts *o,
+                           dfl_cost *c);
 
 #endif

@@ -191,5 +191,46 @@ static dfl_status bs04_poly_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, df
     return st;
 }
 
-DFL_STUDY_DEFINE(bs04_polygonization, bs04_poly_run,
+/* Peak memory: every curve's polyline at eps, all held until the .vtp
+ * files are written, at most dfl_polygonize_curve_segments_bound points
+ * each, 256 bytes a point: (dim + 2) doubles (point, t, bound) three times
+ * over while the polygonizer's arrays double, the deviation search's
+ * segment grid and the writer's copy (3D points, connectivity, zlib); and
+ * one fit_eps polyline at a time beside them.  Work: a chord bound per
+ * node of the subdivision tree (2 per segment, CHEAP) for eps and every
+ * fit_eps, and the deviation: samples + 40 (the golden-section rounds)
+ * distances to the polyline (EXACT) per segment. */
+static dfl_status poly_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                                dfl_err *err)
+{
+    (void)ctx;
+    study_keys k;
+    dfl_status st = read_keys(cfg, &k, err);
+    double held = 0, fit = 0, tree = 0;
+    for (int i = 0; i < k.ncurves && !st; i++) {
+        dfl_bspline cv;
+        if (!dfl_cfg_has_section(cfg, k.names[i])) continue; /* the run names it */
+        if ((st = dfl_curve_section_from_cfg(cfg, k.names[i], &cv, err))) break;
+        const double n = dfl_polygonize_curve_segments_bound(&cv, k.eps) + 1;
+        held += n;
+        tree += 2 * n;
+        for (size_t j = 0; j < k.nfit; j++) {
+            const double q = dfl_polygonize_curve_segments_bound(&cv, k.fit_eps[j]) + 1;
+            fit = fmax(fit, q);
+            tree += 2 * q;
+        }
+        dfl_bspline_free(&cv);
+    }
+    if (!st) {
+        dfl_cost_add_bytes(c, "study", "eps", 256 * held, "polylines of up to %.3g points", held);
+        dfl_cost_add_bytes(c, "study", "fit_eps", 96 * fit, "a polyline of up to %.3g points", fit);
+        dfl_cost_add_work(c, "study", "eps", DFL_COST_CHEAP, tree, "%.3g chord bounds", tree);
+        dfl_cost_add_work(c, "study", "samples", DFL_COST_EXACT, held * ((double)k.samples + 40),
+                          "%.3g segments x %ld samples", held, k.samples);
+    }
+    keys_free(&k);
+    return st;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(bs04_polygonization, bs04_poly_run, poly_estimate,
                  "bs04: certified polygonization of the S and W B-splines, segments vs eps");

@@ -60,6 +60,7 @@
 #include "field/sample.h"
 #include "harness/field_out.h"
 #include "cfg/field_cfg.h"
+#include "cfg/field_cost.h"
 #include "cfg/grid_cfg.h"
 #include "cfg/rfunc_cfg.h"
 #include "field/metrics.h"
@@ -298,5 +299,37 @@ done:
     return st;
 }
 
-DFL_STUDY_DEFINE(bs04_recursive, rec_run,
+/* Peak memory: the grid's samples (u, grad u, the exact distance: 32 bytes
+ * a node) and the writer's buffers (dfl_field_out_bytes); the jets hold a
+ * few Taylor polynomials.  Work: the normalized field at every node
+ * (dfl_field_eval_cost: (m (m + 1) / 2 + 2)^4 CHEAP) and an exact ellipse
+ * distance and the files; per boundary point two jets of order K, each a recursion to
+ * degree K + m (m + 1) / 2 + 1 in 2 variables, counted as (K + m (m + 1) /
+ * 2 + 2)^4 CHEAP, and 2 x deltas field evaluations. */
+static dfl_status rec_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                               dfl_err *err)
+{
+    (void)ctx;
+    rec_keys k;
+    dfl_cost_class cls;
+    double units;
+    dfl_status st = read_keys(cfg, &k, err);
+    if (!st) st = dfl_field_eval_cost(cfg, "field", &cls, &units, err);
+    free(k.deltas), free(k.bands);
+    if (st) return st;
+    const double m = (double)dfl_grid_size(&k.grid), tri = k.m * (k.m + 1) / 2.0;
+    dfl_cost_add_bytes(c, "grid", "n", 32 * m + dfl_field_out_bytes(&k.out, m),
+                       "the samples and files of %d^2 nodes", k.grid.n[0]);
+    dfl_cost_add_work(c, "grid", "n", cls, m * units, "%.3g nodes", m);
+    dfl_cost_add_work(c, "grid", "n", DFL_COST_EXACT, m, "%.3g exact distances", m);
+    dfl_cost_add_work(c, "grid", "n", DFL_COST_CHEAP, dfl_field_out_units(&k.out, m),
+                      "the files of %.3g nodes", m);
+    const double rays = 2.0 * (double)k.points;
+    dfl_cost_add_work(c, "study", "points", DFL_COST_CHEAP,
+                      rays * (pow(k.K + tri + 2, 4) + (double)k.ndeltas * units),
+                      "%.3g rays of jets of order %ld", rays, k.K);
+    return DFL_OK;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(bs04_recursive, rec_run, rec_estimate,
                  "bs04 app. A: recursive normalization of an ellipse's implicit function, m = 1..6");

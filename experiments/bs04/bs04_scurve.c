@@ -73,6 +73,7 @@
 #include "harness/field_out.h"
 #include "geom/polygonize.h"
 #include "io/path.h"
+#include "cfg/field_cost.h"
 #include "cfg/grid_cfg.h"
 #include "cfg/rfunc_cfg.h"
 #include "rfunc/join.h"
@@ -291,5 +292,52 @@ static dfl_status scurve_run_point(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
     return st;
 }
 
-DFL_STUDY_DEFINE(bs04_scurve, scurve_run_point,
+/* Peak memory: the field (its polygonization, [field]'s cost: at most
+ * dfl_polygonize_curve_segments_bound segments at eps), the offset
+ * measurement's grid and rays (dfl_bs04_offsets_cost: 2 per side origin,
+ * cap ray and joint, at most max_joints joints) and the writer's buffers.
+ * Work: dfl_bs04_offsets_cost, the files (the exact one at point 0) and
+ * the on-curve maximum: per segment curve_samples + 2 curve_rounds
+ * evaluations of u.  The keys are read
+ * without polygonizing (read_keys builds the spec). */
+static dfl_status scurve_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                                  dfl_err *err)
+{
+    scurve_keys k;
+    memset(&k, 0, sizeof k);
+    double parts;
+    const char *pkey;
+    dfl_status st = dfl_study_estimate_default(cfg, ctx, c, err);
+    if (!st && dfl_cfg_has(cfg, "field", "curve"))
+        st = dfl_rfunc_parts_bound(cfg, "field", &parts, &pkey, err);
+    else if (!st)
+        return DFL_OK; /* not this study's field: run() says so */
+    if (!st) st = dfl_cfg_doubles(cfg, "study", "levels", 1, &k.levels, &k.nlevels, err);
+    if (!st) st = dfl_cfg_int_opt(cfg, "study", "rays", 801, 2, 1000000, &k.rays, err);
+    if (!st) st = dfl_cfg_int_opt(cfg, "study", "cap_rays", 32, 0, 100000, &k.cap_rays, err);
+    if (!st) st = dfl_cfg_int_opt(cfg, "study", "max_joints", 200, 0, 1000000, &k.max_joints, err);
+    if (!st) st = dfl_bs04_offset_opts_from_cfg(cfg, "study", &k.search, err);
+    if (!st) st = dfl_cfg_int_opt(cfg, "study", "curve_samples", 16, 2, 1024, &k.csamples, err);
+    if (!st) st = dfl_cfg_int_opt(cfg, "study", "curve_rounds", 8, 0, 40, &k.crounds, err);
+    if (!st) st = dfl_grid_from_cfg(cfg, "grid", 2, &k.grid, err);
+    if (!st) st = dfl_field_out_from_cfg(cfg, &k.out, err);
+    if (!st) {
+        const double nodes = (double)dfl_grid_size(&k.grid);
+        const double rays = 2.0 * (double)(k.rays + k.cap_rays) + 2 * fmin((double)k.max_joints, parts);
+        dfl_cost_add_bytes(c, "grid", "n", dfl_field_out_bytes(&k.out, nodes),
+                           "the field files' buffers");
+        const double units = parts + DFL_RFUNC_EVAL_UNITS;
+        dfl_bs04_offsets_cost("grid", nodes, "study", rays, units, k.nlevels, &k.search, c);
+        dfl_cost_add_work(c, "grid", "n", DFL_COST_CHEAP,
+                          (ctx->point == 0 ? 2 : 1) * dfl_field_out_units(&k.out, nodes),
+                          "the files of %.3g nodes", nodes);
+        dfl_cost_add_work(c, "study", "curve_samples", DFL_COST_CHEAP,
+                          parts * (double)(k.csamples + 2 * k.crounds) * units,
+                          "the maximum on the curve over %.3g segments", parts);
+    }
+    free(k.levels);
+    return st;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(bs04_scurve, scurve_run_point, scurve_estimate,
                  "bs04 Fig. 7: polygonized 'S' curve, R-equivalence vs R-conjunction, eps sweep");

@@ -97,3 +97,23 @@ dfl_status dfl_bs04_write_slices(const dfl_study_ctx *ctx, const dfl_field *f,
     }
     return st;
 }
+
+void dfl_bs04_slices_cost(const dfl_bs04_space_out *o, dfl_cost_class cls, double units,
+                          dfl_cost_class xcls, double extra, double extra_bytes, dfl_cost *c)
+{
+    double big = 0, all = 0;
+    for (int s = 0; s < o->nslices; s++) {
+        const double m = (double)dfl_grid_size(&o->slices[s]);
+        big = fmax(big, m);
+        all += m;
+    }
+    if (!o->nslices) return;
+    dfl_cost_add_bytes(c, "study", "slice_n",
+                       big * (32 + extra_bytes) + dfl_field_out_bytes(&o->out, big),
+                       "section planes of %.3g nodes", big);
+    dfl_cost_add_work(c, "study", "slice_n", cls, all * units, "%.3g slice nodes", all);
+    dfl_cost_add_work(c, "study", "slice_n", DFL_COST_CHEAP, dfl_field_out_units(&o->out, all),
+                      "the files of %.3g slice nodes", all);
+    if (extra > 0)
+        dfl_cost_add_work(c, "study", "slice_n", xcls, all * extra, "%.3g slice nodes", all);
+}

@@ -10,6 +10,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "core/budget.h"
 #include "core/status.h"
 #include "io/config.h"
 #include "io/vtk.h"
@@ -51,5 +52,15 @@ dfl_status dfl_bs04_vtp_points(const char *path, size_t n, const double *pts, co
  * reference).  Stops at the first failure; temporary buffers are freed. */
 dfl_status dfl_bs04_write_slices(const dfl_study_ctx *ctx, const dfl_field *f,
                                  const dfl_bs04_space_out *o, const char *prefix, dfl_err *err);
+
+/* For a study's estimate: what dfl_bs04_write_slices holds and does for
+ * o's slices, one slice at a time: the largest slice's value and gradient
+ * (4 doubles a node) and the writer's buffers (dfl_field_out_bytes), named
+ * [study] slice_n; every slice node evaluated once, `units` evaluations of
+ * class cls each, plus `extra` of class xcls (the study's own per-node work
+ * on a slice, e.g. a reference distance; 0 for none) and extra_bytes a node
+ * held beside the value and gradient, and written (dfl_field_out_units). */
+void dfl_bs04_slices_cost(const dfl_bs04_space_out *o, dfl_cost_class cls, double units,
+                          dfl_cost_class xcls, double extra, double extra_bytes, dfl_cost *c);
 
 #endif

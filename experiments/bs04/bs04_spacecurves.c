@@ -41,6 +41,7 @@
 #include "field/sample.h"
 #include "harness/field_out.h"
 #include "geom/polygonize.h"
+#include "cfg/field_cost.h"
 #include "cfg/grid_cfg.h"
 #include "rfunc/rfield.h"
 #include "cfg/slice_cfg.h"
@@ -237,5 +238,51 @@ static dfl_status space_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_ta
     return st;
 }
 
-DFL_STUDY_DEFINE(bs04_spacecurves, space_run,
+/* Peak memory: the curves run one after another; a curve holds its field
+ * (at most dfl_polygonize_curve_segments_bound segments at eps,
+ * DFL_RFUNC_PART_BYTES each) and one grid at a time, the volume or a slice:
+ * u, grad u, d and the band mask (41 bytes a node) and the writer's buffers.
+ * Work per curve: u (dfl_field_eval_cost's rfunc: one CHEAP per segment and
+ * DFL_RFUNC_EVAL_UNITS) and d (FOOTPOINT, on the curve) at every node of
+ * the volume and the slices, and their files. */
+static dfl_status space_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                                 dfl_err *err)
+{
+    (void)ctx;
+    keys k;
+    dfl_status st = read_keys(cfg, &k, err);
+    double vol = k.volume ? (double)dfl_grid_size(&k.grid) : 0, sl = 0, all = vol;
+    for (int s = 0; s < k.so.nslices; s++) {
+        sl = fmax(sl, (double)dfl_grid_size(&k.so.slices[s]));
+        all += (double)dfl_grid_size(&k.so.slices[s]);
+    }
+    for (int i = 0; i < k.ncurves && !st; i++) {
+        dfl_bspline cv;
+        if (!dfl_cfg_has_section(cfg, k.names[i])) continue; /* the run names it */
+        if ((st = dfl_curve_section_from_cfg(cfg, k.names[i], &cv, err))) break;
+        const double parts = dfl_polygonize_curve_segments_bound(&cv, k.eps) + 1;
+        dfl_bspline_free(&cv);
+        dfl_cost one;
+        memset(&one, 0, sizeof one);
+        dfl_cost_add_bytes(&one, "study", "eps", parts * DFL_RFUNC_PART_BYTES,
+                           "an R-function field of up to %.3g segments", parts);
+        if (vol >= sl && vol > 0)
+            dfl_cost_add_bytes(&one, "grid", "n", 41 * vol + dfl_field_out_bytes(&k.so.out, vol),
+                               "a volume of %d^3 nodes and its files", k.grid.n[0]);
+        else if (sl > 0)
+            dfl_cost_add_bytes(&one, "study", "slice_n", 41 * sl + dfl_field_out_bytes(&k.so.out, sl),
+                               "a section plane of %.3g nodes and its files", sl);
+        dfl_cost_add_work(&one, vol >= sl ? "grid" : "study", vol >= sl ? "n" : "slice_n",
+                          DFL_COST_CHEAP, all * (parts + DFL_RFUNC_EVAL_UNITS) +
+                                              dfl_field_out_units(&k.so.out, all),
+                          "u at %.3g nodes, %.3g segments", all, parts);
+        dfl_cost_add_work(&one, vol >= sl ? "grid" : "study", vol >= sl ? "n" : "slice_n",
+                          DFL_COST_FOOTPOINT, all, "%.3g exact distances", all);
+        dfl_cost_add_step(c, &one);
+    }
+    free(k.paper);
+    return st;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(bs04_spacecurves, space_run, space_estimate,
                  "bs04 Fig. 8: fields of polygonized space curves, volume and section planes");

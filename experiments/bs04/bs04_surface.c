@@ -47,6 +47,7 @@
 #include "rfunc/tri3d.h"
 #include "cfg/slice_cfg.h"
 #include "harness/field_out.h"
+#include "cfg/field_cost.h"
 
 typedef struct keys {
     dfl_rfunc_field_spec spec; /* [field] (owned): the triangulation */
@@ -181,5 +182,29 @@ done:
     return st;
 }
 
-DFL_STUDY_DEFINE(bs04_surface, surf_run,
+/* Peak memory: the field ([field]'s cost: at most max_tris triangles,
+ * DFL_RFUNC_PART_BYTES each, the triangulation included) and one slice at
+ * a time: u, grad u, d_S, d_M and the band mask (49 bytes a node) and the
+ * writer's buffers.  Work per slice node: u (one CHEAP per triangle), d_M
+ * (brute force, one CHEAP per triangle) and d_S (a footpoint on the
+ * surface).  The keys are read without triangulating (read_keys does). */
+static dfl_status surf_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                                dfl_err *err)
+{
+    dfl_bs04_space_out so;
+    double band, parts = 0;
+    const char *key;
+    memset(&so, 0, sizeof so);
+    dfl_status st = dfl_study_estimate_default(cfg, ctx, c, err);
+    if (!st && dfl_cfg_has(cfg, "field", "surface"))
+        st = dfl_rfunc_parts_bound(cfg, "field", &parts, &key, err);
+    if (!st) st = dfl_cfg_double_opt(cfg, "study", "band", 0.05, 0.0, 1e300, &band, err);
+    if (!st) st = dfl_bs04_space_out_from_cfg(cfg, true, &so, err);
+    if (st) return st;
+    dfl_bs04_slices_cost(&so, DFL_COST_CHEAP, 2 * parts + DFL_RFUNC_EVAL_UNITS, DFL_COST_FOOTPOINT,
+                         1, 17, c);
+    return DFL_OK;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(bs04_surface, surf_run, surf_estimate,
                  "bs04 Fig. 12: field of a triangulated B-spline surface on a section plane");

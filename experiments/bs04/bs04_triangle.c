@@ -67,6 +67,7 @@
 #include "rfunc/tri3d.h"
 #include "cfg/slice_cfg.h"
 #include "harness/field_out.h"
+#include "cfg/field_cost.h"
 
 #define MAX_RADII 8
 
@@ -300,5 +301,37 @@ done:
     return st;
 }
 
-DFL_STUDY_DEFINE(bs04_triangle, tri_run,
+/* Peak memory: one sphere at a time: its samples (point and |grad h|: 32
+ * bytes) and the .vtp writer's connectivity, offsets and zlib copies (96
+ * more), 128 bytes a sample; or one slice (dfl_bs04_slices_cost).  Work:
+ * per vertex and radius 3 triangle evaluations a sample (h and t on the
+ * sphere, h on the arc; 1 + DFL_RFUNC_EVAL_UNITS CHEAP each) and
+ * theory_samples closed forms (CHEAP); one evaluation per slice node. */
+static dfl_status tri_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                               dfl_err *err)
+{
+    (void)ctx;
+    keys k;
+    dfl_status st = read_keys(cfg, &k, err);
+    if (!st) {
+        const double spheres = (double)k.nvert * k.nradii;
+        dfl_cost_add_bytes(c, "study", "samples", 128.0 * (double)k.samples,
+                           "a sphere of %ld samples", k.samples);
+        dfl_cost_add_work(c, "study", "samples", DFL_COST_CHEAP,
+                          3 * (1 + DFL_RFUNC_EVAL_UNITS) * spheres * (double)k.samples,
+                          "%.3g spheres of %ld samples", spheres, k.samples);
+        dfl_cost_add_work(c, "study", "theory_samples", DFL_COST_CHEAP,
+                          spheres * (double)k.theory_samples, "%.3g x %ld closed forms", spheres,
+                          k.theory_samples);
+        dfl_cost one;
+        memset(&one, 0, sizeof one);
+        dfl_bs04_slices_cost(&k.so, DFL_COST_CHEAP, 1 + DFL_RFUNC_EVAL_UNITS, DFL_COST_CHEAP, 0, 0,
+                             &one);
+        dfl_cost_add_step(c, &one);
+    }
+    dfl_rfunc_spec_free(&k.spec);
+    return st;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(bs04_triangle, tri_run, tri_estimate,
                  "bs04 Figs. 9-10: one triangle's field, |grad h| on a small sphere at a vertex");

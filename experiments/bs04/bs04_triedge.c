@@ -47,6 +47,7 @@
 #include "rfunc/tri3d.h"
 #include "cfg/slice_cfg.h"
 #include "harness/field_out.h"
+#include "cfg/field_cost.h"
 
 typedef struct keys {
     double theta, L, zc, z0, radius;
@@ -199,5 +200,23 @@ done:
     return st;
 }
 
-DFL_STUDY_DEFINE(bs04_triedge, edge_run,
+/* Peak memory: one slice at a time (dfl_bs04_slices_cost); the circle's
+ * samples are not stored.  Work: per circle sample the two-triangle field
+ * (2 + DFL_RFUNC_EVAL_UNITS CHEAP) and the theory (2); per slice node the
+ * field. */
+static dfl_status edge_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                                dfl_err *err)
+{
+    (void)ctx;
+    keys k;
+    dfl_status st = read_keys(cfg, &k, err);
+    if (st) return st;
+    dfl_cost_add_work(c, "study", "samples", DFL_COST_CHEAP,
+                      (2 + DFL_RFUNC_EVAL_UNITS + 2) * (double)k.samples,
+                      "%ld circle samples", k.samples);
+    dfl_bs04_slices_cost(&k.so, DFL_COST_CHEAP, 2 + DFL_RFUNC_EVAL_UNITS, DFL_COST_CHEAP, 0, 0, c);
+    return DFL_OK;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(bs04_triedge, edge_run, edge_estimate,
                  "bs04 Fig. 11: two triangles on an edge, |grad u| around the edge vs eq. 13");

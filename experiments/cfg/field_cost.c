@@ -7,10 +7,12 @@
 #include <string.h>
 
 #include "cfg/field_cfg.h"
+#include "cfg/curve_cfg.h"
 #include "cfg/pht_cfg.h"
 #include "cfg/proxy_cfg.h"
 #include "cfg/vdb_cfg.h"
 #include "field/gridpeer.h"
+#include "geom/polygonize.h"
 #include "proxy/decode.h"
 #include "proxy/store.h"
 
@@ -28,9 +30,9 @@ static dfl_cost_class shape_class(const dfl_cfg *cfg, const char *sec, int depth
     for (; depth < 8 && sec && dfl_cfg_has_section(cfg, sec); depth++) {
         const char *k = kind_of(cfg, sec);
         if (!strcmp(k, "implicit") || !strcmp(k, "bezier_surface") ||
-            !strcmp(k, "bspline_surface"))
+            !strcmp(k, "bspline_surface") || !strcmp(k, "bspline_curve"))
             return DFL_COST_FOOTPOINT;
-        if (!strcmp(k, "bspline_curve") || !strcmp(k, "mesh")) return DFL_COST_EXACT;
+        if (!strcmp(k, "mesh")) return DFL_COST_EXACT;
         if (strcmp(k, "csg") != 0) return *k ? DFL_COST_CHEAP : DFL_COST_EXACT;
         /* csg: the dearer of its operands, bounded by the depth */
         const char *a = NULL, *b = NULL;
@@ -51,8 +53,13 @@ int dfl_shape_dim_guess(const dfl_cfg *cfg, const char *sec)
 {
     for (int depth = 0; depth < 8 && sec && dfl_cfg_has_section(cfg, sec); depth++) {
         const char *k = kind_of(cfg, sec);
-        if (!strcmp(k, "circle") || !strcmp(k, "ellipse") || !strcmp(k, "bspline_curve"))
+        if (!strcmp(k, "circle") || !strcmp(k, "ellipse")) return 2;
+        if (!strcmp(k, "bspline_curve")) {
+            const char *raw;
+            if (dfl_cfg_has(cfg, sec, "control") && !dfl_cfg_string(cfg, sec, "control", &raw, NULL))
+                return dfl_cfg_point_dim(raw) == 3 ? 3 : 2;
             return 2;
+        }
         if (!strcmp(k, "plane") || !strcmp(k, "box") || !strcmp(k, "segment")) {
             long d = !strcmp(k, "segment") ? 2 : 3;
             if (dfl_cfg_has(cfg, sec, "dim") && dfl_cfg_int(cfg, sec, "dim", 2, 3, &d, NULL))
@@ -106,6 +113,15 @@ static dfl_status gridpeer_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c
     return DFL_OK;
 }
 
+double dfl_pht_fit_bytes_bound(const dfl_pht_fit_opts *o, int dim, double *leaves)
+{
+    const double n = ldexp(1.0, o->split == DFL_PHT_SPLIT_BINARY ? o->max_level
+                                                                 : dim * o->max_level);
+    const double fan = ldexp(1.0, o->split == DFL_PHT_SPLIT_BINARY ? 1 : dim);
+    if (leaves) *leaves = n;
+    return n * fan / (fan - 1) * DFL_PHT_CELL_BYTES(dim);
+}
+
 static dfl_status pht_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c, dfl_err *err)
 {
     const char *shape = "shape";
@@ -114,10 +130,9 @@ static dfl_status pht_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c, dfl
     const int dim = dfl_shape_dim_guess(cfg, shape);
     dfl_pht_fit_opts o;
     if ((st = dfl_pht_opts_from_cfg(cfg, sec, dim, &o, err))) return st;
-    const double leaves = ldexp(1.0, o.split == DFL_PHT_SPLIT_BINARY ? o.max_level
-                                                                     : dim * o.max_level);
-    const double fan = ldexp(1.0, dim);
-    dfl_cost_add_bytes(c, sec, "max_level", leaves * fan / (fan - 1) * DFL_PHT_CELL_BYTES(dim),
+    double leaves;
+    const double bytes = dfl_pht_fit_bytes_bound(&o, dim, &leaves);
+    dfl_cost_add_bytes(c, sec, "max_level", bytes,
                        "a PHT mesh of up to %.3g cells (max_level = %d in %dD)", leaves,
                        o.max_level, dim);
     dfl_cost_add_work(c, sec, "max_level", dfl_shape_cost_class(cfg, shape),
@@ -152,6 +167,121 @@ static dfl_status vdb_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c, dfl
     return DFL_OK;
 }
 
+/* Entries of a point list "x y; x y; ..." (blank entries, e.g. after a
+ * trailing ';', do not count); the factory parses and checks them. */
+static double count_points(const char *raw)
+{
+    double n = 0;
+    int in = 0;
+    for (const char *p = raw; *p; p++) {
+        if (*p == ';') in = 0;
+        else if (*p != ' ' && *p != '\t' && !in) in = 1, n++;
+    }
+    return n;
+}
+
+dfl_status dfl_rfunc_parts_bound(const dfl_cfg *cfg, const char *sec, double *parts,
+                                 const char **key, dfl_err *err)
+{
+    double n = 0, big = -1;
+    const char *raw;
+    dfl_status st = DFL_OK;
+    *key = "vertices";
+#define PART(k, count)                       \
+    do {                                     \
+        const double c_ = (count);           \
+        n += c_;                             \
+        if (c_ > big) big = c_, *key = (k);  \
+    } while (0)
+    if (dfl_cfg_has(cfg, sec, "vertices") && !dfl_cfg_string(cfg, sec, "vertices", &raw, NULL))
+        PART("vertices", count_points(raw)); /* n - 1 segments, n when closed */
+    if (dfl_cfg_has(cfg, sec, "curve")) {
+        const char *csec;
+        double eps;
+        dfl_bspline c;
+        if ((st = dfl_cfg_string(cfg, sec, "curve", &csec, err))) return st;
+        if ((st = dfl_cfg_double(cfg, sec, "eps", 1e-12, 1e300, &eps, err))) return st;
+        /* a missing or wrong section: the factory names it */
+        if (dfl_cfg_has_section(cfg, csec) && dfl_cfg_has(cfg, csec, "kind") &&
+            !dfl_cfg_string(cfg, csec, "kind", &raw, NULL) && !strcmp(raw, "bspline_curve")) {
+            if ((st = dfl_curve_from_cfg(cfg, csec, &c, err))) return st;
+            PART("eps", dfl_polygonize_curve_segments_bound(&c, eps) + 1);
+            dfl_bspline_free(&c);
+        }
+    }
+    if (dfl_cfg_has(cfg, sec, "triangles") && !dfl_cfg_string(cfg, sec, "triangles", &raw, NULL))
+        PART("triangles", count_points(raw) / 3);
+    if (dfl_cfg_has(cfg, sec, "surface")) {
+        long max_tris;
+        if ((st = dfl_cfg_int_opt(cfg, sec, "max_tris", 200000, 1, 10000000, &max_tris, err)))
+            return st;
+        PART("max_tris", (double)max_tris);
+    }
+    if (dfl_cfg_has(cfg, sec, "points") && !dfl_cfg_string(cfg, sec, "points", &raw, NULL))
+        PART("points", count_points(raw));
+    if (dfl_cfg_has(cfg, sec, "region")) PART("region", 1);
+#undef PART
+    *parts = n;
+    return DFL_OK;
+}
+
+static dfl_status rfunc_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c, dfl_err *err)
+{
+    double parts;
+    const char *key;
+    dfl_status st = dfl_rfunc_parts_bound(cfg, sec, &parts, &key, err);
+    if (st) return st;
+    dfl_cost_add_bytes(c, sec, key, parts * DFL_RFUNC_PART_BYTES,
+                       "an R-function field of up to %.3g parts", parts);
+    dfl_cost_add_work(c, sec, key, DFL_COST_CHEAP, parts, "%.3g parts set up", parts);
+    return DFL_OK;
+}
+
+int dfl_field_dim_guess(const dfl_cfg *cfg, const char *sec)
+{
+    const char *k = kind_of(cfg, sec), *raw, *shape = "shape";
+    if (!strcmp(k, "normalized")) return 2;
+    if (!strcmp(k, "rfunc")) {
+        static const char *const keys[] = {"vertices", "triangles", "points", "region"};
+        if (dfl_cfg_has(cfg, sec, "surface")) return 3;
+        for (int i = 0; i < 4; i++)
+            if (dfl_cfg_has(cfg, sec, keys[i]) && !dfl_cfg_string(cfg, sec, keys[i], &raw, NULL))
+                return dfl_cfg_point_dim(raw) == 3 ? 3 : 2;
+        if (dfl_cfg_has(cfg, sec, "curve") && !dfl_cfg_string(cfg, sec, "curve", &raw, NULL))
+            return dfl_shape_dim_guess(cfg, raw); /* its control points' */
+        return 2;
+    }
+    if (dfl_cfg_has(cfg, sec, "shape")) dfl_cfg_string(cfg, sec, "shape", &shape, NULL);
+    return dfl_shape_dim_guess(cfg, shape);
+}
+
+dfl_status dfl_field_eval_cost(const dfl_cfg *cfg, const char *sec, dfl_cost_class *cls,
+                               double *units, dfl_err *err)
+{
+    const dfl_field_kind *kind;
+    dfl_status st = dfl_field_kind_from_cfg(cfg, sec, &kind, err);
+    if (st) return st;
+    *cls = DFL_COST_DECODE;
+    *units = 1;
+    if (!strcmp(kind->name, "exact")) {
+        const char *shape = "shape";
+        if ((st = dfl_cfg_string_opt(cfg, sec, "shape", "shape", &shape, err))) return st;
+        *cls = dfl_shape_cost_class(cfg, shape);
+    } else if (!strcmp(kind->name, "rfunc")) {
+        const char *key;
+        *cls = DFL_COST_CHEAP;
+        st = dfl_rfunc_parts_bound(cfg, sec, units, &key, err);
+        *units += DFL_RFUNC_EVAL_UNITS;
+    } else if (!strcmp(kind->name, "normalized")) {
+        long m = 1;
+        if (dfl_cfg_has(cfg, sec, "m") && (st = dfl_cfg_int(cfg, sec, "m", 1, 6, &m, err)))
+            return st;
+        *cls = DFL_COST_CHEAP;
+        *units = pow(m * (m + 1) / 2.0 + 2, 4);
+    }
+    return st;
+}
+
 dfl_status dfl_field_cost_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_cost *cost,
                                    dfl_err *err)
 {
@@ -162,5 +292,6 @@ dfl_status dfl_field_cost_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_cost
     if (!strcmp(kind->name, "gridpeer")) return gridpeer_cost(cfg, sec, cost, err);
     if (!strcmp(kind->name, "pht")) return pht_cost(cfg, sec, cost, err);
     if (!strcmp(kind->name, "openvdb")) return vdb_cost(cfg, sec, cost, err);
+    if (!strcmp(kind->name, "rfunc")) return rfunc_cost(cfg, sec, cost, err);
     return DFL_OK;
 }

@@ -65,3 +65,15 @@ dfl_status dfl_grid_from_cfg(const dfl_cfg *cfg, const char *sec, int dim, dfl_g
     if (st != DFL_OK) return st;
     return dfl_grid_check(out, err);
 }
+
+dfl_status dfl_grid_cost_from_cfg(const dfl_cfg *cfg, const char *sec, int dim,
+                                  double bytes_per_node, const char *what, dfl_cost *c,
+                                  dfl_grid *out, dfl_err *err)
+{
+    dfl_status st = dfl_grid_from_cfg(cfg, sec, dim, out, err);
+    if (st != DFL_OK) return st;
+    const double nodes = (double)dfl_grid_size(out);
+    dfl_cost_add_bytes(c, dfl_cfg_section_name(cfg, sec), "n", nodes * bytes_per_node,
+                       "%s on a grid of %d^%d nodes", what, out->n[0], dim);
+    return DFL_OK;
+}

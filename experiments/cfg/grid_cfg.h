@@ -16,11 +16,19 @@
 #ifndef DFL_EXPERIMENTS_GRID_CFG_H
 #define DFL_EXPERIMENTS_GRID_CFG_H
 
+#include "core/budget.h"
 #include "field/sample.h"
 #include "io/config.h"
 
 double dfl_grid_memory_default(void);
 dfl_status dfl_grid_from_cfg(const dfl_cfg *cfg, const char *sec, int dim, dfl_grid *out,
                              dfl_err *err);
+
+/* For a study's estimate (core/budget.h): the grid of [sec] read as
+ * dfl_grid_from_cfg reads it (same checks, nothing allocated) into *out,
+ * and bytes_per_node times its nodes added to *c, named [sec] n. */
+dfl_status dfl_grid_cost_from_cfg(const dfl_cfg *cfg, const char *sec, int dim,
+                                  double bytes_per_node, const char *what, dfl_cost *c,
+                                  dfl_grid *out, dfl_err *err);
 
 #endif

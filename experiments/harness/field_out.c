@@ -42,6 +42,17 @@ dfl_status dfl_field_out_write(const dfl_study_ctx *ctx, const char *stem, const
                            dfl_study_path(ctx, stem, "exr", exr, sizeof exr), &s, o, err);
 }
 
+double dfl_field_out_bytes(const dfl_field_write_opts *opts, double nodes)
+{
+    if (!opts->vti && !opts->exr) return 0;
+    return 8.0 * (5 + 7) * nodes;
+}
+
+double dfl_field_out_units(const dfl_field_write_opts *opts, double nodes)
+{
+    return opts->vti || opts->exr ? 100 * nodes : 0;
+}
+
 dfl_status dfl_volume_opts_from_cfg(const dfl_cfg *cfg, long def_n, dfl_volume_opts *o,
                                     dfl_err *err)
 {

@@ -43,6 +43,19 @@ dfl_status dfl_field_out_write(const dfl_study_ctx *ctx, const char *stem, const
                                const double *u, const double *gu, const double *ref,
                                const dfl_field_write_opts *opts, dfl_err *err);
 
+/* Peak bytes dfl_field_out_write itself allocates for a grid of `nodes`
+ * nodes (the caller's u, gu, ref not counted), for a study's estimate: the
+ * .vti writer's derived arrays (a 3-component gradient, grad_norm, error:
+ * 5 doubles) and the zlib copies of all five point arrays, held together
+ * until the file is written (7 doubles, compressBound's slack included),
+ * 96 bytes a node; the .exr (three floats a pixel, written after the .vti
+ * is freed) is less.  0 when opts writes neither. */
+double dfl_field_out_bytes(const dfl_field_write_opts *opts, double nodes);
+/* Its work, in CHEAP evaluations (core/budget.h): 100 a node, the derived
+ * arrays, zlib and the float conversion (1.8 us a node measured on
+ * bs04_corrected's 99^2 grids); 0 when opts writes neither file. */
+double dfl_field_out_units(const dfl_field_write_opts *opts, double nodes);
+
 /* ---- volumes of the 3D studies (hvb25_accuracy, sjp10_3d) ---------------
  * [output] vti   = true    write a volume per field the study measures
  *          vti_n = n       its nodes per axis (2..1024; default def_n, the

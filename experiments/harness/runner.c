@@ -118,6 +118,8 @@ static dfl_status validate_points(const dfl_sweep *s, dfl_err *err)
         dfl_probe_sections_defer(pt);
         const char *dummy;
         dfl_cfg_string(pt, "study", "name", &dummy, NULL); /* mark used */
+        double mem_budget, work_budget; /* the runner's keys: estimate_points checked them */
+        dfl_sweep_budgets(pt, &mem_budget, &work_budget, NULL);
         char tag[32], label[2048];
         dfl_study_tag(i, s->np, tag, sizeof tag);
         dfl_study_ctx ctx = {.stage_dir = "/nonexistent/dflab-validation", .tag = tag, .point = i,

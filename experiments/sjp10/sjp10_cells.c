@@ -30,6 +30,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cfg/field_cost.h"
+#include "cfg/list_cfg.h"
 #include "cfg/pht_cfg.h"
 #include "pht/pht_field.h"
 #include "sjp10/sjp10.h"
@@ -162,5 +164,61 @@ static dfl_status cells_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_ta
     return st;
 }
 
-DFL_STUDY_DEFINE(sjp10_cells, cells_run,
+/* Peak memory: the cases run one after another, each holding its
+ * validation points (sjp10_ref_cost: val_n^2 nodes and midpoints) while its
+ * fits run one at a time: the largest of the adaptive fits (bounded by the
+ * mesh at [fit] max_level) and the uniform ones (4^level cells), each with
+ * the per-cell protocol (sjp10_fit_cost).  Work: every fit and the
+ * validation points, at the case's shape class; the keys are read without
+ * building the shapes or their Hermite sources (read_keys does). */
+static dfl_status cells_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                                 dfl_err *err)
+{
+    (void)ctx;
+    char names[SJP10_MAX_CASES][DFL_SECTION_NAME_LEN];
+    int n = 0, rules[SJP10_RULES], nrules = 0;
+    cells_keys k;
+    memset(&k, 0, sizeof k);
+    dfl_status st = dfl_section_names_from_cfg(cfg, "study", "cases", SJP10_MAX_CASES, names, &n,
+                                               "case section", err);
+    if (!st) st = sjp10_fit_from_cfg(cfg, "fit", 2, &k.fit, err);
+    if (!st) st = dfl_cfg_doubles(cfg, "study", "eps", 1, &k.eps, &k.neps, err);
+    if (!st) st = dfl_cfg_doubles(cfg, "study", "uniform_levels", 0, &k.levels, &k.nlevels, err);
+    if (!st) st = dfl_cfg_int_opt(cfg, "study", "uniform_samples", 1, 1, 4096, &k.uniform_samples, err);
+    if (!st) st = dfl_cfg_int_opt(cfg, "study", "val_n", 301, 2, 4001, &k.val_n, err);
+    if (!st) st = sjp10_rules_from_cfg(cfg, rules, &nrules, err);
+    const char *fsec = "study";
+    if (!st) dfl_cfg_string(cfg, "study", "fit", &fsec, NULL);
+    fsec = dfl_cfg_section_name(cfg, fsec);
+    for (int i = 0; i < n && !st; i++) {
+        if (!dfl_cfg_has_section(cfg, names[i])) continue; /* the run names it */
+        const dfl_cost_class cls = dfl_shape_cost_class(cfg, names[i]);
+        dfl_cost one, fits;
+        memset(&one, 0, sizeof one);
+        memset(&fits, 0, sizeof fits);
+        sjp10_ref_cost(2, k.val_n, 1, cls, "study", "val_n", &one);
+        for (size_t e = 0; e < (size_t)nrules * k.neps; e++) {
+            dfl_cost f;
+            memset(&f, 0, sizeof f);
+            sjp10_fit_cost(&k.fit, 2, -1, cls, 1, fsec, "max_level", &f);
+            dfl_cost_add_step(&fits, &f);
+        }
+        for (size_t l = 0; l < k.nlevels; l++) {
+            if (!(k.levels[l] >= 0 && k.levels[l] <= 12)) continue; /* the run refuses it */
+            dfl_pht_fit_opts u = k.fit;
+            u.samples = (int)k.uniform_samples;
+            dfl_cost f;
+            memset(&f, 0, sizeof f);
+            sjp10_fit_cost(&u, 2, (int)k.levels[l], cls, 1, "study", "uniform_levels", &f);
+            dfl_cost_add_step(&fits, &f);
+        }
+        dfl_cost_add_cost(&one, &fits);
+        dfl_cost_add_step(c, &one);
+    }
+    free(k.eps);
+    free(k.levels);
+    return st;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(sjp10_cells, cells_run, cells_estimate,
                  "sjp10 Fig. 2: cells and dofs vs validation error, adaptive PHT vs uniform Hermite grid");

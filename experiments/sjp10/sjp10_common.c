@@ -4,6 +4,8 @@
  * thread count. */
 #include "sjp10/sjp10_common.h"
 
+#include "cfg/field_cost.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -585,4 +587,33 @@ dfl_status sjp10_stream_errors(const dfl_field *f, const dfl_shape *shape, const
     acc_stats(&off, &out->off);
     free(pa), free(pband), free(pskip), free(fail);
     return failed ? nomem(err, "validation chunk") : DFL_OK;
+}
+
+void sjp10_ref_cost(int dim, long n, int midpoints, dfl_cost_class cls, const char *sec,
+                    const char *key, dfl_cost *c)
+{
+    const double m = pow((double)n, dim) + (midpoints ? pow((double)n - 1, dim) : 0);
+    dfl_cost_add_bytes(c, sec, key, m * (8.0 * (3 * dim + 2) + 1),
+                       "%.3g validation points (%ld^%d nodes%s)", m, n, dim,
+                       midpoints ? " and midpoints" : "");
+    dfl_cost_add_work(c, sec, key, cls, 2 * m, "%.3g validation points", m);
+}
+
+void sjp10_fit_cost(const dfl_pht_fit_opts *o, int dim, int uniform, dfl_cost_class cls,
+                    int cellval, const char *sec, const char *key, dfl_cost *c)
+{
+    double leaves, bytes;
+    if (uniform >= 0) {
+        leaves = ldexp(1.0, dim * uniform);
+        const double fan = ldexp(1.0, dim);
+        bytes = leaves * fan / (fan - 1) * DFL_PHT_CELL_BYTES(dim);
+    } else {
+        bytes = dfl_pht_fit_bytes_bound(o, dim, &leaves);
+    }
+    if (cellval) bytes += 96 * leaves;
+    dfl_cost_add_bytes(c, sec, key, bytes, "a PHT fit of up to %.3g cells (%s %d in %dD)", leaves,
+                       uniform >= 0 ? "level" : "max_level", uniform >= 0 ? uniform : o->max_level,
+                       dim);
+    const double per = (double)o->samples + 2 * dim + 2 + (cellval ? 31 : 0);
+    dfl_cost_add_work(c, sec, key, cls, leaves * per, "a fit of up to %.3g cells", leaves);
 }

@@ -144,4 +144,27 @@ dfl_status sjp10_write_graph(const dfl_study_ctx *ctx, const char *stem, const d
                              const dfl_shape *ref, const double lo[2], const double hi[2], int n,
                              int threads, dfl_err *err);
 
+/* ---- estimates (core/budget.h), from keys alone ------------------------ */
+/* The reference of sjp10_ref_grid (n nodes per axis, midpoints or not) and
+ * of sjp10_ref_errors beside it: bytes, per point the point, d, grad d and
+ * the band flag, and the errors' value and gradient ((3 dim + 2) doubles
+ * and a byte); work, per point the exact SDF and the medial band's second
+ * one, 2 of class cls.  Named [sec] key (sec: the config's own string). */
+void sjp10_ref_cost(int dim, long n, int midpoints, dfl_cost_class cls, const char *sec,
+                    const char *key, dfl_cost *c);
+/* One fit with options o in dim (uniform >= 0: the uniform fit at that
+ * level; < 0: the adaptive fit, bounded by the mesh at max_level,
+ * dfl_pht_fit_bytes_bound) of a shape of class cls, and with cellval the
+ * per-cell protocol on it.  Bytes: the fit's mesh, and the protocol's
+ * partial results (96 bytes a leaf).  Work per leaf: the estimator's
+ * samples, the peaks' 1 + 2 dim points and the Hermite footpoint (samples +
+ * 2 dim + 2 of class cls), with cellval the protocol's 27 corner, edge and
+ * centre points and 4 random ones (31 of cls).  The dense sub-grid and the
+ * near-medial offsets of medial cells (dense^dim + dense (1 + 4 scales),
+ * 190 points in 2D) are not counted: medial cells are those the medial
+ * band meets, a share of the leaves no key bounds, and counting every leaf
+ * would put sjp10's own configs at days.  Named [sec] key. */
+void sjp10_fit_cost(const dfl_pht_fit_opts *o, int dim, int uniform, dfl_cost_class cls,
+                    int cellval, const char *sec, const char *key, dfl_cost *c);
+
 #endif

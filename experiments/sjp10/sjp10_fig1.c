@@ -27,6 +27,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cfg/field_cost.h"
+#include "cfg/list_cfg.h"
 #include "cfg/pht_cfg.h"
 #include "field/sample.h"
 #include "harness/field_out.h"
@@ -158,5 +160,71 @@ static dfl_status fig1_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_tab
     return st;
 }
 
-DFL_STUDY_DEFINE(sjp10_fig1, fig1_run,
+/* Peak memory: the fits run one after another (per rule and case); each
+ * holds its mesh (bounded by [fit] max_level) with the per-cell protocol
+ * (sjp10_fit_cost), its validation points (sjp10_ref_cost), and then one
+ * of the files: the mesh's .vtp (cells x 4 corners with a level, quads and
+ * outlines: 224 bytes a leaf, twice for the writer's copies), the graph
+ * (graph_n^2 nodes: points, values, errors and triangles, 160 bytes a node,
+ * twice) or the image (image_n^2 nodes: 56 bytes a node and the field
+ * files' buffers).  Work: the fit, the validation points, graph and image
+ * (a spline evaluation, DECODE, and an exact distance per node) and the
+ * files, at the case's shape class; the shapes are not built. */
+static dfl_status fig1_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                                dfl_err *err)
+{
+    (void)ctx;
+    char names[SJP10_MAX_CASES][DFL_SECTION_NAME_LEN];
+    int n = 0;
+    fig1_keys k;
+    memset(&k, 0, sizeof k);
+    dfl_status st = dfl_section_names_from_cfg(cfg, "study", "cases", SJP10_MAX_CASES, names, &n,
+                                               "case section", err);
+    if (!st) st = sjp10_fit_from_cfg(cfg, "fit", 2, &k.fit, err);
+    if (!st) st = dfl_cfg_int_opt(cfg, "study", "val_n", 301, 2, 4001, &k.val_n, err);
+    if (!st) st = dfl_cfg_int_opt(cfg, "study", "image_n", 201, 2, 4001, &k.image_n, err);
+    if (!st) st = dfl_cfg_int_opt(cfg, "study", "graph_n", 101, 2, 2001, &k.graph_n, err);
+    if (!st) st = sjp10_rules_from_cfg(cfg, k.rules, &k.nrules, err);
+    if (!st) st = dfl_field_out_from_cfg(cfg, &k.out, err);
+    const char *fsec = "study";
+    if (!st) dfl_cfg_string(cfg, "study", "fit", &fsec, NULL);
+    fsec = dfl_cfg_section_name(cfg, fsec);
+    for (int i = 0; i < n && !st; i++) {
+        if (!dfl_cfg_has_section(cfg, names[i])) continue; /* the run names it */
+        const dfl_cost_class cls = dfl_shape_cost_class(cfg, names[i]);
+        for (int r = 0; r < k.nrules; r++) {
+            dfl_cost one, files;
+            double leaves;
+            memset(&one, 0, sizeof one);
+            memset(&files, 0, sizeof files);
+            sjp10_fit_cost(&k.fit, 2, -1, cls, 1, fsec, "max_level", &one);
+            sjp10_ref_cost(2, k.val_n, 1, cls, "study", "val_n", &one);
+            dfl_pht_fit_bytes_bound(&k.fit, 2, &leaves);
+            const double gn = (double)k.graph_n * k.graph_n, im = (double)k.image_n * k.image_n;
+            dfl_cost step;
+            memset(&step, 0, sizeof step);
+            dfl_cost_add_bytes(&step, fsec, "max_level", 2 * 224 * leaves, "the mesh file");
+            dfl_cost_add_step(&files, &step);
+            memset(&step, 0, sizeof step);
+            dfl_cost_add_bytes(&step, "study", "graph_n", 2 * 160 * gn, "the graph of %ld^2 nodes",
+                               k.graph_n);
+            dfl_cost_add_work(&step, "study", "graph_n", DFL_COST_DECODE, gn, "the graph");
+            dfl_cost_add_work(&step, "study", "graph_n", cls, gn, "the graph's errors");
+            dfl_cost_add_step(&files, &step);
+            memset(&step, 0, sizeof step);
+            dfl_cost_add_bytes(&step, "study", "image_n", 56 * im + dfl_field_out_bytes(&k.out, im),
+                               "the image of %ld^2 nodes", k.image_n);
+            dfl_cost_add_work(&step, "study", "image_n", DFL_COST_DECODE, im, "the image");
+            dfl_cost_add_work(&step, "study", "image_n", cls, im, "the image's reference");
+            dfl_cost_add_work(&step, "study", "image_n", DFL_COST_CHEAP,
+                              dfl_field_out_units(&k.out, im), "the image's files");
+            dfl_cost_add_step(&files, &step);
+            dfl_cost_add_cost(&one, &files);
+            dfl_cost_add_step(c, &one);
+        }
+    }
+    return st;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(sjp10_fig1, fig1_run, fig1_estimate,
                  "sjp10 Fig. 1: adaptive PHT fits of closed curves' SDFs (T-mesh, graph, image)");

@@ -42,6 +42,7 @@
 #include <omp.h>
 
 #include "cfg/curve_cfg.h"
+#include "cfg/field_cost.h"
 #include "cfg/list_cfg.h"
 #include "cfg/pht_cfg.h"
 #include "cfg/shape_cfg.h"
@@ -477,5 +478,94 @@ static dfl_status offsets_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_
     return st;
 }
 
-DFL_STUDY_DEFINE(sjp10_offsets, offsets_run,
+/* Peak memory: the cases run one after another; a case holds its fit
+ * (bounded by max_level of [fit] or [fit3], sjp10_fit_cost), its samples
+ * (2D: grid_n^2 nodes of v, d, their points and gradients, 48 bytes; 3D:
+ * grid_n^3 values and the plane's (2 grid_n - 1)^2, 8 bytes) and its level
+ * sets.  Those are bounded by the grid, not the curve: marching squares puts
+ * at most one vertex on each of the 2 edges a node owns, marching cubes on
+ * the 6-tetrahedron split on each of 7 edges a node owns and at most 12
+ * triangles in a cube.  Per offset the level set itself (a vertex: point,
+ * edge ends and connectivity, 120 bytes; a triangle 24) and, kept for the
+ * file over all offsets, its copy (a vertex 48 bytes, a triangle 24);
+ * untrimmed offsets (B-spline curves): offset_samples points (120 bytes
+ * while measured, 48 kept per offset).  Work: the fit, per node one
+ * spline evaluation (DECODE) and in 2D the exact SDF (the shape's class),
+ * per level-set vertex refine evaluations and one exact distance, per
+ * offset sample one exact distance.  The shapes are not built. */
+static dfl_status offsets_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                                   dfl_err *err)
+{
+    (void)ctx;
+    char names[SJP10_MAX_CASES][DFL_SECTION_NAME_LEN];
+    int n = 0, need2 = 0, need3 = 0;
+    okeys k;
+    memset(&k, 0, sizeof k);
+    dfl_status st = dfl_section_names_from_cfg(cfg, "study", "cases", SJP10_MAX_CASES, names, &n,
+                                               "case section", err);
+    for (int i = 0; i < n && !st; i++) {
+        const char *shape;
+        if (!dfl_cfg_has_section(cfg, names[i]) || !dfl_cfg_has(cfg, names[i], "shape") ||
+            dfl_cfg_string(cfg, names[i], "shape", &shape, NULL))
+            continue; /* the run names it */
+        *(dfl_shape_dim_guess(cfg, shape) == 2 ? &need2 : &need3) = 1;
+    }
+    if (!st && need2) st = sjp10_fit_from_cfg(cfg, "fit", 2, &k.fit2, err);
+    if (!st && need3) st = sjp10_fit_from_cfg(cfg, "fit3", 3, &k.fit3, err);
+    if (!st) st = dfl_cfg_int_opt(cfg, "study", "refine", 40, 0, 200, &k.refine, err);
+    const char *f2 = "fit", *f3 = "fit3";
+    if (!st && need2) dfl_cfg_string(cfg, "study", "fit", &f2, NULL);
+    if (!st && need3) dfl_cfg_string(cfg, "study", "fit3", &f3, NULL);
+    f2 = dfl_cfg_section_name(cfg, f2), f3 = dfl_cfg_section_name(cfg, f3);
+    for (int i = 0; i < n && !st; i++) {
+        const char *sec = dfl_cfg_section_name(cfg, names[i]), *shape, *kind = "";
+        double *deltas = NULL;
+        size_t nd = 0;
+        long gn, samples = 0;
+        if (!sec || !dfl_cfg_has(cfg, sec, "shape") || dfl_cfg_string(cfg, sec, "shape", &shape, NULL))
+            continue;
+        const int dim = dfl_shape_dim_guess(cfg, shape);
+        const dfl_cost_class cls = dfl_shape_cost_class(cfg, shape);
+        if ((st = dfl_cfg_doubles(cfg, sec, "deltas", 1, &deltas, &nd, err))) break;
+        free(deltas);
+        if ((st = dfl_cfg_int_opt(cfg, sec, "grid_n", dim == 2 ? 201 : 41, 3, 2001, &gn, err)))
+            break;
+        if (dim == 2 && dfl_cfg_has(cfg, shape, "kind")) dfl_cfg_string(cfg, shape, "kind", &kind, NULL);
+        if (dim == 2 && !strcmp(kind, "bspline_curve") &&
+            (st = dfl_cfg_int_opt(cfg, sec, "offset_samples", 4000, 8, 10000000, &samples, err)))
+            break;
+        const double g = (double)gn, D = (double)nd, refine = (double)k.refine;
+        dfl_cost one;
+        memset(&one, 0, sizeof one);
+        sjp10_fit_cost(dim == 2 ? &k.fit2 : &k.fit3, dim, -1, cls, 0, dim == 2 ? f2 : f3,
+                       "max_level", &one);
+        if (dim == 2) {
+            const double nodes = g * g, pts = 2 * nodes;
+            dfl_cost_add_bytes(&one, sec, "grid_n", 48 * nodes + 120 * pts + 48 * pts * D,
+                               "%ld^2 samples and the level sets on them", gn);
+            dfl_cost_add_bytes(&one, sec, "offset_samples", (120 + 48 * D) * (double)samples,
+                               "untrimmed offsets of %ld samples", samples);
+            dfl_cost_add_work(&one, sec, "grid_n", DFL_COST_DECODE, nodes + pts * D * refine,
+                              "%ld^2 samples and the level sets' refinement", gn);
+            dfl_cost_add_work(&one, sec, "grid_n", cls, nodes + pts * D,
+                              "%ld^2 exact samples and errors", gn);
+            dfl_cost_add_work(&one, sec, "offset_samples", cls, (double)samples * D,
+                              "%ld untrimmed offset samples", samples);
+        } else {
+            const double nodes = g * g * g, plane = (2 * g - 1) * (2 * g - 1);
+            const double pts = 7 * nodes + 2 * plane, tris = 12 * nodes;
+            dfl_cost_add_bytes(&one, sec, "grid_n",
+                               8 * (nodes + plane) + 120 * pts + 24 * tris + (48 * pts + 24 * tris) * D,
+                               "%ld^3 samples and the level sets on them", gn);
+            dfl_cost_add_work(&one, sec, "grid_n", DFL_COST_DECODE,
+                              nodes + plane + pts * D * refine,
+                              "%ld^3 samples and the level sets' refinement", gn);
+            dfl_cost_add_work(&one, sec, "grid_n", cls, pts * D, "the level sets' errors");
+        }
+        dfl_cost_add_step(c, &one);
+    }
+    return st;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(sjp10_offsets, offsets_run, offsets_estimate,
                  "sjp10 Sec. 5 / Fig. 3: trimmed offsets as level sets of the PHT fit vs untrimmed offsets");

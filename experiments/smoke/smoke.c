@@ -20,6 +20,7 @@
 #include "field/sample.h"
 #include "cfg/field_cfg.h"
 #include "harness/field_out.h"
+#include "cfg/field_cost.h"
 #include "cfg/grid_cfg.h"
 
 static dfl_status smoke_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
@@ -76,7 +77,36 @@ done:
     return st;
 }
 
-DFL_STUDY_DEFINE(smoke, smoke_run,
+/* Peak memory: the field ([field]'s cost), the four sample arrays of the
+ * grid (d, u: 8 bytes a node each; grad d, grad u: 8 dim each, all held
+ * until the files are written) and the writer's own arrays
+ * (dfl_field_out_bytes).  Work: one evaluation of the field per node
+ * (dfl_field_eval_cost: the shape's class for kind = exact) and the
+ * files (dfl_field_out_units). */
+static dfl_status smoke_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *c,
+                                 dfl_err *err)
+{
+    dfl_field_write_opts oo;
+    dfl_grid g;
+    dfl_cost_class cls;
+    double units;
+    const int dim = dfl_field_dim_guess(cfg, "field");
+    dfl_status st = dfl_study_estimate_default(cfg, ctx, c, err);
+    if (!st) st = dfl_field_eval_cost(cfg, "field", &cls, &units, err);
+    if (!st) st = dfl_field_out_from_cfg(cfg, &oo, err);
+    if (!st)
+        st = dfl_grid_cost_from_cfg(cfg, "grid", dim, 16.0 * (dim + 1), "the samples", c, &g,
+                                    err);
+    if (st) return st;
+    const double m = (double)dfl_grid_size(&g);
+    dfl_cost_add_bytes(c, "grid", "n", dfl_field_out_bytes(&oo, m), "the field files' buffers");
+    dfl_cost_add_work(c, "grid", "n", cls, m * units, "%.3g field evaluations", m * units);
+    dfl_cost_add_work(c, "grid", "n", DFL_COST_CHEAP, dfl_field_out_units(&oo, m),
+                      "the field files of %.3g nodes", m);
+    return DFL_OK;
+}
+
+DFL_STUDY_DEFINE_ESTIMATED(smoke, smoke_run, smoke_estimate,
                  "exact SDF of [shape] on a grid + metrics of an affinely perturbed copy");
 
 const dfl_study *const dfl_smoke_studies[] = {&dfl_study_smoke, NULL};

@@ -171,6 +171,43 @@ void dfl_cost_add_work(dfl_cost *c, const char *sec, const char *key, dfl_cost_c
     va_end(ap);
 }
 
+static void take_mem(dfl_cost *c, const dfl_cost *b)
+{
+    if (b->mem_key && (b->big_bytes > c->big_bytes || !c->mem_key)) {
+        c->big_bytes = b->big_bytes;
+        c->mem_sec = b->mem_sec, c->mem_key = b->mem_key;
+        memcpy(c->mem_what, b->mem_what, sizeof c->mem_what);
+    }
+}
+
+static void add_work_of(dfl_cost *c, const dfl_cost *b)
+{
+    for (int k = 0; k < DFL_COST_NCLASSES; k++) c->evals[k] += b->evals[k];
+    if (b->work_key && (b->big_seconds > c->big_seconds || !c->work_key)) {
+        c->big_seconds = b->big_seconds;
+        c->work_sec = b->work_sec, c->work_key = b->work_key;
+        memcpy(c->work_what, b->work_what, sizeof c->work_what);
+    }
+}
+
+void dfl_cost_add_cost(dfl_cost *c, const dfl_cost *b)
+{
+    c->bytes += b->bytes;
+    take_mem(c, b);
+    add_work_of(c, b);
+}
+
+void dfl_cost_add_step(dfl_cost *c, const dfl_cost *step)
+{
+    if (step->bytes > c->bytes || (!c->mem_key && step->mem_key)) {
+        c->bytes = step->bytes;
+        c->big_bytes = 0;
+        c->mem_key = NULL;
+        take_mem(c, step);
+    }
+    add_work_of(c, step);
+}
+
 double dfl_cost_seconds(const dfl_cost *c, int threads)
 {
     double s = 0;

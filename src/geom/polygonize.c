@@ -5,6 +5,7 @@
 #include "geom/tridist.h"
 
 #include <assert.h>
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -179,6 +180,36 @@ dfl_status dfl_polygonize_curve(const dfl_bspline *c, double eps, size_t max_seg
     out->seg_bound = buf.sb;
     out->bound = maxb;
     return DFL_OK;
+}
+
+double dfl_polygonize_curve_segments_bound(const dfl_bspline *c, double eps)
+{
+    if (!(eps > 0.0)) return INFINITY;
+    const int dim = c->dim, np = c->order, p = np - 1;
+    double bez[KMAX * 3], total = 0.0;
+    const size_t nspan = dfl_bspline_span_count(c);
+    for (size_t s = 0; s < nspan; s++) {
+        const size_t j = dfl_bspline_span_index(c, s);
+        dfl_bspline_span_bezier(c, j, c->knots[j], c->knots[j + 1], bez);
+        double D = 0.0, scale = 0.0;
+        for (int i = 0; i + 2 < np; i++) {
+            double d2 = 0.0;
+            for (int a = 0; a < dim; a++) {
+                const double v = bez[(i + 2) * dim + a] - 2 * bez[(i + 1) * dim + a] +
+                                 bez[i * dim + a];
+                d2 += v * v;
+            }
+            D = fmax(D, sqrt(d2));
+        }
+        for (int i = 0; i < np * dim; i++) scale = fmax(scale, fabs(bez[i]));
+        /* the bound's own rounding: a few ulps of the coordinates */
+        const double slack = 64 * DBL_EPSILON * scale;
+        double b = D * p * p / 8.0, pieces = 1.0;
+        for (int k = 0; b + slack > eps && k < MAX_DEPTH; k++) b /= 4.0, pieces *= 2.0;
+        total += pieces;
+        if (total > DEFAULT_CAP) return DEFAULT_CAP;
+    }
+    return total;
 }
 
 void dfl_polyline_free(dfl_polyline *p)

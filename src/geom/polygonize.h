@@ -65,6 +65,21 @@ dfl_status dfl_polygonize_curve(const dfl_bspline *c, double eps, size_t max_seg
                                 dfl_polyline *out, dfl_err *err);
 void dfl_polyline_free(dfl_polyline *p);
 
+/* An upper bound on the segments dfl_polygonize_curve(c, eps, 0, ...)
+ * makes, from the spans' Bezier nets alone (no subdivision), for cost
+ * estimates.  Proof: both chord bounds are <= max_i |g_i|, g_i = b_i -
+ * (b_0 + (i/p) e), and g (zero at both ends) has the second differences of
+ * b, so |g_i| <= D i (p - i) / 2 <= D p^2 / 8 with D = max_i |b_{i+2} -
+ * 2 b_{i+1} + b_i| (the discrete Green's function of the second
+ * difference).  De Casteljau halving at 1/2 makes every second difference
+ * of a half a convex combination of the parent's, times 1/4.  So every
+ * piece of a span at depth k has bound <= D p^2 / (8 4^k): no piece deeper
+ * than the first k where that is <= eps (less a rounding allowance) is
+ * split, and the span makes at most 2^k segments.  The sum over spans,
+ * capped at the polygonizer's own cap of 10^7 (beyond it the call fails
+ * instead) and at depth 60 (the same). */
+double dfl_polygonize_curve_segments_bound(const dfl_bspline *c, double eps);
+
 /* Measured one-sided deviation max_t dist(C(t), polyline): every segment's
  * parameter interval is sampled at `samples` (>= 2) points, the distance to
  * the whole polyline (all segments, found through a uniform grid) is taken,

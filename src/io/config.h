@@ -4,7 +4,8 @@
  *   loading        config_parse.c    dfl_cfg_load, dfl_cfg_parse_string
  *   includes       config_include.c  (the `include` key, see below)
  *   storage        config_store.c    dfl_cfg_free, dfl_cfg_path, dfl_cfg_has,
- *                                    dfl_cfg_has_section, dfl_cfg_write
+ *                                    dfl_cfg_has_section, dfl_cfg_section_name,
+ *                                    dfl_cfg_write
  *   overrides      config_set.c      dfl_cfg_set
  *   sweeps         config_sweep.c    dfl_cfg_sweep_axes, dfl_cfg_sweep_points,
  *                                    dfl_cfg_sweep_axis_name, dfl_cfg_sweep_point,
@@ -140,6 +141,10 @@ void dfl_cfg_sweep_hash(const dfl_cfg *c, char hex[65]);
 /* ---- getters (all mark the key used) ---------------------------------- */
 bool dfl_cfg_has(const dfl_cfg *c, const char *sec, const char *key);
 bool dfl_cfg_has_section(const dfl_cfg *c, const char *sec);
+/* The configuration's own copy of section name sec (valid while c lives:
+ * for what must outlive a caller's buffer, e.g. a dfl_cost's key), or
+ * NULL when c has no such section (or sec is NULL). */
+const char *dfl_cfg_section_name(const dfl_cfg *c, const char *sec);
 
 /* Raw string; required. */
 dfl_status dfl_cfg_string(const dfl_cfg *c, const char *sec, const char *key, const char **out,

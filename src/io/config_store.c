@@ -137,9 +137,14 @@ bool dfl_cfg_has(const dfl_cfg *c, const char *sec, const char *key)
 
 bool dfl_cfg_has_section(const dfl_cfg *c, const char *sec)
 {
-    for (size_t i = 0; i < c->n; i++)
-        if (strcmp(c->e[i].sec, sec) == 0) return true;
-    return false;
+    return dfl_cfg_section_name(c, sec) != NULL;
+}
+
+const char *dfl_cfg_section_name(const dfl_cfg *c, const char *sec)
+{
+    for (size_t i = 0; sec && i < c->n; i++)
+        if (strcmp(c->e[i].sec, sec) == 0) return c->e[i].sec;
+    return NULL;
 }
 
 bool dfl_cfgi_is_path_key(const char *key)

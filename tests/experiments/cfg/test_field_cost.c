@@ -44,17 +44,17 @@ Test(field_cost, gridpeer_and_pht_level_bound)
     snprintf(t, sizeof t, "[field]\nkind = gridpeer\nmethod = taylor1\nres = 1024\n%s", SPHERE);
     dfl_cost c = cost_of(t);
     cr_expect_eq(c.bytes, 4.0 * 1024 * 1024 * 1024 * 8, "4 scalars of 8 bytes per cell");
-    /* 2D pht, cross split: 4^L leaves, 4/3 for inner cells, 512 bytes each */
+    /* 2D pht, cross split: 4^L leaves, 4/3 for inner cells, DFL_PHT_CELL_BYTES each */
     c = cost_of("[field]\nkind = pht\nmax_level = 12\n"
                 "[shape]\nkind = circle\ncenter = 0.5 0.5\nradius = 0.3\n");
     cr_expect_eq(c.bytes, ldexp(1.0, 24) * 4.0 / 3.0 * DFL_PHT_CELL_BYTES(2));
     cr_expect_str_eq(c.mem_key, "max_level");
     cr_expect_eq(c.evals[DFL_COST_CHEAP], ldexp(1.0, 24) * (16 + 1), "16 samples + 1 footpoint");
-    /* 3D binary split: 2^L leaves, 8/7 inner */
+    /* 3D binary split: 2^L leaves, a tree of fan 2: as many inner cells */
     snprintf(t, sizeof t, "[field]\nkind = pht\nsplit = binary\nmax_level = 20\n"
                           "lo = -1 -1 -1\nhi = 1 1 1\n%s", SPHERE);
     c = cost_of(t);
-    cr_expect_eq(c.bytes, ldexp(1.0, 20) * 8.0 / 7.0 * DFL_PHT_CELL_BYTES(3));
+    cr_expect_eq(c.bytes, ldexp(1.0, 20) * 2.0 * DFL_PHT_CELL_BYTES(3));
     /* kinds without size keys cost nothing in proportion to a key */
     c = cost_of("[field]\nkind = exact\n[shape]\nkind = circle\ncenter = 0 0\nradius = 1\n");
     cr_expect_eq(c.bytes, 0);
@@ -109,7 +109,7 @@ Test(field_cost, shape_class_and_dim)
     cr_expect_eq(dfl_shape_cost_class(cfg, "a"), DFL_COST_CHEAP);
     cr_expect_eq(dfl_shape_cost_class(cfg, "b"), DFL_COST_FOOTPOINT);
     cr_expect_eq(dfl_shape_cost_class(cfg, "u"), DFL_COST_FOOTPOINT, "csg: its dearer operand");
-    cr_expect_eq(dfl_shape_cost_class(cfg, "m"), DFL_COST_EXACT);
+    cr_expect_eq(dfl_shape_cost_class(cfg, "m"), DFL_COST_FOOTPOINT, "curves: footpoints");
     cr_expect_eq(dfl_shape_cost_class(cfg, "mesh"), DFL_COST_EXACT, "meshes: exact distances");
     cr_expect_eq(dfl_shape_dim_guess(cfg, "mesh"), 3);
     cr_expect_eq(dfl_shape_cost_class(cfg, "nowhere"), DFL_COST_EXACT);
