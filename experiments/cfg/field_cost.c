@@ -195,7 +195,8 @@ dfl_status dfl_rfunc_parts_bound(const dfl_cfg *cfg, const char *sec, double *pa
     } while (0)
     if (dfl_cfg_has(cfg, sec, "vertices") && !dfl_cfg_string(cfg, sec, "vertices", &raw, NULL))
         PART("vertices", count_points(raw)); /* n - 1 segments, n when closed */
-    if (dfl_cfg_has(cfg, sec, "curve")) {
+    /* vertices and curve together: the factory refuses the pair, naming it */
+    if (dfl_cfg_has(cfg, sec, "curve") && !dfl_cfg_has(cfg, sec, "vertices")) {
         const char *csec;
         double eps;
         dfl_bspline c;

@@ -10,6 +10,7 @@
 #include "harness/meaning.h"
 #include "harness/nonfinite.h"
 #include "harness/probe.h"
+#include "harness/sweep.h"
 #include "io/config.h"
 #include "io/table.h"
 
@@ -55,6 +56,8 @@ dfl_status dfl_study_help(const dfl_study *study, const char *config, FILE *out,
         dfl_cfg_string(pt, "study", "name", &dummy, NULL);
         bool allow; /* every study: the runner's non-finite rule */
         dfl_study_allow_nonfinite(pt, &allow, NULL);
+        double mem_budget, work_budget; /* every study: the runner's budgets */
+        dfl_sweep_budgets(pt, &mem_budget, &work_budget, NULL);
         dfl_study_ctx ctx = {.stage_dir = "/nonexistent/dflab-help", .tag = "", .point = 0,
                              .npoints = 1, .threads = 1};
         dfl_err e2;

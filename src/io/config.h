@@ -273,8 +273,12 @@ bool dfl_cfg_validated(const dfl_cfg *c);
 /* Writes the configuration (single-valued or not) as INI text to path,
  * through a temporary file renamed on success: a first comment line
  * "# resolved configuration of ORIGIN" (origin NULL: the path the config
- * was loaded from, dfl_cfg_path), then every key as written, set or
- * included, in entry order, without include lines; the value of a file-name
+ * was loaded from, dfl_cfg_path; a byte dfl_text_escape would not print
+ * written as \xNN, so a newline in a path cannot end the comment), then
+ * each section once, at its first entry, holding every key of it as
+ * written, set or included, in entry order, without include lines (a --set
+ * of a key new to an earlier section is written in that section: the
+ * loader refuses a repeated section header); the value of a file-name
  * key (DFL_CFG_PATH_KEYS) resolved as dfl_cfg_path_value resolves it, then
  * made absolute (realpath when the file exists, else against the working
  * directory), each item of a sweep list on its own. */

@@ -10,6 +10,7 @@
 
 #include "io/atomic.h"
 #include "io/config_impl.h"
+#include "io/lines.h"
 #include "io/path.h"
 
 dfl_cfg *dfl_cfgi_new(const char *name)
@@ -177,6 +178,32 @@ static void put_path(FILE *fp, const dfl_cfg_entry *en, const char *item, size_t
     }
 }
 
+/* Whether an entry before i has the section of entry i. */
+static bool section_seen_before(const dfl_cfg *c, size_t i)
+{
+    for (size_t j = 0; j < i; j++)
+        if (!strcmp(c->e[j].sec, c->e[i].sec)) return true;
+    return false;
+}
+
+/* One "key = value" line; a file-name key's items resolved (put_path). */
+static void put_entry(FILE *fp, const dfl_cfg_entry *en)
+{
+    if (!dfl_cfgi_is_path_key(en->key)) {
+        fprintf(fp, "%s = %s\n", en->key, en->value);
+        return;
+    }
+    fprintf(fp, "%s = ", en->key);
+    for (const char *v = en->value;;) {
+        const size_t len = strcspn(v, ",");
+        put_path(fp, en, v, len);
+        if (!v[len]) break;
+        fputs(", ", fp);
+        v += len + 1;
+    }
+    fputc('\n', fp);
+}
+
 /* Included keys are written as the section's own: the file reruns without
  * the shape files it was made from; file names are written resolved, so it
  * reruns from its own folder. */
@@ -185,26 +212,27 @@ dfl_status dfl_cfg_write(const dfl_cfg *c, const char *origin, const char *path,
     dfl_atomic_file af;
     dfl_status st = dfl_atomic_open(path, &af, err);
     if (st != DFL_OK) return st;
-    fprintf(af.fp, "# resolved configuration of %s\n", origin ? origin : c->path);
-    const char *cur = NULL;
+    /* the origin is a path, which may hold a newline: escaped, it stays one
+     * comment line and the file still parses */
+    const char *o = origin ? origin : c->path;
+    const size_t osize = 4 * strlen(o) + 1;
+    char *oesc = malloc(osize);
+    if (!oesc) {
+        dfl_atomic_abort(&af);
+        return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    }
+    fprintf(af.fp, "# resolved configuration of %s\n", dfl_text_escape(o, oesc, osize));
+    free(oesc);
+    /* each section once (the loader refuses a repeated header), at its first
+     * entry, with every entry of it in entry order: a --set of a key new to
+     * an earlier section is appended to the entries, not to its section */
+    bool first_sec = true;
     for (size_t i = 0; i < c->n; i++) {
-        if (!cur || strcmp(cur, c->e[i].sec) != 0) {
-            cur = c->e[i].sec;
-            fprintf(af.fp, "%s[%s]\n", i ? "\n" : "", cur);
-        }
-        if (!dfl_cfgi_is_path_key(c->e[i].key)) {
-            fprintf(af.fp, "%s = %s\n", c->e[i].key, c->e[i].value);
-            continue;
-        }
-        fprintf(af.fp, "%s = ", c->e[i].key);
-        for (const char *v = c->e[i].value;;) {
-            const size_t len = strcspn(v, ",");
-            put_path(af.fp, &c->e[i], v, len);
-            if (!v[len]) break;
-            fputs(", ", af.fp);
-            v += len + 1;
-        }
-        fputc('\n', af.fp);
+        if (section_seen_before(c, i)) continue;
+        fprintf(af.fp, "%s[%s]\n", first_sec ? "" : "\n", c->e[i].sec);
+        first_sec = false;
+        for (size_t k = i; k < c->n; k++)
+            if (!strcmp(c->e[k].sec, c->e[i].sec)) put_entry(af.fp, &c->e[k]);
     }
     return dfl_atomic_commit(&af, err);
 }

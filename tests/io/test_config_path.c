@@ -15,8 +15,8 @@ Test(config_path, relative_to_the_file_of_the_key)
     tmpdir_new(dir, sizeof dir);
     tmpdir_write(dir, "shapes/m.ini", "[shape]\nkind = mesh\nfile = meshes/a.obj\n", NULL, 0);
     tmpdir_write(dir, "cfg/c.ini",
-                 "[shape]\ninclude = ../shapes/m.ini\n[other]\nfile = b.obj\nabs = /x/y.obj\n"
-                 "empty =\n",
+                 "[shape]\ninclude = ../shapes/m.ini\n[other]\nfile = b.obj\n[abs]\nfile = /x/y.obj\n"
+                 "[empty]\nfile =\n",
                  path, sizeof path);
     dfl_cfg *c;
     dfl_err err;
@@ -27,10 +27,10 @@ Test(config_path, relative_to_the_file_of_the_key)
     cr_assert_eq(dfl_cfg_path_value(c, "other", "file", buf, sizeof buf, &err), DFL_OK);
     snprintf(want, sizeof want, "%s/cfg/b.obj", dir);
     cr_expect_str_eq(buf, want, "beside the config");
-    cr_assert_eq(dfl_cfg_path_value(c, "other", "abs", buf, sizeof buf, &err), DFL_OK);
+    cr_assert_eq(dfl_cfg_path_value(c, "abs", "file", buf, sizeof buf, &err), DFL_OK);
     cr_expect_str_eq(buf, "/x/y.obj");
-    cr_expect_eq(dfl_cfg_path_value(c, "other", "empty", buf, sizeof buf, &err), DFL_E_INPUT);
-    cr_expect(strstr(err.msg, "[other] empty"), "%s", err.msg);
+    cr_expect_eq(dfl_cfg_path_value(c, "empty", "file", buf, sizeof buf, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "[empty] file"), "%s", err.msg);
     cr_expect_eq(dfl_cfg_path_value(c, "other", "file", buf, 8, &err), DFL_E_INPUT, "too long for buf");
     cr_assert_eq(dfl_cfg_set(c, "shape.file=rel/c.obj", &err), DFL_OK, "%s", err.msg);
     cr_assert_eq(dfl_cfg_path_value(c, "shape", "file", buf, sizeof buf, &err), DFL_OK);

@@ -21,19 +21,22 @@ Test(config, write_reads_back)
     dfl_err err;
     cr_assert_eq(dfl_cfg_set(c, "g.n=5", &err), DFL_OK);
     cr_assert_eq(dfl_cfg_set(c, "h.k=on", &err), DFL_OK);
+    /* a key new to an earlier section: written there, the header once */
+    cr_assert_eq(dfl_cfg_set(c, "s.extra=7", &err), DFL_OK);
     cr_assert(dfl_cfg_has_section(c, "h") && !dfl_cfg_has_section(c, "x"));
     char dir[64], path[128];
     tmpdir_file(dir, sizeof dir, "config.ini", path, sizeof path);
     cr_assert_eq(dfl_cfg_write(c, NULL, path, &err), DFL_OK, "%s", err.msg);
     char *text = e2e_slurp(path);
     cr_assert_str_eq(text, "# resolved configuration of t.ini\n"
-                           "[s]\nname = x\nlist = 1, 2\n\n[g]\nn = 5\n\n[h]\nk = on\n");
+                           "[s]\nname = x\nlist = 1, 2\nextra = 7\n\n[g]\nn = 5\n\n[h]\nk = on\n");
     free(text);
     dfl_cfg *r = cfgu_load(path);
     cr_assert_str_eq(dfl_cfg_path(r), path);
     cr_assert_eq(dfl_cfg_sweep_points(r), 2);
     cr_assert_str_eq(cfgu_string(r, "g", "n"), "5");
     cr_assert_str_eq(cfgu_string(r, "h", "k"), "on");
+    cr_assert_str_eq(cfgu_string(r, "s", "extra"), "7");
     dfl_cfg_free(r);
     /* an origin names the file instead of the load path */
     cr_assert_eq(dfl_cfg_write(c, "configs/x.ini", path, &err), DFL_OK, "%s", err.msg);
@@ -41,6 +44,16 @@ Test(config, write_reads_back)
     cr_assert(strncmp(text, "# resolved configuration of configs/x.ini\n[s]\n", 46) == 0, "%s",
               text);
     free(text);
+    /* an origin holding a newline (a hostile folder name) stays one comment
+     * line: escaped, and the file still loads with the same keys */
+    cr_assert_eq(dfl_cfg_write(c, "a\nb = 1\r\x7f.ini", path, &err), DFL_OK, "%s", err.msg);
+    text = e2e_slurp(path);
+    cr_assert(strncmp(text, "# resolved configuration of a\\x0ab = 1\\x0d\\x7f.ini\n[s]\n", 55) == 0,
+              "%s", text);
+    free(text);
+    r = cfgu_load(path);
+    cr_assert_str_eq(cfgu_string(r, "g", "n"), "5");
+    dfl_cfg_free(r);
     dfl_cfg_free(c);
     tmpdir_remove(dir);
 }
