@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Mutation testing of dflab: does the suite fail when the code is wrong?
 
-usage: mutate.py MODULE [--only NAME] [--keep]     (make mutate MODULE=pht)
+usage: mutate.py MODULE [--only NAME] [--work DIR] [--timeout S]     (make mutate MODULE=pht)
 
 Each mutant of tests/mutate/mutants/MODULE.ini is one small semantic change
 of the kind real bugs make (a sign, a bound, a dropped term, a constant):
@@ -31,6 +31,8 @@ import sys
 import time
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+# --work DIR (default build-mutate/): runs with different folders do not
+# share a tree, so two modules can be tested at once
 WORK = os.path.join(ROOT, "build-mutate")
 TREE = os.path.join(WORK, "tree")
 
@@ -73,7 +75,13 @@ def load(module):
 
 def sync_tree():
     """A private copy of the tracked files (the object cache in TREE/build is
-    kept between runs; make rebuilds what changed)."""
+    kept between runs; make rebuilds what changed).  A new tree's object
+    cache starts as a copy of the working tree's build/ (timestamps kept), so
+    only what differs is compiled."""
+    if not os.path.isdir(os.path.join(TREE, "build")) and os.path.isdir(os.path.join(ROOT, "build")):
+        os.makedirs(TREE, exist_ok=True)
+        subprocess.run(["cp", "-a", os.path.join(ROOT, "build"), os.path.join(TREE, "build")],
+                       check=True)
     files = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, check=True,
                            capture_output=True).stdout.split(b"\0")
     for f in files:
@@ -116,7 +124,12 @@ def main():
     ap.add_argument("module")
     ap.add_argument("--only")
     ap.add_argument("--timeout", type=int, default=300)
+    ap.add_argument("--work", help="private folder of the mutated tree (default build-mutate)")
     a = ap.parse_args()
+    if a.work:
+        global WORK, TREE
+        WORK = os.path.abspath(a.work)
+        TREE = os.path.join(WORK, "tree")
     muts = load(a.module)
     if a.only:
         muts = [m for m in muts if a.only in m["name"]]
