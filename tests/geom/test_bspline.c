@@ -264,3 +264,64 @@ Test(bspline, rejects_bad_input)
     double br_zero[] = {0, 0, 0, 0, 0};
     cr_assert_eq(dfl_bspline_init_periodic(2, 2, 4, cp, br_zero, 5, &c, &err), DFL_E_INPUT);
 }
+
+/* dfl_bspline_is_closed(c, tol): the end points' gap (largest coordinate
+ * difference) at most tol (1 + extent), the extent the largest side of the
+ * control points' bounding box: relative for large curves.  Extent 1000,
+ * tol 1e-12: a gap of 1e-10 is closed, 2e-9 (> 1.001e-9) is not. */
+Test(bspline, closed_tolerance_is_relative_to_the_extent)
+{
+    const double gaps[2] = {1e-10, 2e-9};
+    for (int i = 0; i < 2; i++) {
+        const double cp[5 * 2] = {0, 0, 1000, 0, 1000, 1000, 0, 1000, gaps[i], 0};
+        dfl_bspline c;
+        cr_assert_eq(dfl_bspline_init(2, 4, 5, cp, NULL, 0, &c, NULL), DFL_OK);
+        cr_expect_eq(dfl_bspline_is_closed(&c, 1e-12), i == 0, "gap %g", gaps[i]);
+        dfl_bspline_free(&c);
+    }
+}
+
+/* dfl_knot_span at a knot: side < 0 is the non-empty span to the left
+ * (U[j] < t <= U[j+1]), side >= 0 the one to the right (U[j] <= t <
+ * U[j+1]); a double knot is skipped (spans are non-empty), t0 has no left
+ * span and t1 of an open curve is in the last span (header).  Order 4,
+ * n = 8 control points: U = 0 0 0 0 1 2 2 3 4 4 4 4, the spans j = 3..7. */
+Test(bspline, knot_span_sides_at_knots)
+{
+    const double U[12] = {0, 0, 0, 0, 1, 2, 2, 3, 4, 4, 4, 4};
+    const struct {
+        double t;
+        size_t left, right;
+    } cs[] = {{0.0, 3, 3}, {0.5, 3, 3}, {1.0, 3, 4}, {1.5, 4, 4}, {2.0, 4, 6},
+              {2.5, 6, 6}, {3.0, 6, 7}, {4.0, 7, 7}, {-1.0, 3, 3}, {5.0, 7, 7}};
+    for (size_t i = 0; i < sizeof cs / sizeof *cs; i++) {
+        cr_expect_eq(dfl_knot_span(U, 4, 8, cs[i].t, -1), cs[i].left, "t %g left", cs[i].t);
+        cr_expect_eq(dfl_knot_span(U, 4, 8, cs[i].t, 1), cs[i].right, "t %g right", cs[i].t);
+    }
+}
+
+/* A closed curve's parameter wraps into [t0, t1) by whole periods
+ * T = t1 - t0 (below t0 as well as above t1); an open one is clamped. */
+Test(bspline, wrap_by_whole_periods_on_both_sides)
+{
+    double cp[6 * 2];
+    for (int i = 0; i < 6; i++) {
+        cp[2 * i] = cos(i * 1.047);
+        cp[2 * i + 1] = sin(i * 1.047);
+    }
+    dfl_bspline c;
+    cr_assert_eq(dfl_bspline_init_periodic(2, 4, 6, cp, NULL, 0, &c, NULL), DFL_OK);
+    const double T = c.t1 - c.t0;
+    for (int k = -3; k <= 3; k++)
+        for (int i = 0; i < 8; i++) {
+            const double t = c.t0 + T * (i + 0.5) / 8, w = dfl_bspline_wrap(&c, t + k * T);
+            cr_expect(w >= c.t0 && w < c.t1, "k %d i %d: %g", k, i, w);
+            cr_expect(fabs(w - t) <= 1e-13 * (1 + fabs(k)) * T, "k %d i %d: %.17g vs %.17g", k, i,
+                      w, t);
+        }
+    dfl_bspline_free(&c);
+    cr_assert_eq(dfl_bspline_init(2, 4, 6, cp, NULL, 0, &c, NULL), DFL_OK);
+    cr_expect_eq(dfl_bspline_wrap(&c, c.t0 - 0.25 * (c.t1 - c.t0)), c.t0);
+    cr_expect_eq(dfl_bspline_wrap(&c, c.t1 + 0.25 * (c.t1 - c.t0)), c.t1);
+    dfl_bspline_free(&c);
+}

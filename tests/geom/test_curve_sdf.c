@@ -9,6 +9,7 @@
 #include "geom/curve_fixtures.h"
 #include "geom/footpoint.h"
 #include "geom/curvature.h"
+#include "core/vec.h"
 
 static double sdf_d(const dfl_curve_sdf *S, double x, double y, dfl_curve_sdf_val *v)
 {
@@ -153,4 +154,96 @@ Test(curve_sdf, curvature_convention_of_curvature_h)
         dfl_curve_sdf_free(S);
         dfl_bspline_free(&c);
     }
+}
+
+/* d < 0 inside, where the winding number around x is non-zero: for a
+ * clockwise curve it is -1 there (header), so the sign does not depend on
+ * the orientation.  The same closed curve listed both ways gives the same
+ * d, with winding +1 and -1 at its centre (far from the curve, where the
+ * polygon's winding number decides). */
+Test(curve_sdf, clockwise_curve_is_negative_inside)
+{
+    double ccw[8 * 2], cw[8 * 2];
+    for (int i = 0; i < 8; i++) {
+        const double th = 2.0 * DFL_PI * i / 8;
+        ccw[2 * i] = 1.5 * cos(th);
+        ccw[2 * i + 1] = sin(th);
+        cw[2 * (7 - i)] = ccw[2 * i];
+        cw[2 * (7 - i) + 1] = ccw[2 * i + 1];
+    }
+    dfl_bspline c1, c2;
+    cr_assert_eq(dfl_bspline_init_periodic(2, 4, 8, ccw, NULL, 0, &c1, NULL), DFL_OK);
+    cr_assert_eq(dfl_bspline_init_periodic(2, 4, 8, cw, NULL, 0, &c2, NULL), DFL_OK);
+    dfl_curve_sdf *S1, *S2;
+    dfl_err err;
+    cr_assert_eq(dfl_curve_sdf_new(&c1, NULL, &S1, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(dfl_curve_sdf_new(&c2, NULL, &S2, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(dfl_curve_sdf_orientation(S1), 1);
+    cr_assert_eq(dfl_curve_sdf_orientation(S2), -1);
+    dfl_curve_sdf_val v1, v2;
+    const double pts[][2] = {{0, 0}, {0.3, -0.2}, {3, 0}, {0, -2.5}};
+    for (size_t i = 0; i < sizeof pts / sizeof *pts; i++) {
+        const double d1 = sdf_d(S1, pts[i][0], pts[i][1], &v1);
+        const double d2 = sdf_d(S2, pts[i][0], pts[i][1], &v2);
+        const int inside = i < 2;
+        cr_expect(inside ? d1 < 0.0 : d1 > 0.0, "point %zu: %g", i, d1);
+        cr_expect(inside ? d2 < 0.0 : d2 > 0.0, "point %zu: %g", i, d2);
+        cr_expect_eq(v1.winding, inside ? 1 : 0, "point %zu", i);
+        cr_expect_eq(v2.winding, inside ? -1 : 0, "point %zu", i);
+        cr_expect(fabs(d1 - d2) <= 1e-12, "point %zu: %.17g vs %.17g", i, d1, d2);
+    }
+    dfl_curve_sdf_free(S1);
+    dfl_curve_sdf_free(S2);
+    dfl_bspline_free(&c1);
+    dfl_bspline_free(&c2);
+}
+
+/* DFL_FOOT_FOCAL is set when |g| = |1 + kappa d| < 1e-6 (header).  On the
+ * inner normal of the vertex of largest curvature (the curve is symmetric
+ * about the x axis, so its point on the positive axis is a vertex, and the
+ * ellipse-like shape makes it the sharpest) the footpoint stays that
+ * vertex up to the centre of curvature; just short of the centre g is a
+ * small positive number. */
+Test(curve_sdf, focal_flag_at_the_centre_of_curvature)
+{
+    double cp[8 * 2];
+    for (int i = 0; i < 8; i++) {
+        cp[2 * i] = 1.5 * cos(2.0 * DFL_PI * i / 8);
+        cp[2 * i + 1] = sin(2.0 * DFL_PI * i / 8);
+    }
+    dfl_bspline c;
+    cr_assert_eq(dfl_bspline_init_periodic(2, 4, 8, cp, NULL, 0, &c, NULL), DFL_OK);
+    dfl_curve_sdf *S;
+    dfl_err err;
+    cr_assert_eq(dfl_curve_sdf_new(&c, NULL, &S, &err), DFL_OK, "%s", err.msg);
+    dfl_curve_sdf_val v;
+    sdf_d(S, 1.2, 0.0, &v);
+    cr_assert(fabs(v.foot[1]) < 1e-12 && v.foot[0] > 1.2, "foot (%g, %g)", v.foot[0], v.foot[1]);
+    cr_assert(v.kappa > 0.0);
+    cr_expect(!(v.flags & DFL_FOOT_FOCAL), "g = %g", 1.0 + v.kappa * v.d);
+    const double R = 1.0 / v.kappa, x = v.foot[0] - R * (1.0 - 1e-8);
+    sdf_d(S, x, 0.0, &v);
+    const double g = 1.0 + v.kappa * v.d;
+    cr_assert(fabs(v.foot[1]) < 1e-6, "foot (%g, %g)", v.foot[0], v.foot[1]);
+    cr_assert(g > 0.0 && g < 1e-6, "g = %g", g);
+    cr_expect(v.flags & DFL_FOOT_FOCAL, "g = %g, flags %d", g, v.flags);
+    dfl_curve_sdf_free(S);
+    dfl_bspline_free(&c);
+}
+
+/* A closed curve that encloses no area (here one that runs out along a
+ * line and back: the polygon's signed area is 0) has no inside: DFL_E_INPUT
+ * (header). */
+Test(curve_sdf, rejects_a_curve_that_encloses_no_area)
+{
+    const double cp[5 * 2] = {0, 0, 1, 0, 2, 0, 1, 0, 0, 0};
+    dfl_bspline c;
+    cr_assert_eq(dfl_bspline_init(2, 4, 5, cp, NULL, 0, &c, NULL), DFL_OK);
+    cr_assert(dfl_bspline_is_closed(&c, 1e-12));
+    dfl_curve_sdf *S = NULL;
+    dfl_err err;
+    cr_expect_eq(dfl_curve_sdf_new(&c, NULL, &S, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "encloses no area"), "%s", err.msg);
+    if (S) dfl_curve_sdf_free(S);
+    dfl_bspline_free(&c);
 }

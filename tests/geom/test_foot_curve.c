@@ -179,3 +179,44 @@ Test(foot_curve, open_curve_ends_and_ceres)
     dfl_bspline_free(&c);
 }
 
+
+/* The option ranges of footpoint.h, bounds included: samples_per_span
+ * 2..10000, candidates 1..DFL_FOOT_MAX_CAND, max_iter 1..100000, tie_rel in
+ * [0, 1); one step outside each is DFL_E_INPUT. */
+Test(foot_curve, option_ranges_are_inclusive)
+{
+    dfl_foot_opts o;
+    dfl_err err;
+    dfl_foot_opts_default(&o);
+    cr_assert_eq(dfl_foot_opts_check(&o, &err), DFL_OK);
+    struct {
+        int *field;
+        int lo, hi;
+    } ints[] = {{&o.samples_per_span, 2, 10000},
+                {&o.candidates, 1, DFL_FOOT_MAX_CAND},
+                {&o.max_iter, 1, 100000}};
+    for (size_t i = 0; i < sizeof ints / sizeof *ints; i++) {
+        const int keep = *ints[i].field;
+        *ints[i].field = ints[i].lo;
+        cr_expect_eq(dfl_foot_opts_check(&o, &err), DFL_OK, "field %zu = %d", i, ints[i].lo);
+        *ints[i].field = ints[i].hi;
+        cr_expect_eq(dfl_foot_opts_check(&o, &err), DFL_OK, "field %zu = %d", i, ints[i].hi);
+        *ints[i].field = ints[i].lo - 1;
+        cr_expect_eq(dfl_foot_opts_check(&o, &err), DFL_E_INPUT, "field %zu = %d", i,
+                     ints[i].lo - 1);
+        *ints[i].field = ints[i].hi + 1;
+        cr_expect_eq(dfl_foot_opts_check(&o, &err), DFL_E_INPUT, "field %zu = %d", i,
+                     ints[i].hi + 1);
+        *ints[i].field = keep;
+    }
+    o.tie_rel = 0.0;
+    cr_expect_eq(dfl_foot_opts_check(&o, &err), DFL_OK);
+    o.tie_rel = nextafter(1.0, 0.0);
+    cr_expect_eq(dfl_foot_opts_check(&o, &err), DFL_OK);
+    o.tie_rel = 1.0;
+    cr_expect_eq(dfl_foot_opts_check(&o, &err), DFL_E_INPUT);
+    o.tie_rel = -1e-300;
+    cr_expect_eq(dfl_foot_opts_check(&o, &err), DFL_E_INPUT);
+    o.tie_rel = NAN;
+    cr_expect_eq(dfl_foot_opts_check(&o, &err), DFL_E_INPUT);
+}

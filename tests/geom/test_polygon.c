@@ -8,6 +8,7 @@
 #include "core/rng.h"
 #include "core/vec.h"
 #include "geom/polygon.h"
+#include "geom/segdist.h"
 
 static const double square_ccw[8] = {0, 0, 2, 0, 2, 2, 0, 2};
 static const double square_cw[8] = {0, 0, 0, 2, 2, 2, 2, 0};
@@ -87,4 +88,41 @@ Test(polygon, convex_distance_matches_brute_force)
         }
     }
     cr_expect(inside > 100 && inside < 2900, "inside %d", inside);
+}
+
+/* The inside test is o (b - a) x (x - a) >= 0 evaluated as written, with
+ * no tolerance: a point for which that cross product is exactly 0 (on an
+ * edge up to rounding) and positive for the other edges is inside, so its
+ * distance is 0.0 even where the rounded projection onto the edge leaves a
+ * residual of an ulp or so.  Points along an edge whose end points are
+ * not on a coarse grid give both cases. */
+Test(polygon, a_zero_cross_product_counts_as_inside)
+{
+    for (int w = 0; w < 2; w++) {
+        const double ccw[6] = {0.1, 0.2, 1.7, 0.3, 0.4, 1.9};
+        const double cw[6] = {0.1, 0.2, 0.4, 1.9, 1.7, 0.3};
+        const double *v = w ? cw : ccw;
+        const double o = dfl_polygon_orientation(v, 3);
+        cr_assert_eq(o, w ? -1.0 : 1.0);
+        int zero = 0, residual = 0;
+        for (int k = 1; k < 2000; k++) {
+            const double t = k / 2000.0;
+            const double *a = v, *b = v + 2;
+            const double x[2] = {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])};
+            int in = 1, on = 0;
+            for (int i = 0; i < 3; i++) {
+                const double *p = v + 2 * i, *q = v + 2 * ((i + 1) % 3);
+                const double cr = o * ((q[0] - p[0]) * (x[1] - p[1]) - (q[1] - p[1]) * (x[0] - p[0]));
+                if (cr < 0) in = 0;
+                if (cr == 0) on = 1;
+            }
+            if (!in || !on) continue;
+            zero++;
+            residual += dfl_point_segment_dist_hypot(x, a, b) > 0.0;
+            cr_assert_eq(dfl_convex_polygon_dist(v, 3, o, x), 0.0, "w %d t %g", w, t);
+        }
+        /* both kinds occurred, so the rule was exercised */
+        cr_expect(zero > 100 && residual > 0, "w %d: %d zero, %d with a residual", w, zero,
+                  residual);
+    }
 }

@@ -194,3 +194,18 @@ Test(segdist, hypot_member_is_the_formula_bit_for_bit)
     const double q[2] = {3, 4};
     cr_expect_eq(dfl_point_segment_dist_hypot(q, o, o), 5.0);
 }
+
+/* The header's rule is (x - a) . (b - a) <= 0: a point on the line through
+ * a perpendicular to the segment (the dot product is exactly 0) and a
+ * itself have a as their closest point, and so does the eval branch. */
+Test(segdist, closest_is_start_includes_the_perpendicular_through_a)
+{
+    const double a2[2] = {1, 2}, b2[2] = {4, 2};
+    const double perp2[2] = {1, 7}, on_a[2] = {1, 2}, past[2] = {1.5, -3};
+    cr_expect(dfl_segdist_closest_is_start(2, a2, b2, perp2));
+    cr_expect(dfl_segdist_closest_is_start(2, a2, b2, on_a));
+    cr_expect(!dfl_segdist_closest_is_start(2, a2, b2, past));
+    const double a3[3] = {0, 0, 0}, b3[3] = {0, 0, 2}, perp3[3] = {3, -4, 0};
+    cr_expect(dfl_segdist_closest_is_start(3, a3, b3, perp3));
+    cr_expect_eq(dfl_segdist_eval(3, a3, b3, perp3, NULL), 5.0);
+}

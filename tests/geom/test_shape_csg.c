@@ -97,3 +97,30 @@ Test(shape_csg, rejects_degenerate_input)
     cr_assert(strstr(err.msg, "k"));
 }
 
+
+/* Ties of the exact ops go to a (shape.h: deterministic on ties of
+ * min/max): two equal circles mirrored in the y axis have bit-for-bit equal
+ * values on it (|x - c| of (1, y) and (-1, y)), and union and intersection
+ * take a's gradient there, whose x component has the sign of -c_a. */
+Test(shape_csg, exact_ties_take_the_gradient_of_a)
+{
+    const double ca[2] = {-1, 0}, cb[2] = {1, 0};
+    const dfl_csg_op ops[2] = {DFL_CSG_UNION, DFL_CSG_INTERSECTION};
+    for (int i = 0; i < 2; i++) {
+        dfl_shape a, b, s;
+        cr_assert_eq(dfl_shape_circle(ca, 1.5, &a, NULL), DFL_OK);
+        cr_assert_eq(dfl_shape_circle(cb, 1.5, &b, NULL), DFL_OK);
+        cr_assert_eq(dfl_shape_csg(ops[i], 0, &a, &b, &s, NULL), DFL_OK);
+        for (int k = -3; k <= 3; k++) {
+            const double x[2] = {0, 0.7 * k};
+            double g[2];
+            dfl_shape_eval1(&s, x, g);
+            /* a's gradient (x - ca)/|x - ca| for the union, the same for
+             * the intersection (-min(-a, -b) takes -(-grad a)) */
+            const double r = hypot(1.0, x[1]);
+            cr_expect_float_eq(g[0], 1.0 / r, 1e-15, "op %d y %g: %g", i, x[1], g[0]);
+            cr_expect_float_eq(g[1], x[1] / r, 1e-15, "op %d y %g", i, x[1]);
+        }
+        dfl_shape_free(&s);
+    }
+}

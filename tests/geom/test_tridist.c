@@ -77,3 +77,35 @@ Test(tridist, brute_force_and_the_polygonize_distance)
         if (f == DFL_TRI_VERT_C) cr_expect(q[0] == c[0] && q[1] == c[1] && q[2] == c[2]);
     }
 }
+
+/* The regions are tested in the order of dfl_tri_feature with exact sign
+ * tests, so a point on the boundary of vertex c's region (x - c).(c - b)
+ * = 0 against edge BC, (x - c).(c - a) = 0 against edge AC) belongs to the
+ * vertex: feature DFL_TRI_VERT_C and q = c bit for bit (header).  Right
+ * triangle a = 0, b = e1, c = e2: x = c + s (1, 1, 0) + z e3 has
+ * (x - c).(b - a) = (x - c).(c - a) = s; x = c + (-s, 0, z) has
+ * (x - c).(c - a) = 0.  The same for vertex b (before edge AB and BC). */
+Test(tridist, region_boundaries_go_to_the_vertex)
+{
+    const double a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {0, 1, 0};
+    const double xs[][3] = {{1, 2, 0.5}, {-2, 1, 0.25}, {0.5, 1.5, 0}};
+    for (size_t i = 0; i < sizeof xs / sizeof *xs; i++) {
+        double q[3];
+        dfl_tri_feature f;
+        const double d = dfl_tridist_closest(xs[i], a, b, c, q, &f);
+        cr_expect_eq(f, DFL_TRI_VERT_C, "case %zu: feature %d", i, (int)f);
+        for (int k = 0; k < 3; k++) cr_expect_eq(q[k], c[k], "case %zu", i);
+        const double w[3] = {xs[i][0] - c[0], xs[i][1] - c[1], xs[i][2] - c[2]};
+        cr_expect_eq(d, sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]), "case %zu", i);
+    }
+    /* vertex b: (x - b).(b - a) = 0 and (x - b).(c - b) <= 0, or
+     * (x - b).(b - c) = (x - b).(b - a) > 0 */
+    const double ys[][3] = {{1, -2, 0.5}, {2, 1, 0}};
+    for (size_t i = 0; i < sizeof ys / sizeof *ys; i++) {
+        double q[3];
+        dfl_tri_feature f;
+        dfl_tridist_closest(ys[i], a, b, c, q, &f);
+        cr_expect_eq(f, DFL_TRI_VERT_B, "case %zu: feature %d", i, (int)f);
+        for (int k = 0; k < 3; k++) cr_expect_eq(q[k], b[k], "case %zu", i);
+    }
+}

@@ -508,3 +508,19 @@ Test(rfunc_batch, regions_kernel_agrees)
         dfl_field_destroy(&fs);
     }
 }
+
+/* dfl_rfunc_batch_points needs n >= 2 point parts (batch.h: DFL_E_INPUT for
+ * n < 2), so one point is refused and two are accepted. */
+Test(rfunc_batch, points_kernel_needs_two_points)
+{
+    const double c[6] = {0.1, 0.2, 0.3, 0.9, -0.4, 0.5};
+    for (int dim = 2; dim <= 3; dim++) {
+        dfl_rfunc_batch *b = NULL;
+        dfl_err err;
+        cr_expect_eq(dfl_rfunc_batch_points(dim, c, 0, 2, &b, &err), DFL_E_INPUT, "dim %d", dim);
+        cr_expect_eq(dfl_rfunc_batch_points(dim, c, 1, 2, &b, &err), DFL_E_INPUT, "dim %d", dim);
+        cr_expect_null(b);
+        cr_assert_eq(dfl_rfunc_batch_points(dim, c, 2, 2, &b, &err), DFL_OK, "%s", err.msg);
+        dfl_rfunc_batch_free(b);
+    }
+}

@@ -176,3 +176,63 @@ Test(gradbound, check)
     cr_expect_eq(dfl_gradbound_check(DFL_RFUNC_REQUIV_CORRECTED, 2, &err), DFL_E_INPUT);
     cr_expect(strstr(err.msg, "requiv_corrected") != NULL, "%s", err.msg);
 }
+
+/* vertex_min: the mixed regime only exists for s in [max(cos alpha', 0), 1]
+ * (header), so its minimizer s_min lies there, and the returned minimum is
+ * the least of the bisector value and the mixed values over that range
+ * (checked against a plain scan of dfl_gradbound_mixed on it). */
+Test(gradbound, vertex_min_scans_only_the_available_s)
+{
+    const dfl_rfunc_join joins[2] = {DFL_RFUNC_REQUIV, DFL_RFUNC_RCONJ};
+    const int alphas[8] = {10, 20, 40, 60, 80, 100, 200, 340};
+    for (int j = 0; j < 2; j++)
+        for (int p = 2; p <= 12; p += 5)
+            for (int ia = 0; ia < 8; ia++) {
+                const double a = alphas[ia] * DFL_PI / 180;
+                const double ap = a <= DFL_PI ? a : 2 * DFL_PI - a, lo = fmax(cos(ap), 0.0);
+                int where;
+                double s;
+                const double m = dfl_gradbound_vertex_min(joins[j], p, a, &where, &s);
+                cr_expect(s >= lo - 1e-15 && s <= 1.0, "join %d p %d alpha %d: s %.17g < %.17g", j,
+                          p, alphas[ia], s, lo);
+                double scan = dfl_gradbound_bisector(joins[j], p, a);
+                for (int k = 0; k <= 4000; k++)
+                    scan = fmin(scan, dfl_gradbound_mixed(joins[j], p, lo + (1.0 - lo) * k / 4000));
+                cr_expect(m <= scan + 1e-12 && m >= scan - 1e-6, "join %d p %d alpha %d: %.17g vs %.17g",
+                          j, p, alphas[ia], m, scan);
+            }
+}
+
+/* where = 0 when the bisector value is the least, ties within 1e-12
+ * included (header).  Near the angle where the bisector value crosses the
+ * mixed minimum (found by bisection on alpha) the two differ by less than
+ * 1e-12: there where must be 0 whenever bisector <= minimum + 1e-12. */
+Test(gradbound, vertex_min_ties_go_to_the_bisector)
+{
+    const dfl_rfunc_join joins[2] = {DFL_RFUNC_REQUIV, DFL_RFUNC_RCONJ};
+    int close = 0;
+    for (int j = 0; j < 2; j++)
+        for (int p = 2; p <= 12; p += 5) {
+            /* bis - min is 0 (bisector least) for small alpha, > 0 past the crossing */
+            double lo = 1e-3, hi = DFL_PI;
+            int w;
+            dfl_gradbound_vertex_min(joins[j], p, hi, &w, NULL);
+            if (w == 0) continue; /* no crossing for this join and order */
+            for (int it = 0; it < 60; it++) {
+                const double mid = 0.5 * (lo + hi);
+                const double m = dfl_gradbound_vertex_min(joins[j], p, mid, NULL, NULL);
+                if (dfl_gradbound_bisector(joins[j], p, mid) > m) hi = mid;
+                else lo = mid;
+            }
+            for (int k = 0; k < 8; k++) {
+                const double a = hi + k * 1e-14;
+                const double m = dfl_gradbound_vertex_min(joins[j], p, a, &w, NULL);
+                const double bis = dfl_gradbound_bisector(joins[j], p, a);
+                if (bis <= m + 1e-12) {
+                    close += bis > m;
+                    cr_expect_eq(w, 0, "join %d p %d alpha %.17g: bis %.17g min %.17g", j, p, a, bis, m);
+                }
+            }
+        }
+    cr_expect(close > 0, "no point strictly within the tie band");
+}

@@ -478,3 +478,56 @@ Test(rfunc_join, eq20_literal_and_nan_where_undefined)
     cr_expect(fabs(dfl_jet_deriv(&out, 0) - 1.0 / sqrt(1.75)) < 1e-15);
     cr_expect_eq(dfl_jet_deriv(&out, 1), 0.0);
 }
+
+/* dfl_rfunc_join_check: DFL_E_INPUT unless 1 <= p <= DFL_RFUNC_P_MAX (both
+ * bounds accepted), and p >= 2 for R-conjunction (header). */
+Test(rfunc_join, order_range_is_inclusive)
+{
+    dfl_err err;
+    const dfl_rfunc_join js[3] = {DFL_RFUNC_REQUIV, DFL_RFUNC_RCONJ, DFL_RFUNC_REQUIV_CORRECTED};
+    for (int i = 0; i < 3; i++) {
+        const int lo = js[i] == DFL_RFUNC_RCONJ ? 2 : 1;
+        cr_expect_eq(dfl_rfunc_join_check(js[i], lo, &err), DFL_OK, "join %d p %d", i, lo);
+        cr_expect_eq(dfl_rfunc_join_check(js[i], DFL_RFUNC_P_MAX, &err), DFL_OK, "join %d", i);
+        cr_expect_eq(dfl_rfunc_join_check(js[i], lo - 1, &err), DFL_E_INPUT, "join %d", i);
+        cr_expect_eq(dfl_rfunc_join_check(js[i], DFL_RFUNC_P_MAX + 1, &err), DFL_E_INPUT,
+                     "join %d", i);
+    }
+}
+
+/* The guarded corrected join straight from the accumulator (p = 2, parts
+ * h = 2 and 1 in that order, so h_min = 1 is the second part, one vertex
+ * distance q): S = 2^-2 + 1 - q^-2.  The header's rules: u = S^(-1/2)
+ * while S > (2 h_min)^-2 = 1/4, else the floor u = 2 h_min with gradient
+ * 2 grad h_min.  q = 2: S = 1, u = 1; q = 0.95: S = 1.25 - 1/0.9025
+ * = 0.142... in (1/16, 1/4): the floor, u = 2.  And correction = eq20 is
+ * NaN where a vertex distance is 0 (q^-p = inf), the guarded form takes the
+ * floor there. */
+Test(rfunc_join, corrected_floor_and_zero_vertex_distance)
+{
+    const double g2[2] = {0.6, 0.8}, g1[2] = {-1.0, 0.0}, gq[2] = {0.0, 1.0};
+    const double qs[3] = {2.0, 0.95, 0.0};
+    for (int corr = 0; corr < 2; corr++)
+        for (int i = 0; i < 3; i++) {
+            dfl_rfunc_acc acc;
+            dfl_rfunc_acc_begin(&acc, DFL_RFUNC_REQUIV_CORRECTED, 2, 2, 1);
+            if (corr) dfl_rfunc_acc_set_correction(&acc, DFL_RFUNC_CORR_EQ20);
+            dfl_rfunc_acc_add(&acc, 2.0, g2);
+            dfl_rfunc_acc_add(&acc, 1.0, g1);
+            dfl_rfunc_acc_add_q(&acc, qs[i], gq);
+            double g[2];
+            const double u = dfl_rfunc_acc_end(&acc, g);
+            const long double S = 1.25L - (qs[i] > 0 ? 1.0L / ((long double)qs[i] * qs[i]) : 0);
+            if (qs[i] == 0.0) {
+                if (corr) cr_expect(isnan(u) && isnan(g[0]) && isnan(g[1]), "eq20 q = 0: %g", u);
+                else cr_expect(u == 2.0 && g[0] == -2.0 && g[1] == 0.0, "guarded q = 0: %g", u);
+            } else if (!corr && S <= 0.25L) {
+                cr_expect_eq(u, 2.0, "q %g: S %Lg", qs[i], S);
+                cr_expect(g[0] == 2.0 * g1[0] && g[1] == 2.0 * g1[1], "q %g", qs[i]);
+            } else {
+                const long double ue = 1.0L / sqrtl(S);
+                cr_expect(fabsl(u - ue) <= 1e-14L * ue, "corr %d q %g: %.17g vs %.17Lg", corr,
+                          qs[i], u, ue);
+            }
+        }
+}

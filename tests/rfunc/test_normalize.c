@@ -186,3 +186,18 @@ Test(rfunc_normalize, gradients_and_critical_point)
     dfl_rfunc_poly_free(&e2);
     dfl_rfunc_poly_free(&e3);
 }
+
+/* dfl_rfunc_poly_ellipse needs both semi-axes > 0 and finite (header
+ * a, b > 0): each one zero, negative or not finite is DFL_E_INPUT. */
+Test(rfunc_normalize, ellipse_semi_axes_must_be_positive)
+{
+    const double bad[4] = {0.0, -1.0, INFINITY, NAN};
+    dfl_rfunc_poly e;
+    dfl_err err;
+    for (int i = 0; i < 4; i++) {
+        cr_expect_eq(dfl_rfunc_poly_ellipse(bad[i], 1.0, &e, &err), DFL_E_INPUT, "a = %g", bad[i]);
+        cr_expect_eq(dfl_rfunc_poly_ellipse(1.0, bad[i], &e, &err), DFL_E_INPUT, "b = %g", bad[i]);
+    }
+    cr_assert_eq(dfl_rfunc_poly_ellipse(2.0, 0.5, &e, &err), DFL_OK);
+    dfl_rfunc_poly_free(&e);
+}

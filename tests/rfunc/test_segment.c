@@ -311,3 +311,21 @@ Test(rfunc_segment, degenerate_segment_is_input_error)
     cr_assert_eq(dfl_rfunc_seg_init(2, a, a, DFL_RFUNC_TRIM_DISK, &s, &err), DFL_E_INPUT);
     cr_assert(strstr(err.msg, "degenerate") != NULL);
 }
+
+/* Degenerate means |b - a| <= 1e-12 times the size of the coordinates
+ * (header), not only |b - a| = 0: at 1e6 a length of 1e-7 (1e-13
+ * relative) is refused, a length of 1e-5 (1e-11 relative) accepted. */
+Test(rfunc_segment, degenerate_is_relative_to_the_coordinates)
+{
+    const double a[3] = {1e6, -2e5, 3e5}, b_short[3] = {1e6 + 1e-7, -2e5, 3e5},
+                 b_ok[3] = {1e6 + 1e-5, -2e5, 3e5};
+    dfl_rfunc_seg s;
+    dfl_err err;
+    for (int dim = 2; dim <= 3; dim++) {
+        cr_expect_eq(dfl_rfunc_seg_init(dim, a, b_short, DFL_RFUNC_TRIM_DISK, &s, &err),
+                     DFL_E_INPUT, "dim %d", dim);
+        cr_expect(strstr(err.msg, "degenerate") != NULL, "%s", err.msg);
+        cr_expect_eq(dfl_rfunc_seg_init(dim, a, b_ok, DFL_RFUNC_TRIM_DISK, &s, &err), DFL_OK,
+                     "dim %d", dim);
+    }
+}
