@@ -44,6 +44,23 @@ dfl_status dfl_curve_sdf_new(const dfl_bspline *c, const dfl_foot_opts *opt, dfl
                            0.5 * area);
     }
     S->orient = area > 0.0 ? 1 : -1;
+    const size_t ne = S->poly.n - 1, nch = (ne + DFL_WINDING_CHUNK - 1) / DFL_WINDING_CHUNK;
+    S->chunk_y = malloc((nch ? nch : 1) * 2 * sizeof(double));
+    if (!S->chunk_y) {
+        dfl_curve_sdf_free(S);
+        return dfl_err_set(err, DFL_E_NOMEM, "out of memory for a curve SDF");
+    }
+    for (size_t j = 0; j < nch; j++) {
+        const size_t e0 = j * DFL_WINDING_CHUNK;
+        const size_t e1 = e0 + DFL_WINDING_CHUNK < ne ? e0 + DFL_WINDING_CHUNK : ne;
+        double lo = S->poly.pts[2 * e0 + 1], hi = lo;
+        for (size_t k = e0 + 1; k <= e1; k++) {
+            lo = fmin(lo, S->poly.pts[2 * k + 1]);
+            hi = fmax(hi, S->poly.pts[2 * k + 1]);
+        }
+        S->chunk_y[2 * j] = lo;
+        S->chunk_y[2 * j + 1] = hi;
+    }
     *out = S;
     return DFL_OK;
 }
@@ -53,16 +70,30 @@ void dfl_curve_sdf_free(dfl_curve_sdf *S)
     if (!S) return;
     dfl_curve_locator_free(S->L);
     dfl_polyline_free(&S->poly);
+    free(S->chunk_y);
     free(S);
 }
 
 int dfl_curve_sdf_orientation(const dfl_curve_sdf *S) { return S->orient; }
 
-/* Winding number of the closed polygon around x (Sunday's crossing rule). */
-static int winding(const dfl_polyline *p, const double *x)
+/* Winding number of the closed polygon around x (Sunday's crossing rule).
+ * An edge counts only when one end has y <= x[1] and the other y > x[1],
+ * so a chunk of edges whose ends all lie on one side (max y <= x[1] or
+ * min y > x[1]) adds nothing and is skipped: the same count, from the few
+ * chunks the line y = x[1] crosses. */
+static int winding(const dfl_curve_sdf *S, const double *x)
 {
+    const dfl_polyline *p = &S->poly;
+    const size_t ne = p->n - 1;
     int wn = 0;
-    for (size_t i = 0; i + 1 < p->n; i++) {
+    for (size_t i = 0; i < ne; i++) {
+        if (i % DFL_WINDING_CHUNK == 0) {
+            const double *cy = S->chunk_y + 2 * (i / DFL_WINDING_CHUNK);
+            if (cy[1] <= x[1] || cy[0] > x[1]) {
+                i += DFL_WINDING_CHUNK - 1;
+                continue;
+            }
+        }
         const double *a = p->pts + 2 * i, *b = a + 2;
         double isl = (b[0] - a[0]) * (x[1] - a[1]) - (x[0] - a[0]) * (b[1] - a[1]);
         if (a[1] <= x[1]) {
@@ -87,7 +118,7 @@ void dfl_curve_sdf_from_foot(const dfl_curve_sdf *S, const double *x, const dfl_
     double w[2] = {x[0] - f->p[0], x[1] - f->p[1]};
     int sign;
     if (f->dist > S->poly.bound) {
-        o->winding = winding(&S->poly, x);
+        o->winding = winding(S, x);
         sign = o->winding != 0 ? -1 : 1;
     } else {
         sign = N[0] * w[0] + N[1] * w[1] < 0.0 ? -1 : 1;

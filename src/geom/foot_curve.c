@@ -27,7 +27,8 @@ dfl_status dfl_curve_locator_new(const dfl_bspline *c, const dfl_foot_opts *opt,
     L->ns = nsp * S + (c->closed ? 0 : 1);
     L->ts = malloc(L->ns * sizeof(double));
     L->ps = malloc(L->ns * (size_t)c->dim * sizeof(double));
-    if (!L->ts || !L->ps) {
+    L->ds = malloc(L->ns * 3 * (size_t)c->dim * sizeof(double));
+    if (!L->ts || !L->ps || !L->ds) {
         dfl_curve_locator_free(L);
         return dfl_err_set(err, DFL_E_NOMEM, "out of memory for a curve locator");
     }
@@ -39,7 +40,11 @@ dfl_status dfl_curve_locator_new(const dfl_bspline *c, const dfl_foot_opts *opt,
     }
     if (!c->closed) L->ts[k++] = c->t1;
     assert(k == L->ns);
-    for (size_t i = 0; i < L->ns; i++) dfl_bspline_eval(c, L->ts[i], 0, L->ps + i * (size_t)c->dim);
+    for (size_t i = 0; i < L->ns; i++) {
+        dfl_bspline_eval(c, L->ts[i], 0, L->ps + i * (size_t)c->dim);
+        /* the very evaluation curve_newton starts with, done once here */
+        dfl_bspline_eval(c, dfl_bspline_wrap(c, L->ts[i]), 2, L->ds + i * 3 * (size_t)c->dim);
+    }
     L->size = dfl_foot_extent(c->dim, c->n, c->cp);
     if (o.backend == DFL_FOOT_CERES && (st = dfl_lsq_ctx_new(&L->lsq, err)) != DFL_OK) {
         dfl_curve_locator_free(L);
@@ -54,19 +59,22 @@ void dfl_curve_locator_free(dfl_curve_locator *L)
     if (!L) return;
     free(L->ts);
     free(L->ps);
+    free(L->ds);
     if (L->lsq) dfl_lsq_ctx_free(L->lsq);
     free(L);
 }
 
-/* Damped Newton on g(t) = |C(t) - x|^2 / 2. */
-static void curve_newton(const dfl_bspline *c, const double *x, double t, int maxit,
-                         dfl_curve_foot *f)
+/* Damped Newton on g(t) = |C(t) - x|^2 / 2 from t, where D0 holds C, C',
+ * C'' at dfl_bspline_wrap(c, t).  D[] ends as C, C', C'' at f->t (what
+ * curve_flags needs, so it is not evaluated again). */
+static void curve_newton(const dfl_bspline *c, const double *x, double t, const double *D0,
+                         int maxit, dfl_curve_foot *f, double D[3 * 3])
 {
     const int dim = c->dim;
     const double T = c->t1 - c->t0;
-    double D[3 * 3], Dn[3 * 3], r[3];
+    double Dn[3 * 3], r[3];
     t = dfl_bspline_wrap(c, t);
-    dfl_bspline_eval(c, t, 2, D);
+    memcpy(D, D0, 3 * (size_t)dim * sizeof(double));
     double g = 0.5 * dfl_foot_d2(dim, D, x);
     int it = 0;
     for (; it < maxit; it++) {
@@ -85,6 +93,13 @@ static void curve_newton(const dfl_bspline *c, const double *x, double t, int ma
         const double noise = dfl_foot_g_noise(dim, D, x, g);
         for (int h = 0; h < 60; h++) {
             tn = c->closed ? dfl_bspline_wrap(c, t + step) : fmin(c->t1, fmax(c->t0, t + step));
+            /* a step below rounding of t: tn == t gives gn == g and g1n ==
+             * g1, so this and every shorter step are rejected (or, at a
+             * bound, accepted without moving, which ends the loop below just
+             * the same).  Stopping here ends Newton with the same t, D and
+             * iteration count; evaluating the remaining halvings cost ~35
+             * curve evaluations per converged query. */
+            if (tn == t) break;
             dfl_bspline_eval(c, tn, 2, Dn);
             gn = 0.5 * dfl_foot_d2(dim, Dn, x);
             double rn[3];
@@ -102,7 +117,7 @@ static void curve_newton(const dfl_bspline *c, const double *x, double t, int ma
         if (c->closed && moved > 0.5 * T) moved = T - moved;
         t = tn;
         g = gn;
-        memcpy(D, Dn, sizeof D);
+        memcpy(D, Dn, sizeof Dn);
         if (moved <= 1e-15 * (fabs(t) + T)) break;
     }
     f->t = t;
@@ -192,12 +207,12 @@ static dfl_status curve_ceres(const dfl_curve_locator *L, const double *x, doubl
     return DFL_OK;
 }
 
-static void curve_flags(const dfl_bspline *c, const double *x, dfl_curve_foot *f)
+/* D: C, C', C'' at f->t (dfl_bspline_eval(c, f->t, 2, D)). */
+static void curve_flags(const dfl_bspline *c, const double *x, const double D[3 * 3],
+                        dfl_curve_foot *f)
 {
     const int dim = c->dim;
     if (!c->closed && (f->t <= c->t0 || f->t >= c->t1)) f->flags |= DFL_FOOT_END;
-    double D[3 * 3];
-    dfl_bspline_eval(c, f->t, 2, D);
     double v2 = dfl_vecn_dot(dim, D + dim, D + dim), r[3];
     for (int j = 0; j < dim; j++) r[j] = D[j] - x[j];
     /* g'' = |C'|^2 (1 - kappa d): vanishes at a centre of curvature */
@@ -246,27 +261,32 @@ static int curve_search(const dfl_curve_locator *L, const double *x, dfl_curve_f
     const int dim = c->dim;
     const size_t ns = L->ns;
     dfl_foot_topk tk = {0, L->o.candidates, {0}, {0}, {0}, {0}};
+    /* local minima of the sampled squared distance (neighbours wrap on a
+     * closed curve, are +inf beyond the ends of an open one); each sample's
+     * distance is computed once and carried along (prev, cur, next) */
+    const double first = dfl_foot_d2(dim, L->ps, x);
+    double prev = c->closed ? dfl_foot_d2(dim, L->ps + (ns - 1) * (size_t)dim, x) : INFINITY;
+    double cur = first;
     for (size_t i = 0; i < ns; i++) {
-        double g = dfl_foot_d2(dim, L->ps + i * (size_t)dim, x);
-        double gp =
-            i > 0 ? dfl_foot_d2(dim, L->ps + (i - 1) * (size_t)dim, x)
-                  : (c->closed ? dfl_foot_d2(dim, L->ps + (ns - 1) * (size_t)dim, x) : INFINITY);
-        double gn = i + 1 < ns ? dfl_foot_d2(dim, L->ps + (i + 1) * (size_t)dim, x)
-                               : (c->closed ? dfl_foot_d2(dim, L->ps, x) : INFINITY);
-        if (g <= gp && g <= gn) dfl_foot_topk_insert(&tk, g, 0, i, 0);
+        const double next = i + 1 < ns ? dfl_foot_d2(dim, L->ps + (i + 1) * (size_t)dim, x)
+                                       : (c->closed ? first : INFINITY);
+        if (cur <= prev && cur <= next) dfl_foot_topk_insert(&tk, cur, 0, i, 0);
+        prev = cur;
+        cur = next;
     }
     *st = DFL_OK;
     int n = 0;
     for (int q = 0; q < tk.n; q++) {
         dfl_curve_foot f;
-        double t0 = L->ts[tk.i[q]];
+        double t0 = L->ts[tk.i[q]], D[3 * 3];
         if (L->o.backend == DFL_FOOT_CERES) {
             *st = curve_ceres(L, x, t0, &f, err);
             if (*st != DFL_OK) return 0;
+            dfl_bspline_eval(c, f.t, 2, D);
         } else {
-            curve_newton(c, x, t0, L->o.max_iter, &f);
+            curve_newton(c, x, t0, L->ds + tk.i[q] * 3 * (size_t)dim, L->o.max_iter, &f, D);
         }
-        curve_flags(c, x, &f);
+        curve_flags(c, x, D, &f);
         res[n++] = f;
     }
     const basin_ctx bc = {c, x, res};

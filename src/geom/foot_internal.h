@@ -17,6 +17,7 @@ struct dfl_curve_locator {
     dfl_foot_opts o;
     size_t ns;
     double *ts, *ps;     /* sample parameters and points */
+    double *ds;          /* C, C', C'' at each wrapped ts (3 * dim each): Newton's start */
     double size;         /* extent of the control polygon */
     dfl_lsq_ctx *lsq;    /* ceres backend only */
 };
@@ -25,8 +26,11 @@ struct dfl_curve_sdf {
     const dfl_bspline *c;
     dfl_curve_locator *L;
     dfl_polyline poly;   /* certified polygon for the winding number */
+    double *chunk_y;     /* per DFL_WINDING_CHUNK edges of poly: min y, max y of their ends */
     int orient;          /* +1 counter-clockwise */
 };
+/* Edges of the winding polygon per y-range chunk (curve_sdf.c). */
+#define DFL_WINDING_CHUNK 16
 
 /* |a - b|^2 over n coordinates, summed from 0.0 in order. */
 static inline double dfl_foot_d2(int n, const double *a, const double *b)

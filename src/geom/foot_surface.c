@@ -162,6 +162,10 @@ static void surface_newton(const dfl_surface *s, const double *x, double u, doub
         for (int h = 0; h < 60; h++) {
             un = clampd(u + du, s->u0, s->u1);
             vn = clampd(v + dv, s->v0, s->v1);
+            /* no move within rounding: gn == g and pgn == pg reject this
+             * and every shorter step, so stop without evaluating them (the
+             * same u, v, D and iteration count as the full 60 halvings) */
+            if (un == u && vn == v) break;
             dfl_surface_eval(s, un, vn, 2, Dn);
             gn = 0.5 * dfl_foot_d2(3, Dn, x);
             double rn[3];

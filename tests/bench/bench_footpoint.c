@@ -13,6 +13,7 @@
 #include "bench.h"
 #include "core/rng.h"
 #include "core/vec.h"
+#include "geom/curve_sdf.h"
 #include "geom/footpoint.h"
 #include "geom/implicit.h"
 #include "geom/surface.h"
@@ -79,9 +80,81 @@ static void compare_backends(const char *name, foot_job job[2])
     bench_report(col, fabs(job[0].sum - job[1].sum) / NPTS, "units");
 }
 
+/* bspline_sdf: exact signed distances (value and gradient, what a PHT fit
+ * samples) of sjp10's convex curve (configs/shapes/sjp10_convex.ini: a
+ * periodic cubic, 8 control points) against plain curve evaluations
+ * (position at a parameter) on the same thread.  ratio = SDF queries/s ÷
+ * curve evaluations/s; its inverse is the cost of one exact query in curve
+ * evaluations (issue 19's aim: <= 20). */
+#define NCURVE 20000
+typedef struct curve_job {
+    const dfl_curve_sdf *S;
+    const dfl_bspline *c;
+    const double *pts; /* NCURVE points (SDF) or NCURVE parameters in pts[2i] */
+    double sum;
+} curve_job;
+
+static void run_sdf(void *a)
+{
+    curve_job *j = a;
+    j->sum = 0;
+    for (int i = 0; i < NCURVE; i++) {
+        dfl_curve_sdf_val v;
+        if (dfl_curve_sdf_eval(j->S, j->pts + 2 * i, 1, &v, NULL) == DFL_OK) j->sum += v.d;
+    }
+}
+
+static void run_curve_eval(void *a)
+{
+    curve_job *j = a;
+    j->sum = 0;
+    for (int i = 0; i < NCURVE; i++) {
+        double p[2];
+        dfl_bspline_eval(j->c, j->pts[2 * i], 0, p);
+        j->sum += p[0];
+    }
+}
+
+static void bench_curve_sdf(bench_ctx *ctx)
+{
+    static const double cp[] = {0.5, 0.12, 0.78, 0.18, 0.9,  0.45, 0.82, 0.75,
+                                0.55, 0.9, 0.3,  0.84, 0.14, 0.58, 0.2,  0.26};
+    dfl_bspline c;
+    dfl_curve_sdf *S = NULL;
+    dfl_err err;
+    if (dfl_bspline_init_periodic(2, 4, 8, cp, NULL, 0, &c, &err) != DFL_OK ||
+        dfl_curve_sdf_new(&c, NULL, &S, &err) != DFL_OK) {
+        fprintf(stderr, "bench_footpoint: %s\n", err.msg);
+        return;
+    }
+    double *pts = malloc(2 * NCURVE * sizeof *pts), *ts = malloc(2 * NCURVE * sizeof *ts);
+    if (!pts || !ts) {
+        fprintf(stderr, "bench_footpoint: out of memory\n");
+        free(pts), free(ts), dfl_curve_sdf_free(S), dfl_bspline_free(&c);
+        return;
+    }
+    uint64_t seed = 11;
+    for (int i = 0; i < NCURVE; i++) {
+        pts[2 * i] = dfl_rng_splitmix(&seed, 0.0, 1.0); /* the unit square, as sjp10 */
+        pts[2 * i + 1] = dfl_rng_splitmix(&seed, 0.0, 1.0);
+        ts[2 * i] = dfl_rng_splitmix(&seed, c.t0, c.t1);
+    }
+    curve_job js = {S, &c, pts, 0}, jc = {S, &c, ts, 0};
+    const double sdf = NCURVE / bench_best(3, run_sdf, &js);
+    const double ev = NCURVE / bench_best(3, run_curve_eval, &jc);
+    bench_report("footpoint.bspline_sdf.queries", sdf, "queries/s");
+    bench_report("footpoint.bspline_sdf.curve_evals", ev, "evaluations/s");
+    bench_report("footpoint.bspline_sdf.evals_per_query", ev / sdf, "evaluations");
+    bench_summary_add(ctx, "bspline_sdf", sdf, "curve evaluations/s (same thread)", ev, sdf / ev,
+                      NAN);
+    free(pts), free(ts);
+    dfl_curve_sdf_free(S);
+    dfl_bspline_free(&c);
+}
+
 void bench_footpoint(bench_ctx *ctx)
 {
-    (void)ctx;
+    bench_curve_sdf(ctx);
     double pts[3 * NPTS];
     unsigned seed = 7;
     dfl_err err;

@@ -53,9 +53,9 @@ static void run_brute(void *arg)
     }
 }
 
-void bench_mesh(bench_ctx *c)
+void bench_mesh(bench_ctx *ctx)
 {
-    (void)c;
+    (void)ctx;
     dfl_trimesh m;
     dfl_err err;
     double t0 = dfl_wall_seconds();
