@@ -109,7 +109,8 @@ dfl_status dfl_jet_sqrt(const dfl_jet *a, dfl_jet *out, dfl_err *err);
  * valuation round(v*e), relative precision n.  An integer-valued e (exactly)
  * is handed to dfl_jet_powi, so any sign of c[0] is then accepted.  A zero
  * jet to a positive power is a zero jet (the exact zero stays exact); a zero
- * jet to a power e <= 0 is an error. */
+ * jet to a negative power is an error, and to the power 0 (an integer, so
+ * dfl_jet_powi's rule) the constant 1. */
 dfl_status dfl_jet_pow(const dfl_jet *a, double e, dfl_jet *out, dfl_err *err);
 /* a^e for integer e (any sign of c[0]; e < 0 needs a non-zero jet).
  * a^0 is the constant 1 with a's n. */

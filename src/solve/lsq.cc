@@ -16,6 +16,7 @@
 #include <exception>
 #include <mutex>
 #include <new>
+#include <algorithm>
 #include <vector>
 
 struct dfl_lsq_ctx {
@@ -135,6 +136,27 @@ dfl_status dfl_lsq_solve(dfl_lsq_ctx *ctx, int n, int m, dfl_lsq_residual_fn fn,
             return dfl_err_set(err, DFL_E_INPUT, "lsq: start x[%d] = %g outside [%g, %g]", j,
                                x[j], l, h);
     }
+    // Coordinates with lo == hi are held (Ceres refuses an upper bound equal
+    // to the lower one as infeasible): fixed in every round, never bounded.
+    std::vector<int> pinned;
+    for (int j = 0; j < n; j++)
+        if (lo && hi && lo[j] == hi[j]) pinned.push_back(j);
+    if ((int)pinned.size() == n) {
+        double r[kMaxResiduals];
+        if (fn(user, x, r, nullptr) != 0)
+            return dfl_err_set(err, DFL_E_NUMERIC, "lsq: the residual failed at the start");
+        if (res) {
+            double c = 0.0;
+            for (int i = 0; i < m; i++) c += r[i] * r[i];
+            res->final_cost = 0.5 * c;
+            res->iterations = 0;
+            res->converged = 1;
+        }
+        return DFL_OK;
+    }
+    auto is_pinned = [&](int j) {
+        return std::find(pinned.begin(), pinned.end(), j) != pinned.end();
+    };
     try {
         ceres::Solver::Options so;
         so.minimizer_type = ceres::TRUST_REGION;
@@ -148,7 +170,7 @@ dfl_status dfl_lsq_solve(dfl_lsq_ctx *ctx, int n, int m, dfl_lsq_residual_fn fn,
         so.parameter_tolerance = o.parameter_tolerance;
         so.num_threads = 1;
         ceres::Solver::Summary summary;
-        std::vector<int> fixed;
+        std::vector<int> fixed = pinned;
         int total_iter = 0;
         bool converged = true;
         // Round 0 solves with the box.  Ceres projects its steps onto the box,
@@ -168,6 +190,7 @@ dfl_status dfl_lsq_solve(dfl_lsq_ctx *ctx, int n, int m, dfl_lsq_residual_fn fn,
             problem.AddResidualBlock(&cost, nullptr, x);
             if (!fixed.empty()) problem.SetManifold(x, new ceres::SubsetManifold(n, fixed));
             for (int j = 0; j < n; j++) {
+                if (is_pinned(j)) continue;
                 if (lo && std::isfinite(lo[j])) problem.SetParameterLowerBound(x, j, lo[j]);
                 if (hi && std::isfinite(hi[j])) problem.SetParameterUpperBound(x, j, hi[j]);
             }
@@ -188,8 +211,9 @@ dfl_status dfl_lsq_solve(dfl_lsq_ctx *ctx, int n, int m, dfl_lsq_residual_fn fn,
             std::vector<int> next;
             for (int j = 0; j < n; j++) {
                 bool at_lo = lo && x[j] <= lo[j], at_hi = hi && x[j] >= hi[j];
-                // active and pushing outwards: keep it fixed
-                if ((at_lo && g[j] >= 0.0) || (at_hi && g[j] <= 0.0)) next.push_back(j);
+                // held, or active and pushing outwards: keep it fixed
+                if (is_pinned(j) || (at_lo && g[j] >= 0.0) || (at_hi && g[j] <= 0.0))
+                    next.push_back(j);
             }
             if ((int)next.size() == n || next == fixed) break;
             fixed = next;

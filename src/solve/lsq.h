@@ -49,7 +49,12 @@ void dfl_lsq_ctx_free(dfl_lsq_ctx *ctx);
 
 /* Minimizes 0.5*|r(x)|^2 over x (n <= 16, m <= 64) starting from x, with
  * lo[j] <= x[j] <= hi[j] when lo/hi are not NULL (use +-HUGE_VAL for a free
- * coordinate).  x is overwritten by the solution.  opt may be NULL. */
+ * coordinate; lo[j] == hi[j] holds x[j] at that value, and when every
+ * coordinate is held the result is the cost at x after 0 iterations).
+ * x is overwritten by the solution.  opt may be NULL.  DFL_E_INPUT for
+ * sizes out of range, an empty bound (lo[j] > hi[j] or NaN) or a start
+ * outside the box; DFL_E_NUMERIC when Ceres fails.  res->iterations counts
+ * the iterations of every round of a bounded solve. */
 dfl_status dfl_lsq_solve(dfl_lsq_ctx *ctx, int n, int m, dfl_lsq_residual_fn fn, void *user,
                          const double *lo, const double *hi, const dfl_lsq_options *opt,
                          double *x, dfl_lsq_result *res, dfl_err *err);

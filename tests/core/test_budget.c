@@ -85,6 +85,11 @@ Test(budget, meminfo_fields_and_default_without_cgroup)
     cr_expect(isnan(dfl_budget_meminfo(&p, "Mem")), "a prefix is not a field");
     cr_expect_eq(dfl_budget_memory_default_at(&p), 0.5 * 16000000.0 * 1024);
     tmpdir_remove(dir);
+    /* a longer field that starts with the name is not the field: the name
+     * must be followed by ':' */
+    fake(dir, sizeof dir, "0::/\n", "MemTotalX: 77 kB\nMemTotal: 1000 kB\n", &p, pc, root, mi);
+    cr_expect_eq(dfl_budget_meminfo(&p, "MemTotal"), 1000.0 * 1024);
+    tmpdir_remove(dir);
     /* MemAvailable below half the total caps the default */
     fake(dir, sizeof dir, "0::/\n", "MemTotal: 1000 kB\nMemAvailable: 100 kB\n", &p, pc, root,
          mi);
@@ -166,4 +171,69 @@ Test(budget, real_cgroup_v2)
     cr_assert(ok, "could not set %s", path);
     cr_assert_eq(got, (ssize_t)sizeof v);
     cr_expect_leq(v, 0.5 * 1610612736.0, "default budget %g above half the cgroup's 1.5 GiB", v);
+}
+
+/* read_limit: "values >= 2^60 = no limit" (budget.h), so 2^60 itself is no
+ * limit while the double just below it (2^60 - 128, written out exactly)
+ * still is one. */
+Test(budget, limit_of_2_pow_60_is_no_limit)
+{
+    char dir[64], pc[4096], root[4096], mi[4096];
+    dfl_budget_paths p;
+    fake(dir, sizeof dir, "0::/g\n", MEM, &p, pc, root, mi);
+    tmpdir_write(dir, "cg/g/memory.max", "1152921504606846976\n", NULL, 0); /* 2^60 */
+    cr_expect(isinf(dfl_budget_cgroup_limit(&p)), "2^60 is no limit");
+    tmpdir_write(dir, "cg/g/memory.max", "1152921504606846848\n", NULL, 0); /* 2^60 - 128 */
+    cr_expect_eq(dfl_budget_cgroup_limit(&p), 0x1p60 - 128);
+    tmpdir_remove(dir);
+}
+
+/* The work key names the largest contribution in seconds (evaluations times
+ * the class's time per evaluation), not in evaluations: with the table's
+ * times, 1e3 footpoints outweigh 1e6 cheap evaluations. */
+Test(budget, work_key_is_the_largest_in_seconds)
+{
+    const double cheap = 1e6 * dfl_cost_class_seconds(DFL_COST_CHEAP);
+    const double foot = 1e3 * dfl_cost_class_seconds(DFL_COST_FOOTPOINT);
+    cr_assert_gt(foot, cheap, "the premise: fewer footpoints take longer");
+    dfl_cost c = {0};
+    dfl_cost_add_work(&c, "eval", "n", DFL_COST_CHEAP, 1e6, "lookups");
+    dfl_cost_add_work(&c, "case", "feet", DFL_COST_FOOTPOINT, 1e3, "footpoints");
+    cr_expect_str_eq(c.work_key, "feet");
+    cr_expect_str_eq(c.work_what, "footpoints");
+    cr_expect_eq(c.big_seconds, foot);
+}
+
+/* add_step: steps run one after another, so the bytes are the larger of the
+ * two (with that step's key) and the work adds up; add_cost: held at the
+ * same time, bytes and work add up (budget.h). */
+Test(budget, steps_keep_the_largest_held_costs_add_up)
+{
+    dfl_cost a = {0}, b = {0}, small = {0};
+    dfl_cost_add_bytes(&a, "case", "a", 500, "case a");
+    dfl_cost_add_work(&a, "case", "a", DFL_COST_EXACT, 100, "a");
+    dfl_cost_add_bytes(&b, "case", "b", 2000, "case b");
+    dfl_cost_add_work(&b, "case", "b", DFL_COST_EXACT, 300, "b");
+    dfl_cost_add_bytes(&small, "case", "c", 10, "case c");
+    dfl_cost_add_work(&small, "case", "c", DFL_COST_CHEAP, 7, "c");
+    /* both orders: the larger step's bytes and key win */
+    for (int order = 0; order < 2; order++) {
+        dfl_cost seq = {0};
+        dfl_cost_add_step(&seq, order ? &b : &a);
+        dfl_cost_add_step(&seq, order ? &a : &b);
+        dfl_cost_add_step(&seq, &small);
+        cr_expect_eq(seq.bytes, 2000, "order %d", order);
+        cr_expect_str_eq(seq.mem_key, "b", "order %d", order);
+        cr_expect_eq(seq.evals[DFL_COST_EXACT], 400, "order %d", order);
+        cr_expect_eq(seq.evals[DFL_COST_CHEAP], 7, "order %d", order);
+        /* the sequence held alongside a grid: bytes add, the step still names */
+        dfl_cost held = {0};
+        dfl_cost_add_bytes(&held, "grid", "n", 1000, "a grid");
+        dfl_cost_add_work(&held, "grid", "n", DFL_COST_EXACT, 1, "grid");
+        dfl_cost_add_cost(&held, &seq);
+        cr_expect_eq(held.bytes, 3000, "order %d", order);
+        cr_expect_str_eq(held.mem_key, "b", "order %d", order);
+        cr_expect_eq(held.evals[DFL_COST_EXACT], 401, "order %d", order);
+        cr_expect_eq(held.evals[DFL_COST_CHEAP], 7, "order %d", order);
+    }
 }

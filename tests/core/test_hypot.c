@@ -28,3 +28,33 @@ Test(hypot, vectors_nest)
     cr_assert_eq(dfl_hypot_vec(3, w3), 3.0);
     cr_assert_eq(dfl_hypot_vec(3, w), dfl_hypot2(dfl_hypot2(w[0], w[1]), w[2]));
 }
+
+/* Below 1e-290 the square sum has lost bits to underflow, which is why
+ * dfl_hypot2 is libm's hypot there (hypot.h): 3e-160 and 4e-160 square to
+ * about 2.5e-319, a subnormal with a few significant digits, while the
+ * length is 5e-160 to within rounding. */
+Test(hypot, subnormal_square_sum_uses_hypot)
+{
+    const double a = 3e-160, b = 4e-160, s = a * a + b * b;
+    cr_assert(s > 0.0 && s < 1e-290, "the premise: a tiny non-zero square sum");
+    cr_assert_eq(dfl_hypot2(a, b), hypot(a, b));
+    cr_assert(fabs(dfl_hypot2(a, b) - 5e-160) <= 4e-16 * 5e-160, "%.17g", dfl_hypot2(a, b));
+}
+
+/* dfl_hypot_vec(3, w) rounds the inner length first (hypot.h), which is not
+ * always the three-term square root: over random vectors it must equal the
+ * nested form every time, and the two forms must differ for some of them
+ * (else this test could not tell them apart). */
+Test(hypot, vectors_nest_bit_for_bit)
+{
+    uint64_t s = 11;
+    int differ = 0;
+    for (int it = 0; it < 2000; it++) {
+        double w[3];
+        for (int j = 0; j < 3; j++) w[j] = dfl_rng_splitmix(&s, -10, 10);
+        const double nested = dfl_hypot2(dfl_hypot2(w[0], w[1]), w[2]);
+        cr_assert_eq(dfl_hypot_vec(3, w), nested, "it %d", it);
+        differ += nested != sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    }
+    cr_assert_gt(differ, 0);
+}

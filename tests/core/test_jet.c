@@ -867,3 +867,41 @@ Test(jet, dir_call_checks_then_dispatches)
     cr_assert_eq(dfl_jet_coeff(&out, 1), 5.0);
     cr_assert_eq(dfl_jet_order(&out), 5);
 }
+
+/* A zero known below s^0 (P = 0, from O(s^7) * s^-7) is stored with
+ * v = min(0, P - 1) = -1 and n = P - v = 1 (jet.h); exp needs its argument
+ * known at s = 0 (precision >= 1), so exp of it fails and leaves out alone,
+ * while exp(O(s^1)) = 1 + O(s). */
+Test(jet, zero_of_precision_zero)
+{
+    dfl_jet z, s, sp, a, out, one;
+    dfl_jet_const(0.0, 6, &z); /* O(s^7) */
+    dfl_jet_linear(0.0, 1.0, DFL_JET_MAX, &s);
+    OK(dfl_jet_powi(&s, -7, &sp, &e_));
+    dfl_jet_mul(&z, &sp, &a);
+    cr_assert(a.zero && a.v == -1 && a.n == 1, "v %d n %d", a.v, a.n);
+    cr_assert_eq(dfl_jet_order(&a), -1);
+    dfl_jet_const(3.0, 4, &out);
+    const dfl_jet keep = out;
+    dfl_err err;
+    FAILS(dfl_jet_exp(&a, &out, &err), &err);
+    cr_assert(same(&out, &keep));
+    dfl_jet_const(0.0, 0, &z); /* O(s^1) */
+    OK(dfl_jet_exp(&z, &one, &e_));
+    cr_assert(!one.zero && one.v == 0 && one.c[0] == 1.0 && dfl_jet_order(&one) == 0);
+}
+
+/* Valuations are limited to |v| <= 2^20 (jet.h): s^e is a jet for
+ * |e| = 2^20 and DFL_E_NUMERIC for |e| = 2^20 + 1, on both signs. */
+Test(jet, powi_valuation_limit)
+{
+    dfl_jet s, r;
+    dfl_err err;
+    dfl_jet_linear(0.0, 1.0, DFL_JET_MAX, &s);
+    OK(dfl_jet_powi(&s, 1 << 20, &r, &e_));
+    cr_assert(r.v == 1 << 20 && r.c[0] == 1.0);
+    OK(dfl_jet_powi(&s, -(1 << 20), &r, &e_));
+    cr_assert(r.v == -(1 << 20) && r.c[0] == 1.0);
+    FAILS(dfl_jet_powi(&s, (1 << 20) + 1, &r, &err), &err);
+    FAILS(dfl_jet_powi(&s, -(1 << 20) - 1, &r, &err), &err);
+}

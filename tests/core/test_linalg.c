@@ -91,3 +91,37 @@ Test(linalg, sym2_eigen_is_a_decomposition)
     cr_assert_float_eq(hi, 3.0, 1e-15);
     cr_assert_float_eq(th, 0.25 * DFL_PI, 1e-15);
 }
+
+/* A pivot is accepted only if |pivot| > tol * max |A_ij| (linalg.h): the
+ * test is relative to the matrix, so a well-conditioned matrix scaled by
+ * 1e-20 factors with tol = 1e-13, and it is strict, so a pivot exactly at
+ * tol * max (and a zero pivot with tol = 0) is refused. */
+Test(linalg, pivot_tolerance_is_relative_and_strict)
+{
+    int piv[2];
+    double A[4] = {1e-20, 0, 0, 2e-20}, b[2] = {1e-20, 4e-20};
+    cr_assert_eq(dfl_lu_factor(2, A, piv, 1e-13, NULL), DFL_OK);
+    dfl_lu_solve(2, A, piv, b);
+    cr_assert(b[0] == 1.0 && b[1] == 2.0, "x = %.17g %.17g", b[0], b[1]);
+    /* max |A_ij| = 1, pivot 0.5: refused at tol 0.5, accepted just below */
+    cr_assert_eq(dfl_lu_factor(2, (double[]){1, 0, 0, 0.5}, piv, 0.5, NULL), DFL_E_NUMERIC);
+    cr_assert_eq(dfl_lu_factor(2, (double[]){1, 0, 0, 0.5}, piv, 0.25, NULL), DFL_OK);
+    /* max |A_ij| = 4: pivot 1 is exactly 0.25 * 4 */
+    cr_assert_eq(dfl_lu_factor(2, (double[]){4, 0, 0, 1}, piv, 0.25, NULL), DFL_E_NUMERIC);
+    cr_assert_eq(dfl_lu_factor(2, (double[]){1, 0, 0, 0}, piv, 0.0, NULL), DFL_E_NUMERIC);
+}
+
+/* Partial pivoting: step k swaps in the row i >= k with the largest |A_ik|,
+ * and piv[k] names it.  Column 0 of A is (1, 3, -7): piv[0] = 2.  After the
+ * swap and elimination, column 1 below the diagonal holds 1 (row 1, from
+ * 1 - (3/-7) 0) and 2 (row 2, the old row 0: 2 - (1/-7) 0): piv[1] = 2. */
+Test(linalg, partial_pivoting_takes_the_largest)
+{
+    double A[9] = {1, 2, 0, 3, 1, 1, -7, 0, 2};
+    int piv[3];
+    cr_assert_eq(dfl_lu_factor(3, A, piv, 1e-13, NULL), DFL_OK);
+    cr_assert_eq(piv[0], 2);
+    cr_assert_eq(piv[1], 2);
+    cr_assert_eq(piv[2], 2);
+    cr_assert_eq(A[0], -7.0); /* U's first row is the old row 2 */
+}

@@ -35,6 +35,8 @@ Test(series, products_and_sums)
     dfl_series_add(&a, &b, 4, &r);
     cr_assert_eq(r.c[0], 4.0);
     cr_assert_eq(r.c[3], 0.0);
+    /* coefficient K itself is summed (0..K inclusive): a4 + b4 = 1 + 0 */
+    cr_assert_eq(r.c[4], 1.0);
     dfl_series_axpy(-2.0, &b, 3, &r);
     cr_assert_eq(r.c[0], -2.0);
     cr_assert_eq(r.c[3], -8.0);

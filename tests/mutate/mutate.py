@@ -91,10 +91,16 @@ def sync_tree():
         s, d = os.path.join(ROOT, rel), os.path.join(TREE, rel)
         if not os.path.isfile(s):
             continue
-        if os.path.exists(d) and open(s, "rb").read() == open(d, "rb").read():
+        if os.path.exists(d):
+            if open(s, "rb").read() == open(d, "rb").read():
+                continue
+            # a changed file gets the time of the copy: its source may be
+            # older than the object the tree built from the last copy
+            shutil.copy(s, d)
+            os.utime(d)
             continue
         os.makedirs(os.path.dirname(d), exist_ok=True)
-        shutil.copy2(s, d)
+        shutil.copy2(s, d)  # a new tree: times kept, so the seeded objects hold
 
 
 def build(log):

@@ -192,3 +192,161 @@ Test(lsq, shared_context_across_threads)
     cr_assert_eq(bad, 0);
     dfl_lsq_ctx_free(ctx);
 }
+
+/* The defaults lsq.h documents. */
+Test(lsq, documented_defaults)
+{
+    dfl_lsq_options o;
+    dfl_lsq_options_default(&o);
+    cr_expect_eq(o.max_iterations, 100);
+    cr_expect_eq(o.function_tolerance, 1e-16);
+    cr_expect_eq(o.gradient_tolerance, 1e-16);
+    cr_expect_eq(o.parameter_tolerance, 1e-14);
+}
+
+/* r_i = x_(i mod 16) - (i mod 16), i < 64: the least-squares solution is
+ * x_j = j.  Sizes n <= 16, m <= 64 are inclusive (lsq.h). */
+static int sixteen(void *user, const double *x, double *r, double *J)
+{
+    const int n = *(const int *)user;
+    for (int i = 0; i < 64; i++) {
+        r[i] = x[i % n] - i % n;
+        if (J)
+            for (int j = 0; j < n; j++) J[i * n + j] = j == i % n;
+    }
+    return 0;
+}
+
+Test(lsq, largest_sizes_are_accepted)
+{
+    dfl_lsq_ctx *ctx;
+    cr_assert_eq(dfl_lsq_ctx_new(&ctx, NULL), DFL_OK);
+    dfl_err err;
+    int n = 16;
+    double x[17] = {0};
+    cr_assert_eq(dfl_lsq_solve(ctx, 16, 64, sixteen, &n, NULL, NULL, NULL, x, NULL, &err), DFL_OK,
+                 "%s", err.msg);
+    for (int j = 0; j < 16; j++) cr_expect(fabs(x[j] - j) < 1e-10, "x%d = %.17g", j, x[j]);
+    n = 17;
+    cr_expect_eq(dfl_lsq_solve(ctx, 17, 64, sixteen, &n, NULL, NULL, NULL, x, NULL, &err),
+                 DFL_E_INPUT);
+    dfl_lsq_ctx_free(ctx);
+}
+
+/* The box is inclusive, lo[j] <= x[j] <= hi[j] (lsq.h), and is checked for
+ * every coordinate: a start on the bound is inside (quad's solution is
+ * (1, 0.4) from there too), a start outside in the second coordinate only
+ * is DFL_E_INPUT naming x[1]. */
+Test(lsq, start_on_the_bound_and_every_coordinate_checked)
+{
+    dfl_lsq_ctx *ctx;
+    cr_assert_eq(dfl_lsq_ctx_new(&ctx, NULL), DFL_OK);
+    dfl_err err;
+    double lo[2] = {-HUGE_VAL, 0.0}, hi[2] = {1.0, HUGE_VAL};
+    double x[2] = {1.0, 0.0}; /* both coordinates on their bound */
+    cr_assert_eq(dfl_lsq_solve(ctx, 2, 3, quad, NULL, lo, hi, NULL, x, NULL, &err), DFL_OK, "%s",
+                 err.msg);
+    cr_expect(fabs(x[0] - 1.0) < 1e-10 && fabs(x[1] - 0.4) < 1e-10, "x = %.17g %.17g", x[0],
+              x[1]);
+    /* y[1] = 2 lies in x[0]'s box [0, 10] but not in its own [3, 4] */
+    double blo[2] = {0, 3}, bhi[2] = {10, 4}, y[2] = {0.5, 2.0};
+    cr_expect_eq(dfl_lsq_solve(ctx, 2, 3, quad, NULL, blo, bhi, NULL, y, NULL, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "x[1]"), "%s", err.msg);
+    dfl_lsq_ctx_free(ctx);
+}
+
+/* lo[j] == hi[j] is a box of one point, not an empty one (lo <= x <= hi,
+ * lsq.h): it must not be refused as an empty bound.  When the solve
+ * succeeds, y is held at 0.4 and x takes its constrained optimum, which for
+ * quad at y = 0.4 is x = 1 (d/dx at x = 1 is -4.8 < 0, see quad).  (Today
+ * Ceres itself refuses lower == upper as an infeasible bound, so the solve
+ * ends in DFL_E_NUMERIC "Ceres failed": a bug of the adapter, which should
+ * hold such a coordinate fixed instead of passing the bounds on.) */
+Test(lsq, equal_bounds_are_not_empty)
+{
+    dfl_lsq_ctx *ctx;
+    cr_assert_eq(dfl_lsq_ctx_new(&ctx, NULL), DFL_OK);
+    dfl_err err;
+    dfl_err_clear(&err);
+    double lo[2] = {-HUGE_VAL, 0.4}, hi[2] = {1.0, 0.4}, x[2] = {0.0, 0.4};
+    /* lsq.h: lo == hi holds the coordinate.  With x1 = 0.4 the cost
+     * (x0 - 2)^2 + (x0 - 6.6)^2 / 4 falls until x0 = 2.92, so the bound
+     * x0 <= 1 is active: x = (1, 0.4) */
+    const dfl_status st = dfl_lsq_solve(ctx, 2, 3, quad, NULL, lo, hi, NULL, x, NULL, &err);
+    cr_assert_eq(st, DFL_OK, "%s", err.msg);
+    cr_expect_eq(x[1], 0.4);
+    cr_expect(fabs(x[0] - 1.0) < 1e-10, "x = %.17g", x[0]);
+    /* every coordinate held: 0 iterations, the cost at x, r = (-1, 1.4, -2.8):
+     * 0.5 (1 + 1.96 + 7.84) = 5.4 */
+    double lo2[2] = {1.0, 0.4}, hi2[2] = {1.0, 0.4}, x2[2] = {1.0, 0.4};
+    dfl_lsq_result res;
+    cr_assert_eq(dfl_lsq_solve(ctx, 2, 3, quad, NULL, lo2, hi2, NULL, x2, &res, &err), DFL_OK,
+                 "%s", err.msg);
+    cr_expect(x2[0] == 1.0 && x2[1] == 0.4);
+    cr_expect_eq(res.iterations, 0);
+    cr_expect(res.converged);
+    cr_expect(fabs(res.final_cost - 5.4) < 1e-14, "cost %.17g", res.final_cost);
+    dfl_lsq_ctx_free(ctx);
+}
+
+/* converged is 1 only when Ceres reports CONVERGENCE (lsq.h): one
+ * iteration from Rosenbrock's standard start cannot reach (1, 1).
+ * final_cost is 0.5 |r|^2 at the returned x. */
+Test(lsq, converged_and_final_cost_mean_what_they_say)
+{
+    dfl_lsq_ctx *ctx;
+    cr_assert_eq(dfl_lsq_ctx_new(&ctx, NULL), DFL_OK);
+    dfl_err err;
+    dfl_lsq_options o;
+    dfl_lsq_options_default(&o);
+    o.max_iterations = 1;
+    double x[2] = {-1.2, 1.0}, r[3];
+    dfl_lsq_result res;
+    cr_assert_eq(dfl_lsq_solve(ctx, 2, 2, rosenbrock, NULL, NULL, NULL, &o, x, &res, &err), DFL_OK,
+                 "%s", err.msg);
+    cr_expect_eq(res.converged, 0);
+    rosenbrock(NULL, x, r, NULL);
+    double want = 0.5 * (r[0] * r[0] + r[1] * r[1]);
+    cr_expect(fabs(res.final_cost - want) <= 1e-12 * want, "%.17g vs %.17g", res.final_cost, want);
+    /* a bounded solve: the cost at the constrained optimum */
+    double lo[2] = {-HUGE_VAL, 0.0}, hi[2] = {1.0, HUGE_VAL}, y[2] = {0.0, 0.5};
+    cr_assert_eq(dfl_lsq_solve(ctx, 2, 3, quad, NULL, lo, hi, NULL, y, &res, &err), DFL_OK, "%s",
+                 err.msg);
+    quad(NULL, y, r, NULL);
+    want = 0.5 * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+    cr_expect(fabs(res.final_cost - want) <= 1e-12 * want, "%.17g vs %.17g", res.final_cost, want);
+    cr_expect_eq(res.converged, 1);
+    dfl_lsq_ctx_free(ctx);
+}
+
+/* res->iterations counts the Ceres iterations of every round of a bounded
+ * solve, not only the last one.  Ceres evaluates the residuals alone (no
+ * Jacobian) once at a round's start and once per trial step, and each of
+ * these is one entry of its iteration summary; the adapter's own KKT
+ * evaluations ask for the Jacobian.  So iterations >= the callback's
+ * evaluations without J over the whole solve.  Rosenbrock with x0 <= 0.5
+ * makes the first round long (from (-1.2, 1)) and the last one short (x0
+ * fixed, the rest linear in x1), so the last round alone falls short. */
+static int rosenbrock_counted(void *user, const double *x, double *r, double *J)
+{
+    if (!J) ++*(int *)user;
+    return rosenbrock(NULL, x, r, J);
+}
+
+Test(lsq, iterations_count_every_round)
+{
+    dfl_lsq_ctx *ctx;
+    cr_assert_eq(dfl_lsq_ctx_new(&ctx, NULL), DFL_OK);
+    dfl_err err;
+    int plain = 0;
+    double lo[2] = {-HUGE_VAL, -HUGE_VAL}, hi[2] = {0.5, HUGE_VAL}, x[2] = {-1.2, 1.0};
+    dfl_lsq_result res;
+    cr_assert_eq(dfl_lsq_solve(ctx, 2, 2, rosenbrock_counted, &plain, lo, hi, NULL, x, &res, &err),
+                 DFL_OK, "%s", err.msg);
+    /* the constrained optimum: x0 = 0.5 on its bound, x1 = x0^2 */
+    cr_expect(fabs(x[0] - 0.5) < 1e-10 && fabs(x[1] - 0.25) < 1e-10, "x = %.17g %.17g", x[0],
+              x[1]);
+    cr_expect_geq(res.iterations, plain, "%d iterations, %d evaluations without J",
+                  res.iterations, plain);
+    dfl_lsq_ctx_free(ctx);
+}
