@@ -270,3 +270,21 @@ Test(isoline, bad_input)
     cr_expect_eq(dfl_iso_refine(&iso, &f2, 0.0, 5, &err), DFL_E_INPUT);
     dfl_iso_free(&iso);
 }
+
+/* isoline.h: a node is "above" when val >= level, so a node exactly at the
+ * level with every other node above is no crossing (no line), and with
+ * every other node below it is the above corner of one segment. */
+Test(isoline, node_at_the_level_is_above)
+{
+    dfl_grid g = {2, {2, 2, 1}, {0, 0, 0}, {1, 1, 0}};
+    dfl_err err;
+    dfl_iso iso;
+    const double up[4] = {0.0, 1.0, 1.0, 1.0};
+    cr_assert_eq(dfl_iso_lines(&g, up, 0.0, &iso, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(iso.nlines, 0);
+    dfl_iso_free(&iso);
+    const double down[4] = {0.0, -1.0, -1.0, -1.0};
+    cr_assert_eq(dfl_iso_lines(&g, down, 0.0, &iso, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(iso.nlines, 1);
+    dfl_iso_free(&iso);
+}

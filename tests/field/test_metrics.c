@@ -397,3 +397,16 @@ Test(metrics, same_bits_at_any_thread_count)
     omp_set_num_threads(1);
     free(u), free(r), free(g);
 }
+
+/* metrics.h: relative bias = mean ((u - d) / |d|): the error's sign is
+ * kept and the divisor is |d|, so inside (d < 0) a field that is too large
+ * (u > d) has a positive relative bias, as outside. */
+Test(metrics, bandstats_relative_bias_divides_by_abs_ref)
+{
+    const double ref[2] = {-0.1, -0.2};
+    const double u[2] = {-0.08, -0.25}; /* errors +0.02, -0.05 */
+    dfl_bandstats b;
+    cr_assert_eq(dfl_metrics_bandstats(2, 2, u, NULL, ref, 0.0, &b, NULL), DFL_OK);
+    cr_expect_float_eq(b.bias, (0.02 - 0.05) / 2, 1e-15);
+    cr_expect_float_eq(b.rel_bias, (0.02 / 0.1 - 0.05 / 0.2) / 2, 1e-15);
+}

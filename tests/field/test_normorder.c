@@ -134,3 +134,18 @@ Test(normorder, series_scale)
     cr_assert_eq(dfl_normorder_measure(&j, 1.0, 1.0, 1e-9, &r, NULL), DFL_OK);
     cr_assert_eq(r.order, 4);
 }
+
+/* normorder.h: u(p) counts as zero when |a_0| <= tol L, a_k (k >= 2) when
+ * |a_k| L^(k-1) <= tol: the exponent is k - 1, not k, so on L = 100 with
+ * tol = 1e-9 a_0 = 1e-8 (<= 1e-7) and a_2 = 1e-12 (1e-10 <= 1e-9) are
+ * zero, while a_2 = 1e-10 (1e-8) is not. */
+Test(normorder, scale_exponent_is_k_minus_one)
+{
+    const double a0[3] = {1e-8, 1.0, 0.0};
+    cr_expect(measure(a0, 3, 4, 1.0, 100.0).capped, "u(p) = 1e-8 <= tol L");
+    const double a2[3] = {0.0, 1.0, 1e-12};
+    cr_expect(measure(a2, 3, 4, 1.0, 100.0).capped, "a_2 L = 1e-10 <= tol");
+    const double b2[3] = {0.0, 1.0, 1e-10};
+    const dfl_normorder r = measure(b2, 3, 4, 1.0, 100.0);
+    cr_expect(r.order == 1 && r.k == 2 && r.coef == 1e-10, "a_2 L = 1e-8 > tol");
+}

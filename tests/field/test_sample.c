@@ -111,6 +111,11 @@ Test(sample, grid_check)
     cr_expect_eq(dfl_grid_check(&empty, &err), DFL_E_INPUT);
     const dfl_grid plane = {3, {4, 4, 1}, {0, 0, 0.5}, {1, 1, 0.5}};
     cr_expect_eq(dfl_grid_check(&plane, &err), DFL_OK, "%s", err.msg);
+    /* sample.h: n >= 2 on every axis of a 2D grid, even with a non-empty
+     * range (one node cannot span [lo, hi]) */
+    const dfl_grid one2d = {2, {4, 1, 1}, {0, 0, 0}, {1, 1, 0}};
+    cr_expect_eq(dfl_grid_check(&one2d, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "axis 1") != NULL, "%s", err.msg);
 }
 
 /* Records the size of every eval call and the points it was given. */

@@ -1,6 +1,8 @@
 /* Tests for src/io/config_get.c: typed getters, their ranges and defaults. */
 #include <criterion/criterion.h>
+#include <limits.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -144,5 +146,24 @@ Test(config, point_lists)
     cr_assert_eq(dfl_cfg_point_dim("  0   1 ;"), 2);
     cr_assert_eq(dfl_cfg_point_dim(""), 0);
     cr_assert_eq(dfl_cfg_doubles(c, "a", "r", 3, &pts, &n, &err), DFL_E_INPUT);
+    dfl_cfg_free(c);
+}
+
+/* config.h: an integer is a long within [lo, hi]; a text beyond the range
+ * of a long is refused even for the widest range [LONG_MIN, LONG_MAX]
+ * (strtol's clamp to LONG_MAX / LONG_MIN with ERANGE is not the value
+ * written), while LONG_MAX itself, written out, is a value. */
+Test(config, int_beyond_long_is_refused)
+{
+    char text[160];
+    snprintf(text, sizeof text, "[a]\nbig = 99999999999999999999\nneg = -99999999999999999999\n"
+                                "max = %ld\n", LONG_MAX);
+    dfl_cfg *c = cfgu_parse(text);
+    dfl_err err;
+    long v = 7;
+    cr_expect_eq(dfl_cfg_int(c, "a", "big", LONG_MIN, LONG_MAX, &v, &err), DFL_E_INPUT);
+    cr_expect_eq(dfl_cfg_int(c, "a", "neg", LONG_MIN, LONG_MAX, &v, &err), DFL_E_INPUT);
+    cr_expect_eq(dfl_cfg_int(c, "a", "max", LONG_MIN, LONG_MAX, &v, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(v, LONG_MAX);
     dfl_cfg_free(c);
 }

@@ -155,3 +155,18 @@ Test(json, getters_refuse_wrong_types_and_ranges)
     cr_expect(strstr(err.msg, "at most 3 bytes"), "%s", err.msg);
     cr_expect_str_eq(small, "");
 }
+
+/* json.h: strings are valid UTF-8 without control characters.  The
+ * controls are U+0000..U+001F (RFC 8259), the last of them 0x1F included;
+ * UTF-8 ends at U+10FFFF = F4 8F BF BF, so F4 90 80 80 (U+110000) is
+ * invalid while F4 8F BF BF is valid. */
+Test(json, refuses_the_last_control_and_code_points_above_u10ffff)
+{
+    dfl_err err = {0};
+    cr_expect_eq(check("{\"a\": \"x\x1fy\"}", &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "byte 8: expected no control character"), "%s", err.msg);
+    cr_expect_eq(check("{\"a\": \"x\x20y\"}", &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(check("{\"a\": \"\xf4\x90\x80\x80\"}", &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "byte 7: expected valid UTF-8"), "%s", err.msg);
+    cr_expect_eq(check("{\"a\": \"\xf4\x8f\xbf\xbf\"}", &err), DFL_OK, "%s", err.msg);
+}

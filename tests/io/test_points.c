@@ -79,3 +79,29 @@ Test(points, refused)
         cr_expect(p.v == NULL && p.n == 0, "case %zu: points left", i);
     }
 }
+
+/* points.h: the header names x,y[,z] and, with want_dir, dx,dy[,dz], "no
+ * other column": a z column for a 2D field, or a direction without
+ * --jet, is refused naming the column. */
+Test(points, refuses_columns_the_field_does_not_take)
+{
+    static const struct {
+        const char *text;
+        int dim;
+        bool dir;
+        const char *want;
+    } cases[] = {
+        {"x,y,z\n1,2,3\n", 2, false, "column 'z' not expected for a 2D field"},
+        {"x,y,dx,dy\n1,2,0,1\n", 2, false, "column 'dx' not expected"},
+        {"x,y,z,dz\n1,2,3,1\n", 3, false, "column 'dz' not expected"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        dfl_points p = {0};
+        dfl_err err;
+        const size_t len = strlen(cases[i].text);
+        cr_expect_eq(read_text(cases[i].text, len, cases[i].dim, cases[i].dir, &p, &err),
+                     DFL_E_INPUT, "case %zu", i);
+        cr_expect(strstr(err.msg, cases[i].want), "case %zu: %s", i, err.msg);
+        cr_expect(p.v == NULL && p.n == 0, "case %zu: points left", i);
+    }
+}

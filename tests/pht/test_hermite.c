@@ -163,3 +163,31 @@ Test(pht_hermite, rejects_shapes_without_derivatives_or_sign)
     dfl_shape_free(&s);
     cr_assert_null(src);
 }
+
+/* hermite.h: where the footpoint ties (a point of the torus' axis: the
+ * whole circle of the tube's nearest points is a footpoint; the implicit
+ * surface reports the tie) dfl_pht_hermite still returns DFL_OK with the
+ * FALLBACK data and flags the point MEDIAL (it is on the medial axis):
+ * value d = sqrt(R^2 + z^2) - r at height z above the centre, the mixed
+ * derivatives 0. */
+Test(pht_hermite, torus_axis_is_flagged_medial_fallback)
+{
+    dfl_implicit *imp;
+    const double c[3] = {0.5, 0.5, 0.5}, ax[3] = {0, 0, 1};
+    cr_assert_eq(dfl_implicit_torus(c, ax, 0.3, 0.1, NULL, &imp, NULL), DFL_OK);
+    dfl_shape s;
+    cr_assert_eq(dfl_implicit_shape(&imp, &s, NULL), DFL_OK);
+    dfl_pht_source *src;
+    dfl_err err;
+    cr_assert_eq(dfl_pht_source_new(&s, &src, &err), DFL_OK, "%s", err.msg);
+    const double z = 0.05, x[3] = {c[0], c[1], c[2] + z};
+    double data[8];
+    int flags = 0;
+    cr_assert_eq(dfl_pht_hermite(src, x, data, &flags, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(flags, DFL_PHT_HERMITE_FALLBACK | DFL_PHT_HERMITE_MEDIAL);
+    cr_expect_float_eq(data[0], sqrt(0.3 * 0.3 + z * z) - 0.1, 1e-9);
+    for (int b = 3; b < 8; b++)
+        if (b != 4) cr_expect_eq(data[b], 0.0, "mask %d: mixed derivatives of the fallback", b);
+    dfl_pht_source_free(src);
+    dfl_shape_free(&s);
+}

@@ -227,3 +227,53 @@ Test(pht_tmesh, split_names)
     cr_assert_eq(dfl_pht_split_from_name("quad"), -1);
     cr_assert_null(dfl_pht_split_name(DFL_PHT_SPLIT_COUNT));
 }
+
+/* tmesh.h: binary splits cut the longest side in world units, ties to the
+ * lowest axis: a square (cube) root splits along x; after that the halves'
+ * longest side is y (2D) and the next tie of a cube half (y, z) goes to y. */
+Test(pht_tmesh, binary_ties_go_to_the_lowest_axis)
+{
+    for (int dim = 2; dim <= 3; dim++) {
+        const double lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
+        dfl_tmesh *m;
+        cr_assert_eq(dfl_tmesh_new(dim, lo, hi, &m, NULL), DFL_OK);
+        size_t root = 0;
+        cr_assert_eq(dfl_tmesh_refine(m, 1, &root, DFL_PHT_SPLIT_BINARY, NULL), DFL_OK);
+        dfl_tmesh_cell c;
+        dfl_tmesh_cell_get(m, 0, &c);
+        cr_expect_eq(c.split_axis, 0, "dim %d: root", dim);
+        size_t leaf = dfl_tmesh_leaves(m)[0];
+        cr_assert_eq(dfl_tmesh_refine(m, 1, &leaf, DFL_PHT_SPLIT_BINARY, NULL), DFL_OK);
+        dfl_tmesh_cell_get(m, leaf, &c);
+        cr_expect_eq(c.split_axis, 1, "dim %d: half", dim);
+        dfl_tmesh_free(m);
+    }
+}
+
+/* tmesh.h: corners live on a lattice of 2^DFL_TMESH_BITS steps per axis,
+ * so a binary split needs a side of at least 2 steps: after
+ * DFL_TMESH_BITS halvings of every axis (dim * DFL_TMESH_BITS splits of the
+ * lowest-corner cell) the cell is one step wide and one more split is
+ * DFL_E_INPUT naming the lattice resolution. */
+Test(pht_tmesh, binary_split_stops_at_one_lattice_step)
+{
+    const double lo[2] = {0, 0}, hi[2] = {1, 1};
+    dfl_tmesh *m;
+    cr_assert_eq(dfl_tmesh_new(2, lo, hi, &m, NULL), DFL_OK);
+    size_t id = 0;
+    for (int s = 0; s < 2 * DFL_TMESH_BITS; s++) {
+        cr_assert_eq(dfl_tmesh_refine(m, 1, &id, DFL_PHT_SPLIT_BINARY, NULL), DFL_OK, "split %d", s);
+        dfl_tmesh_cell c;
+        dfl_tmesh_cell_get(m, id, &c);
+        id = c.child; /* the low half */
+    }
+    dfl_tmesh_cell c;
+    dfl_tmesh_cell_get(m, id, &c);
+    cr_expect_eq(c.level, 2 * DFL_TMESH_BITS);
+    cr_expect_eq(c.hi[0], ldexp(1.0, -DFL_TMESH_BITS));
+    cr_expect_eq(c.hi[1], ldexp(1.0, -DFL_TMESH_BITS));
+    dfl_err err;
+    cr_expect_eq(dfl_tmesh_refine(m, 1, &id, DFL_PHT_SPLIT_BINARY, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "lattice resolution"), "%s", err.msg);
+    dfl_tmesh_free(m);
+}

@@ -231,3 +231,34 @@ Test(proxy_decode, frame_orthonormal_after_tilt)
         }
     }
 }
+
+/* decode.h (dfl_proxy_encode): the footpoint moves exactly when
+ * |p - xc| < delta (a length: compared with delta, not delta^2), and
+ * *side is +1 when sp->d >= 0, so a centre on the surface (d = 0) counts
+ * as outside. */
+Test(proxy_decode, encode_moves_below_delta_and_side_of_zero)
+{
+    const double xc[3] = {0.2, -0.1, 0.3};
+    dfl_surfpoint sp;
+    memset(&sp, 0, sizeof sp);
+    /* footpoint 0.5 below xc along n = +z: d = 0.5, |p - xc| = 0.5 */
+    for (int j = 0; j < 3; j++) sp.p[j] = xc[j], sp.n[j] = j == 2 ? 1.0 : 0.0;
+    sp.p[2] -= 0.5;
+    sp.d = 0.5;
+    double sc[8];
+    int side = 0;
+    cr_expect_eq(dfl_proxy_encode(1, xc, &sp, NULL, 0.3, sc, &side), 0, "0.5 >= delta 0.3");
+    cr_expect_eq(sc[2], xc[2] - 0.5, "footpoint kept");
+    cr_expect_eq(side, 1);
+    cr_expect_eq(dfl_proxy_encode(1, xc, &sp, NULL, 0.6, sc, &side), 1, "0.5 < delta 0.6");
+    cr_expect_float_eq(sc[2], xc[2] - 0.6, 1e-15, "moved to xc - delta n");
+    /* the centre on the surface: d = 0 is the outside (+1) */
+    for (int j = 0; j < 3; j++) sp.p[j] = xc[j];
+    sp.d = 0.0;
+    side = 0;
+    cr_expect_eq(dfl_proxy_encode(1, xc, &sp, NULL, 1e-9, sc, &side), 1);
+    cr_expect_eq(side, 1, "d = 0 counts as d >= 0");
+    sp.d = -0x1p-1074; /* the smallest negative: inside */
+    cr_expect_eq(dfl_proxy_encode(1, xc, &sp, NULL, 1e-9, sc, &side), 1);
+    cr_expect_eq(side, -1);
+}

@@ -330,3 +330,58 @@ Test(proxy_filter, nearest_is_the_cell_proxy_byte_for_byte)
                 dfl_proxy_grid_free(&g);
             }
 }
+
+/* filter.h: the Hermite weight of an order-1 grid is h3(t) = 3t^2 - 2t^3,
+ * and the gradient is the exact derivative of the value.  An order-1 grid
+ * blends planes, so the value is smooth inside a cell of centres; central
+ * differences there must equal the returned gradient (the order-2 test
+ * above covers h5 only). */
+Test(proxy_filter, order1_hermite_gradients_match_differences)
+{
+    dfl_proxy_grid g;
+    build(&torus, 1, 12, DFL_PROXY_DOUBLE, &g);
+    dfl_proxy_filter_opts o;
+    dfl_proxy_filter_opts_default(DFL_PROXY_HERMITE, &g, &o);
+    o.is_signed = 1;
+    uint64_t seed = 17;
+    int n = 0, tries = 0;
+    while (n < 200 && tries++ < 200000) {
+        double x[3], gr[3], fd[3];
+        for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(&seed, -0.9, 0.9);
+        const double v = eval1(&g, &o, x, gr);
+        int ok = 1;
+        for (int j = 0; j < 3 && ok; j++) {
+            double a[3] = {x[0], x[1], x[2]}, b[3] = {x[0], x[1], x[2]};
+            a[j] += 1e-7;
+            b[j] -= 1e-7;
+            const double va = eval1(&g, &o, a, NULL), vb = eval1(&g, &o, b, NULL);
+            fd[j] = (va - vb) / 2e-7;
+            ok = fabs(va - 2 * v + vb) < 1e-11; /* no cell border in between */
+        }
+        if (!ok) continue;
+        n++;
+        for (int j = 0; j < 3; j++)
+            cr_expect_float_eq(gr[j], fd[j], 1e-6, "at %g %g %g", x[0], x[1], x[2]);
+    }
+    cr_expect_eq(n, 200, "%d points away from cell borders in %d tries", n, tries);
+    dfl_proxy_grid_free(&g);
+}
+
+/* filter.h: dfl_proxy_filter_check returns DFL_E_INPUT when the clip
+ * radius is < 0 or not finite (an infinite ball is no constraint, and
+ * NaN compares false everywhere in the clip). */
+Test(proxy_filter, check_refuses_non_finite_clip)
+{
+    dfl_proxy_grid g;
+    build(&sphere, 1, 4, DFL_PROXY_DOUBLE, &g);
+    dfl_proxy_filter_opts o;
+    dfl_proxy_filter_opts_default(DFL_PROXY_NEAREST, &g, &o);
+    dfl_err err;
+    o.clip = INFINITY;
+    cr_expect_eq(dfl_proxy_filter_check(&g, &o, &err), DFL_E_INPUT);
+    o.clip = NAN;
+    cr_expect_eq(dfl_proxy_filter_check(&g, &o, &err), DFL_E_INPUT);
+    o.clip = 0.0; /* 0: no clip, valid */
+    cr_expect_eq(dfl_proxy_filter_check(&g, &o, &err), DFL_OK);
+    dfl_proxy_grid_free(&g);
+}
