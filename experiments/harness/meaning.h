@@ -10,6 +10,7 @@
  *
  *   dfl_key_meaning    the meaning of [sec] key as study reads it
  *   dfl_study_columns  prints the column glossary of a study
+ *   dfl_study_column   its entries one at a time
  */
 #ifndef DFL_EXPERIMENTS_MEANING_H
 #define DFL_EXPERIMENTS_MEANING_H
@@ -29,5 +30,15 @@ const char *dfl_key_meaning(const char *study, const char *sec, const char *key)
  * columns every table has (point, the swept keys).  False (nothing
  * printed) when the study has no glossary entries. */
 bool dfl_study_columns(const dfl_study *study, FILE *out);
+
+/* The glossary entries of the study named study, one at a time (i = 0, 1,
+ * ...; false past the last), in the order dfl_study_columns prints them:
+ * *col is the column's name (a * stands for several; <...> for a part of
+ * the name, e.g. <section>.<key>, slice<k>), *meaning its line, *own false
+ * for the entries every table shares (point, the swept keys, vti), which a
+ * table need not have.  tests/experiments/harness/test_column_glossary.c
+ * runs every study and checks its CSV header against these entries. */
+bool dfl_study_column(const char *study, size_t i, const char **col, const char **meaning,
+                      bool *own);
 
 #endif
