@@ -204,6 +204,45 @@ def _aim(rows):
                                 "nearest setting", "queries/s there", "continuity"], body) + "\n\n"
 
 
+def _slope(pts):
+    """Least-squares slope of log y on log x over pts [(x, y)], x, y > 0."""
+    lx = [math.log(x) for x, _ in pts]
+    ly = [math.log(y) for _, y in pts]
+    mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
+    sxx = sum((u - mx) ** 2 for u in lx)
+    if sxx == 0:
+        return math.nan
+    return sum((u - mx) * (v - my) for u, v in zip(lx, ly)) / sxx
+
+
+def _rates(shapes, rows):
+    """Per shape and method: how the near-surface band L∞ falls with stored
+    bytes, as the fitted exponent k of band_linf ∝ bytes^k over the
+    method's settings (at least two with finite, positive error and known
+    bytes), beside the first and last error."""
+    body = []
+    for shape in shapes:
+        for m, rs in _lines([r for r in rows if r["shape"] == shape]).items():
+            pts = [(_f(r, "bytes"), _f(r, "band_linf")) for r in rs]
+            pts = [p for p in pts if p[0] > 0 and math.isfinite(p[1]) and p[1] > 0]
+            if len(pts) < 2:
+                continue
+            k = _slope(pts)
+            nf = sum(int(_f(r, "nonfinite")) for r in rs if math.isfinite(_f(r, "nonfinite")))
+            falls = "yes" if k < 0 and pts[-1][1] < pts[0][1] else "no"
+            body.append([shape, m, str(len(pts)),
+                         f"{dflio.fmt(pts[0][0])} → {dflio.fmt(pts[-1][0])}",
+                         f"{pts[0][1]:.3g} → {pts[-1][1]:.3g}", f"{k:.3g}", falls, str(nf)])
+    if not body:
+        return ""
+    return ("### How the error falls with resolution\n\nNear-surface band L∞ against stored "
+            "bytes, fitted as band_linf ∝ bytes^k (least squares in log-log over each "
+            "method's settings; in 3D a uniform grid's k = −2/3 means error ∝ h², −1/3 "
+            "error ∝ h).\n\n" +
+            dflio.md_table(["shape", "method", "settings", "bytes", "band_linf", "k",
+                            "falls", "non-finite"], body) + "\n\n")
+
+
 def render(ctx):
     plt = pyplot()
     rows = ctx.csv()
@@ -219,6 +258,7 @@ def render(ctx):
                          for r in skipped) + ".\n\n")
     md += "### Best method per regime\n\n" + _regime_table(shapes, meas) + "\n\n"
     md += _aim(meas)
+    md += _rates(shapes, meas)
     for s in shapes:
         md += f"### {s}\n\n" + _plot_shape(ctx, plt, s, [r for r in meas if r["shape"] == s])
     return md
