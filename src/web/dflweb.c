@@ -74,6 +74,12 @@ void dflw_two_segments(double alpha_deg, double *v)
     v[4] = cx + L * sin(h), v[5] = cy - L * cos(h);
 }
 
+void dflw_two_bisector(double alpha_deg, double *dir)
+{
+    dir[0] = 0.0;
+    dir[1] = alpha_deg > 180.0 ? -1.0 : 1.0; /* clamping to [10, 350] keeps the side */
+}
+
 static int check_codes(dflw_scene *s, int join, int trim)
 {
     if (join < 0 || join >= DFL_RFUNC_JOIN_COUNT)
@@ -214,6 +220,21 @@ void dflw_eval(const dflw_scene *s, int m, const double *pts, double *val, doubl
     }
 }
 
+static double poly_dist(const dflw_scene *s, const double *x)
+{
+    double dm = INFINITY;
+    for (int q = 0; q + 1 < s->n; q++) {
+        double e = dfl_point_segment_dist(2, x, s->v + 2 * q, s->v + 2 * q + 2);
+        if (e < dm) dm = e;
+    }
+    return dm;
+}
+
+void dflw_dist(const dflw_scene *s, int m, const double *pts, double *d)
+{
+    for (int i = 0; i < m; i++) d[i] = s->f.ops ? poly_dist(s, pts + 2 * i) : NAN;
+}
+
 /* Rows go through the field's batch eval (the fast path where it
  * applies), one row at a time so that the scratch stays small. */
 void dflw_grid(const dflw_scene *s, int nx, int ny, double x0, double y0, double x1, double y1,
@@ -231,15 +252,7 @@ void dflw_grid(const dflw_scene *s, int nx, int ny, double x0, double y0, double
             const size_t k = (size_t)j * nx + i;
             if (u) u[k] = s->f.ops ? (float)val[i] : NAN;
             if (gnorm) gnorm[k] = s->f.ops ? (float)hypot(g[2 * i], g[2 * i + 1]) : NAN;
-            if (d) {
-                double dm = INFINITY;
-                for (int q = 0; q + 1 < s->n; q++) {
-                    double e = dfl_point_segment_dist(2, pts + 2 * i, s->v + 2 * q,
-                                                      s->v + 2 * q + 2);
-                    if (e < dm) dm = e;
-                }
-                d[k] = (float)dm;
-            }
+            if (d) d[k] = (float)poly_dist(s, pts + 2 * i);
         }
     }
     free(pts);

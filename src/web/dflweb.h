@@ -7,12 +7,14 @@
  *   dflw_scene_new / dflw_scene_free   a scene: one 2D open polyline field
  *   dflw_scene_error                   the last failure's one-line message
  *   dflw_two_segments                  the two-segment panel's vertices
+ *   dflw_two_bisector                  and the outer bisector of its joint
  *   dflw_scene_polyline                (re)builds the field of a polyline
  *   dflw_scene_exact                   (re)builds it from exact segment distances
  *   dflw_scene_curve                   (re)builds it from a B-spline curve
  *   dflw_scene_vertices                the polyline the field is built on
  *   dflw_eval                          u and grad u at points (as probe)
  *   dflw_grid                          u, exact d and |grad u| on a grid
+ *   dflw_dist                          exact d at points
  *   dflw_jet                           d1..dK along a ray (as probe --jet)
  *   dflw_order                         measured normalization order
  *   dflw_bounds                        eq. 13-14 band against phi
@@ -44,6 +46,16 @@ const char *dflw_scene_error(const dflw_scene *s);
  * of length 0.4 pointing downwards symmetric about the vertical (alpha =
  * 180 is a straight line).  Writes v[0..5] = a, vertex, b. */
 void dflw_two_segments(double alpha_deg, double *v);
+
+/* The unit direction dir[0..1] of the outer bisector of that joint: the
+ * bisector of the reflex side, which is the hatched sector (the closest
+ * point of both segments is the vertex, d = |x - vertex|).  Upwards
+ * (0, 1) for alpha <= 180, downwards (0, -1) for alpha > 180 (alpha
+ * clamped as above).  Upwards at alpha > 180 runs on the convex side,
+ * where the closest points lie on the arms (d = t sin(beta) at distance
+ * t from the vertex, beta = (360 - alpha)/2), so t/c - 1 there is not
+ * the bulge of dflw_bulge's doc. */
+void dflw_two_bisector(double alpha_deg, double *dir);
 
 /* Builds the field of the open 2D polyline v[0..2n-1] with the join,
  * order p and trim (codes of rfunc/join.h and rfunc/segment.h), exactly
@@ -78,6 +90,11 @@ void dflw_eval(const dflw_scene *s, int m, const double *pts, double *val, doubl
  * (min over its segments) and |grad u| (floats; any may be NULL). */
 void dflw_grid(const dflw_scene *s, int nx, int ny, double x0, double y0, double x1, double y1,
                float *u, float *d, float *gnorm);
+
+/* The exact distance from m points pts[2i], pts[2i+1] to the scene's
+ * polyline (min over its segments, as dflw_grid's d) into d[i]; NAN
+ * without a field. */
+void dflw_dist(const dflw_scene *s, int m, const double *pts, double *d);
 
 /* d_k = k-th derivative of s -> u(x + s dir) at 0+ for k = 1..K (K <=
  * 24) into d[0..K-1], as `dflab probe --jet K`. */

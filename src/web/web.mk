@@ -34,9 +34,9 @@ WEB_API  := $(WEB_DIR)/obj/src/web/dflweb.o $(WEB_DIR)/obj/src/web/lsq_stub.o
 WEB_LIB  := $(WEB_DIR)/obj/libdfl-web.a
 WEB_PAGE := $(wildcard src/web/page/*)
 WEB_CFLAGS := -std=c11 -O2 -Wall -Wextra -Wno-unknown-pragmas -Isrc -D_POSIX_C_SOURCE=200809L -MMD -MP
-WEB_FUNCS := malloc free dflw_scene_new dflw_scene_free dflw_scene_error dflw_two_segments \
+WEB_FUNCS := malloc free dflw_scene_new dflw_scene_free dflw_scene_error dflw_two_segments dflw_two_bisector \
   dflw_scene_polyline dflw_scene_exact dflw_scene_curve dflw_scene_nvertices dflw_scene_vertices dflw_eval \
-  dflw_grid dflw_jet dflw_order dflw_bounds dflw_ring dflw_bulge dflw_curve_bulge
+  dflw_grid dflw_dist dflw_jet dflw_order dflw_bounds dflw_ring dflw_bulge dflw_curve_bulge
 WEB_COMMA := ,
 WEB_EXPORTS := $(subst $(eval) ,$(WEB_COMMA),$(strip $(WEB_FUNCS:%=_%)))
 WEB_LDFLAGS := -O2 -sMODULARIZE=1 -sEXPORT_NAME=createDflab -sENVIRONMENT=web \

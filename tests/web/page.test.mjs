@@ -90,8 +90,10 @@ try {
     const controls = [
       ['#two-p', 'two-u', 'ArrowRight'], ['#two-alpha', 'two-u', 'ArrowLeft'], ['#two-join', 'two-u', 'ArrowDown'],
       ['#two-trim', 'two-g', 'ArrowDown'], ['#two-view', 'two-u', 'ArrowDown'],
+      ['#two-delta', 'two-u', 'ArrowRight'], ['#two-p2', 'two-u2', 'ArrowLeft'], ['#two-view', 'two-bar', 'ArrowUp'],
       ['#norm-p', 'norm-u', 'ArrowRight'], ['#norm-join', 'norm-u', 'ArrowDown'], ['#norm-trim', 'norm-u', 'ArrowDown'],
       ['#norm-seg', 'norm-u', 'ArrowRight'], ['#norm-t', 'norm-u', 'ArrowRight'],
+      ['#norm-t', 'norm-s', 'ArrowRight'], ['#norm-p', 'norm-log', 'ArrowRight'],
       ['#bulge-shape', 'bulge-u', 'ArrowDown'], ['#bulge-eps', 'bulge-u', 'ArrowDown'], ['#bulge-p', 'bulge-u', 'ArrowRight'],
     ];
     for (const [sel, canvas, key] of controls) {
@@ -240,6 +242,130 @@ try {
     await open('#p=4');
     check(exPic !== await pixels('two-u') && Math.abs(bulge - (Math.pow(2, 1 / 4) - 1)) < 1e-9 && exIni.includes('cannot'),
           `trim=exact: joint bulge ${bulge} = 2^(1/4) - 1, and the config says probe cannot build it`);
+
+    // 8. The teacher's items (issue "A researcher's day", item 10).
+    // Pixels are read from a copy (willReadFrequently), so that reading them
+    // does not make chromium warn about the page's own canvases.
+    await page.addInitScript(() => {
+      window.__pixels = id => {
+        const c = document.getElementById(id), t = document.createElement('canvas');
+        t.width = c.width; t.height = c.height;
+        const x = t.getContext('2d', { willReadFrequently: true });
+        x.drawImage(c, 0, 0);
+        return x.getImageData(0, 0, c.width, c.height).data;
+      };
+    });
+    const px = (id, i, j) => page.evaluate(([id, i, j]) => {
+      const d = window.__pixels(id), k = 4 * (j * document.getElementById(id).width + i);
+      return Array.from(d.slice(k, k + 4));
+    }, [id, i, j]);
+    const cell = (x, y) => [Math.floor(x * 256), Math.floor((1 - y) * 256)];
+    // 8.1 One level delta: u = delta (white) against d = delta (black), the band between them shaded.
+    {
+      await open('#delta=0.1');
+      const st1 = await page.evaluate(() => window.dflab.state());
+      // u along the outer bisector (upwards at alpha = 120): where it crosses delta
+      const ts = Array.from({ length: 400 }, (_, i) => 0.1 + 0.0005 * i);
+      const us = (await page.evaluate(p => window.dflab.probe(p), ts.map(t => [0.5, 0.6 + t]))).map(r => r[0]);
+      const tu = ts[us.findIndex(u => u >= 0.1)];
+      const [bi, bj] = cell(0.5, 0.6 + (0.1 + tu) / 2), [oi, oj] = cell(0.5, 0.6 + 0.05);
+      const inBand = await px('two-u', bi, bj), inside = await px('two-u', oi, oj);
+      const orange = c => c[0] > 180 && c[1] < 170 && c[2] < 60;
+      const bands = await page.evaluate(() => window.dflab.band());
+      check(st1.delta === 0.1 && await page.inputValue('#two-delta') === '0.1' && tu > 0.11 &&
+            orange(inBand) && !orange(inside) && bands[0] > 0,
+            `delta = 0.1: between d = delta (t = 0.1) and u = delta (t = ${tu}) on the bisector the map is shaded (${inBand}), inside it is not (${inside}); band ${bands[0]} px`);
+      const white = await page.evaluate(() => { const d = window.__pixels('two-u');
+        let n = 0; for (let k = 0; k < d.length; k += 4) if (d[k] === 255 && d[k + 1] === 255 && d[k + 2] === 255) n++; return n; });
+      check(white < 6000, `one level drawn instead of isolines every 0.025 (${white} white pixels)`);
+    }
+    // 8.8 Side by side: the second map at p2; its band narrows as p grows.
+    {
+      await open('#p=2&p2=8');
+      const [b2, b8] = await page.evaluate(() => window.dflab.band());
+      await open('#p=12&p2=1');
+      const [b12, b1] = await page.evaluate(() => window.dflab.band());
+      await open('#trim=exact&p=3&p2=9');
+      const e3 = Number(await page.getAttribute('#two-bulge', 'data-bulge')), e9 = Number(await page.getAttribute('#two-bulge', 'data-bulge2'));
+      check(b2 > b8 && b1 > b12 && b8 > 0 && Math.abs(e3 - (2 ** (1 / 3) - 1)) < 1e-9 && Math.abs(e9 - (2 ** (1 / 9) - 1)) < 1e-9 &&
+            (await page.textContent('#two-u2-cap')).includes('p₂ = 9'),
+            `side-by-side p: band p=2 ${b2} > p2=8 ${b8}, p2=1 ${b1} > p=12 ${b12}; exact bulges ${e3}, ${e9} = 2^(1/p) - 1`);
+    }
+    // 8.2 The colour bar: its numbers, and a pixel of the map has the bar's colour at its u.
+    {
+      await open('');
+      const bar = await page.evaluate(() => ({ ...document.getElementById('two-bar').dataset, label: document.getElementById('two-bar').getAttribute('aria-label') }));
+      const [i, j] = cell(0.75, 0.85), x = (i + 0.5) / 256, y = 1 - (j + 0.5) / 256;
+      const u = (await page.evaluate(p => window.dflab.probe(p), [[x, y]]))[0][0];
+      const row = Math.round(Number(bar.bottom) - (u - Number(bar.min)) / (Number(bar.max) - Number(bar.min)) * (Number(bar.bottom) - Number(bar.top)));
+      const cm = await px('two-u', i, j), cb = await px('two-bar', Math.floor(Number(bar.x)), row);
+      const diff = Math.max(...[0, 1, 2].map(k => Math.abs(cm[k] - cb[k])));
+      await open('#view=err');
+      const ticksErr = await page.getAttribute('#two-bar', 'data-ticks');
+      check(bar.ticks === '0,0.1,0.2,0.3,0.4,0.5,0.6' && bar.label.includes('0.6') && u > 0.15 && u < 0.55 && diff <= 6 &&
+            ticksErr === '-0.05,-0.025,0,0.025,0.05',
+            `colour bar: ticks ${bar.ticks}; map pixel at u = ${u.toFixed(4)} is ${cm}, the bar at that u ${cb}; u − d ticks ${ticksErr}`);
+    }
+    // 8.3 The legend of the eq. 13-14 plot: each line's colour is drawn in the plot.
+    {
+      await open('');
+      const items = await page.$$eval('#two-b-legend li', ls => ls.map(l => ({ key: l.dataset.key, colour: l.dataset.colour, text: l.textContent })));
+      const counts = await page.evaluate(cols => {
+        const d = window.__pixels('two-b');
+        return cols.map(c => { const r = parseInt(c.slice(1, 3), 16), g = parseInt(c.slice(3, 5), 16), b = parseInt(c.slice(5, 7), 16);
+          let n = 0; for (let k = 0; k < d.length; k += 4) if (d[k] === r && d[k + 1] === g && d[k + 2] === b) n++; return n; });
+      }, items.map(e => e.colour));
+      const text = items.map(e => e.text).join(' | ');
+      check(items.length === 4 && text.includes('upper bound') && text.includes('eq. 14') && text.includes('lower bound') &&
+            text.includes('eq. 13') && text.includes('measured') && counts.every(n => n >= 20),
+            `legend of the bound plot: ${text} (pixels of each colour: ${counts})`);
+    }
+    // 8.4 The 1D panel: u(s) and d(s) on the normal; |u - d| ~ s^(m+1).
+    for (const [np, join] of [[4, 'requiv'], [2, 'requiv'], [5, 'rconj']]) {
+      await open(`#np=${np}&njoin=${join}`);
+      const L = await page.evaluate(() => window.dflab.line());
+      const shown = Number(await page.getAttribute('#norm-order', 'data-order'));
+      const pts = L.s.map((s, i) => [Math.log10(s), Math.log10(Math.abs(L.u[i] - L.d[i]))]).filter(([e, g]) => e >= -2.7 && e <= -1.7 && Number.isFinite(g));
+      const n = pts.length, mx = pts.reduce((a, p) => a + p[0], 0) / n, my = pts.reduce((a, p) => a + p[1], 0) / n;
+      const slope = pts.reduce((a, p) => a + (p[0] - mx) * (p[1] - my), 0) / pts.reduce((a, p) => a + (p[0] - mx) ** 2, 0);
+      const m = join === 'rconj' ? np - 1 : np;
+      check(L.order === m && shown === m && n >= 30 && Math.abs(slope - (m + 1)) < 0.1 && Math.abs(L.u[0] - L.d[0]) < 1e-4 * L.s[0],
+            `normal line, ${join} p=${np} (order ${L.order}, shown ${shown}): |u - d| falls like s^${slope.toFixed(3)} for s in [0.002, 0.02], ` +
+            `slope m + 1 = ${m + 1}; |u - d| = ${Math.abs(L.u[0] - L.d[0]).toExponential(2)} at s = ${L.s[0]}`);
+    }
+    // 8.5 What R-functions are and why normalization matters, on the page.
+    {
+      const about = await page.textContent('#about');
+      check(/R-functions/.test(about) && about.includes('sign') && about.includes('normalized to order m') &&
+            about.includes('O(dm+1)') && about.includes('bulge'), 'the page says what R-functions are and why normalization matters');
+    }
+    // 8.6 The corrected join with exact parts at alpha = 200: the outer bisector is downwards there.
+    {
+      await open('#alpha=200&join=requiv_corrected&trim=exact');
+      const b = Number(await page.getAttribute('#two-bulge', 'data-bulge'));
+      const ct = Number(await page.getAttribute('#two-bulge', 'data-convex-t'));
+      const txt = await page.textContent('#two-bulge');
+      const want = Math.pow(2 * Math.pow(Math.sin(80 * Math.PI / 180), -2) - 1, 0.5) - 1;
+      await open('#alpha=200&trim=exact&p=4');
+      const b4 = Number(await page.getAttribute('#two-bulge', 'data-bulge'));
+      check(Math.abs(b) < 1e-12 && Math.abs(ct - want) < 1e-9 && txt.includes('convex side') && txt.includes('downwards') &&
+            Math.abs(b4 - (2 ** 0.25 - 1)) < 1e-9,
+            `alpha = 200, corrected, exact parts: bulge ${b} on the reflex-side bisector; upwards (convex side) t/δ - 1 = ${ct} = (2 sin^-2(80°) - 1)^(1/2) - 1, explained; requiv p=4 ${b4}`);
+    }
+    // 8.7 Invalid URL values are said, not silently replaced.
+    {
+      await open('#p=abc');
+      const m1 = await page.textContent('#url-msg'), v1 = await page.isVisible('#url-msg'), s1 = await page.evaluate(() => window.dflab.state());
+      await open('#alpha=999&njoin=nope&zzz=1');
+      const m2 = await page.textContent('#url-msg'), s2 = await page.evaluate(() => window.dflab.state());
+      const h2 = await page.evaluate(() => location.hash);
+      await open('#p=7&alpha=120');
+      const m3 = await page.textContent('#url-msg'), v3 = await page.isVisible('#url-msg');
+      check(v1 && m1.includes('p=abc') && m1.includes('not a number') && s1.p === 2 &&
+            m2.includes('alpha=999') && m2.includes('outside 10…350') && s2.alpha === 350 && m2.includes('njoin=nope') &&
+            m2.includes('unknown key') && h2 === '#alpha=350' && m3 === '' && !v3,
+            `invalid URL values are shown: "${m1}" / "${m2}"; a valid URL shows nothing`);
+    }
 
     // 7. Screenshots of each panel.
     await page.click('#norm-u', { position: { x: 100, y: 150 } });

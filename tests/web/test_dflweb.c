@@ -149,3 +149,45 @@ Test(dflweb, curve_scene_polygonizes_and_measures_the_bulge)
     cr_assert_eq(dflw_scene_nvertices(s), 0);
     dflw_scene_free(s);
 }
+
+/* The corrected join with exact parts (eq. 20 verbatim) removes the bulge
+ * in the hatched sector only.  At alpha = 200 that sector is below the
+ * joint (dflw_two_bisector); the upward ray runs on the convex side, where
+ * h1 = h2 = d = t sin(80 deg) and q = t, so u = t (2 sin^-p(80) - 1)^(-1/p)
+ * and t/c - 1 = (2 sin^-p(80) - 1)^(1/p) - 1 (0.0306 at p = 2) for every c:
+ * the page's old upward measure was not a bulge, and no finite-radius effect. */
+Test(dflweb, corrected_exact_bulge_is_zero_on_the_reflex_side_only)
+{
+    double v[6], dir[2], up[2] = {0, 1};
+    dflw_two_bisector(120, dir);
+    cr_assert(dir[0] == 0 && dir[1] == 1);
+    dflw_two_bisector(180, dir);
+    cr_assert(dir[1] == 1);
+    dflw_two_segments(200, v);
+    dflw_two_bisector(200, dir);
+    cr_assert(dir[0] == 0 && dir[1] == -1);
+    dflw_scene *s = dflw_scene_new();
+    for (int p = 1; p <= 12; p++) {
+        cr_assert_eq(dflw_scene_exact(s, v, 3, DFL_RFUNC_REQUIV_CORRECTED, p), 0);
+        const double sb = sin(80 * DFL_PI / 180), conv = pow(2 * pow(sb, -p) - 1, 1.0 / p) - 1;
+        for (double c = 0.01; c < 0.11; c += 0.03) {
+            cr_assert_float_eq(dflw_bulge(s, v + 2, dir, c, 0.35), 0.0, 1e-9);
+            cr_assert_float_eq(dflw_bulge(s, v + 2, up, c, 0.35), conv, 1e-9, "p %d c %g", p, c);
+        }
+        /* there u < d = t sin(80): the corrected join does bulge a little on the convex side */
+        const double x[2] = {0.5, 0.65};
+        double u, d;
+        dflw_eval(s, 1, x, &u, NULL);
+        dflw_dist(s, 1, x, &d);
+        cr_assert_float_eq(d, 0.05 * sb, 1e-12);
+        cr_assert_float_eq(u, 0.05 / (1 + conv), 1e-12);
+        cr_assert_lt(u, d);
+        cr_assert_eq(dflw_scene_exact(s, v, 3, DFL_RFUNC_REQUIV, p), 0);
+        cr_assert_float_eq(dflw_bulge(s, v + 2, dir, 0.05, 0.35), pow(2, 1.0 / p) - 1, 1e-9);
+    }
+    dflw_scene_free(s);
+    double d = 0;
+    dflw_dist(s = dflw_scene_new(), 1, v, &d); /* no field: NAN */
+    cr_assert(isnan(d));
+    dflw_scene_free(s);
+}

@@ -18,41 +18,80 @@ const N = 256;
 
 /* The state, in the order it is written to the URL; defaults below. */
 const DEFAULTS = {
-  alpha: 120, p: 2, join: 'requiv', trim: 'disk', view: 'u',
+  alpha: 120, p: 2, p2: 8, delta: 0.05, join: 'requiv', trim: 'disk', view: 'u',
   np: 4, njoin: 'requiv', ntrim: 'disk', nseg: 1, nt: 0.5, nside: 1,
   shape: 'W', eps: '0.02', bp: 2, cp: '',
 };
 const state = Object.assign({}, DEFAULTS);
+const EPS_LIST = ['0.05', '0.02', '0.01', '0.005', '0.002', '0.001'];
+/* What each URL key accepts: numbers (integer or not, range, decimals kept)
+ * or a list of names. */
+const SPEC = {
+  alpha: { int: true, min: 10, max: 350 }, p: { int: true, min: 1, max: 12 }, p2: { int: true, min: 1, max: 12 },
+  delta: { min: 0.01, max: 0.2, dec: 2 }, np: { int: true, min: 1, max: 12 }, bp: { int: true, min: 1, max: 12 },
+  nseg: { int: true, min: 0, max: 3 }, nt: { min: 0.05, max: 0.95, dec: 2 }, nside: { one: [1, -1] },
+  join: { names: JOINS }, njoin: { names: JOINS }, trim: { names: ['exact'].concat(TRIMS) },
+  ntrim: { names: ['disk', 'disk_smooth', 'strip'] }, view: { names: ['u', 'err'] },
+  shape: { names: Object.keys(SHAPES) }, eps: { names: EPS_LIST },
+};
+const NUMBER_RE = /^[-+]?(\d+\.?\d*|\.\d+)(e[-+]?\d+)?$/i;
 
+/* The state of an address and the problems met (each "key=value: what was
+ * done"): an invalid value is replaced (clamped, rounded or the default)
+ * and said so on the page, never silently. */
 function parseHash(h) {
-  const s = Object.assign({}, DEFAULTS);
+  const s = Object.assign({}, DEFAULTS), problems = [];
   for (const kv of h.replace(/^#/, '').split('&')) {
     if (!kv) continue;
     const i = kv.indexOf('=');
-    const k = decodeURIComponent(i < 0 ? kv : kv.slice(0, i));
-    const v = decodeURIComponent(i < 0 ? '' : kv.slice(i + 1));
-    if (!(k in DEFAULTS)) continue;
-    s[k] = typeof DEFAULTS[k] === 'number' ? Number(v) : v;
-    if (typeof DEFAULTS[k] === 'number' && !Number.isFinite(s[k])) s[k] = DEFAULTS[k];
+    let k, v;
+    try {
+      k = decodeURIComponent(i < 0 ? kv : kv.slice(0, i));
+      v = decodeURIComponent(i < 0 ? '' : kv.slice(i + 1));
+    } catch (e) { problems.push(`"${kv}": not a valid escape, ignored`); continue; }
+    const said = k + '=' + v;
+    if (!(k in DEFAULTS)) { problems.push(`${said}: unknown key "${k}", ignored`); continue; }
+    const sp = SPEC[k];
+    if (k === 'cp') {
+      if (!v || v.split(',').every(x => NUMBER_RE.test(x.trim()))) s.cp = v;
+      else problems.push(`cp=${v}: not a list of numbers; using the curve's own control points`);
+      continue;
+    }
+    if (sp.names) {
+      if (sp.names.includes(v)) s[k] = v;
+      else problems.push(`${said}: expected one of ${sp.names.join(', ')}; using ${DEFAULTS[k]}`);
+      continue;
+    }
+    if (!NUMBER_RE.test(v.trim())) { problems.push(`${said}: not a number; using ${DEFAULTS[k]}`); continue; }
+    let x = Number(v);
+    if (sp.one) {
+      if (sp.one.includes(x)) s[k] = x;
+      else problems.push(`${said}: expected ${sp.one.join(' or ')}; using ${DEFAULTS[k]}`);
+      continue;
+    }
+    const why = [];
+    if (sp.int && x !== Math.round(x)) { x = Math.round(x); why.push('not an integer'); }
+    if (sp.dec && Math.abs(x - Number(x.toFixed(sp.dec))) > 1e-12) { x = Number(x.toFixed(sp.dec)); why.push(`more than ${sp.dec} decimals`); }
+    if (x < sp.min || x > sp.max) { x = Math.min(sp.max, Math.max(sp.min, x)); why.push(`outside ${sp.min}…${sp.max}`); }
+    s[k] = x;
+    if (why.length) problems.push(`${said}: ${why.join(', ')}; using ${x}`);
   }
-  const clampInt = (x, lo, hi) => Math.min(hi, Math.max(lo, Math.round(x)));
-  s.alpha = clampInt(s.alpha, 10, 350);
-  s.p = clampInt(s.p, 1, 12); s.np = clampInt(s.np, 1, 12); s.bp = clampInt(s.bp, 1, 12);
-  s.nseg = clampInt(s.nseg, 0, 3);
-  s.nt = Math.min(0.95, Math.max(0.05, s.nt));
-  s.nside = s.nside < 0 ? -1 : 1;
-  if (!JOINS.includes(s.join)) s.join = DEFAULTS.join;
-  if (!JOINS.includes(s.njoin)) s.njoin = DEFAULTS.njoin;
-  if (!TRIMS.includes(s.trim) && s.trim !== 'exact') s.trim = DEFAULTS.trim;
-  if (!['disk', 'disk_smooth', 'strip'].includes(s.ntrim)) s.ntrim = DEFAULTS.ntrim;
-  if (!['u', 'err'].includes(s.view)) s.view = DEFAULTS.view;
-  if (!(s.shape in SHAPES)) s.shape = DEFAULTS.shape;
-  if (!['0.05', '0.02', '0.01', '0.005', '0.002', '0.001'].includes(s.eps)) s.eps = DEFAULTS.eps;
+  /* a cp list must fit the shape finally chosen */
   if (s.cp) {
     const c = s.cp.split(',').map(Number);
-    if (c.length !== SHAPES[s.shape].length || !c.every(Number.isFinite)) s.cp = '';
+    if (c.length !== SHAPES[s.shape].length) { problems.push(`cp: ${c.length / 2} control points do not fit the ${s.shape} curve, using its own`); s.cp = ''; }
   }
-  return s;
+  return { state: s, problems };
+}
+
+/* Shows what parseHash could not use, where the page begins. */
+function applyHash() {
+  const r = parseHash(location.hash);
+  Object.assign(state, r.state);
+  const el = document.getElementById('url-msg');
+  el.textContent = r.problems.length
+    ? 'The address has invalid values, replaced: ' + r.problems.join('; ') + '.' : '';
+  el.dataset.problems = String(r.problems.length);
 }
 
 /* Only what differs from the defaults, in DEFAULTS' order. */
@@ -117,30 +156,85 @@ function diverge(t, out) { /* t in [-1, 1]: blue - white - red; grey where there
   else { out[0] = 255; out[1] = 255 * (1 - t); out[2] = 255 * (1 - t); }
 }
 
-/* Isolines where floor(a / step) changes towards the right or lower neighbour. */
-function isoMask(a, n, step, mask, bit) {
+/* Pixels where a crosses the level c within their 3 x 3 neighbourhood: a
+ * curve two to three pixels wide. */
+function levelMask(a, n, c, mask, bit) {
   for (let j = 0; j < n; j++)
     for (let i = 0; i < n; i++) {
-      const k = j * n + i, c = Math.floor(a[k] / step);
-      if ((i + 1 < n && Math.floor(a[k + 1] / step) !== c) || (j + 1 < n && Math.floor(a[k + n] / step) !== c))
-        mask[k] |= bit;
+      const k = j * n + i, s = a[k] < c;
+      for (let dj = -1; dj <= 1; dj++)
+        for (let di = -1; di <= 1; di++) {
+          const jj = j + dj, ii = i + di;
+          if (jj < 0 || jj >= n || ii < 0 || ii >= n || (di | dj) === 0) continue;
+          if ((a[jj * n + ii] < c) !== s) { mask[k] |= bit; dj = di = 2; }
+        }
     }
 }
 
-function paintField(ctx, grid, view) {
+/* The field's colour map: u on the ramp over [0, U_MAX], or u − d over
+ * [−ERR_MAX, ERR_MAX]; the colour bar draws the same functions. */
+const U_MAX = 0.6, ERR_MAX = 0.05, SHADE = [255, 128, 0], SHADE_A = 0.75;
+function colourOf(view, v, out) {
+  if (view === 'err') diverge(v / ERR_MAX, out); else ramp(v / U_MAX, out);
+}
+
+/* u in colour; the level set u = delta (white) and the exact offset d =
+ * delta (black) drawn thick, the band between them (the bulge: u < delta
+ * <= d, or the reverse) shaded orange.  Returns the band's pixel count. */
+function paintField(ctx, grid, view, delta) {
   const n = grid.n, img = ctx.createImageData(n, n), px = img.data, rgb = [0, 0, 0];
-  const mask = new Uint8Array(n * n), step = 0.025;
-  isoMask(grid.d, n, step, mask, 1);
-  isoMask(grid.u, n, step, mask, 2);
+  const mask = new Uint8Array(n * n);
+  levelMask(grid.d, n, delta, mask, 1);
+  levelMask(grid.u, n, delta, mask, 2);
+  let band = 0;
   for (let k = 0; k < n * n; k++) {
-    if (view === 'err') diverge((grid.u[k] - grid.d[k]) / 0.05, rgb);
-    else ramp(grid.u[k] / 0.6, rgb);
+    colourOf(view, view === 'err' ? grid.u[k] - grid.d[k] : grid.u[k], rgb);
     let r = rgb[0], g = rgb[1], b = rgb[2];
+    if ((grid.u[k] < delta) !== (grid.d[k] < delta) && Number.isFinite(grid.u[k])) {
+      band++;
+      r += SHADE_A * (SHADE[0] - r); g += SHADE_A * (SHADE[1] - g); b += SHADE_A * (SHADE[2] - b);
+    }
     if (mask[k] & 1) r = g = b = 0;
     if (mask[k] & 2) r = g = b = 255;
     px[4 * k] = r; px[4 * k + 1] = g; px[4 * k + 2] = b; px[4 * k + 3] = 255;
   }
   ctx.putImageData(img, 0, 0);
+  ctx.canvas.dataset.band = String(band);
+  return band;
+}
+
+/* The colour bar of the field maps: the ramp from bottom (min) to top
+ * (max) with its numbers, and the level delta marked. */
+const BAR = { x: 12, w: 16, top: 8, bottom: 248 };
+function drawBar(ctx, view, delta) {
+  const w = ctx.canvas.width, h = ctx.canvas.height, rgb = [0, 0, 0];
+  const lo = view === 'err' ? -ERR_MAX : 0, hi = view === 'err' ? ERR_MAX : U_MAX;
+  const ticks = view === 'err' ? [-0.05, -0.025, 0, 0.025, 0.05] : [0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6];
+  const Y = v => BAR.bottom - (v - lo) / (hi - lo) * (BAR.bottom - BAR.top);
+  ctx.fillStyle = '#fff'; ctx.fillRect(0, 0, w, h);
+  for (let y = BAR.top; y <= BAR.bottom; y++) {
+    colourOf(view, lo + (BAR.bottom - y) / (BAR.bottom - BAR.top) * (hi - lo), rgb);
+    ctx.fillStyle = `rgb(${rgb[0]},${rgb[1]},${rgb[2]})`;
+    ctx.fillRect(BAR.x, y, BAR.w, 1);
+  }
+  ctx.strokeStyle = '#000'; ctx.lineWidth = 1; ctx.fillStyle = '#000'; ctx.font = '10px sans-serif';
+  ctx.strokeRect(BAR.x - 0.5, BAR.top - 0.5, BAR.w + 1, BAR.bottom - BAR.top + 1);
+  for (const t of ticks) {
+    const y = Math.round(Y(t)) + 0.5;
+    ctx.beginPath(); ctx.moveTo(BAR.x + BAR.w, y); ctx.lineTo(BAR.x + BAR.w + 4, y); ctx.stroke();
+    ctx.fillText((t === hi && view !== 'err' ? '≥ ' : '') + String(t), BAR.x + BAR.w + 6, y + 3);
+  }
+  if (view !== 'err') { /* the level delta */
+    const y = Math.round(Y(delta)) + 0.5;
+    ctx.strokeStyle = '#fff'; ctx.lineWidth = 2; ctx.beginPath(); ctx.moveTo(BAR.x, y); ctx.lineTo(BAR.x + BAR.w, y); ctx.stroke();
+    ctx.fillStyle = '#000'; ctx.fillText('δ', 1, y + 3);
+  }
+  const c = ctx.canvas;
+  Object.assign(c.dataset, { min: String(lo), max: String(hi), x: String(BAR.x + BAR.w / 2),
+    top: String(BAR.top), bottom: String(BAR.bottom), ticks: ticks.join(',') });
+  c.setAttribute('aria-label', (view === 'err' ? 'colour bar of u − d from ' : 'colour bar of u from ') + lo + ' to ' + hi +
+    ', ticks ' + ticks.join(', '));
+  document.getElementById('two-bar-cap').textContent = view === 'err' ? 'colour of u − d' : 'colour of u (all maps)';
 }
 
 function paintGrad(ctx, grid) {
@@ -164,6 +258,7 @@ function drawPolyline(ctx, v, colour) {
   ctx.stroke();
 }
 
+function fmtSmall(x) { return Math.abs(x) < 1e-12 ? '0 (|·| < 1e-12)' : fmt(x); }
 function fmt(x) { return Number.isFinite(x) ? x.toPrecision(6) : String(x); }
 
 function iniText(lines) { return lines.join('\n') + '\n'; }
@@ -181,6 +276,35 @@ function fieldIni(comment, v, join, p, trim) {
 /* ---- panel 1: two segments ---------------------------------------------------- */
 
 const two = {};
+function bulgeTheory(join, p) {
+  return join === 'requiv' ? Math.pow(2, 1 / p) - 1 : join === 'rconj' ? 1 / (2 - Math.pow(2, 1 / p)) - 1 : 0;
+}
+
+/* The joint bulge of u = c on the outer bisector: the ray from the vertex
+ * into the reflex side (dflw_two_bisector: downwards for alpha > 180),
+ * where d = |x - v| and t/c - 1 is the bulge. */
+function jointBulge(sc, v, c) {
+  M._dflw_two_bisector(state.alpha, buf + 16);
+  setDoubles(buf, [v[2], v[3]]);
+  return M._dflw_bulge(sc, buf, buf + 16, c, 0.35);
+}
+
+/* For alpha > 180: what the upward ray (the convex side) measures, from the
+ * library: t/c - 1 where u = c, and d/c - 1 there. */
+function convexNote(sc, v, c) {
+  setDoubles(buf, [v[2], v[3], 0, 1]);
+  const tb = M._dflw_bulge(sc, buf, buf + 16, c, 0.35), t = c * (1 + tb);
+  setDoubles(buf, [v[2], v[3] + t]);
+  M._dflw_dist(sc, 1, buf, buf + 16);
+  const d = getDoubles(buf + 16, 1)[0];
+  const bel = document.getElementById('two-bulge');
+  bel.dataset.convexT = String(tb); bel.dataset.convexD = String(d / c - 1);
+  return ' Upwards, on the convex side, the nearest points lie on the arms, not at the joint (d = t sin(' +
+    (180 - state.alpha / 2) + '°) at distance t from it), so t/δ − 1 = ' + fmt(tb) + ' there is no bulge and no ' +
+    'finite-radius effect (it is the same for every δ); against d the level set u = δ lies ' + fmt(d / c - 1) +
+    ' δ outside d = δ there, since eq. 20 subtracts |x − v|^−p, which cancels the extra h^−p only in the hatched sector.';
+}
+
 function drawTwo() {
   const sc = scenes.two;
   const v = twoVertices(state.alpha);
@@ -189,28 +313,60 @@ function drawTwo() {
   const msg = document.getElementById('two-msg');
   msg.textContent = st ? 'dflab: ' + errorOf(sc) : '';
   two.grid.run(sc, 0, 0, 1, 1);
-  paintField(two.cu, two.grid, state.view);
+  two.band = paintField(two.cu, two.grid, state.view, state.delta);
   drawPolyline(two.cu, v, '#f0f');
   paintGrad(two.cg, two.grid);
   drawPolyline(two.cg, v, '#000');
   drawBounds(st === 0);
+  /* the same at the comparison order p2 */
+  const sc2 = scenes.two2, st2 = buildPolyline(sc2, v, state.join, state.p2, state.trim);
+  if (st2 && !st) msg.textContent = 'dflab (p₂ = ' + state.p2 + '): ' + errorOf(sc2);
+  two.grid2.run(sc2, 0, 0, 1, 1);
+  two.band2 = paintField(two.cu2, two.grid2, state.view, state.delta);
+  drawPolyline(two.cu2, v, '#f0f');
+  document.getElementById('two-u-cap').textContent =
+    'p = ' + state.p + ': u (colour), u = δ (white), d = δ (black), δ = ' + state.delta + '; orange: the band between them';
+  document.getElementById('two-u2-cap').textContent = 'p₂ = ' + state.p2 + ': the same field at the comparison order';
+  drawBar(two.cbar, state.view, state.delta);
   const c = 0.05;
-  setDoubles(buf, [v[2], v[3], 0, 1]);
-  const bulge = M._dflw_bulge(sc, buf, buf + 16, c, 0.35);
-  const p = state.p;
-  const theory = state.join === 'requiv' ? Math.pow(2, 1 / p) - 1
-    : state.join === 'rconj' ? 1 / (2 - Math.pow(2, 1 / p)) - 1 : 0;
+  const bulge = jointBulge(sc, v, c), bulge2 = jointBulge(sc2, v, c);
   const bel = document.getElementById('two-bulge');
   bel.dataset.bulge = String(bulge);
+  bel.dataset.bulge2 = String(bulge2);
+  const formula = state.join === 'requiv' ? ' (2^(1/p) − 1)' : state.join === 'rconj' ? ' (1/(2 − 2^(1/p)) − 1)'
+    : ' (eq. 20 removes it in the hatched sector)';
+  const down = state.alpha > 180;
   bel.textContent =
-    'Joint bulge of the level set u = ' + c + ' on the outer bisector: measured ' + fmt(bulge) +
-    ', exact-distance theory ' + fmt(theory) +
-    (state.join === 'requiv' ? ' (2^(1/p) − 1)' : state.join === 'rconj' ? ' (1/(2 − 2^(1/p)) − 1)' : ' (eq. 20 removes it)') +
-    (state.trim === 'exact' ? '.' : '; the trim moves the measured value away from the theory.');
+    'Joint bulge of the level set u = ' + c + ' on the outer bisector (the ray from the joint into the reflex side, ' +
+    (down ? 'downwards since α > 180°' : 'upwards') + ', where d = |x − v|): measured ' + fmtSmall(bulge) + ' at p = ' + state.p +
+    ', ' + fmtSmall(bulge2) + ' at p₂ = ' + state.p2 + '; exact-distance theory ' + fmt(bulgeTheory(state.join, state.p)) +
+    ' and ' + fmt(bulgeTheory(state.join, state.p2)) + formula +
+    (state.trim === 'exact' ? '.' : '; the trim moves the measured value away from the theory.') +
+    (down && state.join === 'requiv_corrected' && state.trim === 'exact' ? convexNote(sc, v, c) : '');
   document.getElementById('two-ini').textContent = state.trim === 'exact'
     ? '# The exact segment distances joined (rfunc/exact_polyline) have no [field] kind:\n' +
       '# dflab probe cannot evaluate this setting; choose a trim for a config.\n'
     : fieldIni('two segments at alpha = ' + state.alpha + ' degrees', v, state.join, state.p, state.trim);
+}
+
+/* The bound plot's curves, drawn and listed in its legend with one colour each. */
+const BOUND_KEYS = [
+  { key: 'hi', colour: '#c62828', kind: 'line', text: 'F₁ + F₂: upper bound of |∇u| (eq. 14)' },
+  { key: 'lo', colour: '#1565c0', kind: 'line', text: '|F₁ − F₂|: lower bound (eq. 13)' },
+  { key: 'ring', colour: '#000000', kind: 'dot', text: 'measured |∇u| on the circle r = 0.05 around the joint' },
+  { key: 'one', colour: '#999999', kind: 'dash', text: '|∇u| = 1 (the exact distance)' },
+];
+function boundColour(key) { return BOUND_KEYS.find(e => e.key === key).colour; }
+function fillLegend() {
+  const ul = document.getElementById('two-b-legend');
+  for (const e of BOUND_KEYS) {
+    const li = document.createElement('li'), sw = document.createElement('span');
+    sw.className = 'sw' + (e.kind === 'line' ? '' : ' ' + e.kind);
+    if (e.kind === 'dot') sw.style.background = e.colour; else sw.style.borderTopColor = e.colour;
+    li.dataset.key = e.key; li.dataset.colour = e.colour;
+    li.append(sw, e.text);
+    ul.appendChild(li);
+  }
 }
 
 function drawBounds(ok) {
@@ -222,13 +378,15 @@ function drawBounds(ok) {
   ctx.fillText('0', m - 3, h - m + 12); ctx.fillText('π/2', X(Math.PI / 2) - 10, h - m + 12);
   ctx.fillText('φ', (w) / 2, h - 6);
   for (const g of [0, 0.5, 1, 1.5]) ctx.fillText(String(g), 2, Y(g) + 4);
-  ctx.setLineDash([3, 3]); ctx.beginPath(); ctx.moveTo(m, Y(1)); ctx.lineTo(X(Math.PI / 2), Y(1)); ctx.stroke(); ctx.setLineDash([]);
+  ctx.strokeStyle = boundColour('one');
+  const y1 = Math.round(Y(1)) + 0.5;   /* on a pixel row: the legend's grey is drawn as such */
+  ctx.setLineDash([3, 3]); ctx.beginPath(); ctx.moveTo(m, y1); ctx.lineTo(X(Math.PI / 2), y1); ctx.stroke(); ctx.setLineDash([]);
   if (!ok) return;
   const lo = buf + 8 * 64, hi = lo + 8 * nb;
   const st = M._dflw_bounds(scenes.two, JOINS.indexOf(state.join), state.p, nb, lo, hi);
   if (st === 0) {
     const L = getDoubles(lo, nb), H = getDoubles(hi, nb);
-    for (const [arr, col] of [[L, '#1565c0'], [H, '#c62828']]) {
+    for (const [arr, col] of [[L, boundColour('lo')], [H, boundColour('hi')]]) {
       ctx.strokeStyle = col; ctx.lineWidth = 2; ctx.beginPath();
       arr.forEach((g, i) => { const x = X(i * (Math.PI / 2) / (nb - 1)); if (i) ctx.lineTo(x, Y(g)); else ctx.moveTo(x, Y(g)); });
       ctx.stroke();
@@ -240,7 +398,7 @@ function drawBounds(ok) {
   setDoubles(buf, [two.v[2], two.v[3]]);
   M._dflw_ring(scenes.two, buf, 0.05, nr, g, ph);
   const G = getDoubles(g, nr), P = getDoubles(ph, nr);
-  ctx.fillStyle = '#000';
+  ctx.fillStyle = boundColour('ring');
   for (let i = 0; i < nr; i++) if (Number.isFinite(P[i])) ctx.fillRect(X(P[i]) - 1, Y(G[i]) - 1, 3, 3);
 }
 
@@ -267,7 +425,7 @@ function drawNorm() {
   const msg = document.getElementById('norm-msg');
   msg.textContent = st ? 'dflab: ' + errorOf(sc) : '';
   norm.grid.run(sc, 0, 0, 1, 1);
-  paintField(norm.cu, norm.grid, 'u');
+  paintField(norm.cu, norm.grid, 'u', 0.05);
   drawPolyline(norm.cu, NORM_V, '#f0f');
   const { x, nrm, L } = normPoint();
   const ctx = norm.cu, w = ctx.canvas.width, h = ctx.canvas.height;
@@ -278,7 +436,11 @@ function drawNorm() {
   body.textContent = '';
   const out = document.getElementById('norm-order');
   const theory = normOrderTheory(state.njoin, state.np, state.ntrim);
-  if (st) { out.textContent = 'no field: ' + errorOf(sc); out.dataset.order = 'n/a'; out.dataset.theory = 'n/a'; norm.d = null; return; }
+  if (st) {
+    out.textContent = 'no field: ' + errorOf(sc); out.dataset.order = 'n/a'; out.dataset.theory = 'n/a'; norm.d = null;
+    drawLine(sc, x, nrm, -2);
+    return;
+  }
   setDoubles(buf, [x[0], x[1], nrm[0], nrm[1]]);
   const K = 12, dptr = buf + 8 * 8;
   let d = null;
@@ -299,6 +461,7 @@ function drawNorm() {
     ? 'the smooth trim (eq. 5) caps it at 6'
     : state.njoin === 'rconj' ? 'R-conjunction gives p − 1 (eq. 7)'
     : state.njoin === 'requiv' ? 'R-equivalence gives p (eq. 6)' : 'the corrected join keeps eq. 6\'s order p';
+  drawLine(sc, x, nrm, order);
   out.dataset.order = String(order);
   out.dataset.theory = String(theory);
   out.textContent = 'Measured order ' + order + ' (eq. 1 with tolerance 1e-9 on the scale L = ' + fmt(L) +
@@ -306,6 +469,86 @@ function drawNorm() {
   document.getElementById('norm-ini').textContent = fieldIni(
     'the bs04_normalization polyline; probe the point with --jet 13 and a column dx,dy = ' + nrm[0] + ',' + nrm[1],
     NORM_V, state.njoin, state.np, state.ntrim);
+}
+
+/* u(s) and d(s) at x + s nrm (dflw_eval, dflw_dist): linear on [-S, S],
+ * and the gap |u - d| on log axes for s in [1e-3, 10^-0.5], where it
+ * falls like s^(m+1) for a field normalized to order m. */
+const LINE = { S: 0.15, nlin: 301, nlog: 101, e0: -3, e1: -0.5, y0: -17, y1: -1 };
+function sampleLine(sc, x, nrm, ss) {
+  const m = ss.length, pts = norm.lineBuf, val = pts + 16 * m, dist = val + 8 * m;
+  const xy = [];
+  for (const s of ss) xy.push(x[0] + s * nrm[0], x[1] + s * nrm[1]);
+  setDoubles(pts, xy);
+  M._dflw_eval(sc, m, pts, val, 0);
+  M._dflw_dist(sc, m, pts, dist);
+  return { u: getDoubles(val, m), d: getDoubles(dist, m) };
+}
+
+function drawLine(sc, x, nrm, order) {
+  const lin = [], lg = [];
+  for (let i = 0; i < LINE.nlin; i++) lin.push(-LINE.S + 2 * LINE.S * i / (LINE.nlin - 1));
+  for (let i = 0; i < LINE.nlog; i++) lg.push(Math.pow(10, LINE.e0 + (LINE.e1 - LINE.e0) * i / (LINE.nlog - 1)));
+  const A = sampleLine(sc, x, nrm, lin), B = sampleLine(sc, x, nrm, lg);
+  norm.line = { s: lg, u: B.u, d: B.d, order };
+  const red = '#c62828';
+  { /* linear */
+    const ctx = norm.cs, w = ctx.canvas.width, h = ctx.canvas.height, m = 30;
+    const X = s => m + (w - m - 8) * (s + LINE.S) / (2 * LINE.S), Y = v => h - m - (h - m - 8) * v / LINE.S;
+    ctx.fillStyle = '#fff'; ctx.fillRect(0, 0, w, h);
+    ctx.strokeStyle = '#999'; ctx.lineWidth = 1; ctx.strokeRect(m, 8, w - m - 8, h - m - 8);
+    ctx.beginPath(); ctx.moveTo(X(0), 8); ctx.lineTo(X(0), h - m); ctx.stroke();
+    ctx.fillStyle = '#000'; ctx.font = '11px sans-serif';
+    for (const s of [-LINE.S, 0, LINE.S]) ctx.fillText(String(s), X(s) - (s > 0 ? 22 : s < 0 ? 0 : 3), h - m + 13);
+    for (const v of [0, 0.05, 0.1, 0.15]) ctx.fillText(String(v), 2, Y(v) + 4);
+    ctx.fillText('s', (w + m) / 2 + 20, h - 4);
+    const curve = (arr, col, dash, lw) => {
+      ctx.strokeStyle = col; ctx.lineWidth = lw; ctx.setLineDash(dash); ctx.beginPath();
+      let on = false;
+      arr.forEach((v, i) => {
+        if (!Number.isFinite(v)) { on = false; return; }
+        const X0 = X(lin[i]), Y0 = Y(Math.min(v, 1.05 * LINE.S));
+        if (on) ctx.lineTo(X0, Y0); else ctx.moveTo(X0, Y0);
+        on = true;
+      });
+      ctx.stroke(); ctx.setLineDash([]);
+    };
+    curve(A.u, red, [], 2.5);
+    curve(A.d, '#000', [5, 4], 1.5);
+    ctx.fillStyle = red; ctx.fillText('u(s)', m + 6, 22);
+    ctx.fillStyle = '#000'; ctx.fillText('d(s)', m + 40, 22);
+  }
+  { /* log-log gap */
+    const ctx = norm.cl, w = ctx.canvas.width, h = ctx.canvas.height, m = 34;
+    const X = e => m + (w - m - 8) * (e - LINE.e0) / (LINE.e1 - LINE.e0);
+    const Y = e => 8 + (h - m - 8) * (LINE.y1 - e) / (LINE.y1 - LINE.y0);
+    ctx.fillStyle = '#fff'; ctx.fillRect(0, 0, w, h);
+    ctx.strokeStyle = '#999'; ctx.lineWidth = 1; ctx.strokeRect(m, 8, w - m - 8, h - m - 8);
+    ctx.fillStyle = '#000'; ctx.font = '11px sans-serif';
+    for (const e of [-3, -2, -1]) ctx.fillText('1e' + e, X(e) - 10, h - m + 13);
+    for (const e of [-16, -12, -8, -4]) ctx.fillText('1e' + e, 0, Y(e) + 4);
+    ctx.fillText('s', (w + m) / 2, h - 4);
+    ctx.save(); ctx.beginPath(); ctx.rect(m, 8, w - m - 8, h - m - 8); ctx.clip();
+    ctx.fillStyle = red;
+    let ref = null;
+    B.u.forEach((u, i) => {
+      const g = Math.abs(u - B.d[i]);
+      if (!(g > 0) || !Number.isFinite(g)) return;
+      const e = Math.log10(lg[i]);
+      ctx.fillRect(X(e) - 1.5, Y(Math.log10(g)) - 1.5, 3, 3);
+      if (e <= -1.3) ref = [e, Math.log10(g)];   /* anchor: the last point at s <= 0.05 */
+    });
+    if (ref && order >= 1 && order <= 14) {
+      const k = order + 1;
+      ctx.strokeStyle = '#000'; ctx.lineWidth = 1; ctx.setLineDash([5, 4]); ctx.beginPath();
+      ctx.moveTo(X(LINE.e0), Y(ref[1] + k * (LINE.e0 - ref[0]))); ctx.lineTo(X(LINE.e1), Y(ref[1] + k * (LINE.e1 - ref[0])));
+      ctx.stroke(); ctx.setLineDash([]);
+    }
+    ctx.restore();
+    ctx.fillStyle = '#000';
+    ctx.fillText(order >= 1 && order <= 14 ? '|u − d| ∝ s^' + (order + 1) + ' (dashed: slope m + 1 = ' + (order + 1) + ')'
+      : '|u − d| (red)', m + 4, 22);
+  }
 }
 
 function normClick(ev) {
@@ -332,7 +575,7 @@ function drawBulge() {
   const st = M._dflw_scene_curve(sc, buf, cp.length / 2, 4, eps, 0, state.bp, TRIMS.indexOf('strip'));
   document.getElementById('bulge-msg').textContent = st ? 'dflab: ' + errorOf(sc) : '';
   bul.grid.run(sc, -0.1, -0.1, 1.1, 1.1);
-  paintField(bul.cu, bul.grid, 'u');
+  paintField(bul.cu, bul.grid, 'u', 0.05);
   const ctx = bul.cu, w = ctx.canvas.width, h = ctx.canvas.height;
   const P = (x, y) => [(x + 0.1) / 1.2 * w, (1.1 - y) / 1.2 * h];
   const nv = M._dflw_scene_nvertices(sc);
@@ -399,7 +642,7 @@ function bulgeDrag() {
 
 const BIND = [
   ['two-alpha', 'alpha', Number], ['two-p', 'p', Number], ['two-join', 'join', String],
-  ['two-trim', 'trim', String], ['two-view', 'view', String],
+  ['two-trim', 'trim', String], ['two-view', 'view', String], ['two-delta', 'delta', Number], ['two-p2', 'p2', Number],
   ['norm-p', 'np', Number], ['norm-join', 'njoin', String], ['norm-trim', 'ntrim', String],
   ['norm-seg', 'nseg', Number], ['norm-t', 'nt', Number],
   ['bulge-shape', 'shape', String], ['bulge-eps', 'eps', String], ['bulge-p', 'bp', Number],
@@ -448,6 +691,10 @@ function exposeHooks() {
       return points.map((_, i) => [V[i], G[2 * i], G[2 * i + 1]]);
     },
     normal: () => Object.assign(normPoint(), { d: norm.d }),
+    /* u(s), d(s) at the log-spaced s of the gap plot, and the order shown. */
+    line: () => norm.line,
+    /* the orange band's pixel counts of the two field maps (p and p2) */
+    band: () => [two.band, two.band2],
     /* Frames per second of the two-segment panel (field at 256^2 and both maps). */
     bench(frames) {
       const t0 = performance.now();
@@ -460,25 +707,32 @@ function exposeHooks() {
 createDflab().then(mod => {
   M = mod;
   buf = M._malloc(8 * BUF_DOUBLES);
-  for (const k of ['two', 'norm', 'bulge']) scenes[k] = M._dflw_scene_new();
-  two.grid = new Grid(N); norm.grid = new Grid(N); bul.grid = new Grid(320);
+  for (const k of ['two', 'two2', 'norm', 'bulge']) scenes[k] = M._dflw_scene_new();
+  two.grid = new Grid(N); two.grid2 = new Grid(N); norm.grid = new Grid(N); bul.grid = new Grid(320);
   two.cu = document.getElementById('two-u').getContext('2d');
   two.cg = document.getElementById('two-g').getContext('2d');
+  two.cu2 = document.getElementById('two-u2').getContext('2d');
+  two.cbar = document.getElementById('two-bar').getContext('2d');
+  fillLegend();
   two.cb = document.getElementById('two-b').getContext('2d');
   norm.cu = document.getElementById('norm-u').getContext('2d');
+  norm.cs = document.getElementById('norm-s').getContext('2d');
+  norm.cl = document.getElementById('norm-log').getContext('2d');
+  norm.lineBuf = M._malloc(32 * LINE.nlin);
   bul.cu = document.getElementById('bulge-u').getContext('2d');
   for (const el of document.querySelectorAll('select[data-options="joins"]'))
     JOINS.forEach((j, i) => el.add(new Option(JOIN_LABELS[i], j)));
-  Object.assign(state, parseHash(location.hash));
+  applyHash();
   syncControls();
   for (const [id, key, conv] of BIND) {
     document.getElementById(id).addEventListener('input', ev => {
       state[key] = conv(ev.target.value);
       if (key === 'shape') state.cp = '';
+      document.getElementById('url-msg').textContent = '';
       syncControls(); update([id.split('-')[0]]);
     });
   }
-  window.addEventListener('hashchange', () => { Object.assign(state, parseHash(location.hash)); syncControls(); update(); });
+  window.addEventListener('hashchange', () => { applyHash(); syncControls(); update(); });
   for (const k of ['two', 'norm', 'bulge'])
     document.getElementById(k + '-config').addEventListener('click', ev => toggle(ev.target, document.getElementById(k + '-ini')));
   document.getElementById('norm-u').addEventListener('click', normClick);
