@@ -19,7 +19,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from check_threads import compare  # noqa: E402
+from check_threads import every_config, judge, parse_argv, stem  # noqa: E402
 
 ISAS = ["sse2", "avx2", "avx512"]
 # paper configs that run in a few seconds at full size
@@ -66,21 +66,13 @@ def bad_value(dflab):
 
 
 def main():
-    argv = sys.argv[1:]
-    if not argv:
-        print(__doc__)
+    args = parse_argv(sys.argv[1:], __doc__)
+    if args is None:
         return 2
-    dflab = os.path.abspath(argv.pop(0))
-    quick = "--quick" in argv
-    keep = None
-    if "--keep" in argv:
-        keep = argv[argv.index("--keep") + 1]
-        argv.remove("--keep"), argv.remove(keep)
-    cfgs = [(a, []) for a in argv if not a.startswith("--")]
+    dflab, quick, keep, given = args
+    cfgs = [(a, []) for a in given]
     if not cfgs:
-        import glob
-        every = sorted(glob.glob("configs/paper/*/*.ini")) + sorted(glob.glob("configs/smoke/*.ini"))
-        stem = lambda c: os.path.splitext(os.path.basename(c))[0]  # noqa: E731
+        every = every_config(studies=False)
         if quick:
             cfgs = [(c, []) for c in every if stem(c) in QUICK]
             cfgs += [(c, QUICK_SET[stem(c)]) for c in every if stem(c) in QUICK_SET]
@@ -95,20 +87,11 @@ def main():
     base = keep or tempfile.mkdtemp(prefix="dfl_isa_")
     files = 0
     for cfg, sets in cfgs:
-        stem = os.path.splitext(os.path.basename(cfg))[0]
-        outs = {i: os.path.join(base, i, stem) for i in isas}
+        outs = {i: os.path.join(base, i, stem(cfg)) for i in isas}
         errs = [run(dflab, cfg, sets, outs[i], i) for i in isas]
-        if any(errs):
-            print("FAIL %s: %s" % (cfg, [x for x in errs if x]))
-            bad += 1
-            continue
-        d = []
-        for i in isas[1:]:
-            d += compare(outs[isas[0]], outs[i], "%s (DFL_ISA=%s vs %s)" % (stem, isas[0], i))
-        files += len(os.listdir(outs[isas[0]]))
-        for x in d:
-            print("FAIL " + x)
-        bad += bool(d)
+        n, b = judge(cfg, errs, outs[isas[0]],
+                     [("DFL_ISA=%s vs %s" % (isas[0], i), outs[i]) for i in isas[1:]])
+        files, bad = files + n, bad + b
     if not keep:
         subprocess.run(["rm", "-rf", base])
     print("check-isa: %d configs under %s, %d files compared, %d differ"

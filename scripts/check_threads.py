@@ -86,42 +86,71 @@ def compare(a, b, label):
     return diffs
 
 
-def main():
-    argv = sys.argv[1:]
+# The command line and the verdict, shared with check_isa.py (same options,
+# same FAIL lines).
+def parse_argv(argv, doc):
+    """DFLAB [--quick] [--keep DIR] [CONFIG.ini ...] -> (dflab, quick, keep,
+    configs); None, after printing doc, without DFLAB."""
     if not argv:
-        print(__doc__)
-        return 2
+        print(doc)
+        return None
+    argv = list(argv)
     dflab = os.path.abspath(argv.pop(0))
     quick = "--quick" in argv
     keep = None
     if "--keep" in argv:
         keep = argv[argv.index("--keep") + 1]
         argv.remove("--keep"), argv.remove(keep)
-    cfgs = [a for a in argv if not a.startswith("--")]
+    return dflab, quick, keep, [a for a in argv if not a.startswith("--")]
+
+
+def stem(cfg):
+    return os.path.splitext(os.path.basename(cfg))[0]
+
+
+def every_config(studies=True):
+    """configs/paper/*/*.ini (with studies: and the study configs
+    configs/<study>/*.ini) sorted, then configs/smoke/*.ini sorted."""
+    study = [c for c in glob.glob("configs/*/*.ini")
+             if c.split(os.sep)[1] not in ("shapes", "fields", "smoke", "paper")] if studies else []
+    return (sorted(glob.glob("configs/paper/*/*.ini") + study)
+            + sorted(glob.glob("configs/smoke/*.ini")))
+
+
+def judge(cfg, errs, ref, others):
+    """One config's verdict: the errors of its runs (None where a run
+    worked) or, when all ran, compare() of each (label, dir) in others with
+    ref.  Prints one FAIL line per problem; returns (files compared, 1 if it
+    failed else 0)."""
+    if any(errs):
+        print("FAIL %s: %s" % (cfg, [e for e in errs if e]))
+        return 0, 1
+    d = []
+    for label, out in others:
+        d += compare(ref, out, "%s (%s)" % (stem(cfg), label))
+    for x in d:
+        print("FAIL " + x)
+    return len(os.listdir(ref)), int(bool(d))
+
+
+def main():
+    args = parse_argv(sys.argv[1:], __doc__)
+    if args is None:
+        return 2
+    dflab, quick, keep, cfgs = args
     if not cfgs:
-        study = [c for c in glob.glob("configs/*/*.ini")
-                 if c.split(os.sep)[1] not in ("shapes", "fields", "smoke", "paper")]
-        cfgs = (sorted(glob.glob("configs/paper/*/*.ini") + study)
-                + sorted(glob.glob("configs/smoke/*.ini")))
+        cfgs = every_config()
         if quick:
-            cfgs = [c for c in cfgs if os.path.splitext(os.path.basename(c))[0] in QUICK]
+            cfgs = [c for c in cfgs if stem(c) in QUICK]
     base = keep or tempfile.mkdtemp(prefix="dfl_threads_")
     bad, files = 0, 0
     for cfg in cfgs:
-        stem = os.path.splitext(os.path.basename(cfg))[0]
-        outs = {k: os.path.join(base, k, stem) for k in ("t1", "t2", "env1")}
+        outs = {k: os.path.join(base, k, stem(cfg)) for k in ("t1", "t2", "env1")}
         errs = [run(dflab, cfg, outs["t1"], 1, None), run(dflab, cfg, outs["t2"], 2, None),
                 run(dflab, cfg, outs["env1"], None, 1)]
-        if any(errs):
-            print("FAIL %s: %s" % (cfg, [e for e in errs if e]))
-            bad += 1
-            continue
-        d = compare(outs["t1"], outs["t2"], stem + " (--threads 1 vs 2)")
-        d += compare(outs["t1"], outs["env1"], stem + " (--threads 1 vs OMP_NUM_THREADS=1)")
-        files += len(os.listdir(outs["t1"]))
-        for x in d:
-            print("FAIL " + x)
-        bad += bool(d)
+        n, b = judge(cfg, errs, outs["t1"], [("--threads 1 vs 2", outs["t2"]),
+                                             ("--threads 1 vs OMP_NUM_THREADS=1", outs["env1"])])
+        files, bad = files + n, bad + b
     if not keep:
         subprocess.run(["rm", "-rf", base])
     print("check-threads: %d configs, %d files each compared 3 ways, %d configs differ"

@@ -84,8 +84,9 @@ typedef struct keys3 {
     int vol_n_given;
 } keys3;
 
-static void keys_free(keys3 *k)
+static void keys_free(void *keys)
 {
+    keys3 *k = keys;
     for (int i = 0; i < k->ncases; i++) {
         dfl_pht_source_free(k->c[i].src);
         if (k->c[i].have_shape) dfl_shape_free(&k->c[i].shape);
@@ -152,8 +153,9 @@ static dfl_status read_case(const dfl_cfg *cfg, case3 *c, dfl_err *err)
     return DFL_OK;
 }
 
-static dfl_status read_keys(const dfl_cfg *cfg, keys3 *k, dfl_err *err)
+static dfl_status read_keys(const dfl_cfg *cfg, void *keys, dfl_err *err)
 {
+    keys3 *k = keys;
     char names[SJP10_MAX_CASES][DFL_SECTION_NAME_LEN];
     dfl_status st = dfl_section_names_from_cfg(cfg, "study", "cases", SJP10_MAX_CASES, names,
                                                &k->ncases, "case section", err);
@@ -270,10 +272,22 @@ static dfl_status put_row(dfl_table *t, const case3 *c, const char *method, int 
     return st;
 }
 
-static dfl_status one_fit(const keys3 *k, const case3 *c, const sjp10_ref *ref, int rule,
-                          double eps, long level, size_t idx, const dfl_study_ctx *ctx,
-                          dfl_table *t, dfl_err *err)
+/* What the rows of one case share (sjp10_each_fit's arg); ref NULL: the
+ * errors are streamed (cache = false). */
+typedef struct case_run {
+    const keys3 *k;
+    const case3 *c;
+    const sjp10_ref *ref;
+    const dfl_study_ctx *ctx;
+    dfl_table *t;
+} case_run;
+
+static dfl_status one_fit(void *arg, int rule, double eps, long level, size_t idx, dfl_err *err)
 {
+    const case_run *a = arg;
+    const keys3 *k = a->k;
+    const case3 *c = a->c;
+    const dfl_study_ctx *ctx = a->ctx;
     dfl_pht_fit_opts o = k->fit;
     sjp10_rule_apply(rule, &o);
     dfl_pht_cellval cv;
@@ -283,30 +297,23 @@ static dfl_status one_fit(const keys3 *k, const case3 *c, const sjp10_ref *ref, 
     dfl_pht_fit fit;
     dfl_field f = {0};
     dfl_pht_val v;
-    dfl_status st;
-    if (level < 0) {
-        o.eps = eps;
-        st = dfl_pht_fit_run(c->src, &o, &fit, err);
-    } else {
-        o.samples = (int)k->uniform_samples;
-        st = dfl_pht_fit_uniform(c->src, &o, (int)level, &fit, err);
-    }
-    if (st) return dfl_err_prefix(err, "[%s]", c->name);
+    dfl_status st = sjp10_fit_at(c->src, c->name, &o, eps, level, k->uniform_samples, &fit, err);
+    if (st) return st;
     if (c->cell_val)
         st = sjp10_cellval(fit.spline, &c->ref, c->band, level < 0 ? eps : NAN, &cv, err);
     if (!st) st = dfl_pht_field_new(&fit.spline, &f, err);
     const double t0 = omp_get_wtime();
     if (!st)
-        st = ref ? sjp10_ref_errors(&f, ref, ctx->threads, &v, err)
-                 : sjp10_stream_errors(&f, &c->ref, c->lo, c->hi, (int)c->val_n, c->midpoints,
-                                       c->band, ctx->threads, &v, err);
+        st = a->ref ? sjp10_ref_errors(&f, a->ref, ctx->threads, &v, err)
+                    : sjp10_stream_errors(&f, &c->ref, c->lo, c->hi, (int)c->val_n, c->midpoints,
+                                          c->band, ctx->threads, &v, err);
     const double t_val = omp_get_wtime() - t0;
     if (!st)
-        st = put_row(t, c, level < 0 ? "pht" : "uniform", rule, level < 0 ? eps : NAN, level, &o,
-                     &fit, &v, c->cell_val ? &cv : NULL, t_val, err);
+        st = put_row(a->t, c, level < 0 ? "pht" : "uniform", rule, level < 0 ? eps : NAN, level,
+                     &o, &fit, &v, c->cell_val ? &cv : NULL, t_val, err);
     char stem[DFL_SECTION_NAME_LEN + 64];
     volume_stem(c, rule, level, idx, 1, stem, sizeof stem);
-    if (!st) st = dfl_study_put_file(t, "vti", ctx, stem, "vti", k->vol.vti, err);
+    if (!st) st = dfl_study_put_file(a->t, "vti", ctx, stem, "vti", k->vol.vti, err);
     if (!st && k->vol.vti) st = write_volume(k, c, &fit, &f, stem, ctx, err);
     dfl_field_destroy(&f);
     dfl_pht_fit_free(&fit);
@@ -323,11 +330,8 @@ static dfl_status run_case(const keys3 *k, const case3 *c, const dfl_study_ctx *
                             ctx->threads, &ref, err);
     const double *eps = c->own_eps ? c->eps : k->eps, *lev = c->own_levels ? c->levels : k->levels;
     const size_t neps = c->own_eps ? c->neps : k->neps, nlev = c->own_levels ? c->nlevels : k->nlevels;
-    for (int r = 0; r < k->nrules && !st; r++)
-        for (size_t i = 0; i < neps && !st; i++)
-            st = one_fit(k, c, c->cache ? &ref : NULL, k->rules[r], eps[i], -1, i, ctx, t, err);
-    for (size_t i = 0; i < nlev && !st; i++)
-        st = one_fit(k, c, c->cache ? &ref : NULL, 0, NAN, (long)lev[i], i, ctx, t, err);
+    case_run a = {k, c, c->cache ? &ref : NULL, ctx, t};
+    if (!st) st = sjp10_each_fit(k->rules, k->nrules, eps, neps, lev, nlev, one_fit, &a, err);
     for (int r = 0; r < k->nrules && !st && k->vol.vti && neps > 1; r++)
         st = write_collection(c, k->rules[r], NULL, neps, ctx, err);
     if (!st && k->vol.vti && nlev > 1) st = write_collection(c, 0, lev, nlev, ctx, err);
@@ -335,16 +339,21 @@ static dfl_status run_case(const keys3 *k, const case3 *c, const dfl_study_ctx *
     return st;
 }
 
+static dfl_status run_cases(void *keys, const dfl_study_ctx *ctx, dfl_table *t, dfl_err *err)
+{
+    const keys3 *k = keys;
+    dfl_status st = DFL_OK;
+    for (int i = 0; i < k->ncases && !st; i++) st = run_case(k, &k->c[i], ctx, t, err);
+    return st;
+}
+
+static const sjp10_study STUDY3 = {sizeof(keys3), read_keys, run_cases, keys_free};
+
 static dfl_status run3d(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
                         dfl_err *err)
 {
     keys3 k;
-    memset(&k, 0, sizeof k);
-    dfl_status st = read_keys(cfg, &k, err);
-    if (!st) st = dfl_cfg_check_used(cfg, err);
-    for (int i = 0; i < k.ncases && !st; i++) st = run_case(&k, &k.c[i], ctx, table, err);
-    keys_free(&k);
-    return st;
+    return sjp10_run(&STUDY3, &k, cfg, ctx, table, err);
 }
 
 /* Peak memory: a case with cache = true keeps its validation points

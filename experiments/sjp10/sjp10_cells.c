@@ -50,15 +50,17 @@ typedef struct cells_keys {
     int rules[SJP10_RULES], nrules;
 } cells_keys;
 
-static void keys_free(cells_keys *k)
+static void keys_free(void *keys)
 {
+    cells_keys *k = keys;
     sjp10_cases_free(k->c, k->ncases);
     free(k->eps);
     free(k->levels);
 }
 
-static dfl_status read_keys(const dfl_cfg *cfg, cells_keys *k, dfl_err *err)
+static dfl_status read_keys(const dfl_cfg *cfg, void *keys, dfl_err *err)
 {
+    cells_keys *k = keys;
     dfl_status st = sjp10_cases_from_cfg(cfg, "study", "cases", 1, k->c, &k->ncases, err);
     if (st) return st;
     for (int i = 0; i < k->ncases; i++)
@@ -106,32 +108,36 @@ static dfl_status put_row(dfl_table *t, const sjp10_case *c, const char *method,
     return st;
 }
 
+/* What the rows of one case share (sjp10_each_fit's arg). */
+typedef struct case_run {
+    const cells_keys *k;
+    const sjp10_case *c;
+    const sjp10_ref *ref;
+    const dfl_study_ctx *ctx;
+    dfl_table *t;
+} case_run;
+
 /* Fit (adaptive when level < 0, else uniform at level), validate, one row. */
-static dfl_status one_fit(const cells_keys *k, const sjp10_case *c, const sjp10_ref *ref, int rule,
-                          double eps, long level, const dfl_study_ctx *ctx, dfl_table *t,
-                          dfl_err *err)
+static dfl_status one_fit(void *arg, int rule, double eps, long level, size_t i, dfl_err *err)
 {
+    const case_run *a = arg;
+    const cells_keys *k = a->k;
     dfl_pht_fit_opts o = k->fit;
     dfl_pht_fit fit;
     dfl_field f = {0};
     dfl_pht_val v;
     dfl_pht_cellval cv;
-    dfl_status st;
+    (void)i;
     sjp10_rule_apply(rule, &o);
-    if (level < 0) {
-        o.eps = eps;
-        st = dfl_pht_fit_run(c->src, &o, &fit, err);
-    } else {
-        o.samples = (int)k->uniform_samples;
-        st = dfl_pht_fit_uniform(c->src, &o, (int)level, &fit, err);
-    }
-    if (st) return dfl_err_prefix(err, "[%s]", c->name);
-    st = sjp10_cellval(fit.spline, &c->shape, k->band, level < 0 ? eps : NAN, &cv, err);
+    dfl_status st = sjp10_fit_at(a->c->src, a->c->name, &o, eps, level, k->uniform_samples, &fit,
+                                 err);
+    if (st) return st;
+    st = sjp10_cellval(fit.spline, &a->c->shape, k->band, level < 0 ? eps : NAN, &cv, err);
     if (!st) st = dfl_pht_field_new(&fit.spline, &f, err);
-    if (!st) st = sjp10_ref_errors(&f, ref, ctx->threads, &v, err);
+    if (!st) st = sjp10_ref_errors(&f, a->ref, a->ctx->threads, &v, err);
     if (!st)
-        st = put_row(t, c, level < 0 ? "pht" : "uniform", rule, level < 0 ? eps : NAN, level, &o,
-                     &fit, &v, &cv, k->band, err);
+        st = put_row(a->t, a->c, level < 0 ? "pht" : "uniform", rule, level < 0 ? eps : NAN, level,
+                     &o, &fit, &v, &cv, k->band, err);
     dfl_field_destroy(&f);
     dfl_pht_fit_free(&fit);
     return st;
@@ -143,25 +149,29 @@ static dfl_status run_case(const cells_keys *k, const sjp10_case *c, const dfl_s
     sjp10_ref ref;
     dfl_status st = sjp10_ref_grid(&c->shape, k->fit.lo, k->fit.hi, (int)k->val_n, 1, k->band,
                                    ctx->threads, &ref, err);
-    for (int r = 0; r < k->nrules && !st; r++)
-        for (size_t i = 0; i < k->neps && !st; i++)
-            st = one_fit(k, c, &ref, k->rules[r], k->eps[i], -1, ctx, t, err);
-    for (size_t i = 0; i < k->nlevels && !st; i++)
-        st = one_fit(k, c, &ref, 0, NAN, (long)k->levels[i], ctx, t, err);
+    case_run a = {k, c, &ref, ctx, t};
+    if (!st)
+        st = sjp10_each_fit(k->rules, k->nrules, k->eps, k->neps, k->levels, k->nlevels, one_fit,
+                            &a, err);
     sjp10_ref_free(&ref);
     return st;
 }
+
+static dfl_status run_cases(void *keys, const dfl_study_ctx *ctx, dfl_table *t, dfl_err *err)
+{
+    const cells_keys *k = keys;
+    dfl_status st = DFL_OK;
+    for (int i = 0; i < k->ncases && !st; i++) st = run_case(k, &k->c[i], ctx, t, err);
+    return st;
+}
+
+static const sjp10_study CELLS = {sizeof(cells_keys), read_keys, run_cases, keys_free};
 
 static dfl_status cells_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
                             dfl_err *err)
 {
     cells_keys k;
-    memset(&k, 0, sizeof k);
-    dfl_status st = read_keys(cfg, &k, err);
-    if (!st) st = dfl_cfg_check_used(cfg, err);
-    for (int i = 0; i < k.ncases && !st; i++) st = run_case(&k, &k.c[i], ctx, table, err);
-    keys_free(&k);
-    return st;
+    return sjp10_run(&CELLS, &k, cfg, ctx, table, err);
 }
 
 /* Peak memory: the cases run one after another, each holding its

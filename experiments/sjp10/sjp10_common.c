@@ -306,6 +306,43 @@ void sjp10_rule_apply(int rule, dfl_pht_fit_opts *o)
     if (rule == 1) o->grade = o->peaks = 0;
 }
 
+dfl_status sjp10_run(const sjp10_study *s, void *keys, const dfl_cfg *cfg, const dfl_study_ctx *ctx,
+                     dfl_table *t, dfl_err *err)
+{
+    memset(keys, 0, s->size);
+    dfl_status st = s->read(cfg, keys, err);
+    if (!st) st = dfl_cfg_check_used(cfg, err);
+    if (!st) st = s->cases(keys, ctx, t, err);
+    s->free(keys);
+    return st;
+}
+
+dfl_status sjp10_fit_at(const dfl_pht_source *src, const char *name, dfl_pht_fit_opts *o,
+                        double eps, long level, long uniform_samples, dfl_pht_fit *fit,
+                        dfl_err *err)
+{
+    dfl_status st;
+    if (level < 0) {
+        o->eps = eps;
+        st = dfl_pht_fit_run(src, o, fit, err);
+    } else {
+        o->samples = (int)uniform_samples;
+        st = dfl_pht_fit_uniform(src, o, (int)level, fit, err);
+    }
+    return st ? dfl_err_prefix(err, "[%s]", name) : DFL_OK;
+}
+
+dfl_status sjp10_each_fit(const int *rules, int nrules, const double *eps, size_t neps,
+                          const double *lev, size_t nlev, sjp10_fit_fn fn, void *arg,
+                          dfl_err *err)
+{
+    dfl_status st = DFL_OK;
+    for (int r = 0; r < nrules && !st; r++)
+        for (size_t i = 0; i < neps && !st; i++) st = fn(arg, rules[r], eps[i], -1, i, err);
+    for (size_t i = 0; i < nlev && !st; i++) st = fn(arg, 0, NAN, (long)lev[i], i, err);
+    return st;
+}
+
 dfl_status sjp10_rules_from_cfg(const dfl_cfg *cfg, int *rules, int *n, dfl_err *err)
 {
     char names[SJP10_RULES + 1][DFL_SECTION_NAME_LEN];

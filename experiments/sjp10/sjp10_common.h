@@ -26,6 +26,9 @@
  *   sjp10_cases_from_cfg / _free   the shape sections a study lists, with Hermite sources
  *   sjp10_fit_from_cfg the fit options of the section [study] <key> names
  *   sjp10_source_new   a Hermite source on a config's shape (open curves rejected)
+ *   sjp10_run          a study's run: read its keys, check them, run its cases, free
+ *   sjp10_fit_at       one row's fit: adaptive at eps or uniform at a level
+ *   sjp10_each_fit     a case's rows in the tables' order (rules x eps, then levels)
  */
 #ifndef DFL_EXPERIMENTS_SJP10_COMMON_H
 #define DFL_EXPERIMENTS_SJP10_COMMON_H
@@ -143,6 +146,43 @@ dfl_status sjp10_write_mesh(const dfl_study_ctx *ctx, const char *stem,
 dfl_status sjp10_write_graph(const dfl_study_ctx *ctx, const char *stem, const dfl_field *f,
                              const dfl_shape *ref, const double lo[2], const double hi[2], int n,
                              int threads, dfl_err *err);
+
+/* ---- the frame of a run ------------------------------------------------ */
+/* What a study's run does around its cases, the same in every sjp10 study:
+ * its keys (size bytes, zeroed first) filled by read; every key of the
+ * config used (dfl_cfg_check_used ends the validation pass, so nothing
+ * computes before it); then cases; free on every path, since read may stop
+ * half-way and free takes whatever it built. */
+typedef struct sjp10_study {
+    size_t size;
+    dfl_status (*read)(const dfl_cfg *cfg, void *keys, dfl_err *err);
+    dfl_status (*cases)(void *keys, const dfl_study_ctx *ctx, dfl_table *t, dfl_err *err);
+    void (*free)(void *keys);
+} sjp10_study;
+/* keys: s->size bytes of the study's own key struct. */
+dfl_status sjp10_run(const sjp10_study *s, void *keys, const dfl_cfg *cfg, const dfl_study_ctx *ctx,
+                     dfl_table *t, dfl_err *err);
+
+/* The fit of one row: adaptive at eps (o->eps = eps) when level < 0, else
+ * uniform at level with uniform_samples estimator points per cell
+ * (o->samples is set, so the row reports what the fit used).  A failure's
+ * message is prefixed with [name], the case. */
+dfl_status sjp10_fit_at(const dfl_pht_source *src, const char *name, dfl_pht_fit_opts *o,
+                        double eps, long level, long uniform_samples, dfl_pht_fit *fit,
+                        dfl_err *err);
+
+/* One row of a case: rule, eps (NaN for a uniform fit), level (< 0: the
+ * adaptive fit) and i, the place of eps (or of level) in its list. */
+typedef dfl_status (*sjp10_fit_fn)(void *arg, int rule, double eps, long level, size_t i,
+                                   dfl_err *err);
+/* The rows of a case in the tables' order, shared by the studies that fit
+ * lists of thresholds and levels: per rule (rules[0..nrules-1]) the
+ * adaptive fits at eps[0..neps-1], then the uniform fits at
+ * lev[0..nlev-1] under rule dflab (rules do not change a uniform fit).
+ * Stops at the first failure. */
+dfl_status sjp10_each_fit(const int *rules, int nrules, const double *eps, size_t neps,
+                          const double *lev, size_t nlev, sjp10_fit_fn fn, void *arg,
+                          dfl_err *err);
 
 /* ---- estimates (core/budget.h), from keys alone ------------------------ */
 /* The reference of sjp10_ref_grid (n nodes per axis, midpoints or not) and

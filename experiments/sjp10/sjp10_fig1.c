@@ -47,8 +47,9 @@ typedef struct fig1_keys {
     int rules[SJP10_RULES], nrules;
 } fig1_keys;
 
-static dfl_status read_keys(const dfl_cfg *cfg, fig1_keys *k, dfl_err *err)
+static dfl_status read_keys(const dfl_cfg *cfg, void *keys, dfl_err *err)
 {
+    fig1_keys *k = keys;
     dfl_status st = sjp10_cases_from_cfg(cfg, "study", "cases", 1, k->c, &k->ncases, err);
     if (st) return st;
     for (int i = 0; i < k->ncases; i++)
@@ -146,18 +147,29 @@ static dfl_status run_case(const fig1_keys *k, sjp10_case *c, int rule, const df
     return st;
 }
 
+static dfl_status run_cases(void *keys, const dfl_study_ctx *ctx, dfl_table *t, dfl_err *err)
+{
+    fig1_keys *k = keys;
+    dfl_status st = DFL_OK;
+    for (int r = 0; r < k->nrules && !st; r++)
+        for (int i = 0; i < k->ncases && !st; i++)
+            st = run_case(k, &k->c[i], k->rules[r], ctx, t, err);
+    return st;
+}
+
+static void keys_free(void *keys)
+{
+    fig1_keys *k = keys;
+    sjp10_cases_free(k->c, k->ncases);
+}
+
+static const sjp10_study FIG1 = {sizeof(fig1_keys), read_keys, run_cases, keys_free};
+
 static dfl_status fig1_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
                            dfl_err *err)
 {
     fig1_keys k;
-    memset(&k, 0, sizeof k);
-    dfl_status st = read_keys(cfg, &k, err);
-    if (!st) st = dfl_cfg_check_used(cfg, err);
-    for (int r = 0; r < k.nrules && !st; r++)
-        for (int i = 0; i < k.ncases && !st; i++)
-            st = run_case(&k, &k.c[i], k.rules[r], ctx, table, err);
-    sjp10_cases_free(k.c, k.ncases);
-    return st;
+    return sjp10_run(&FIG1, &k, cfg, ctx, table, err);
 }
 
 /* Peak memory: the fits run one after another (per rule and case); each

@@ -82,8 +82,9 @@ typedef struct polyacc {
     size_t *off, *conn, *tris;
 } polyacc;
 
-static void keys_free(okeys *k)
+static void keys_free(void *keys)
 {
+    okeys *k = keys;
     for (int i = 0; i < k->ncases; i++) {
         ocase *c = &k->c[i];
         dfl_pht_source_free(c->src);
@@ -162,6 +163,31 @@ static dfl_status acc_write(const dfl_study_ctx *ctx, const char *stem, const po
     return dfl_vtp_write(path, &d, 1, err);
 }
 
+/* A case's level sets over all its offsets go into one file per kind,
+ * <case>_<what>.vtp, which every row of the case names in its column
+ * <what>_vtp ("" where the case has none: present false). */
+static dfl_status put_vtp(dfl_table *t, const dfl_study_ctx *ctx, const ocase *c, const char *what,
+                          bool present, dfl_err *err)
+{
+    char col[64], stem[96];
+    snprintf(col, sizeof col, "%s_vtp", what);
+    snprintf(stem, sizeof stem, "%s_%s", c->name, what);
+    return dfl_study_put_file(t, col, ctx, stem, "vtp", present, err);
+}
+
+/* After the offsets (st their status): <case>_<what>.vtp from acc when
+ * present and all went well; acc is freed either way. */
+static dfl_status write_vtp(const dfl_study_ctx *ctx, const ocase *c, const char *what,
+                            polyacc *acc, const char *flag_name, bool present, dfl_status st,
+                            dfl_err *err)
+{
+    char stem[96];
+    snprintf(stem, sizeof stem, "%s_%s", c->name, what);
+    if (!st && present) st = acc_write(ctx, stem, acc, flag_name, err);
+    acc_free(acc);
+    return st;
+}
+
 static dfl_status read_case(const dfl_cfg *cfg, ocase *c, dfl_err *err)
 {
     const char *sec = c->name, *rsec;
@@ -205,8 +231,9 @@ static dfl_status read_case(const dfl_cfg *cfg, ocase *c, dfl_err *err)
     return dfl_cfg_double(cfg, sec, "plane_at", -1e300, 1e300, &c->plane_at, err);
 }
 
-static dfl_status read_keys(const dfl_cfg *cfg, okeys *k, dfl_err *err)
+static dfl_status read_keys(const dfl_cfg *cfg, void *keys, dfl_err *err)
 {
+    okeys *k = keys;
     char names[SJP10_MAX_CASES][DFL_SECTION_NAME_LEN];
     dfl_status st = dfl_section_names_from_cfg(cfg, "study", "cases", SJP10_MAX_CASES, names,
                                                &k->ncases, "case section", err);
@@ -361,21 +388,13 @@ static dfl_status run_2d(const okeys *k, const ocase *c, const dfl_study_ctx *ct
         if (!st) st = dfl_table_set_int(t, "self_intersections", c->have_curve ? (long)cnt.self_intersections : -1, err);
         if (!st) st = dfl_table_set_double(t, "reversed_fraction", c->have_curve ? cnt.reversed_fraction : NAN, err);
         if (!st) st = dfl_table_set_double(t, "removed_fraction", removed, err);
-        char stem[96];
-        snprintf(stem, sizeof stem, "%s_isolines", c->name);
-        if (!st) st = dfl_study_put_file(t, "isolines_vtp", ctx, stem, "vtp", true, err);
-        snprintf(stem, sizeof stem, "%s_untrimmed", c->name);
-        if (!st) st = dfl_study_put_file(t, "untrimmed_vtp", ctx, stem, "vtp", c->have_curve, err);
+        if (!st) st = put_vtp(t, ctx, c, "isolines", true, err);
+        if (!st) st = put_vtp(t, ctx, c, "untrimmed", c->have_curve, err);
         dfl_iso_free(&iso);
         dfl_iso_free(&ex);
     }
-    char stem[96];
-    snprintf(stem, sizeof stem, "%s_isolines", c->name);
-    if (!st) st = acc_write(ctx, stem, &iso_acc, NULL, err);
-    snprintf(stem, sizeof stem, "%s_untrimmed", c->name);
-    if (!st && c->have_curve) st = acc_write(ctx, stem, &un_acc, "removed", err);
-    acc_free(&iso_acc);
-    acc_free(&un_acc);
+    st = write_vtp(ctx, c, "isolines", &iso_acc, NULL, true, st, err);
+    st = write_vtp(ctx, c, "untrimmed", &un_acc, "removed", c->have_curve, st, err);
     free(v), free(dv), free(xy), free(dg);
     dfl_field_destroy(&f);
     dfl_pht_fit_free(&fit);
@@ -444,38 +463,35 @@ static dfl_status run_3d(const okeys *k, const ocase *c, const dfl_study_ctx *ct
         if (!st) st = dfl_table_set_int(t, "plane_lines", (long)p.nlines, err);
         if (!st) st = dfl_table_set_double(t, "plane_err_max", pmax, err);
         if (!st) st = dfl_table_set_double(t, "plane_err_mean", pmean, err);
-        char stem[96];
-        snprintf(stem, sizeof stem, "%s_isosurfaces", c->name);
-        if (!st) st = dfl_study_put_file(t, "isosurfaces_vtp", ctx, stem, "vtp", true, err);
-        snprintf(stem, sizeof stem, "%s_plane", c->name);
-        if (!st) st = dfl_study_put_file(t, "plane_vtp", ctx, stem, "vtp", true, err);
+        if (!st) st = put_vtp(t, ctx, c, "isosurfaces", true, err);
+        if (!st) st = put_vtp(t, ctx, c, "plane", true, err);
         dfl_iso_free(&s);
         dfl_iso_free(&p);
     }
-    char stem[96];
-    snprintf(stem, sizeof stem, "%s_isosurfaces", c->name);
-    if (!st) st = acc_write(ctx, stem, &sacc, NULL, err);
-    snprintf(stem, sizeof stem, "%s_plane", c->name);
-    if (!st) st = acc_write(ctx, stem, &pacc, NULL, err);
-    acc_free(&sacc);
-    acc_free(&pacc);
+    st = write_vtp(ctx, c, "isosurfaces", &sacc, NULL, true, st, err);
+    st = write_vtp(ctx, c, "plane", &pacc, NULL, true, st, err);
     free(v), free(vp);
     dfl_field_destroy(&f);
     dfl_pht_fit_free(&fit);
     return st;
 }
 
+static dfl_status run_cases(void *keys, const dfl_study_ctx *ctx, dfl_table *t, dfl_err *err)
+{
+    const okeys *k = keys;
+    dfl_status st = DFL_OK;
+    for (int i = 0; i < k->ncases && !st; i++)
+        st = k->c[i].dim == 2 ? run_2d(k, &k->c[i], ctx, t, err) : run_3d(k, &k->c[i], ctx, t, err);
+    return st;
+}
+
+static const sjp10_study OFFSETS = {sizeof(okeys), read_keys, run_cases, keys_free};
+
 static dfl_status offsets_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_table *table,
                               dfl_err *err)
 {
     okeys k;
-    memset(&k, 0, sizeof k);
-    dfl_status st = read_keys(cfg, &k, err);
-    if (!st) st = dfl_cfg_check_used(cfg, err);
-    for (int i = 0; i < k.ncases && !st; i++)
-        st = k.c[i].dim == 2 ? run_2d(&k, &k.c[i], ctx, table, err) : run_3d(&k, &k.c[i], ctx, table, err);
-    keys_free(&k);
-    return st;
+    return sjp10_run(&OFFSETS, &k, cfg, ctx, table, err);
 }
 
 /* Peak memory: the cases run one after another; a case holds its fit

@@ -220,6 +220,31 @@ long e2e_run_table(const char *cfg, const char *extra, const char *study, long n
     return n;
 }
 
+long e2e_ini_table(e2e_table *t, const char *name, const char *ini, const char *study,
+                   long nrows)
+{
+    if (!t->dir[0]) e2e_tmpdir(t->dir, sizeof t->dir);
+    e2e_write(t->dir, name, ini, t->cfg, sizeof t->cfg);
+    return e2e_run_table(t->cfg, NULL, study, nrows, t->out, sizeof t->out, t->csv, sizeof t->csv);
+}
+
+int e2e_sjp10_counts(const char *csv, long r, int dim)
+{
+    char *m = e2e_csv_cell(csv, r, "method");
+    cr_assert(m, "%s: no method in row %ld", csv, r);
+    const int uniform = strcmp(m, "uniform") == 0;
+    free(m);
+    const double cells = e2e_csv_get(csv, (size_t)r, "cells");
+    const double base = e2e_csv_get(csv, (size_t)r, "base_vertices");
+    cr_expect_eq(e2e_csv_get(csv, (size_t)r, "dofs"), ldexp(base, dim), "row %ld", r);
+    if (!uniform) return -1;
+    const int k = (int)e2e_csv_get(csv, (size_t)r, "uniform_level");
+    const double s = ldexp(1.0, k);
+    cr_expect_eq(cells, pow(s, dim), "row %ld level %d", r, k);
+    cr_expect_eq(base, pow(s + 1, dim), "row %ld level %d", r, k);
+    return k;
+}
+
 void e2e_run_ok(const char *cfg, const char *extra, char *out, size_t size)
 {
     char dir[256];

@@ -91,6 +91,22 @@ void e2e_run_ok(const char *cfg, const char *extra, char *out, size_t size);
  * number of data rows. */
 long e2e_run_table(const char *cfg, const char *extra, const char *study, long nrows, char *out,
                    size_t nout, char *csv, size_t ncsv);
+/* A study run from config text, as most end-to-end tests start: the
+ * directory the config is written to, the config's path, the results
+ * directory and the study's table. */
+typedef struct e2e_table {
+    char dir[256], cfg[512], out[512], csv[700];
+} e2e_table;
+/* Writes ini as t->dir/name (a fresh t->dir when it is empty: zero t
+ * first; later calls write beside the first config) and runs it with
+ * e2e_run_table (nrows < 0: any number of rows).  Returns the rows. */
+long e2e_ini_table(e2e_table *t, const char *name, const char *ini, const char *study,
+                   long nrows);
+/* The counts every row of an sjp10 fit table (sjp10_3d, sjp10_cells) obeys,
+ * as (non-fatal) expectations: 2^dim dofs per base vertex (a vertex's
+ * Hermite data) and, for a uniform fit at level k, (2^k)^dim cells on
+ * (2^k + 1)^dim base vertices.  Returns k, -1 for an adaptive row. */
+int e2e_sjp10_counts(const char *csv, long r, int dim);
 /* e2e_run_expect_fail for each row {args, want} of a table of bad input:
  * the run gets `<fixed> <args>` (fixed may be NULL). */
 void e2e_expect_bad_runs(const char *cfg, const char *fixed, const char *const rows[][2],

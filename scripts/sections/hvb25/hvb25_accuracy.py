@@ -16,6 +16,13 @@ METRIC_NOTE = ("Cells: ours (paper; ×ours/paper). L1 = mean |e|; L2 row: our MS
                "MSE (L1² ≤ MSE ≤ L1·L∞); \"not an MSE\" marks the others; L∞ = max |e|; over the "
                "evaluation grid.")
 PAPER_GRID = 217 ** 3  # the paper's error grid (hvb25 Sec. 8)
+# The error columns most tables print, in their order.
+ERRS = ("l1", "mse", "linf", "l1_band", "linf_band")
+
+
+def _errs(r, cols=ERRS):
+    """A row's errors as the tables print them: g(f(r, c)) for each column c."""
+    return [g(f(r, c)) for c in cols]
 
 
 def _raw(rows, match, col):
@@ -200,8 +207,7 @@ def _extra(ctx):
         pv = "—"
         if pc and n in (16, 32):
             pv = f"{g(_paper1(ctx, 'torus', o, n, 'L1', pc))} / {g(_paper1(ctx, 'torus', o, n, 'Linf', pc))}"
-        body.append([o, f"{n}³", flt, g(f(r, "l1")), g(f(r, "mse")), g(f(r, "linf")),
-                     g(f(r, "linf_off")), pv])
+        body.append([o, f"{n}³", flt, *_errs(r, ("l1", "mse", "linf", "linf_off")), pv])
     return "\n".join(["**Table 1, optional cells**: the torus from SDF input at 16³–64³ with the "
                       "trilinear filter beside nearest and Hermite (half storage).", "",
                       dflio.md_table(head, body), ""])
@@ -254,8 +260,7 @@ def _storage(ctx):
     rows = ctx.csv()
     head = ["order", "N", "position", "storage", "bytes", "L1", "MSE", "L∞", "L1 band", "L∞ band"]
     body = [[r["order"], f"{r['res']}³", C.col(r, "field.position"), r["storage"], r["bytes"],
-             g(f(r, "l1")), g(f(r, "mse")), g(f(r, "linf")), g(f(r, "l1_band")),
-             g(f(r, "linf_band"))] for r in rows]
+             *_errs(r)] for r in rows]
     return "\n".join([
         "**Storage precision** (torus, SDF input, nearest): every stored scalar in double, float or "
         "half; the footpoint stored as displacement p − x_c or as the absolute p. Half rounds a "
@@ -280,8 +285,8 @@ def _clip(ctx):
             continue
         xs = [f(r, "field.clip_radius") for r in sel]
         for r in sel:
-            body.append([order, flt, kind, g(f(r, "field.clip_radius")), g(f(r, "l1")),
-                         g(f(r, "linf")), g(f(r, "l1_band")), g(f(r, "linf_band"))])
+            body.append([order, flt, kind,
+                         *_errs(r, ("field.clip_radius", "l1", "linf", "l1_band", "linf_band"))])
         st = "o-" if kind == "bound" else "s--"
         ax[0].semilogy(xs, [f(r, "l1") for r in sel], st, label=f"order {order} {flt} {kind}")
         ax[1].semilogy(xs, [f(r, "linf") for r in sel], st, label=f"order {order} {flt} {kind}")
@@ -393,8 +398,7 @@ def _peers(ctx, shape):
             p = pr[0]
             pv = (f"{g(float(p['mean_abs']))} / {g(float(p['mean_sq']))} / "
                   f"{g(float(p['max_abs']))}")
-        body.append([m, st, f"{n}³", r["scalars"], g(f(r, "l1")), g(f(r, "mse")),
-                     g(f(r, "linf")), pv])
+        body.append([m, st, f"{n}³", r["scalars"], *_errs(r, ("l1", "mse", "linf")), pv])
     return "\n".join([
         f"**Grid peers ({shape})** at equal storage (field/gridpeer.h), beside the figures measured "
         "with the same protocol on 217³ (results/reference/hvb25_peers_measured.csv; ours on the same 217³ grid).",
@@ -422,9 +426,7 @@ def _generic(ctx):
     rows = ctx.csv()
     keys = [k for k in rows[0] if k.startswith("field.")] if rows else []
     head = keys + ["filter", "L1", "MSE", "L∞", "L1 band", "L∞ band", "uncertified"]
-    body = [[r[k] for k in keys] + [r["filter"], g(f(r, "l1")), g(f(r, "mse")), g(f(r, "linf")),
-                                    g(f(r, "l1_band")), g(f(r, "linf_band")), r["uncertified"]]
-            for r in rows]
+    body = [[r[k] for k in keys] + [r["filter"], *_errs(r), r["uncertified"]] for r in rows]
     return dflio.md_table(head, body) + "\n"
 
 
@@ -466,9 +468,8 @@ def _table2(ctx):
     keys = [k for k in ("field.input", "shape.random_seed") if rows and k in rows[0]]
     head = keys + ["order", "N", "filter", "L1", "MSE", "L∞", "L1 band", "L∞ band",
                    "uncertified"]
-    body = [[r[k] for k in keys] + [r["order"], f"{r['res']}³", r["filter"], g(f(r, "l1")),
-                                    g(f(r, "mse")), g(f(r, "linf")), g(f(r, "l1_band")),
-                                    g(f(r, "linf_band")), r["uncertified"]] for r in rows]
+    body = [[r[k] for k in keys] + [r["order"], f"{r['res']}³", r["filter"], *_errs(r),
+                                    r["uncertified"]] for r in rows]
     return "\n".join([
         f"**Table 2, {ctx.name[len('hvb25_table2_'):]}** (the paper's values are lost in the "
         "extraction; ours stand alone). Open surfaces: unsigned distance, brute-force-seeded "

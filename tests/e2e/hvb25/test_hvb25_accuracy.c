@@ -25,10 +25,10 @@
 
 static long run_text(const char *ini, long nrows, char *csv, size_t ncsv)
 {
-    char dir[256], cfg[512], out[512];
-    e2e_tmpdir(dir, sizeof dir);
-    e2e_write(dir, "t.ini", ini, cfg, sizeof cfg);
-    return e2e_run_table(cfg, NULL, "hvb25_accuracy", nrows, out, sizeof out, csv, ncsv);
+    e2e_table t = {0};
+    const long n = e2e_ini_table(&t, "t.ini", ini, "hvb25_accuracy", nrows);
+    snprintf(csv, ncsv, "%s", t.csv);
+    return n;
 }
 
 Test(e2e_hvb25_accuracy, order1_plane_is_exact, .timeout = 60)
@@ -172,24 +172,19 @@ Test(e2e_hvb25_accuracy, torus_order2_exact_in_equator_cells, .timeout = 120)
 {
     char csv[700];
     const double h = 2.0 / 9;
+    const char *fmt =
+        "[study]\nname = hvb25_accuracy\n" TORUS
+        "[field]\nkind = proxy\norder = 2\nres = 9\ninput = sdf\ncurvature = analytic\n"
+        "storage = double\nfilter = nearest\nclip_radius = 100\n"
+        "[eval]\nn = 33\nlo = -1 -1 %.17g\nhi = 1 1 %.17g\n";
     char ini[1024];
-    snprintf(ini, sizeof ini,
-             "[study]\nname = hvb25_accuracy\n" TORUS
-             "[field]\nkind = proxy\norder = 2\nres = 9\ninput = sdf\ncurvature = analytic\n"
-             "storage = double\nfilter = nearest\nclip_radius = 100\n"
-             "[eval]\nn = 33\nlo = -1 -1 %.17g\nhi = 1 1 %.17g\n",
-             -h / 4, h / 4);
+    snprintf(ini, sizeof ini, fmt, -h / 4, h / 4);
     run_text(ini, 1, csv, sizeof csv);
     cr_expect(e2e_csv_get(csv, 0, "linf") < 1e-10, "linf %g", e2e_csv_get(csv, 0, "linf"));
     cr_expect_eq(e2e_csv_get(csv, 0, "count"), 33.0 * 33 * 33);
     /* the same slab one layer up (z = h, cells k = 5) is not exact: the
      * tilted osculating tori err like rho^3 */
-    snprintf(ini, sizeof ini,
-             "[study]\nname = hvb25_accuracy\n" TORUS
-             "[field]\nkind = proxy\norder = 2\nres = 9\ninput = sdf\ncurvature = analytic\n"
-             "storage = double\nfilter = nearest\nclip_radius = 100\n"
-             "[eval]\nn = 33\nlo = -1 -1 %.17g\nhi = 1 1 %.17g\n",
-             h - h / 4, h + h / 4);
+    snprintf(ini, sizeof ini, fmt, h - h / 4, h + h / 4);
     run_text(ini, 1, csv, sizeof csv);
     cr_expect(e2e_csv_get(csv, 0, "linf") > 1e-6, "off the equator: linf %g",
               e2e_csv_get(csv, 0, "linf"));

@@ -12,18 +12,19 @@
 #include "io/exr.h"
 #include "util/e2e_util.h"
 
+/* Every frame here: the sphere seen from the z axis, looking at its centre. */
+#define SPHERE "[shape]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\n"
+#define CAMERA "[camera]\neye = 0 0 3\ntarget = 0 0 0\nup = 0 1 0\nfov = 30\n"
+
 Test(e2e_hvb25_render, sphere_depth_per_filter, .timeout = 60)
 {
-    char dir[256], cfg[512], out[512], csv[700];
-    e2e_tmpdir(dir, sizeof dir);
-    e2e_write(dir, "t.ini",
-              "[study]\nname = hvb25_render\nfilters = nearest trilinear hermite\nreps = 1\n"
-              "[shape]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\n"
-              "[field]\nkind = proxy\norder = 2\nres = 8\ninput = sdf\nstorage = double\n"
-              "[camera]\neye = 0 0 3\ntarget = 0 0 0\nup = 0 1 0\nfov = 30\nwidth = 33\n"
-              "height = 33\n[trace]\neps = 1e-6\n",
-              cfg, sizeof cfg);
-    e2e_run_table(cfg, NULL, "hvb25_render", 3, out, sizeof out, csv, sizeof csv);
+    e2e_table t = {0};
+    e2e_ini_table(&t, "t.ini",
+                  "[study]\nname = hvb25_render\nfilters = nearest trilinear hermite\nreps = 1\n"
+                  SPHERE "[field]\nkind = proxy\norder = 2\nres = 8\ninput = sdf\n"
+                  "storage = double\n" CAMERA "width = 33\nheight = 33\n[trace]\neps = 1e-6\n",
+                  "hvb25_render", 3);
+    const char *out = t.out, *csv = t.csv;
     for (long r = 0; r < 3; r++) {
         char *name = e2e_csv_cell(csv, r, "frame_exr"), path[1024];
         cr_assert_not_null(name);
@@ -50,17 +51,13 @@ Test(e2e_hvb25_render, sphere_depth_per_filter, .timeout = 60)
  * clip_radius cell sizes (0.5 * h, h = 0.25), not the filter's default. */
 Test(e2e_hvb25_render, clip_radius_with_filters, .timeout = 60)
 {
-    char dir[256], cfg[512], out[512], csv[700];
-    e2e_tmpdir(dir, sizeof dir);
-    e2e_write(dir, "t.ini",
-              "[study]\nname = hvb25_render\nfilters = nearest hermite\nreps = 1\n"
-              "[shape]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\n"
-              "[field]\nkind = proxy\norder = 1\nres = 8\ninput = sdf\nstorage = double\n"
-              "clip_radius = 0.5\n"
-              "[camera]\neye = 0 0 3\ntarget = 0 0 0\nup = 0 1 0\nfov = 30\nwidth = 9\n"
-              "height = 9\n",
-              cfg, sizeof cfg);
-    e2e_run_table(cfg, NULL, "hvb25_render", 2, out, sizeof out, csv, sizeof csv);
+    e2e_table t = {0};
+    e2e_ini_table(&t, "t.ini",
+                  "[study]\nname = hvb25_render\nfilters = nearest hermite\nreps = 1\n" SPHERE
+                  "[field]\nkind = proxy\norder = 1\nres = 8\ninput = sdf\nstorage = double\n"
+                  "clip_radius = 0.5\n" CAMERA "width = 9\nheight = 9\n",
+                  "hvb25_render", 2);
+    const char *csv = t.csv;
     for (long r = 0; r < 2; r++)
         cr_expect_eq(e2e_csv_get(csv, r, "clip"), 0.125, "row %ld: clip %g", r,
                      e2e_csv_get(csv, r, "clip"));
@@ -73,17 +70,15 @@ Test(e2e_hvb25_render, clip_radius_with_filters, .timeout = 60)
  * tolerance; every row names its clip kind. */
 Test(e2e_hvb25_render, exact_proxies_have_no_false_hits, .timeout = 60)
 {
-    char dir[256], cfg[512], out[512], csv[700];
-    e2e_tmpdir(dir, sizeof dir);
-    e2e_write(dir, "t.ini",
-              "[study]\nname = hvb25_render\nfilters = nearest\nreps = 1\nfalse_hit_tol = 1e-3\n"
-              "[shape]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\n"
-              "[field]\nkind = proxy\norder = 2\nres = 8\ninput = sdf\nstorage = double\n"
-              "clip = off, bound\n"
-              "[camera]\neye = 0 0 3\ntarget = 0 0 0\nup = 0 1 0\nfov = 30\nwidth = 17\n"
-              "height = 17\n[trace]\neps = 1e-7\nbox = false\n",
-              cfg, sizeof cfg);
-    e2e_run_table(cfg, NULL, "hvb25_render", 2, out, sizeof out, csv, sizeof csv);
+    e2e_table t = {0};
+    e2e_ini_table(&t, "t.ini",
+                  "[study]\nname = hvb25_render\nfilters = nearest\nreps = 1\n"
+                  "false_hit_tol = 1e-3\n" SPHERE
+                  "[field]\nkind = proxy\norder = 2\nres = 8\ninput = sdf\nstorage = double\n"
+                  "clip = off, bound\n" CAMERA "width = 17\nheight = 17\n[trace]\neps = 1e-7\n"
+                  "box = false\n",
+                  "hvb25_render", 2);
+    const char *csv = t.csv;
     static const char *const kind[2] = {"off", "bound"};
     for (long r = 0; r < 2; r++) {
         cr_expect_eq(e2e_csv_get(csv, r, "false_hits"), 0, "row %ld", r);

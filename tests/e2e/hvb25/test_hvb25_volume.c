@@ -27,24 +27,33 @@ static void check(const char *dir, const char *file, const char *opts)
     free(out);
 }
 
+/* One decoding of the sphere, as [field] gives it, into t's results: one
+ * row, its volume volume.vti. */
+static void run_one(e2e_table *t, const char *name, const char *field_and_more)
+{
+    char ini[1024];
+    snprintf(ini, sizeof ini, "[study]\nname = hvb25_accuracy\n" SPHERE "%s", field_and_more);
+    e2e_ini_table(t, name, ini, "hvb25_accuracy", 1);
+}
+
 Test(e2e_hvb25_volume, sphere_volumes_and_sweep_collection, .timeout = 120)
 {
-    char dir[256], cfg[512], out[512], csv[700], f[900];
-    e2e_tmpdir(dir, sizeof dir);
-    e2e_write(dir, "t.ini",
-              "[study]\nname = hvb25_accuracy\nfilters = nearest hermite\n" SPHERE
-              "[field]\nkind = proxy\norder = 2\nres = 6, 8\ninput = sdf\ncurvature = analytic\n"
-              "signed = true\n"
-              "storage = double\n[eval]\nn = 21\n[output]\nvti_n = 13\n",
-              cfg, sizeof cfg);
-    e2e_run_table(cfg, NULL, "hvb25_accuracy", 4, out, sizeof out, csv, sizeof csv);
+    char f[900];
+    e2e_table t = {0};
+    e2e_ini_table(&t, "t.ini",
+                  "[study]\nname = hvb25_accuracy\nfilters = nearest hermite\n" SPHERE
+                  "[field]\nkind = proxy\norder = 2\nres = 6, 8\ninput = sdf\n"
+                  "curvature = analytic\nsigned = true\n"
+                  "storage = double\n[eval]\nn = 21\n[output]\nvti_n = 13\n",
+                  "hvb25_accuracy", 4);
+    const char *dir = t.dir, *out = t.out;
     for (int pt = 0; pt < 2; pt++) {
         snprintf(f, sizeof f, "%s/volume_hermite_pt%03d.vti", out, pt);
         check(dir, f, "--n 13 --sphere 0 0 0 0.5 --max-error 1e-12");
         snprintf(f, sizeof f, "%s/volume_nearest_pt%03d.vti", out, pt);
         check(dir, f, "--n 13 --sphere 0 0 0 0.5");
     }
-    char *c = e2e_csv_cell(csv, 1, "vti");
+    char *c = e2e_csv_cell(t.csv, 1, "vti");
     cr_expect_str_eq(c, "volume_hermite_pt000.vti");
     free(c);
     snprintf(f, sizeof f, "%s/volume_hermite.pvd", out);
@@ -54,44 +63,35 @@ Test(e2e_hvb25_volume, sphere_volumes_and_sweep_collection, .timeout = 120)
     cr_expect(strstr(pvd, "timestep=\"1\" group=\"\" part=\"0\" file=\"volume_hermite_pt001.vti\""),
               "%s", pvd);
     free(pvd);
-    e2e_rmtree(dir);
+    e2e_rmtree(t.dir);
 }
 
 Test(e2e_hvb25_volume, unsigned_reference_default_n_and_off, .timeout = 120)
 {
-    char dir[256], cfg[512], out[512], csv[700], f[900];
-    e2e_tmpdir(dir, sizeof dir);
-    /* one decoding as [field] gives it: volume.vti at the error grid (n = 17 < 33) */
-    e2e_write(dir, "t.ini",
-              "[study]\nname = hvb25_accuracy\n" SPHERE
-              /* signed = false: the default, as the paper */
-              "[field]\nkind = proxy\norder = 1\nres = 6\ninput = sdf\nsigned = false\n"
-              "storage = double\n[eval]\nn = 17\n",
-              cfg, sizeof cfg);
-    e2e_run_table(cfg, NULL, "hvb25_accuracy", 1, out, sizeof out, csv, sizeof csv);
-    snprintf(f, sizeof f, "%s/volume.vti", out);
-    check(dir, f, "--n 17 --sphere 0 0 0 0.5 --unsigned");
+    char f[900];
+    e2e_table t = {0};
+    /* volume.vti at the error grid (n = 17 < 33); signed = false: the
+     * default, as the paper */
+    run_one(&t, "t.ini",
+            "[field]\nkind = proxy\norder = 1\nres = 6\ninput = sdf\nsigned = false\n"
+            "storage = double\n[eval]\nn = 17\n");
+    snprintf(f, sizeof f, "%s/volume.vti", t.out);
+    check(t.dir, f, "--n 17 --sphere 0 0 0 0.5 --unsigned");
     /* an error grid above the cap: the volume has 33 nodes per axis */
-    e2e_write(dir, "cap.ini",
-              "[study]\nname = hvb25_accuracy\n" SPHERE
-              "[field]\nkind = proxy\norder = 1\nres = 4\ninput = sdf\nstorage = double\n"
-              "[eval]\nn = 41\n",
-              cfg, sizeof cfg);
-    e2e_run_table(cfg, NULL, "hvb25_accuracy", 1, out, sizeof out, csv, sizeof csv);
-    snprintf(f, sizeof f, "%s/volume.vti", out);
-    check(dir, f, "--n 33 --sphere 0 0 0 0.5 --unsigned");
-    e2e_write(dir, "off.ini",
-              "[study]\nname = hvb25_accuracy\n" SPHERE
-              "[field]\nkind = proxy\norder = 1\nres = 6\ninput = sdf\nstorage = double\n"
-              "[eval]\nn = 9\n[output]\nvti = false\n",
-              cfg, sizeof cfg);
-    e2e_run_table(cfg, NULL, "hvb25_accuracy", 1, out, sizeof out, csv, sizeof csv);
-    snprintf(f, sizeof f, "%s/volume.vti", out);
+    run_one(&t, "cap.ini",
+            "[field]\nkind = proxy\norder = 1\nres = 4\ninput = sdf\nstorage = double\n"
+            "[eval]\nn = 41\n");
+    snprintf(f, sizeof f, "%s/volume.vti", t.out);
+    check(t.dir, f, "--n 33 --sphere 0 0 0 0.5 --unsigned");
+    run_one(&t, "off.ini",
+            "[field]\nkind = proxy\norder = 1\nres = 6\ninput = sdf\nstorage = double\n"
+            "[eval]\nn = 9\n[output]\nvti = false\n");
+    snprintf(f, sizeof f, "%s/volume.vti", t.out);
     FILE *fp = fopen(f, "r");
     cr_expect_null(fp, "vti = false wrote %s", f);
     if (fp) fclose(fp);
-    char *c = e2e_csv_cell(csv, 0, "vti");
+    char *c = e2e_csv_cell(t.csv, 0, "vti");
     cr_expect_str_eq(c, "");
     free(c);
-    e2e_rmtree(dir);
+    e2e_rmtree(t.dir);
 }

@@ -31,37 +31,53 @@ Test(proxy_cfg, row_in_field_table)
     cr_expect(found);
 }
 
+/* What dfl_proxy_cfg_read makes of a [field] text: every key it reads. */
+typedef struct keys_case {
+    const char *field;
+    int order, res;
+    double lo[3], hi[3];
+    dfl_proxy_filter filter;
+    dfl_proxy_storage storage;
+    dfl_proxy_position position;
+    double clip_cells;
+    int is_signed;
+    double noise;
+    unsigned long seed;
+} keys_case;
+
+static const keys_case KEYS[] = {
+    /* the defaults */
+    {"", 1, 16, {-1, -1, -1}, {1, 1, 1}, DFL_PROXY_NEAREST, DFL_PROXY_DOUBLE,
+     DFL_PROXY_DISPLACEMENT, 0.0, 0, 0.0, 1},
+    /* every key given; one number for hi is every axis */
+    {"order = 2\nres = 8\nlo = -1 -2 -0.5\nhi = 2\nfilter = hermite\nstorage = half\n"
+     "position = absolute\nclip_radius = 1.5\nsigned = true\nnoise = 0.01\nseed = 7\n",
+     2, 8, {-1, -2, -0.5}, {2, 2, 2}, DFL_PROXY_HERMITE, DFL_PROXY_HALF, DFL_PROXY_ABSOLUTE, 1.5,
+     1, 0.01, 7},
+};
+
 Test(proxy_cfg, defaults_and_keys)
 {
-    dfl_cfg *cfg = with_field("");
-    dfl_proxy_cfg c;
-    cr_assert_eq(dfl_proxy_cfg_read(cfg, "field", &c, NULL), DFL_OK);
-    cr_expect_eq(c.build.order, 1);
-    cr_expect_eq(c.build.res, 16);
-    cr_expect_eq(c.build.lo[2], -1.0);
-    cr_expect_eq(c.build.hi[1], 1.0);
-    cr_expect_eq(c.filter, DFL_PROXY_NEAREST);
-    cr_expect_eq(c.build.storage, DFL_PROXY_DOUBLE);
-    cr_expect_eq(c.build.position, DFL_PROXY_DISPLACEMENT);
-    cr_expect_eq(c.clip_cells, 0.0);
-    cr_expect_eq(c.is_signed, 0);
-    dfl_cfg_free(cfg);
-    cfg = with_field("order = 2\nres = 8\nlo = -1 -2 -0.5\nhi = 2\nfilter = hermite\nstorage = "
-                     "half\nposition = absolute\nclip_radius = 1.5\nsigned = true\nnoise = "
-                     "0.01\nseed = 7\n");
-    cr_assert_eq(dfl_proxy_cfg_read(cfg, "field", &c, NULL), DFL_OK);
-    cr_expect_eq(c.build.order, 2);
-    cr_expect_eq(c.build.res, 8);
-    cr_expect_eq(c.build.lo[1], -2.0);
-    cr_expect_eq(c.build.hi[0], 2.0);
-    cr_expect_eq(c.filter, DFL_PROXY_HERMITE);
-    cr_expect_eq(c.build.storage, DFL_PROXY_HALF);
-    cr_expect_eq(c.build.position, DFL_PROXY_ABSOLUTE);
-    cr_expect_eq(c.clip_cells, 1.5);
-    cr_expect_eq(c.is_signed, 1);
-    cr_expect_eq(c.build.noise, 0.01);
-    cr_expect_eq(c.build.seed, 7);
-    dfl_cfg_free(cfg);
+    for (size_t i = 0; i < sizeof KEYS / sizeof KEYS[0]; i++) {
+        const keys_case *w = &KEYS[i];
+        dfl_cfg *cfg = with_field(w->field);
+        dfl_proxy_cfg c;
+        cr_assert_eq(dfl_proxy_cfg_read(cfg, "field", &c, NULL), DFL_OK, "case %zu", i);
+        cr_expect_eq(c.build.order, w->order, "case %zu", i);
+        cr_expect_eq(c.build.res, w->res, "case %zu", i);
+        for (int j = 0; j < 3; j++) {
+            cr_expect_eq(c.build.lo[j], w->lo[j], "case %zu lo[%d]", i, j);
+            cr_expect_eq(c.build.hi[j], w->hi[j], "case %zu hi[%d]", i, j);
+        }
+        cr_expect_eq(c.filter, w->filter, "case %zu", i);
+        cr_expect_eq(c.build.storage, w->storage, "case %zu", i);
+        cr_expect_eq(c.build.position, w->position, "case %zu", i);
+        cr_expect_eq(c.clip_cells, w->clip_cells, "case %zu", i);
+        cr_expect_eq(c.is_signed, w->is_signed, "case %zu", i);
+        cr_expect_eq(c.build.noise, w->noise, "case %zu", i);
+        cr_expect_eq(c.build.seed, w->seed, "case %zu", i);
+        dfl_cfg_free(cfg);
+    }
 }
 
 /* The field of the config is the field of the library calls. */
