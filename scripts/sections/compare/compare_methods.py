@@ -36,6 +36,11 @@ ASSUMPTIONS = [
     "on the run's threads; build time: the factory call (for grid peers and proxies it includes "
     "the exact distances they sample). Both are wall-clock measurements on a shared machine.",
     "Budgets of the regime table: small ≤ 64 kB, medium ≤ 1 MB, large ≤ 16 MB.",
+    "Wuson (s_wuson) is a faceted triangle mesh that is not watertight (its inside is the "
+    "generalized winding number's): its SDF has creases at every edge and vertex, where it is "
+    "C0 only, and the near-surface band L∞ of every method is set there. Methods that assume "
+    "smoothness (order-2 proxies, Taylor-2 grid peers, C1 PHT splines) lose their order on it; "
+    "the rates table shows how far each still falls.",
     "OpenVDB (kind = openvdb) is a narrow-band level set: outside |d| < band·voxel its value is "
     "the background, so its rows enter the near-surface columns only (their band of 8 voxels "
     "covers |d| ≤ 0.05 at every voxel used), never the whole-box ones. Its bytes are OpenVDB's "
