@@ -7,17 +7,6 @@
 #include "cfg/shape_cfg.h"
 #include "pht/pht_field.h"
 
-static const char *const split_names[] = {
-#define X(code, name) name,
-    DFL_PHT_SPLITS(X)
-#undef X
-};
-static const char *const est_names[] = {
-#define X(code, name) name,
-    DFL_PHT_ESTIMATORS(X)
-#undef X
-};
-
 static dfl_status box_from_cfg(const dfl_cfg *cfg, const char *sec, int dim, double *lo,
                                double *hi, dfl_err *err)
 {
@@ -48,7 +37,7 @@ dfl_status dfl_pht_opts_from_cfg(const dfl_cfg *cfg, const char *sec, int dim,
         return st;
     if (!(eps > 0))
         return dfl_cfg_reject(cfg, sec, "eps", err, "eps = %g, expected a target error > 0", eps);
-    if ((st = dfl_cfg_enum_opt(cfg, sec, "split", split_names, DFL_PHT_SPLIT_COUNT, r.split,
+    if ((st = dfl_cfg_enum_opt(cfg, sec, "split", dfl_pht_split_names, DFL_PHT_SPLIT_COUNT, r.split,
                                &split, err)))
         return st;
     long lmax = split == DFL_PHT_SPLIT_BINARY ? (long)dim * DFL_TMESH_MAX_LEVEL
@@ -57,7 +46,7 @@ dfl_status dfl_pht_opts_from_cfg(const dfl_cfg *cfg, const char *sec, int dim,
         return st;
     if ((st = dfl_cfg_int_opt(cfg, sec, "samples", r.samples, 1, 4096, &samples, err)))
         return st;
-    if ((st = dfl_cfg_enum_opt(cfg, sec, "estimator", est_names, DFL_PHT_EST_COUNT, r.estimator,
+    if ((st = dfl_cfg_enum_opt(cfg, sec, "estimator", dfl_pht_estimator_names, DFL_PHT_EST_COUNT, r.estimator,
                                &est, err)))
         return st;
     if ((st = dfl_cfg_int_opt(cfg, sec, "seed", (long)r.seed, 0, 0x7fffffffL, &seed, err)))
@@ -77,38 +66,17 @@ dfl_status dfl_pht_opts_from_cfg(const dfl_cfg *cfg, const char *sec, int dim,
     return DFL_OK;
 }
 
-/* Whether the shape's distance is signed with an inside near the box, from
- * at most two evaluations (a grid of probes missed small shapes between its
- * points and cost 33^3 slow footpoints on implicit surfaces).  At the box
- * centre c: d(c) < 0 is inside.  d(c) >= the half diagonal puts the whole
- * box in the ball around c that no surface enters: no inside in the box.
- * Otherwise the nearest surface point is q = c - d(c) grad d(c); a step a
- * little past it, x = c - (d(c) + t) grad d(c), is inside for any closed
- * curve or surface (its distance is signed), while an unsigned distance
- * (an open curve) stays >= 0 there.  So a closed shape that meets the box
- * is never refused, whatever its size or the box's. */
-static int has_inside(const dfl_shape *s, const double *lo, const double *hi)
+/* 0 iff d at the box centre is >= the half diagonal (no inside, no
+ * surface in the box); the sign itself is the library's test. */
+static int box_meets_inside(const dfl_shape *s, const double *lo, const double *hi)
 {
-    const int dim = s->dim;
-    double c[3] = {0, 0, 0}, g[3] = {0, 0, 0}, half2 = 0;
-    for (int j = 0; j < dim; j++) {
+    double c[3] = {0, 0, 0}, half2 = 0;
+    for (int j = 0; j < s->dim; j++) {
         c[j] = 0.5 * lo[j] + 0.5 * hi[j];
         const double h = 0.5 * hi[j] - 0.5 * lo[j];
         half2 += h * h;
     }
-    const double d = dfl_shape_eval1(s, c, g);
-    if (d < 0.0) return 1;
-    if (!(d < sqrt(half2))) return 0;
-    double gn = 0;
-    for (int j = 0; j < dim; j++) gn += g[j] * g[j];
-    gn = sqrt(gn);
-    if (!(gn > 0) || !isfinite(gn)) return 0;
-    /* past the surface by a small share of the distance (at least of the
-     * box), far below any feature a fit at max_level 30 resolves */
-    const double t = 1e-6 * fmax(d, sqrt(half2) * 1e-6);
-    double x[3];
-    for (int j = 0; j < dim; j++) x[j] = c[j] - (d + t) * g[j] / gn;
-    return dfl_shape_eval1(s, x, NULL) < 0.0;
+    return dfl_shape_eval1(s, c, NULL) < sqrt(half2);
 }
 
 dfl_status dfl_pht_source_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_shape *shape,
@@ -129,13 +97,21 @@ dfl_status dfl_pht_source_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_shap
     }
     double lo[3], hi[3];
     if ((st = box_from_cfg(cfg, sec, s.dim, lo, hi, err))) goto fail;
-    if (!has_inside(&s, lo, hi)) {
+    /* the library's sign test (pht/hermite.h, the fits' own), located at
+     * the key to fix */
+    if (dfl_pht_source_check_signed(p, lo, hi, &e2) != DFL_OK) {
         int curve = strcmp(s.ops->kind, "bspline_curve") == 0;
-        st = dfl_cfg_reject(cfg, shsec, curve ? "closed" : "kind", err,
-                            "the shape has no inside in the box (d >= 0 past its nearest point to the box centre): "
-                            "PHT fits need a signed distance of a closed curve or surface%s",
-                            curve ? " (an open curve's distance is unsigned: set closed = true)"
-                                  : "");
+        st = dfl_cfg_reject(cfg, shsec, curve ? "closed" : "kind", err, "%s%s", e2.msg,
+                            curve ? " (set closed = true)" : "");
+        goto fail;
+    }
+    /* a config's policy beyond the library: a field whose box the shape
+     * stays away from (d at the centre >= the half diagonal: the whole box
+     * is outside) is a mistake, not a fit to make */
+    if (!box_meets_inside(&s, lo, hi)) {
+        st = dfl_cfg_reject(cfg, shsec, "kind", err,
+                            "the shape has no inside in the box (its distance from the box "
+                            "centre is at least the half diagonal): move the box or the shape");
         goto fail;
     }
     /* the source points at its shape: rebuild it on the caller's copy */

@@ -401,7 +401,7 @@ static dfl_status mesh_from_cfg(const shape_req *rq, dfl_shape *out, dfl_err *er
     return DFL_OK;
 }
 
-/* ---- the table: one parser per kind of geom/shape.h's DFL_SHAPE_KINDS ---- */
+/* ---- the table: one parser per kind of geom/shape.h's DFL_SHAPE_KIND_LIST ---- */
 
 typedef dfl_status (*shape_parser)(const shape_req *rq, dfl_shape *out, dfl_err *err);
 

@@ -1,7 +1,7 @@
 /* `[shape]` config section -> dfl_shape.
  *
  * Keys (contract):
- *   kind = one of geom/shape.h's DFL_SHAPE_KINDS: circle | sphere | torus |
+ *   kind = one of geom/shape.h's DFL_SHAPE_KIND_LIST: circle | sphere | torus |
  *          cylinder | plane | cone | box | segment | ellipse | bspline_curve |
  *          bspline_surface | bezier_surface | implicit | csg | mesh
  *          (shape_cfg.c has one parser per kind)

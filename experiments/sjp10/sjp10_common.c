@@ -508,21 +508,18 @@ dfl_status sjp10_fit_from_cfg(const dfl_cfg *cfg, const char *key, int dim, dfl_
 dfl_status sjp10_source_new(const dfl_cfg *cfg, const char *sec, const dfl_shape *shape,
                             dfl_pht_source **src, dfl_err *err)
 {
-    const char *kind;
-    dfl_status st = dfl_cfg_string(cfg, sec, "kind", &kind, err);
-    if (st) return st;
-    if (strcmp(kind, "bspline_curve") == 0) {
-        /* an open curve's distance is unsigned: no inside, no sign change */
-        dfl_bspline c;
-        if ((st = dfl_curve_section_from_cfg(cfg, sec, &c, err))) return st;
-        const int closed = dfl_bspline_is_closed(&c, 1e-12);
-        dfl_bspline_free(&c);
-        if (!closed)
-            return dfl_cfg_reject(cfg, sec, "closed", err,
-                                  "PHT fits need a signed distance: an open curve's distance is "
-                                  "unsigned (set closed = true)");
+    dfl_status st = dfl_pht_source_new(shape, src, err);
+    if (st) return dfl_cfg_err_at(cfg, sec, "kind", st, err);
+    /* the library's sign test (pht/hermite.h; the fits repeat it on their
+     * own box): an open curve's distance is unsigned.  Seen from the unit
+     * box, wherever the shape lies: the probe decides the sign, not a box. */
+    static const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    if ((st = dfl_pht_source_check_signed(*src, lo, hi, err))) {
+        dfl_pht_source_free(*src);
+        *src = NULL;
+        const int curve = strcmp(shape->ops->kind, "bspline_curve") == 0;
+        return dfl_cfg_err_at(cfg, sec, curve ? "closed" : "kind", st, err);
     }
-    if ((st = dfl_pht_source_new(shape, src, err))) return dfl_cfg_err_at(cfg, sec, "kind", st, err);
     return DFL_OK;
 }
 

@@ -1,8 +1,9 @@
 /* The instruction set of the hot kernels, chosen once per process.
  *
  * dflab is built for baseline x86-64 (SSE2).  The hot kernels (the bs04
- * batched kernels rfunc/batch_*.c, PHT evaluation pht/spline.c, proxy
- * decoding proxy/decode.c, the grid peers field/gridpeer.c) are compiled
+ * batched kernels rfunc/batch_*.c, PHT evaluation pht/spline.c, the proxy
+ * filters proxy/filter.c (decoding inline from proxy/decode.h), the grid
+ * peers field/gridpeer.c) are compiled
  * once per ISA below (DFL_ISA_KERNEL) and the process's ISA picks the
  * variant at run time.  All variants compute the same bytes: vector add,
  * mul, div and sqrt round correctly like their scalar forms, every object

@@ -141,11 +141,18 @@ dfl_status dfl_metrics_put(dfl_table *t, const char *sfx, const dfl_metrics *m, 
 
 /* Sets band_count, band_bias, band_rel_bias, band_l1, band_rms, band_linf,
  * grad_min, grad_mean, grad_max, band_nonfinite in the current row of t.  Fails as the
- * table setters do. */
+ * table setters do.  These grad_* are dfl_bandstats' gmin, gmean, gmax: over
+ * the band's samples with a finite u != 0 (their count is gcount, not
+ * written), not over every band sample as dfl_metrics_put_gradstat's. */
 dfl_status dfl_metrics_put_bandstats(dfl_table *t, const dfl_bandstats *b, dfl_err *err);
 
 /* Sets grad_min<sfx>, grad_mean<sfx>, grad_max<sfx> (not the count) in the
- * current row of t.  Fails as the table setters do. */
+ * current row of t.  Fails as the table setters do.  The samples are
+ * dfl_metrics_gradstat's: every selected one, u == 0 included, unlike the
+ * grad_* of dfl_metrics_put_bandstats (finite u != 0 only); the studies
+ * keep the two apart by the suffix (_band, _s<k>_band beside bandstats'
+ * bare names) and both stay as they are so that published tables keep
+ * their values. */
 dfl_status dfl_metrics_put_gradstat(dfl_table *t, const char *sfx, const dfl_gradstat *g,
                                     dfl_err *err);
 

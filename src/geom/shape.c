@@ -7,23 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-const char *const dfl_shape_kind_names[DFL_SHAPE_KIND_COUNT] = {
-#define X(code, name) name,
-    DFL_SHAPE_KINDS(X)
-#undef X
-};
-
-const char *dfl_shape_kind_name(dfl_shape_kind kind)
-{
-    return (int)kind >= 0 && kind < DFL_SHAPE_KIND_COUNT ? dfl_shape_kind_names[kind] : NULL;
-}
-
-int dfl_shape_kind_from_name(const char *name)
-{
-    for (int k = 0; name && k < DFL_SHAPE_KIND_COUNT; k++)
-        if (strcmp(name, dfl_shape_kind_names[k]) == 0) return k;
-    return -1;
-}
+DFL_NAMES_DEFINE(dfl_shape_kind, DFL_SHAPE_KIND_LIST, DFL_SHAPE_KIND_COUNT, dfl_shape_kind_names,
+                 dfl_shape_kind_name, dfl_shape_kind_parse, "shape kind")
 
 /* ---- generic use --------------------------------------------------------- */
 
@@ -85,7 +70,7 @@ dfl_status dfl_jets_polarize(int n, dfl_dir_jet_fn jet, const void *ctx, const d
             if ((st = jet(ctx, x, e, 2, &j, err)) != DFL_OK) return st;
             H[i * n + k] = H[k * n + i] = 0.5 * (dfl_jet_deriv(&j, 2) - D2[i] - D2[k]);
         }
-    if (n == 3) {
+    if (n == 3 && dxyz) {
         static const double E[4][3] = {{1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
         double acc = 0.0;
         for (int m = 0; m < 4; m++) {
@@ -118,23 +103,8 @@ dfl_status dfl_shape_hessian(const dfl_shape *s, const double *x, double *H, dfl
     if (dfl_shape_analytic_hess(s, x, H) || dfl_shape_csg_hess(s, x, H)) return DFL_OK;
     if (!s->ops->jet)
         return dfl_err_set(err, DFL_E_INPUT, "shape hessian: %s has no jets", s->ops->kind);
-    /* the second-order half of dfl_jets_polarize (no third derivatives) */
-    dfl_jet j;
-    dfl_status st;
-    for (int i = 0; i < 3; i++) {
-        double e[3] = {0, 0, 0};
-        e[i] = 1.0;
-        if ((st = s->ops->jet(s->impl, x, e, 2, &j, err)) != DFL_OK) return st;
-        H[4 * i] = dfl_jet_deriv(&j, 2);
-    }
-    for (int i = 0; i < 3; i++)
-        for (int k = i + 1; k < 3; k++) {
-            double e[3] = {0, 0, 0};
-            e[i] = e[k] = 1.0;
-            if ((st = s->ops->jet(s->impl, x, e, 2, &j, err)) != DFL_OK) return st;
-            H[3 * i + k] = H[3 * k + i] = 0.5 * (dfl_jet_deriv(&j, 2) - H[4 * i] - H[4 * k]);
-        }
-    return DFL_OK;
+    /* the second-order half of the one polarization (no third derivatives) */
+    return dfl_jets_polarize(3, shape_dir_jet, s, x, H, NULL, err);
 }
 
 void dfl_shape_free(dfl_shape *s)

@@ -52,42 +52,39 @@
 #include <stddef.h>
 
 #include "core/jet.h"
+#include "core/names.h"
 #include "core/status.h"
 
-/* The shape kinds, one row each: X(code, name) gives the code
- * DFL_SHAPE_<code> and the name used in configs ([shape] kind = name).  A
- * new kind adds one row here and one parser row in
- * experiments/cfg/shape_cfg.c. */
-#define DFL_SHAPE_KINDS(X)                 \
-    X(CIRCLE, "circle")                    \
-    X(SPHERE, "sphere")                    \
-    X(TORUS, "torus")                      \
-    X(CYLINDER, "cylinder")                \
-    X(PLANE, "plane")                      \
-    X(CONE, "cone")                        \
-    X(BOX, "box")                          \
-    X(SEGMENT, "segment")                  \
-    X(ELLIPSE, "ellipse")                  \
-    X(BSPLINE_CURVE, "bspline_curve")      \
-    X(BSPLINE_SURFACE, "bspline_surface")  \
-    X(BEZIER_SURFACE, "bezier_surface")    \
-    X(IMPLICIT, "implicit")                \
-    X(CSG, "csg")                          \
-    X(MESH, "mesh")
+/* The shape kinds, one list (core/names.h): X(code, name, note) gives the
+ * code and the name used in configs ([shape] kind = name).  A new kind adds
+ * one row here and one parser row in experiments/cfg/shape_cfg.c. */
+#define DFL_SHAPE_KIND_LIST(X)                                                   \
+    X(DFL_SHAPE_CIRCLE, "circle", "2D, analytic")                                \
+    X(DFL_SHAPE_SPHERE, "sphere", "3D, analytic")                                \
+    X(DFL_SHAPE_TORUS, "torus", "3D, analytic")                                  \
+    X(DFL_SHAPE_CYLINDER, "cylinder", "3D, analytic, infinite")                  \
+    X(DFL_SHAPE_PLANE, "plane", "2D line or 3D plane, analytic half-space")       \
+    X(DFL_SHAPE_CONE, "cone", "3D, analytic capped cone")                        \
+    X(DFL_SHAPE_BOX, "box", "2D or 3D, analytic")                                \
+    X(DFL_SHAPE_SEGMENT, "segment", "unsigned distance to a segment")            \
+    X(DFL_SHAPE_ELLIPSE, "ellipse", "2D, no jets")                               \
+    X(DFL_SHAPE_BSPLINE_CURVE, "bspline_curve", "signed if closed and planar")   \
+    X(DFL_SHAPE_BSPLINE_SURFACE, "bspline_surface", "unsigned, no jets")         \
+    X(DFL_SHAPE_BEZIER_SURFACE, "bezier_surface", "unsigned, no jets")           \
+    X(DFL_SHAPE_IMPLICIT, "implicit", "implicit surface (geom/implicit.h)")      \
+    X(DFL_SHAPE_CSG, "csg", "union, intersection, difference of two shapes")     \
+    X(DFL_SHAPE_MESH, "mesh", "triangle mesh (geom/mesh.h)")
 
-typedef enum dfl_shape_kind {
-#define X(code, name) DFL_SHAPE_##code,
-    DFL_SHAPE_KINDS(X)
-#undef X
-    DFL_SHAPE_KIND_COUNT
-} dfl_shape_kind;
+typedef enum dfl_shape_kind { DFL_SHAPE_KIND_LIST(DFL_NAMES_CODE) } dfl_shape_kind;
+enum { DFL_SHAPE_KIND_COUNT = 0 DFL_SHAPE_KIND_LIST(DFL_NAMES_ONE) };
 
 /* Names indexed by kind (the list above, in its order). */
 extern const char *const dfl_shape_kind_names[DFL_SHAPE_KIND_COUNT];
-/* The name of kind, NULL outside 0..DFL_SHAPE_KIND_COUNT-1. */
+/* The name of kind, "?" outside 0..DFL_SHAPE_KIND_COUNT-1. */
 const char *dfl_shape_kind_name(dfl_shape_kind kind);
-/* The kind called name (exact match), -1 if there is none (or name is NULL). */
-int dfl_shape_kind_from_name(const char *name);
+/* The kind called name (exact match) into *out; DFL_E_INPUT "unknown shape
+ * kind '<name>' (expected one of circle|...)" otherwise (*out untouched). */
+dfl_status dfl_shape_kind_parse(const char *name, dfl_shape_kind *out, dfl_err *err);
 
 typedef struct dfl_shape_ops {
     const char *kind;
@@ -188,8 +185,9 @@ dfl_status dfl_shape_derivs_at(const dfl_shape *s, const double *x, dfl_shape_de
 
 /* Hessian H (n x n, row-major) and, for n == 3, the mixed third derivative
  * *dxyz of a function at x from its jets along coordinate directions and
- * their sums (the polarization of dfl_shape_derivs_at); dxyz is not written
- * for n == 2.  n is 2 or 3 (asserted).  Fails with the first failing jet's
+ * their sums (the polarization of dfl_shape_derivs_at, dfl_shape_hessian and
+ * dfl_implicit_sdf_derivs); dxyz is not written for n == 2, and for n == 3
+ * it may be NULL (then no order-3 jets are taken).  n is 2 or 3 (asserted).  Fails with the first failing jet's
  * status; H is then partly written. */
 dfl_status dfl_jets_polarize(int n, dfl_dir_jet_fn jet, const void *ctx, const double *x,
                              double *H, double *dxyz, dfl_err *err);

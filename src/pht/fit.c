@@ -16,24 +16,9 @@
 
 #include "core/rng.h"
 
-static const char *const est_names[] = {
-#define X(code, name) name,
-    DFL_PHT_ESTIMATORS(X)
-#undef X
-};
-
-const char *dfl_pht_estimator_name(dfl_pht_estimator e)
-{
-    return (int)e >= 0 && e < DFL_PHT_EST_COUNT ? est_names[e] : NULL;
-}
-
-int dfl_pht_estimator_from_name(const char *name)
-{
-    if (!name) return -1;
-    for (int i = 0; i < DFL_PHT_EST_COUNT; i++)
-        if (strcmp(name, est_names[i]) == 0) return i;
-    return -1;
-}
+DFL_NAMES_DEFINE(dfl_pht_estimator, DFL_PHT_ESTIMATOR_LIST, DFL_PHT_EST_COUNT,
+                 dfl_pht_estimator_names, dfl_pht_estimator_name, dfl_pht_estimator_parse,
+                 "estimator")
 
 void dfl_pht_fit_opts_default(int dim, dfl_pht_fit_opts *o)
 {
@@ -62,7 +47,7 @@ dfl_status dfl_pht_fit_opts_check(int dim, const dfl_pht_fit_opts *o, dfl_err *e
     if (!(o->eps > 0) || !isfinite(o->eps))
         return dfl_err_set(err, DFL_E_INPUT, "PHT fit: eps = %g (expected a finite value > 0)",
                            o->eps);
-    if ((int)o->split < 0 || o->split >= DFL_PHT_SPLIT_COUNT)
+    if ((int)o->split < 0 || (int)o->split >= DFL_PHT_SPLIT_COUNT)
         return dfl_err_set(err, DFL_E_INPUT, "PHT fit: split %d (expected cross or binary)",
                            (int)o->split);
     int maxl = pht_fit_max_level(dim, o->split);
@@ -72,7 +57,7 @@ dfl_status dfl_pht_fit_opts_check(int dim, const dfl_pht_fit_opts *o, dfl_err *e
     if (o->samples < 1 || o->samples > 4096)
         return dfl_err_set(err, DFL_E_INPUT, "PHT fit: samples = %d (expected 1..4096)",
                            o->samples);
-    if ((int)o->estimator < 0 || o->estimator >= DFL_PHT_EST_COUNT)
+    if ((int)o->estimator < 0 || (int)o->estimator >= DFL_PHT_EST_COUNT)
         return dfl_err_set(err, DFL_E_INPUT,
                            "PHT fit: estimator %d (expected random, grid or gradient)",
                            (int)o->estimator);
@@ -234,8 +219,9 @@ static void cell_points(const fitter *F, const dfl_tmesh_cell *c, double *pts)
     }
 }
 
-/* Estimator over all leaves; per-leaf error into err_out (leaf order).
- * Times are added to *tf (exact distances) and *ts (spline). */
+/* Estimator over all leaves; per-leaf error into err_out (leaf order), the
+ * level's max and mean error into rec.  Times are added to rec->t_foot
+ * (exact distances) and rec->t_spline (spline). */
 static dfl_status estimate(fitter *F, double *err_out, dfl_pht_level *rec, dfl_err *err)
 {
     size_t nl = dfl_tmesh_nleaves(F->mesh);
@@ -296,7 +282,9 @@ static dfl_status estimate(fitter *F, double *err_out, dfl_pht_level *rec, dfl_e
                     }
                     if (sqrt(gg) > ev) ev = sqrt(gg);
                 }
-                if (!(ev <= mx)) mx = ev; /* NaN propagates */
+                /* a NaN sticks: !(ev <= mx) alone let a later finite point
+                 * replace it */
+                if (isnan(ev) || ev > mx) mx = ev;
             }
             F->node_err[id] = mx;
             F->node_sum[id] = sum;
@@ -312,7 +300,7 @@ static dfl_status estimate(fitter *F, double *err_out, dfl_pht_level *rec, dfl_e
     double mx = 0.0, sum = 0.0;
     for (size_t i = 0; i < nl; i++) {
         err_out[i] = F->node_err[leaves[i]];
-        if (!(err_out[i] <= mx)) mx = err_out[i];
+        if (isnan(err_out[i]) || err_out[i] > mx) mx = err_out[i]; /* a NaN sticks */
         sum += F->node_sum[leaves[i]];
     }
     rec->max_err = mx;
@@ -358,6 +346,9 @@ static dfl_status fitter_init(fitter *F, const dfl_pht_source *src, const dfl_ph
     F->nc = DFL_PHT_NCOEF(F->dim);
     dfl_status st = dfl_pht_fit_opts_check(F->dim, o, err);
     if (st != DFL_OK) return st;
+    /* an unsigned distance (an open curve) has no inside: refuse it here,
+     * once for every caller, rather than fit a function that is not an SDF */
+    if ((st = dfl_pht_source_check_signed(src, o->lo, o->hi, err)) != DFL_OK) return st;
     if (o->estimator == DFL_PHT_EST_GRID) {
         int n = (int)lround(pow((double)o->samples, 1.0 / F->dim));
         if (n < 1) n = 1;
@@ -398,10 +389,9 @@ static void fitter_abort(fitter *F, double *cell_err, dfl_pht_level *levels, dfl
 
 /* Appends to split[0..ns) the owners of the hanging corners of the cells in
  * it that are >= 2 levels coarser and below max_level (once each: the
- * owners are leaves, at most nl more entries). */
-static size_t add_owners(fitter *F, size_t *split, size_t ns, size_t nl)
+ * owners are leaves not yet in split, so split needs room for all leaves). */
+static size_t add_owners(fitter *F, size_t *split, size_t ns)
 {
-    (void)nl;
     size_t n0 = ns, nn = dfl_tmesh_ncells(F->mesh);
     unsigned char *mark = calloc(nn, 1);
     if (!mark) return ns;  /* grading is an improvement, not a requirement */
@@ -480,7 +470,7 @@ dfl_status dfl_pht_fit_run(const dfl_pht_source *src, const dfl_pht_fit_opts *o,
             else capped++;
         }
         out->capped = capped;
-        if (o->grade && ns) ns = add_owners(&F, split, ns, nl);
+        if (o->grade && ns) ns = add_owners(&F, split, ns);
         out->converged = all_ok;
         rec->refined = ns;
         if (ns == 0) break;

@@ -36,7 +36,8 @@
  *             eps; it does not shrink with the cell at a kink of d, so cells
  *             on the medial axis go to max_level).
  * The random points of a cell are drawn from a SplitMix64 stream seeded by
- * (seed, the cell's lattice corner and level), so they do not depend on the
+ * (seed, the cell's level and the bits of its world low corner lo[]; lo is
+ * a function of the lattice corner and the box), so they do not depend on the
  * order in which cells are visited or on the thread count; per-cell work runs
  * in parallel over cells and every reduction combines per-cell results in
  * leaf order: results are bit-identical at any OMP_NUM_THREADS.  A cell whose
@@ -49,7 +50,7 @@
  * with the same estimator.
  *
  * Function index:
- *   dfl_pht_estimator_name / _from_name   names of the estimators
+ *   dfl_pht_estimator_name / _parse       names of the estimators
  *   dfl_pht_fit_opts_default              defaults (below)
  *   dfl_pht_fit_opts_check                DFL_E_INPUT naming the bad option
  *   dfl_pht_fit_run                       adaptive fit
@@ -62,25 +63,29 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "core/names.h"
 #include "core/status.h"
 #include "pht/hermite.h"
 #include "pht/spline.h"
 #include "pht/tmesh.h"
 
-#define DFL_PHT_ESTIMATORS(X) \
-    X(RANDOM, "random")       \
-    X(GRID, "grid")           \
-    X(GRADIENT, "gradient")
+/* The estimators (above), one list (core/names.h): X(code, config name, note). */
+#define DFL_PHT_ESTIMATOR_LIST(X)                                                  \
+    X(DFL_PHT_EST_RANDOM, "random", "|f - d| at seeded random points (+ peaks)")  \
+    X(DFL_PHT_EST_GRID, "grid", "|f - d| on a fixed sub-grid")                    \
+    X(DFL_PHT_EST_GRADIENT, "gradient", "max(|f - d|, |grad f - grad d|) at the random points")
 
-typedef enum dfl_pht_estimator {
-#define X(code, name) DFL_PHT_EST_##code,
-    DFL_PHT_ESTIMATORS(X)
-#undef X
-    DFL_PHT_EST_COUNT
-} dfl_pht_estimator;
+typedef enum dfl_pht_estimator { DFL_PHT_ESTIMATOR_LIST(DFL_NAMES_CODE) } dfl_pht_estimator;
+enum { DFL_PHT_EST_COUNT = 0 DFL_PHT_ESTIMATOR_LIST(DFL_NAMES_ONE) };
 
+/* Config names indexed by code. */
+extern const char *const dfl_pht_estimator_names[DFL_PHT_EST_COUNT];
+/* Config name of an estimator; "?" outside the list. */
 const char *dfl_pht_estimator_name(dfl_pht_estimator e);
-int dfl_pht_estimator_from_name(const char *name);
+/* The estimator called name (exact match) into *out; DFL_E_INPUT "unknown
+ * estimator '<name>' (expected one of random|grid|gradient)" otherwise
+ * (*out untouched). */
+dfl_status dfl_pht_estimator_parse(const char *name, dfl_pht_estimator *out, dfl_err *err);
 
 typedef struct dfl_pht_fit_opts {
     double lo[3], hi[3];          /* the box (dim entries); lo < hi */
@@ -107,7 +112,8 @@ typedef struct dfl_pht_level {
     size_t dofs;             /* base_vertices * DFL_PHT_NDATA(dim) */
     size_t refined;          /* cells split to make T^{k+1} (0 at the last level) */
     size_t new_base;         /* base vertices whose data were computed at this level */
-    double max_err;          /* max over all cells of the estimator error */
+    double max_err;          /* max over all cells of the estimator error (NaN if
+                                any cell's estimate is: a NaN exact distance) */
     double mean_err;         /* mean of the value error |f - d| over all estimator points */
     double t_foot;           /* s: Hermite data and exact distances (footpoints) */
     double t_spline;         /* s: resolve, cell polynomials, spline evaluation */
@@ -137,14 +143,18 @@ dfl_status dfl_pht_fit_opts_check(int dim, const dfl_pht_fit_opts *o, dfl_err *e
 
 /* Adaptive fit of src's SDF over o's box.  *out is filled on success (free
  * with dfl_pht_fit_free); on failure it is zeroed.  DFL_E_INPUT for bad
- * options, DFL_E_NUMERIC if Hermite data cannot be computed at a base vertex,
+ * options or an unsigned distance such as an open curve's
+ * (dfl_pht_source_check_signed's message), DFL_E_NUMERIC if Hermite data cannot be computed at a base vertex,
  * DFL_E_NOMEM. */
 dfl_status dfl_pht_fit_run(const dfl_pht_source *src, const dfl_pht_fit_opts *o,
                            dfl_pht_fit *out, dfl_err *err);
 
 /* Uniform bicubic / tricubic Hermite grid: all cells at level `level`
  * (0..DFL_TMESH_MAX_LEVEL) by the cross rule; o gives the box, samples,
- * estimator and seed (eps, max_level and split are ignored).  One level record. */
+ * estimator, peaks and seed; max_level, split and grade are ignored, and eps
+ * refines nothing: it only sets capped (cells whose estimate is not <= eps)
+ * and converged (capped == 0); eps <= 0 or NaN counts as 1, +inf is
+ * DFL_E_INPUT.  One level record; errors as dfl_pht_fit_run. */
 dfl_status dfl_pht_fit_uniform(const dfl_pht_source *src, const dfl_pht_fit_opts *o, int level,
                                dfl_pht_fit *out, dfl_err *err);
 

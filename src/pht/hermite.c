@@ -39,6 +39,12 @@
  *       d_yz = (D2_1 - D2_2 - D2_3 + D2_4) / 8,
  *       d_xyz = (D3_1 - D3_2 - D3_3 - D3_4) / 24 (the 1/24 sum of geom/shape.h),
  *   so 2 jets of order 2 (2D) or 4 jets of order 3 (3D) per vertex.
+ *   This is not geom's dfl_jets_polarize (dfl_shape_derivs_at), which takes
+ *   the Hessian from jets along e_i and e_i + e_k (3 jets in 2D, 6 + 4 in
+ *   3D): the two agree to rounding but not bit for bit (d_xy = (a - b) / 4
+ *   versus (D2_{e1+e2} - D2_{e1} - D2_{e2}) / 2; switching changed every
+ *   CSV of configs/paper/sjp10/sjp10_offsets.ini), so the paper studies'
+ *   outputs keep this scheme.  d_xyz is the same sum in both.
  * Implicit surfaces use dfl_implicit_sdf_derivs (one footpoint, then jets
  * from it).
  *
@@ -96,6 +102,54 @@ void dfl_pht_source_free(dfl_pht_source *src) { free(src); }
 
 int dfl_pht_source_dim(const dfl_pht_source *src) { return src->shape->dim; }
 const dfl_shape *dfl_pht_source_shape(const dfl_pht_source *src) { return src->shape; }
+
+/* The probe of dfl_pht_source_check_signed.  Why it decides: from the box
+ * centre c the nearest surface point is q = c - d(c) grad d(c); a point a
+ * little past it, x = c - (d(c) + t) grad d(c), is inside (d < 0) for any
+ * closed curve or surface once t is below the local feature size, while an
+ * unsigned distance (an open curve, a segment) is >= 0 everywhere.  The
+ * first step, t = 1e-6 max(d(c), 1e-6 half diagonal), is the one the
+ * experiments' check took (pht_cfg.c, sjp10); smaller steps (down to
+ * rounding of q) follow only when it lands outside, for a shape much
+ * smaller than its distance from c.  A grid of probes (an earlier check)
+ * missed small shapes between its points and cost 33^3 footpoints on
+ * implicit surfaces. */
+static int signed_probe(const dfl_shape *s, const double *lo, const double *hi)
+{
+    const int dim = s->dim;
+    double c[3] = {0, 0, 0}, g[3] = {0, 0, 0}, half2 = 0, cmax = 0;
+    for (int j = 0; j < dim; j++) {
+        c[j] = 0.5 * lo[j] + 0.5 * hi[j];
+        const double h = 0.5 * hi[j] - 0.5 * lo[j];
+        half2 += h * h;
+        cmax = fmax(cmax, fabs(c[j]));
+    }
+    const double d = dfl_shape_eval1(s, c, g);
+    if (d < 0.0) return 1;
+    if (!isfinite(d)) return 0;
+    double gn = 0;
+    for (int j = 0; j < dim; j++) gn += g[j] * g[j];
+    gn = sqrt(gn);
+    if (!(gn > 0) || !isfinite(gn)) return 0;
+    const double floor = 1e-13 * (cmax + d);
+    for (double t = 1e-6 * fmax(d, sqrt(half2) * 1e-6);; t *= 1e-3) {
+        double x[3];
+        for (int j = 0; j < dim; j++) x[j] = c[j] - (d + t) * g[j] / gn;
+        if (dfl_shape_eval1(s, x, NULL) < 0.0) return 1;
+        if (!(t * 1e-3 > floor)) return 0;
+    }
+}
+
+dfl_status dfl_pht_source_check_signed(const dfl_pht_source *src, const double *lo,
+                                       const double *hi, dfl_err *err)
+{
+    if (signed_probe(src->shape, lo, hi)) return DFL_OK;
+    return dfl_err_set(err, DFL_E_INPUT,
+                       "PHT source: shape '%s' has no inside (d >= 0 just past its nearest "
+                       "point to the box centre): PHT fits need a signed distance of a closed "
+                       "curve or surface (an open curve's distance is unsigned)",
+                       src->shape->ops->kind ? src->shape->ops->kind : "?");
+}
 
 static dfl_status hermite_exact(const dfl_pht_source *src, const double *x, double *out,
                                 int *flags, dfl_err *err);

@@ -14,8 +14,11 @@
  * circle, sphere, torus, closed B-spline curves (geom/curve_sdf.h),
  * implicit surfaces (geom/implicit.h: torus, genus 2, Goursat), boxes, CSG
  * of such shapes.  Implicit surfaces go through dfl_implicit_sdf_derivs (one
- * robust footpoint per vertex); every other shape through
- * dfl_shape_derivs_at (exact jets along coordinate directions, polarized).
+ * robust footpoint per vertex, geom's dfl_jets_polarize); every other shape
+ * through the shape's value and gradient plus order-2 (2D) or order-3 (3D)
+ * jets along the diagonals (1, +-1[, +-1]), polarized in hermite.c: 2 jets
+ * per vertex in 2D and 4 in 3D, where dfl_shape_derivs_at's coordinate-sum
+ * polarization takes 3 and 10 and rounds the mixed derivatives differently.
  * The derivation of the paper's eq. 2-7 and how they map onto these closed
  * forms is in hermite.c.
  *
@@ -23,6 +26,7 @@
  *   dfl_pht_source_new / _free     wrap a shape (borrowed) as a Hermite data source
  *   dfl_pht_source_dim             2 or 3
  *   dfl_pht_source_shape           the wrapped shape (borrowed)
+ *   dfl_pht_source_check_signed    DFL_E_INPUT for an unsigned distance (open curves)
  *   dfl_pht_hermite                the 4 / 8 data at one point (+ flags)
  *   dfl_pht_source_eval            batched value (+ gradient) of the exact SDF
  *   DFL_PHT_NDATA(dim)             4 or 8
@@ -49,16 +53,28 @@
 
 typedef struct dfl_pht_source dfl_pht_source;
 
-/* Wraps *shape (borrowed: it must outlive the source).  DFL_E_INPUT if the
- * shape has no derivatives (no jet op: ellipse, parametric surfaces) or is
- * not a signed distance (segment, an unsigned/open curve: its kind or a
- * non-negative probe says so; the message says which); DFL_E_NOMEM. */
+/* Wraps *shape (borrowed: it must outlive the source).  DFL_E_INPUT with a
+ * message naming the kind if the shape has no derivatives (no jet op:
+ * ellipse, parametric surfaces) or its kind is `segment` (an unsigned
+ * distance by construction); DFL_E_NOMEM.  Other unsigned distances (an
+ * open bspline_curve has jets and the same kind as a closed one) pass here:
+ * dfl_pht_source_check_signed refuses them, and the fits call it. */
 dfl_status dfl_pht_source_new(const dfl_shape *shape, dfl_pht_source **out, dfl_err *err);
 /* src may be NULL. */
 void dfl_pht_source_free(dfl_pht_source *src);
 
 int dfl_pht_source_dim(const dfl_pht_source *src);
 const dfl_shape *dfl_pht_source_shape(const dfl_pht_source *src);
+
+/* DFL_OK iff the source's distance is signed, as seen from the box [lo, hi]
+ * (dim doubles each): d < 0 at the box centre c, or d < 0 at a point just
+ * past the nearest surface point c - d(c) grad d(c) (a few evaluations;
+ * the step shrinks towards rounding while it lands outside).  A closed
+ * curve or surface always passes, wherever it lies; an unsigned distance
+ * (segment, open curve) never does.  Otherwise DFL_E_INPUT "PHT source:
+ * shape '<kind>' has no inside ...".  Thread-safe. */
+dfl_status dfl_pht_source_check_signed(const dfl_pht_source *src, const double *lo,
+                                       const double *hi, dfl_err *err);
 
 /* The DFL_PHT_NDATA(dim) data at x into data (mask order, dflab sign);
  * *flags (may be NULL) gets DFL_PHT_HERMITE_* bits.  Where the SDF is not

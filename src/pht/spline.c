@@ -494,7 +494,8 @@ void dfl_pht_eval_cell(const dfl_pht_spline *s, size_t ci, size_t m, const doubl
     }
 }
 
-/* p[0..3*np] += a * (q1 * q2) for polynomials in t (coefficient arrays). */
+/* out = a * b for polynomials in t (coefficient arrays, lowest degree
+ * first, na and nb coefficients): writes and returns na + nb - 1 of them. */
 static int poly_mul(const double *a, int na, const double *b, int nb, double *out)
 {
     for (int k = 0; k < na + nb - 1; k++) out[k] = 0.0;

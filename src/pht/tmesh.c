@@ -54,23 +54,15 @@ struct dfl_tmesh {
     size_t nbase;
 };
 
-static const char *const split_names[] = {
-#define X(code, name) name,
-    DFL_PHT_SPLITS(X)
-#undef X
-};
+DFL_NAMES_DEFINE(dfl_pht_split, DFL_PHT_SPLIT_LIST, DFL_PHT_SPLIT_COUNT, dfl_pht_split_names,
+                 dfl_pht_split_name, dfl_pht_split_parse, "split")
 
-const char *dfl_pht_split_name(dfl_pht_split s)
-{
-    return (int)s >= 0 && s < DFL_PHT_SPLIT_COUNT ? split_names[s] : NULL;
-}
+static const char *const vertex_kind_names[DFL_TMESH_VERTEX_KIND_COUNT] = {
+    DFL_TMESH_VERTEX_KIND_LIST(DFL_NAMES_NAME)};
 
-int dfl_pht_split_from_name(const char *name)
+const char *dfl_tmesh_vertex_kind_name(dfl_tmesh_vertex_kind k)
 {
-    if (!name) return -1;
-    for (int i = 0; i < DFL_PHT_SPLIT_COUNT; i++)
-        if (strcmp(name, split_names[i]) == 0) return i;
-    return -1;
+    return dfl_names_at(vertex_kind_names, DFL_TMESH_VERTEX_KIND_COUNT, (int)k);
 }
 
 static size_t key_hash(const uint32_t *k)
@@ -418,7 +410,7 @@ static int split_cell(dfl_tmesh *m, size_t id, dfl_pht_split rule)
 dfl_status dfl_tmesh_refine(dfl_tmesh *m, size_t n, const size_t *ids, dfl_pht_split rule,
                             dfl_err *err)
 {
-    if ((int)rule < 0 || rule >= DFL_PHT_SPLIT_COUNT)
+    if ((int)rule < 0 || (int)rule >= DFL_PHT_SPLIT_COUNT)
         return dfl_err_set(err, DFL_E_INPUT, "T-mesh: unknown split rule %d", (int)rule);
     for (size_t i = 0; i < n; i++) {
         if (ids[i] >= m->ncell || m->cell[ids[i]].nchild)

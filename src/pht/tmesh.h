@@ -44,7 +44,8 @@
  *   dfl_tmesh_order                         hanging vertices, dependencies first
  *   dfl_tmesh_locate                        leaf containing a point (O(levels))
  *   dfl_tmesh_bytes                         memory held (for "memory ~ cells" checks)
- *   dfl_pht_split_name / _from_name         names of the refinement rules
+ *   dfl_pht_split_name / _parse             names of the refinement rules
+ *   dfl_tmesh_vertex_kind_name              names of the vertex kinds
  */
 #ifndef DFL_PHT_TMESH_H
 #define DFL_PHT_TMESH_H
@@ -52,6 +53,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "core/names.h"
 #include "core/status.h"
 
 /* Lattice resolution: corners are integers in [0, 2^DFL_TMESH_BITS]. */
@@ -59,31 +61,40 @@
 /* Deepest cross level (cells of box / 2^30); binary: DFL_TMESH_BITS * dim. */
 #define DFL_TMESH_MAX_LEVEL DFL_TMESH_BITS
 
-/* Refinement rules, X(code, name). */
-#define DFL_PHT_SPLITS(X) \
-    X(CROSS, "cross")     \
-    X(BINARY, "binary")
+/* Refinement rules, one list (core/names.h): X(code, config name, note). */
+#define DFL_PHT_SPLIT_LIST(X)                                          \
+    X(DFL_PHT_SPLIT_CROSS, "cross", "a cell into 2^dim children")      \
+    X(DFL_PHT_SPLIT_BINARY, "binary", "a cell into 2 along its longest side")
 
-typedef enum dfl_pht_split {
-#define X(code, name) DFL_PHT_SPLIT_##code,
-    DFL_PHT_SPLITS(X)
-#undef X
-    DFL_PHT_SPLIT_COUNT
-} dfl_pht_split;
+typedef enum dfl_pht_split { DFL_PHT_SPLIT_LIST(DFL_NAMES_CODE) } dfl_pht_split;
+enum { DFL_PHT_SPLIT_COUNT = 0 DFL_PHT_SPLIT_LIST(DFL_NAMES_ONE) };
 
-/* Name of a split rule (NULL out of range); code of a name (-1 if none). */
+/* Config names indexed by code. */
+extern const char *const dfl_pht_split_names[DFL_PHT_SPLIT_COUNT];
+/* Config name of a split rule; "?" outside the list. */
 const char *dfl_pht_split_name(dfl_pht_split s);
-int dfl_pht_split_from_name(const char *name);
+/* The rule called name (exact match) into *out; DFL_E_INPUT "unknown split
+ * '<name>' (expected one of cross|binary)" otherwise (*out untouched). */
+dfl_status dfl_pht_split_parse(const char *name, dfl_pht_split *out, dfl_err *err);
 
-/* Vertex kinds. */
-#define DFL_TMESH_BASE 0      /* base vertex: data come from the function */
-#define DFL_TMESH_EDGE 1      /* hanging inside an edge: dep[0..1] along axis */
-#define DFL_TMESH_FACE 2      /* hanging inside a face (3D): dep[0..3] around normal axis */
+/* Vertex kinds, one list: X(code, name, what the vertex's data are). */
+#define DFL_TMESH_VERTEX_KIND_LIST(X)                                                  \
+    X(DFL_TMESH_BASE, "base", "base vertex: data come from the function")              \
+    X(DFL_TMESH_EDGE, "edge", "hanging inside an edge: dep[0..1] along axis")          \
+    X(DFL_TMESH_FACE, "face", "hanging inside a face (3D): dep[0..3] around normal axis")
+
+typedef enum dfl_tmesh_vertex_kind {
+    DFL_TMESH_VERTEX_KIND_LIST(DFL_NAMES_CODE)
+} dfl_tmesh_vertex_kind;
+enum { DFL_TMESH_VERTEX_KIND_COUNT = 0 DFL_TMESH_VERTEX_KIND_LIST(DFL_NAMES_ONE) };
+
+/* Name of a vertex kind ("base", "edge", "face"; for messages); "?" outside. */
+const char *dfl_tmesh_vertex_kind_name(dfl_tmesh_vertex_kind k);
 
 typedef struct dfl_tmesh_vertex {
     double x[3];          /* world position (dim entries used, rest 0) */
     uint32_t key[3];      /* lattice position */
-    int kind;             /* DFL_TMESH_BASE | _EDGE | _FACE */
+    dfl_tmesh_vertex_kind kind;
     int axis;             /* EDGE: the edge's axis; FACE: the face's normal axis; BASE: -1 */
     size_t dep[4];        /* EDGE: ends (low, high along axis); FACE: corners, index
                              bit 0 = high along the first tangential axis, bit 1 = the

@@ -54,9 +54,14 @@
  *              a cell centre value, gradient (and Hessian) are the centre
  *              proxy's, i.e. those of the surface's distance there.
  * Gradients are exact derivatives of the value (sum w grad D + D grad w).
- * Unsigned output (the paper's) is |value| with its gradient sgn(value)
- * grad; signed output needs a grid whose input has an inside (negative
- * inside).  The result at a NaN (failed) proxy is NaN.
+ * Unsigned output (the paper's) folds each proxy before any blend: D_c is
+ * replaced by |D_c| and its gradient by sgn(D_c) grad D_c, so nearest gives
+ * |D| and trilinear / hermite give sum_c w_c |D_c(x)| (with the gradient
+ * sum w_c sgn(D_c) grad D_c + |D_c| grad w_c), not |sum_c w_c D_c|: each
+ * proxy is an unsigned distance of its own, and where neighbouring proxies
+ * disagree in sign the blend stays > 0 instead of crossing zero between
+ * them.  Signed output (sum_c w_c D_c) needs a grid whose input has an
+ * inside (negative inside).  The result at a NaN (failed) proxy is NaN.
  */
 #ifndef DFL_PROXY_FILTER_H
 #define DFL_PROXY_FILTER_H

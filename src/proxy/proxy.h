@@ -128,8 +128,6 @@ static inline double dfl_proxy_cell_size(const dfl_proxy_grid *g)
 
 /* The decoded proxy of cell c (0 <= c < ncells). */
 void dfl_proxy_cell_decode(const dfl_proxy_grid *g, size_t c, dfl_proxy_geom *out);
-/* The same for cell (i, j, k), each in [0, res) (no index division;
- * inline, the filters' hot path). */
 /* Cell c's stored scalars as double (one storage switch per cell). */
 static inline void dfl_proxy_cell_load(const dfl_proxy_grid *g, size_t c, double *s)
 {
@@ -148,6 +146,8 @@ static inline void dfl_proxy_cell_load(const dfl_proxy_grid *g, size_t c, double
     }
 }
 
+/* dfl_proxy_cell_decode for cell (i, j, k), each in [0, res) (no index
+ * division; inline, the filters' hot path). */
 static inline void dfl_proxy_cell_decode_ijk(const dfl_proxy_grid *g, size_t i, size_t j, size_t k,
                                dfl_proxy_geom *out)
 {

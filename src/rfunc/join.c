@@ -288,11 +288,10 @@ void dfl_rfunc_guard_jet(const dfl_jet *q, const dfl_jet *hi, const dfl_jet *hj,
  * below e^-700 relative at every order, and so does a dominant one (same
  * valuation) with ratio^-p < e^-700 beside the term of ratio 1 (a far
  * part next to a near one, e.g. far along a ray at large coordinates). */
-static dfl_status add_inv_pow(dfl_jet *acc, const dfl_jet *x, double c, int vmax, int p,
-                              double sign, dfl_err *err)
+static dfl_status add_inv_pow(dfl_jet *acc, const dfl_jet *x, double c, int p, double sign,
+                              dfl_err *err)
 {
     const double ratio = x->c[0] / c;
-    (void)vmax;
     if (p * log(ratio) > 700.0) return DFL_OK;
     dfl_jet t;
     dfl_status st;
@@ -401,10 +400,10 @@ dfl_status dfl_rfunc_join_jet_corr(dfl_rfunc_join join, dfl_rfunc_correction cor
     dfl_jet S;
     dfl_rfunc_jet_zero(&S);
     for (size_t i = 0; i < n; i++)
-        if ((st = add_inv_pow(&S, &h[i], c, vmax, p, 1.0, err)) != DFL_OK) return st;
+        if ((st = add_inv_pow(&S, &h[i], c, p, 1.0, err)) != DFL_OK) return st;
     if (join == DFL_RFUNC_REQUIV_CORRECTED) {
         for (size_t i = 0; i < nq; i++)
-            if (!q[i].zero && (st = add_inv_pow(&S, &q[i], c, vmax, p, -1.0, err)) != DFL_OK)
+            if (!q[i].zero && (st = add_inv_pow(&S, &q[i], c, p, -1.0, err)) != DFL_OK)
                 return st;
         if (eq20) {
             if (qzero || S.zero || !(S.c[0] > 0.0)) {

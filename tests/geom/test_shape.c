@@ -69,14 +69,18 @@ Test(shape, kind_table)
     for (int k = 0; k < DFL_SHAPE_KIND_COUNT; k++) {
         const char *name = dfl_shape_kind_name((dfl_shape_kind)k);
         cr_assert_not_null(name);
-        cr_assert_eq(dfl_shape_kind_from_name(name), k, "%s", name);
+        dfl_shape_kind got = (dfl_shape_kind)DFL_SHAPE_KIND_COUNT;
+        cr_assert_eq(dfl_shape_kind_parse(name, &got, NULL), DFL_OK, "%s", name);
+        cr_assert_eq(got, k, "%s", name);
         for (int j = 0; j < k; j++) cr_assert_str_neq(name, dfl_shape_kind_names[j]);
     }
     cr_assert_str_eq(dfl_shape_kind_name(DFL_SHAPE_CIRCLE), "circle");
     cr_assert_str_eq(dfl_shape_kind_name(DFL_SHAPE_ELLIPSE), "ellipse");
     cr_assert_str_eq(dfl_shape_kind_name(DFL_SHAPE_CSG), "csg");
-    cr_assert_null(dfl_shape_kind_name((dfl_shape_kind)-1));
-    cr_assert_eq(dfl_shape_kind_from_name(NULL), -1);
+    cr_assert_str_eq(dfl_shape_kind_name((dfl_shape_kind)-1), "?");
+    dfl_shape_kind got = DFL_SHAPE_MESH;
+    cr_assert_eq(dfl_shape_kind_parse("Circle", &got, NULL), DFL_E_INPUT);
+    cr_assert_eq(got, DFL_SHAPE_MESH);
 }
 
 /* dfl_shape_hessian: the closed forms agree with the polarized jets

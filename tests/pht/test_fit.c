@@ -7,6 +7,8 @@
 #include <omp.h>
 #include <string.h>
 
+#include "geom/bspline.h"
+#include "geom/param_shape.h"
 #include "geom/shape.h"
 #include "pht/fit.h"
 #include "pht/spline.h"
@@ -185,8 +187,13 @@ Test(pht_fit, bad_options_name_the_option)
     cr_assert_eq(dfl_pht_fit_opts_check(2, &o, &err), DFL_E_INPUT);
     cr_assert(strstr(err.msg, "samples"), "%s", err.msg);
     cr_assert_str_eq(dfl_pht_estimator_name(DFL_PHT_EST_GRADIENT), "gradient");
-    cr_assert_eq(dfl_pht_estimator_from_name("grid"), DFL_PHT_EST_GRID);
-    cr_assert_eq(dfl_pht_estimator_from_name("sobol"), -1);
+    dfl_pht_estimator e = DFL_PHT_EST_RANDOM;
+    cr_assert_eq(dfl_pht_estimator_parse("grid", &e, &err), DFL_OK);
+    cr_assert_eq(e, DFL_PHT_EST_GRID);
+    cr_assert_eq(dfl_pht_estimator_parse("sobol", &e, &err), DFL_E_INPUT);
+    cr_assert_eq(e, DFL_PHT_EST_GRID);
+    cr_assert(strstr(err.msg, "'sobol'") && strstr(err.msg, "random|grid|gradient"), "%s",
+              err.msg);
 }
 
 /* capped (fit.h): the leaf cells above eps at max_level; 0 iff converged. */
@@ -285,4 +292,206 @@ Test(pht_fit, gradient_estimator_adds_the_gradient_error)
     dfl_pht_fit_free(&fg);
     dfl_pht_source_free(src);
     dfl_shape_free(&s);
+}
+
+/* A library caller gets the signed-distance check (fit.h, hermite.h): an
+ * open B-spline curve has jets and the kind of a closed one, so
+ * dfl_pht_source_new takes it, but its distance is unsigned (no inside):
+ * both fits refuse it with DFL_E_INPUT and a message saying why, and leave
+ * *out zeroed. */
+Test(pht_fit, an_open_curve_is_refused_with_a_message)
+{
+    const double cp[8] = {0.1, 0.1, 0.5, 0.9, 0.9, 0.1, 0.9, 0.5};
+    dfl_bspline c;
+    dfl_err err;
+    cr_assert_eq(dfl_bspline_init(2, 4, 4, cp, NULL, 0, &c, &err), DFL_OK, "%s", err.msg);
+    dfl_shape s;
+    cr_assert_eq(dfl_shape_param_curve(&c, NULL, 0, &s, &err), DFL_OK, "%s", err.msg);
+    dfl_pht_source *src;
+    cr_assert_eq(dfl_pht_source_new(&s, &src, &err), DFL_OK, "%s", err.msg);
+    dfl_pht_fit_opts o;
+    dfl_pht_fit_opts_default(2, &o);
+    dfl_pht_fit f;
+    memset(&f, 0xff, sizeof f);
+    cr_assert_eq(dfl_pht_fit_run(src, &o, &f, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "'bspline_curve'") && strstr(err.msg, "no inside") &&
+                  strstr(err.msg, "unsigned"),
+              "%s", err.msg);
+    cr_expect_null(f.mesh);
+    cr_expect_eq(f.nlevels, 0);
+    err.msg[0] = 0;
+    cr_assert_eq(dfl_pht_fit_uniform(src, &o, 2, &f, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "no inside"), "%s", err.msg);
+    dfl_pht_source_free(src);
+    dfl_shape_free(&s);
+}
+
+/* ---- a source whose estimator points are controlled ----
+ * The plane d = x + y - 1 (exact for the cubic spline: every cell's error
+ * is 0) whose batch evaluation without gradient (the estimator's exact
+ * distances; Hermite data always ask for the gradient) returns d + bump at
+ * the listed points, compared exactly.  With the grid estimator at one
+ * sample the only estimator point of a cell is its centre, so a cell's
+ * estimate is bump iff its centre is listed: the test decides which cells
+ * the error rule splits, and the rest of the mesh is grading. */
+typedef struct marked {
+    dfl_shape plane;
+    int n;
+    double pts[8][2];
+    double bump;
+} marked;
+
+static void marked_eval(const void *impl, size_t m, const double *pts, double *val, double *grad)
+{
+    const marked *M = impl;
+    M->plane.ops->eval(M->plane.impl, m, pts, val, grad);
+    if (grad) return;
+    for (size_t i = 0; i < m; i++)
+        for (int k = 0; k < M->n; k++)
+            if (pts[2 * i] == M->pts[k][0] && pts[2 * i + 1] == M->pts[k][1]) val[i] += M->bump;
+}
+
+static dfl_status marked_jet(const void *impl, const double *x, const double *dir, int K,
+                             dfl_jet *out, dfl_err *err)
+{
+    const marked *M = impl;
+    return M->plane.ops->jet(M->plane.impl, x, dir, K, out, err);
+}
+
+static const dfl_shape_ops marked_ops = {"marked_plane", marked_eval, marked_jet, NULL};
+
+static void marked_init(marked *M, int n, const double (*pts)[2], double bump, dfl_shape *s)
+{
+    const double p[2] = {0.5, 0.5}, nrm[2] = {1, 1};
+    cr_assert_eq(dfl_shape_plane(2, p, nrm, &M->plane, NULL), DFL_OK);
+    M->n = n;
+    memcpy(M->pts, pts, (size_t)n * sizeof *pts);
+    M->bump = bump;
+    *s = (dfl_shape){.dim = 2, .ops = &marked_ops, .impl = M};
+}
+
+static void marked_fit(const double (*pts)[2], int n, double bump, int max_level, int grade,
+                       dfl_pht_fit *f)
+{
+    static marked M;
+    dfl_shape s;
+    marked_init(&M, n, pts, bump, &s);
+    dfl_pht_fit_opts o;
+    dfl_pht_fit_opts_default(2, &o);
+    o.estimator = DFL_PHT_EST_GRID;
+    o.samples = 1;
+    o.max_level = max_level;
+    o.grade = grade;
+    fit(&s, &o, f);
+    dfl_shape_free(&M.plane);
+}
+
+static void expect_records(const dfl_pht_fit *f, int n, const size_t *cells,
+                           const size_t *refined)
+{
+    cr_assert_eq(f->nlevels, n);
+    for (int k = 0; k < n; k++) {
+        cr_expect_eq(f->levels[k].cells, cells[k], "level %d: %zu cells, expected %zu", k,
+                     f->levels[k].cells, cells[k]);
+        cr_expect_eq(f->levels[k].refined, refined[k], "level %d: %zu refined, expected %zu", k,
+                     f->levels[k].refined, refined[k]);
+    }
+}
+
+/* Grading (fit.h): the owner of a hanging corner of a split cell is split
+ * too iff it is >= 2 levels coarser.  The error rule splits the root
+ * (centre (1/2, 1/2)), then A = [0, 1/2]^2 (centre (1/4, 1/4)), then its
+ * child C = [1/4, 1/2]^2 (centre (3/8, 3/8)), all cross.  C (level 2) has
+ * two hanging corners, (1/2, 1/4) on the edge of the level-1 leaf
+ * E = [1/2, 1] x [0, 1/2] and (1/4, 1/2) on the level-1 leaf
+ * N = [0, 1/2] x [1/2, 1]: one level coarser, so neither is split (one
+ * level apart is what grading allows): records 1, 4, 7, 10 cells, one split
+ * each.  Then also listing C's child F = [3/8, 1/2]^2 (centre (7/16,
+ * 7/16), level 3): F's hanging corners (1/2, 3/8) and (3/8, 1/2) lie on E
+ * and N, two levels coarser, so the level splits F, E and N (refined 3):
+ * 10 + 3 * 3 = 19 cells, where the paper's rule alone (grade = 0) splits F
+ * only: 13. */
+Test(pht_fit, grading_splits_owners_two_levels_coarser_only)
+{
+    const double pts[4][2] = {{0.5, 0.5}, {0.25, 0.25}, {0.375, 0.375}, {0.4375, 0.4375}};
+    dfl_pht_fit f;
+    marked_fit(pts, 3, 1.0, 4, 1, &f);
+    const size_t c3[4] = {1, 4, 7, 10}, r3[4] = {1, 1, 1, 0};
+    expect_records(&f, 4, c3, r3);
+    cr_expect(f.converged);
+    dfl_pht_fit_free(&f);
+
+    marked_fit(pts, 4, 1.0, 4, 1, &f);
+    const size_t c4[5] = {1, 4, 7, 10, 19}, r4[5] = {1, 1, 1, 3, 0};
+    expect_records(&f, 5, c4, r4);
+    /* E and N were split into level-2 cells: the only level-1 leaf left is
+     * [1/2, 1]^2 */
+    for (size_t i = 0; i < dfl_pht_spline_ncells(f.spline); i++) {
+        int level;
+        double lo[2], hi[2];
+        dfl_pht_spline_cell(f.spline, i, lo, hi, &level);
+        if (level == 1) cr_expect(lo[0] == 0.5 && lo[1] == 0.5, "leaf at (%g, %g)", lo[0], lo[1]);
+    }
+    dfl_pht_fit_free(&f);
+
+    marked_fit(pts, 4, 1.0, 4, 0, &f);
+    const size_t c0[5] = {1, 4, 7, 10, 13}, r0[5] = {1, 1, 1, 1, 0};
+    expect_records(&f, 5, c0, r0);
+    dfl_pht_fit_free(&f);
+}
+
+/* A NaN exact distance at an estimator point (fit.c: "a NaN sticks")
+ * makes its cell's estimate NaN, whatever the other points give, and the
+ * level's max_err NaN whatever the other cells give: a NaN estimate is not
+ * <= eps, so the cell is not converged (at max_level 0 it is capped).  The
+ * one-cell mesh with the grid estimator at 4 samples has the points (1/4 or
+ * 3/4, 1/4 or 3/4); the second, (3/4, 1/4), is NaN and the two after it
+ * exact (error 0), so a maximum that a later finite point could replace
+ * would end at 0.  Likewise the uniform level-1 fit at one sample (the 4
+ * cell centres) with the NaN at the first leaf's centre. */
+Test(pht_fit, a_nan_estimate_propagates_to_the_maximum)
+{
+    static marked M;
+    const double pts[1][2] = {{0.75, 0.25}};
+    dfl_shape s;
+    marked_init(&M, 1, pts, NAN, &s);
+    dfl_pht_fit_opts o;
+    dfl_pht_fit_opts_default(2, &o);
+    o.estimator = DFL_PHT_EST_GRID;
+    o.samples = 4;
+    o.max_level = 0;
+    dfl_pht_fit f;
+    fit(&s, &o, &f);
+    cr_assert_eq(f.nlevels, 1);
+    cr_expect(isnan(f.cell_err[0]), "cell error %g", f.cell_err[0]);
+    cr_expect(isnan(f.levels[0].max_err), "max_err %g", f.levels[0].max_err);
+    cr_expect_eq(f.converged, 0);
+    cr_expect_eq(f.capped, 1);
+    dfl_pht_fit_free(&f);
+    dfl_shape_free(&M.plane);
+    /* the same point finite but off by 1: the estimate is exactly 1 */
+    marked_init(&M, 1, pts, 1.0, &s);
+    fit(&s, &o, &f);
+    cr_expect_eq(f.cell_err[0], 1.0);
+    cr_expect_eq(f.levels[0].max_err, 1.0);
+    dfl_pht_fit_free(&f);
+    dfl_shape_free(&M.plane);
+    /* over leaves: the NaN cell first, three exact cells after it */
+    const double first[1][2] = {{0.25, 0.25}};
+    marked_init(&M, 1, first, NAN, &s);
+    o.samples = 1;
+    dfl_pht_source *src;
+    dfl_err err;
+    cr_assert_eq(dfl_pht_source_new(&s, &src, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(dfl_pht_fit_uniform(src, &o, 1, &f, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(f.levels[0].cells, 4);
+    double lo[2], hi[2];
+    dfl_pht_spline_cell(f.spline, 0, lo, hi, NULL);
+    cr_assert(lo[0] == 0 && lo[1] == 0, "the first leaf is not the low corner's");
+    cr_expect(isnan(f.cell_err[0]) && f.cell_err[3] == 0.0);
+    cr_expect(isnan(f.levels[0].max_err), "max_err %g", f.levels[0].max_err);
+    cr_expect_eq(f.capped, 1);
+    dfl_pht_fit_free(&f);
+    dfl_pht_source_free(src);
+    dfl_shape_free(&M.plane);
 }

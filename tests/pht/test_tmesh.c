@@ -223,9 +223,15 @@ Test(pht_tmesh, classification_matches_brute_force)
 Test(pht_tmesh, split_names)
 {
     cr_assert_str_eq(dfl_pht_split_name(DFL_PHT_SPLIT_BINARY), "binary");
-    cr_assert_eq(dfl_pht_split_from_name("cross"), DFL_PHT_SPLIT_CROSS);
-    cr_assert_eq(dfl_pht_split_from_name("quad"), -1);
-    cr_assert_null(dfl_pht_split_name(DFL_PHT_SPLIT_COUNT));
+    dfl_pht_split r = DFL_PHT_SPLIT_BINARY;
+    dfl_err err;
+    cr_assert_eq(dfl_pht_split_parse("cross", &r, &err), DFL_OK);
+    cr_assert_eq(r, DFL_PHT_SPLIT_CROSS);
+    cr_assert_eq(dfl_pht_split_parse("quad", &r, &err), DFL_E_INPUT);
+    cr_assert_eq(r, DFL_PHT_SPLIT_CROSS);
+    cr_assert(strstr(err.msg, "'quad'") && strstr(err.msg, "cross|binary"), "%s", err.msg);
+    cr_assert_str_eq(dfl_pht_split_name((dfl_pht_split)DFL_PHT_SPLIT_COUNT), "?");
+    cr_assert_str_eq(dfl_tmesh_vertex_kind_name(DFL_TMESH_FACE), "face");
 }
 
 /* tmesh.h: binary splits cut the longest side in world units, ties to the

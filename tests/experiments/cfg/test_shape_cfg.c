@@ -24,7 +24,9 @@ Test(shape_cfg, every_kind_has_a_parser)
     for (int k = 0; k < DFL_SHAPE_KIND_COUNT; k++) {
         const char *name = dfl_shape_kind_name((dfl_shape_kind)k);
         cr_assert_not_null(name);
-        cr_assert_eq(dfl_shape_kind_from_name(name), k);
+        dfl_shape_kind got = (dfl_shape_kind)DFL_SHAPE_KIND_COUNT;
+        cr_assert_eq(dfl_shape_kind_parse(name, &got, NULL), DFL_OK);
+        cr_assert_eq(got, k);
         /* a section with nothing but the kind: a missing key, never an
          * internal error */
         char text[128];
@@ -35,10 +37,13 @@ Test(shape_cfg, every_kind_has_a_parser)
         cr_assert(strstr(err.msg, "test.ini"), "kind %s: %s", name, err.msg);
         cr_assert_null(s.impl);
     }
-    cr_assert_null(dfl_shape_kind_name(DFL_SHAPE_KIND_COUNT));
-    cr_assert_eq(dfl_shape_kind_from_name("blob"), -1);
+    cr_assert_str_eq(dfl_shape_kind_name((dfl_shape_kind)DFL_SHAPE_KIND_COUNT), "?");
     dfl_shape s = {0};
     dfl_err err;
+    dfl_shape_kind k = DFL_SHAPE_CSG;
+    cr_assert_eq(dfl_shape_kind_parse("blob", &k, &err), DFL_E_INPUT);
+    cr_assert_eq(k, DFL_SHAPE_CSG);
+    cr_assert(strstr(err.msg, "blob") && strstr(err.msg, "circle|sphere"), "%s", err.msg);
     cr_assert_eq(build("[shape]\nkind = blob\n", &s, &err), DFL_E_INPUT);
     cr_assert(strstr(err.msg, "[shape] kind"), "%s", err.msg);
     cr_assert(strstr(err.msg, "ellipse"), "%s", err.msg);

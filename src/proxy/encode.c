@@ -1,4 +1,5 @@
-/* Encoding (the decoding is inline in decode.h, where its derivation is). */
+/* The encoder of proxy/decode.h, dfl_proxy_encode (named for what it holds;
+ * the decoding is inline in decode.h, where its derivation is). */
 #include "proxy/decode.h"
 
 #include <math.h>
