@@ -229,7 +229,9 @@ Test(pht_spline, eval_locates_like_the_tree)
                 double v0, v1, g0[3], g1[3];
                 dfl_pht_eval(s, 1, x, &v0, g0, NULL);
                 dfl_pht_eval_cell(s, dfl_pht_spline_locate(s, x, NULL), 1, x, &v1, g1, NULL);
-                cr_assert(v0 == v1 && g0[0] == g1[0] && g0[1] == g1[1], "dim %d rule %d", dim, rule);
+                cr_assert(v0 == v1 && g0[0] == g1[0] && g0[1] == g1[1] &&
+                              (dim < 3 || g0[2] == g1[2]),
+                          "dim %d rule %d", dim, rule);
             }
             dfl_pht_spline_free(s);
             free(data);
