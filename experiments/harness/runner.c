@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -301,6 +302,9 @@ dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
     progress p = {.s = &s, .t0 = dfl_wall_seconds(), .k = (size_t)-1};
     pthread_mutex_init(&p.mu, NULL);
     pthread_cond_init(&p.cv, NULL);
+    /* what exists before the points compute is not this run's to remove */
+    struct stat pre;
+    const bool had_points = lstat(s.points, &pre) == 0, had_out = lstat(s.outdir, &pre) == 0;
     bool *skip = calloc(s.np, sizeof *skip);
     if (!skip) st = dfl_err_set(err, DFL_E_NOMEM, "out of memory");
     for (size_t k = lo; k < hi && st == DFL_OK; k++) {
@@ -329,8 +333,8 @@ dfl_status dfl_run(const dfl_run_opts *o, dfl_err *err)
     progress_stop(&p);
     free(skip);
     if (st != DFL_OK) { /* folders this run made and left empty go */
-        rmdir(s.points);
-        rmdir(s.outdir);
+        if (!had_points) rmdir(s.points);
+        if (!had_out) rmdir(s.outdir);
     }
     if (st == DFL_OK && !o->has_point)
         st = dfl_merge_into(s.outdir, &s, o->quiet, o->cmdline, err);
