@@ -122,7 +122,7 @@ static int acc_points(polyacc *a, size_t n, const double *pts, double delta, con
         grow((void **)&a->flag, &c3, a->np + n, sizeof(double)))
         return -1;
     a->capp = c1;
-    memcpy(a->pts + 3 * a->np, pts, 3 * n * sizeof *pts);
+    if (n) memcpy(a->pts + 3 * a->np, pts, 3 * n * sizeof *pts); /* an empty level set: pts may be NULL */
     for (size_t i = 0; i < n; i++) {
         a->delta[a->np + i] = delta;
         a->flag[a->np + i] = flag ? flag[i] : 0.0;
