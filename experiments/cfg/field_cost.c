@@ -267,6 +267,13 @@ dfl_status dfl_field_eval_cost(const dfl_cfg *cfg, const char *sec, dfl_cost_cla
     if (!strcmp(kind->name, "exact")) {
         const char *shape = "shape";
         if ((st = dfl_cfg_string_opt(cfg, sec, "shape", "shape", &shape, err))) return st;
+        /* an unknown kind is named here, before a caller sizes anything by
+         * the dimension dfl_shape_dim_guess can only guess for it */
+        int k;
+        if (dfl_cfg_has_section(cfg, shape) &&
+            (st = dfl_cfg_enum(cfg, shape, "kind", dfl_shape_kind_names, DFL_SHAPE_KIND_COUNT, &k,
+                               err)))
+            return st;
         *cls = dfl_shape_cost_class(cfg, shape);
     } else if (!strcmp(kind->name, "rfunc")) {
         const char *key;
