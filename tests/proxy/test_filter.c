@@ -108,43 +108,48 @@ Test(proxy_filter, hermite_reproduces_centres)
     }
 }
 
-/* Gradients of every filter are the derivatives of its values (central
- * differences away from cell borders and kinks). */
+/* Filter f's gradients on g are the derivatives of its values: central
+ * differences at 200 points uniform in [-half, half]^3 away from kinks (a
+ * cell border or a clip switch between the two samples), drawn from *seed.
+ * Bounded: a bug that rejects every point fails, it does not hang. */
+static void expect_gradients_match_differences(const dfl_proxy_grid *g, dfl_proxy_filter f,
+                                               uint64_t *seed, double half)
+{
+    dfl_proxy_filter_opts o;
+    dfl_proxy_filter_opts_default(f, g, &o);
+    o.is_signed = 1;
+    int n = 0, tries = 0;
+    while (n < 200 && tries++ < 200000) {
+        double x[3], gr[3], fd[3];
+        for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(seed, -half, half);
+        const double v = eval1(g, &o, x, gr);
+        int ok = 1;
+        for (int j = 0; j < 3 && ok; j++) {
+            double a[3] = {x[0], x[1], x[2]}, b[3] = {x[0], x[1], x[2]};
+            a[j] += 1e-7;
+            b[j] -= 1e-7;
+            const double va = eval1(g, &o, a, NULL), vb = eval1(g, &o, b, NULL);
+            fd[j] = (va - vb) / 2e-7;
+            ok = fabs(va - 2 * v + vb) < 1e-11;
+        }
+        if (!ok) continue;
+        n++;
+        for (int j = 0; j < 3; j++)
+            cr_expect_float_eq(gr[j], fd[j], 1e-6, "%s at %g %g %g", dfl_proxy_filter_name(f),
+                               x[0], x[1], x[2]);
+    }
+    cr_expect_eq(n, 200, "%s: %d points away from kinks in %d tries", dfl_proxy_filter_name(f),
+                 n, tries);
+}
+
+/* Gradients of every filter (order 2) are the derivatives of its values. */
 Test(proxy_filter, gradients_match_differences)
 {
     dfl_proxy_grid g;
     build(&torus, 2, 12, DFL_PROXY_FLOAT, &g);
     uint64_t seed = 9;
-    for (int f = 0; f < DFL_PROXY_FILTER_COUNT; f++) {
-        dfl_proxy_filter_opts o;
-        dfl_proxy_filter_opts_default((dfl_proxy_filter)f, &g, &o);
-        o.is_signed = 1;
-        int n = 0, tries = 0;
-        /* bounded: a bug that rejects every point fails below, not hangs */
-        while (n < 200 && tries++ < 200000) {
-            double x[3], gr[3];
-            for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(&seed, -1.1, 1.1);
-            const double v = eval1(&g, &o, x, gr);
-            int ok = 1;
-            double fd[3];
-            for (int j = 0; j < 3 && ok; j++) {
-                double a[3] = {x[0], x[1], x[2]}, b[3] = {x[0], x[1], x[2]};
-                a[j] += 1e-7;
-                b[j] -= 1e-7;
-                const double va = eval1(&g, &o, a, NULL), vb = eval1(&g, &o, b, NULL);
-                fd[j] = (va - vb) / 2e-7;
-                /* skip points where a kink (cell border, clip switch) lies in between */
-                ok = fabs(va - 2 * v + vb) < 1e-11;
-            }
-            if (!ok) continue;
-            n++;
-            for (int j = 0; j < 3; j++)
-                cr_expect_float_eq(gr[j], fd[j], 1e-6, "%s at %g %g %g", dfl_proxy_filter_name(f),
-                                   x[0], x[1], x[2]);
-        }
-        cr_expect_eq(n, 200, "%s: %d points away from kinks in %d tries",
-                     dfl_proxy_filter_name(f), n, tries);
-    }
+    for (int f = 0; f < DFL_PROXY_FILTER_COUNT; f++)
+        expect_gradients_match_differences(&g, (dfl_proxy_filter)f, &seed, 1.1);
     dfl_proxy_grid_free(&g);
 }
 
@@ -340,30 +345,8 @@ Test(proxy_filter, order1_hermite_gradients_match_differences)
 {
     dfl_proxy_grid g;
     build(&torus, 1, 12, DFL_PROXY_DOUBLE, &g);
-    dfl_proxy_filter_opts o;
-    dfl_proxy_filter_opts_default(DFL_PROXY_HERMITE, &g, &o);
-    o.is_signed = 1;
     uint64_t seed = 17;
-    int n = 0, tries = 0;
-    while (n < 200 && tries++ < 200000) {
-        double x[3], gr[3], fd[3];
-        for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(&seed, -0.9, 0.9);
-        const double v = eval1(&g, &o, x, gr);
-        int ok = 1;
-        for (int j = 0; j < 3 && ok; j++) {
-            double a[3] = {x[0], x[1], x[2]}, b[3] = {x[0], x[1], x[2]};
-            a[j] += 1e-7;
-            b[j] -= 1e-7;
-            const double va = eval1(&g, &o, a, NULL), vb = eval1(&g, &o, b, NULL);
-            fd[j] = (va - vb) / 2e-7;
-            ok = fabs(va - 2 * v + vb) < 1e-11; /* no cell border in between */
-        }
-        if (!ok) continue;
-        n++;
-        for (int j = 0; j < 3; j++)
-            cr_expect_float_eq(gr[j], fd[j], 1e-6, "at %g %g %g", x[0], x[1], x[2]);
-    }
-    cr_expect_eq(n, 200, "%d points away from cell borders in %d tries", n, tries);
+    expect_gradients_match_differences(&g, DFL_PROXY_HERMITE, &seed, 0.9);
     dfl_proxy_grid_free(&g);
 }
 
