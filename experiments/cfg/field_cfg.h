@@ -12,7 +12,12 @@
  * module that brings a new kind of field adds its row there and its
  * factory beside its other config glue.  A factory reads the rest of
  * [sec] (and the sections it names), marks what it reads, and leaves *out
- * untouched on failure.
+ * untouched on failure.  In a validation pass (io/config.h
+ * dfl_cfg_validating) a factory whose build computes (pht: the fit;
+ * gridpeer: the samples; openvdb: the level set) reads and checks every
+ * key and returns dfl_field_placeholder of the field's dimension; proxy
+ * returns its grid with zeroed proxies (dfl_proxy_grid_alloc); exact and
+ * rfunc fields are built (their build is the shape's). */
  */
 #ifndef DFL_EXPERIMENTS_FIELD_CFG_H
 #define DFL_EXPERIMENTS_FIELD_CFG_H

@@ -120,7 +120,13 @@ dfl_status dfl_proxy_grid_from_cfg(const dfl_cfg *cfg, const char *sec, const ch
                               "the %s input of this shape has no inside (use signed = false)",
                               name);
     }
-    st = dfl_proxy_grid_build(&in, &c.build, grid, err);
+    /* a validation pass builds no proxy: the grid's shape and options are
+     * what the studies read before they compute (io/config.h) */
+    if (dfl_cfg_validating(cfg))
+        st = dfl_proxy_grid_alloc(&c.build, in.has_inside, c.build.order == 1 && in.has_inside,
+                                  grid, err);
+    else
+        st = dfl_proxy_grid_build(&in, &c.build, grid, err);
     dfl_proxy_input_free(&in);
     if (st) return st;
     dfl_proxy_filter_opts_default(c.filter, grid, fo);

@@ -248,6 +248,43 @@ static dfl_status value_err(const dfl_cfg *cfg, const method *m, const char *v, 
     return dfl_err_set(err, st, "%s (value %s): %s", w, v, msg);
 }
 
+/* The keys the study sets in the copy w (method_copy) must be keys the
+ * kind reads: a kind without a box (exact, rfunc) needs box = none, said so
+ * at the method, not as an unknown key the user never wrote. */
+static dfl_status study_keys_read(const dfl_cfg *w, const method *m, dfl_err *err)
+{
+    const char *kind = "";
+    dfl_cfg_string(w, m->sec, "kind", &kind, NULL);
+    for (size_t b = 0; b < m->box.n; b++)
+        if (!dfl_cfg_used(w, m->sec, m->box.w[b]))
+            return dfl_cfg_reject(w, m->sec, "box", err,
+                                  "kind = %s reads no key '%s' for the box (set box = none, or "
+                                  "name its box keys)",
+                                  kind, m->box.w[b]);
+    if (!dfl_cfg_used(w, m->sec, m->shape_key))
+        return dfl_cfg_reject(w, m->sec, "shape_key", err,
+                              "kind = %s reads no key '%s' for the shape", kind, m->shape_key);
+    return DFL_OK;
+}
+
+/* A validation pass over one method copy w: the kind's factory reads
+ * every key of the method section as the run will, builds nothing (io/
+ * config.h dfl_cfg_validating), and the section must then have no unread
+ * key, so that a typo in the last method is found before the first one
+ * is built, not hours into the run. */
+static dfl_status method_validate(dfl_cfg *w, const method *m, dfl_err *err)
+{
+    dfl_cfg_validate_only(w);
+    method again; /* marks the study's own keys read in the copy */
+    dfl_status st = method_from_cfg(w, m->sec, &again, err);
+    dfl_field f = {0};
+    if (!st) st = dfl_field_from_cfg(w, m->sec, &f, err);
+    dfl_field_destroy(&f);
+    if (!st) st = study_keys_read(w, m, err);
+    if (!st) st = dfl_cfg_check_used_in(w, m->sec, err);
+    return st;
+}
+
 typedef struct study_cfg {
     words methods, shapes;
     method m[MAX_LIST];
@@ -311,6 +348,7 @@ static dfl_status study_from_cfg(const dfl_cfg *cfg, study_cfg *s, dfl_err *err)
                 dfl_cost c;
                 memset(&c, 0, sizeof c);
                 st = dfl_field_cost_from_cfg(w, s->m[i].sec, &c, err);
+                if (!st && dfl_cfg_validating(cfg)) st = method_validate(w, &s->m[i], err);
                 dfl_cfg_free(w);
                 if (st) return value_err(cfg, &s->m[i], s->m[i].values.w[v], st, err);
             }
@@ -388,6 +426,7 @@ static dfl_status run_one(const dfl_cfg *cfg, const method *m, const char *ssec,
         goto done;
     }
     const double build_s = omp_get_wtime() - t0, rss = rss_bytes() - rss0;
+    if ((st = study_keys_read(w, m, err))) goto field;
     if ((st = dfl_cfg_check_used_in(w, m->sec, err))) goto field;
     if (f.dim != p->dim) {
         st = dfl_cfg_reject(w, m->sec, "kind", err, "the field has dimension %d, [%s] %d",

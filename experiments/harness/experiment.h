@@ -9,7 +9,8 @@
  * live in the point's stage folder; the runner commits the point when it
  * completes and merges the points (harness/runner.h).  Each point is first
  * run as a validation pass, which dfl_cfg_check_used ends (io/config.h):
- * nothing may be computed or written before it.
+ * nothing may be computed or written before it (dfl_field_from_cfg may be:
+ * in the pass it builds no field, only a placeholder, field/field.h).
  */
 #ifndef DFL_EXPERIMENTS_EXPERIMENT_H
 #define DFL_EXPERIMENTS_EXPERIMENT_H

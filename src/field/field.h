@@ -52,6 +52,14 @@ dfl_status dfl_field_jet(const dfl_field *f, const double *x, const double *dir,
  * when the field's kind does not say (ops->bytes NULL). */
 int dfl_field_bytes(const dfl_field *f, size_t *out);
 
+/* A placeholder of dimension dim (2 or 3) for a validation pass
+ * (io/config.h dfl_cfg_validating): what a factory returns in place of a
+ * field it did not build.  Its ops->name is "placeholder"; eval writes NaN
+ * to every value and gradient component (a number nobody may take for a
+ * result: an error of +inf), no jets, bytes unknown, nothing to free.
+ * Never fails. */
+void dfl_field_placeholder(int dim, dfl_field *out);
+
 /* Releases ctx and zeroes *f.  f may be NULL or already destroyed. */
 void dfl_field_destroy(dfl_field *f);
 

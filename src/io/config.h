@@ -14,10 +14,12 @@
  *                                    dfl_cfg_points, dfl_cfg_doubles, dfl_cfg_point_dim
  *   locations      config_where.c    dfl_cfg_where, dfl_cfg_err_at, dfl_cfg_reject,
  *                                    dfl_cfg_check_used, dfl_cfg_check_used_in,
+ *                                    dfl_cfg_used,
  *                                    dfl_cfg_claim_section,
  *                                    dfl_cfg_defer_sections, dfl_cfg_unused_deferred
  *   read record    config_log.c      dfl_cfg_reads, dfl_cfg_read_at,
- *                                    dfl_cfg_validate_only, dfl_cfg_validated
+ *                                    dfl_cfg_validate_only, dfl_cfg_validated,
+ *                                    dfl_cfg_validating
  *
  * A configuration file is parsed by libinih into (section, key, value, line)
  * entries; `--set section.key=value` overrides are applied on top.  A value
@@ -234,6 +236,9 @@ dfl_status dfl_cfg_check_used(const dfl_cfg *c, dfl_err *err);
 /* Same, restricted to section sec (for commands that read only part of a
  * study config, such as `dflab probe` reading [field] and [shape]). */
 dfl_status dfl_cfg_check_used_in(const dfl_cfg *c, const char *sec, dfl_err *err);
+/* True when [sec] key is in c and a getter has read it (false when it is
+ * not in c).  Marks nothing. */
+bool dfl_cfg_used(const dfl_cfg *c, const char *sec, const char *key);
 /* Marks every key of section sec read (none: nothing happens), for a
  * caller that hands the section to a reader working on a copy (a sweep
  * point of c, changed by dfl_cfg_set) and checks the copy's section with
@@ -269,6 +274,12 @@ bool dfl_cfg_read_at(const dfl_cfg *c, size_t i, dfl_cfg_read *out);
  * before computing.  dfl_cfg_validated tells such a stop from a failure. */
 void dfl_cfg_validate_only(dfl_cfg *c);
 bool dfl_cfg_validated(const dfl_cfg *c);
+/* True when c is a validation pass (dfl_cfg_validate_only was called on it):
+ * a field factory then reads and checks every key it would read, builds
+ * only what is cheap (the shape, the input), and returns a placeholder in
+ * place of what computes (a fit, a grid of samples or proxies, a level
+ * set), so that validating every point of a sweep costs no build. */
+bool dfl_cfg_validating(const dfl_cfg *c);
 
 /* Writes the configuration (single-valued or not) as INI text to path,
  * through a temporary file renamed on success: a first comment line

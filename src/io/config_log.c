@@ -70,6 +70,8 @@ void dfl_cfg_validate_only(dfl_cfg *c)
 
 bool dfl_cfg_validated(const dfl_cfg *c) { return c->log && c->log->validated; }
 
+bool dfl_cfg_validating(const dfl_cfg *c) { return c->log && c->log->validate_only; }
+
 dfl_status dfl_cfgi_stop_if_validating(const dfl_cfg *c, dfl_err *err)
 {
     if (!c->log || !c->log->validate_only) return DFL_OK;

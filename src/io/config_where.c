@@ -132,6 +132,12 @@ dfl_status dfl_cfg_check_used_in(const dfl_cfg *c, const char *sec, dfl_err *err
     return first_unused(c, sec, "unknown key", err);
 }
 
+bool dfl_cfg_used(const dfl_cfg *c, const char *sec, const char *key)
+{
+    const ssize_t k = dfl_cfgi_find(c, sec, key);
+    return k >= 0 && c->used[k];
+}
+
 dfl_status dfl_cfg_reject(const dfl_cfg *c, const char *sec, const char *key, dfl_err *err,
                           const char *fmt, ...)
 {

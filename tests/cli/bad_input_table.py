@@ -227,6 +227,14 @@ case("config stem .", ["run", "{D}/..ini"], ["..ini", "name '.' cannot name"], f
 case("config stem .. with --set", ["run", "{D}/...ini", "--set", "grid.n=8"], ["name '..'"],
      files={"...ini": GOOD})
 case("plan config stem ..", ["plan", "{D}/...ini"], ["name '..'"], files={"...ini": GOOD})
+QUICK = os.path.join(REPO, "configs/compare/quick.ini")
+# the validation pass reads every method section through its kind's factory
+# (nothing built), so a typo in the last method is named before the first
+# method is built, by plan as by run
+case("compare: a typo in the last method is named at plan", ["plan", QUICK, "--set",
+     "m_vdb.samplr=box"], ["m_vdb", "samplr", "unknown key"])
+case("compare: a bad value of a method key is named at plan", ["plan", QUICK, "--set",
+     "m_vdb.sampler=cubic"], ["m_vdb.sampler", "box|quadratic|staggered"])
 case("missing config", ["run", "{D}/nope.ini", "--out", "{D}/o"], ["nope.ini", "cannot open"])
 case("missing CONFIG", ["run"], ["missing CONFIG.ini"])
 case("two configs", ["run", "{D}/bad.ini", "{D}/bad.ini"], ["unexpected argument"], ini=GOOD)

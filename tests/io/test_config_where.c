@@ -92,3 +92,28 @@ Test(config, claim_section_marks_one_section)
     cr_expect(strstr(err.msg, "t.ini:5: [b] z") != NULL, "%s", err.msg);
     dfl_cfg_free(c);
 }
+
+static dfl_cfg *parse_used(const char *text)
+{
+    dfl_cfg *cfg;
+    dfl_err err;
+    cr_assert_eq(dfl_cfg_parse_string("v.ini", text, &cfg, &err), DFL_OK, "%s", err.msg);
+    return cfg;
+}
+
+/* dfl_cfg_used: present and read; absent is false; marks nothing */
+Test(config, used_is_present_and_read)
+{
+    dfl_cfg *cfg = parse_used("[a]\nk = 1\nj = 2\n");
+    cr_expect_not(dfl_cfg_used(cfg, "a", "k"));
+    cr_expect_not(dfl_cfg_used(cfg, "a", "nope"));
+    long v;
+    dfl_err err;
+    cr_assert_eq(dfl_cfg_int(cfg, "a", "k", 0, 9, &v, &err), DFL_OK, "%s", err.msg);
+    cr_expect(dfl_cfg_used(cfg, "a", "k"));
+    cr_expect_not(dfl_cfg_used(cfg, "a", "j"));
+    cr_expect_not(dfl_cfg_used(cfg, "b", "k"));
+    cr_expect_eq(dfl_cfg_check_used_in(cfg, "a", &err), DFL_E_INPUT, "j stays unread");
+    cr_expect(strstr(err.msg, "j"), "%s", err.msg);
+    dfl_cfg_free(cfg);
+}

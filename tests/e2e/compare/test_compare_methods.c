@@ -154,20 +154,30 @@ Test(e2e_compare, bad_method_sections_exit_2, .timeout = 60)
                           "[m] dims", NULL);
     e2e_expect_bad_config(BASE "[m]\nkind = nosuch\nresolution = res\nvalues = 4\n",
                           "[m] kind", NULL);
+    /* the box keys the study sets must be keys the kind reads */
+    e2e_expect_bad_config(BASE "[m]\nkind = exact\nresolution = none\n", "[m] box",
+                          "kind = exact reads no key 'lo' for the box (set box = none");
+    /* the last method's typo is named before the first method is built */
+    e2e_expect_bad_config("[study]\nname = compare_methods\nmethods = e m\nshapes = s\n"
+                          "[s]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\nlo = -1 -1 -1\n"
+                          "hi = 1 1 1\n[e]\nkind = exact\nresolution = none\nbox = none\n"
+                          "[m]\nkind = openvdb\nresolution = voxel\nvalues = 0.5\n"
+                          "faces = size\nsamplr = box\n",
+                          "[m] samplr", "unknown key");
 }
 
 Test(e2e_compare, bad_shape_sections_exit_2, .timeout = 60)
 {
     e2e_expect_bad_config("[study]\nname = compare_methods\nmethods = m\nshapes = s\n"
                           "[s]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\nlo = 1 1 1\n"
-                          "hi = -1 -1 -1\n[m]\nkind = exact\nresolution = none\n",
+                          "hi = -1 -1 -1\n[m]\nkind = exact\nresolution = none\nbox = none\n",
                           "[s] hi", "hi > lo");
     e2e_expect_bad_config("[study]\nname = compare_methods\nmethods = m\nshapes = s nos\n"
                           "[s]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\nlo = -1 -1 -1\n"
-                          "hi = 1 1 1\n[m]\nkind = exact\nresolution = none\n",
+                          "hi = 1 1 1\n[m]\nkind = exact\nresolution = none\nbox = none\n",
                           "[study] shapes", "no section [nos]");
     e2e_expect_bad_config("[study]\nname = compare_methods\nmethods = m\nshapes = s\n"
                           "[s]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\nlo = -1 -1 -1\n"
-                          "hi = 1 1 1\ncolour = red\n[m]\nkind = exact\nresolution = none\n",
+                          "hi = 1 1 1\ncolour = red\n[m]\nkind = exact\nresolution = none\nbox = none\n",
                           "[s] colour", "unknown key");
 }
