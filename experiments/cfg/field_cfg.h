@@ -17,7 +17,7 @@
  * gridpeer: the samples; openvdb: the level set) reads and checks every
  * key and returns dfl_field_placeholder of the field's dimension; proxy
  * returns its grid with zeroed proxies (dfl_proxy_grid_alloc); exact and
- * rfunc fields are built (their build is the shape's). */
+ * rfunc fields are built (their build is the shape's).
  */
 #ifndef DFL_EXPERIMENTS_FIELD_CFG_H
 #define DFL_EXPERIMENTS_FIELD_CFG_H

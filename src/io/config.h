@@ -231,7 +231,8 @@ int dfl_cfg_point_dim(const char *value);
  * key that was read names it (a word of its value, split at blanks, commas
  * and semicolons), or named it before: the list a --set replaced, a sweep's
  * other items (e.g. `--set study.cases=circle` leaves the other cases
- * unselected, not unknown). */
+ * unselected, not unknown); and so is a section named by a key of a section
+ * so excused, to any depth (the shape section of an unselected case). */
 dfl_status dfl_cfg_check_used(const dfl_cfg *c, dfl_err *err);
 /* Same, restricted to section sec (for commands that read only part of a
  * study config, such as `dflab probe` reading [field] and [shape]). */

@@ -4,6 +4,7 @@
  * line and the include that brought it. */
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "io/config_impl.h"
@@ -92,18 +93,45 @@ static bool has_word(const char *text, const char *w)
     return false;
 }
 
-/* Section sec is the config's though the study read none of it: no key of
- * it was read, and a key the study did read names it in its value or in a
- * value it had before (a list --set narrowed, a sweep's other items): a
- * case the run did not select, not a typo. */
-static bool unselected(const dfl_cfg *c, const char *sec)
+/* No key of section sec was read. */
+static bool untouched(const dfl_cfg *c, const char *sec)
 {
     for (size_t i = 0; i < c->n; i++)
         if (c->used[i] && strcmp(c->e[i].sec, sec) == 0) return false;
-    for (size_t i = 0; i < c->n; i++)
-        if (c->used[i] && (has_word(c->e[i].value, sec) || has_word(c->e[i].named, sec)))
-            return true;
-    return false;
+    return true;
+}
+
+/* Entry j names section sec: a word of its value or of a value it had
+ * before (a list --set narrowed, a sweep's other items). */
+static bool names(const dfl_cfg_entry *e, const char *sec)
+{
+    return has_word(e->value, sec) || has_word(e->named, sec);
+}
+
+/* Marks in ex[] the entries of every section that is the config's though
+ * the study read none of it: a case the run did not select, not a typo.
+ * Such a section has no key read and is named by a key the study read, or
+ * by a key of a section so excused (the shape section of an unselected
+ * case), to any depth: rounds until nothing changes, at most one per
+ * section.  Sections are marked whole. */
+static void mark_unselected(const dfl_cfg *c, unsigned char *ex)
+{
+    memset(ex, 0, c->n);
+    for (size_t round = 0; round <= c->n; round++) {
+        bool changed = false;
+        for (size_t i = 0; i < c->n; i++) {
+            if (c->used[i] || ex[i] || !untouched(c, c->e[i].sec)) continue;
+            bool named = false;
+            for (size_t j = 0; j < c->n && !named; j++)
+                named = (c->used[j] || ex[j]) && strcmp(c->e[j].sec, c->e[i].sec) != 0 &&
+                        names(&c->e[j], c->e[i].sec);
+            if (!named) continue;
+            for (size_t k = 0; k < c->n; k++)
+                if (strcmp(c->e[k].sec, c->e[i].sec) == 0) ex[k] = 1;
+            changed = true;
+        }
+        if (!changed) break;
+    }
 }
 
 /* The first unread key of section sec (any section but the deferred ones
@@ -111,13 +139,21 @@ static bool unselected(const dfl_cfg *c, const char *sec)
 static dfl_status first_unused(const dfl_cfg *c, const char *sec, const char *what,
                                dfl_err *err)
 {
+    unsigned char *ex = NULL;
+    if (!sec) {
+        ex = malloc(c->n ? c->n : 1);
+        if (!ex) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+        mark_unselected(c, ex);
+    }
     for (size_t i = 0; i < c->n; i++) {
         if (c->used[i] || (sec && strcmp(c->e[i].sec, sec) != 0)) continue;
-        if (!sec && (deferred(c, c->e[i].sec) || unselected(c, c->e[i].sec))) continue;
+        if (!sec && (deferred(c, c->e[i].sec) || ex[i])) continue;
         char w[1024];
         dfl_cfgi_where(&c->e[i], w, sizeof w);
+        free(ex);
         return dfl_err_set(err, DFL_E_INPUT, "%s: %s", w, what);
     }
+    free(ex);
     return DFL_OK;
 }
 

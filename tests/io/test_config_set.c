@@ -107,6 +107,19 @@ Test(config, unselected_sections_are_not_unused)
     cr_expect_eq(read_cases(c, &err), DFL_E_INPUT);
     cr_expect(strstr(err.msg, "a.y: unknown key"), "%s", err.msg);
     dfl_cfg_free(c);
+    /* named by a key of an unselected section (a case's shape), to any
+     * depth: excused too; a typo in a selected case's shape is not */
+    const char *deep = "[study]\ncases = a b\n[a]\nx = 1\n[b]\nx = 2\nshape = sb\n"
+                       "[sb]\ninner = sbb\n[sbb]\nr = 1\n";
+    c = cfgu_parse(deep);
+    cr_assert_eq(dfl_cfg_set(c, "study.cases=a", &err), DFL_OK);
+    cr_expect_eq(read_cases(c, &err), DFL_OK, "b's shape and its part: %s", err.msg);
+    dfl_cfg_free(c);
+    c = cfgu_parse(deep);
+    cr_assert_eq(dfl_cfg_set(c, "study.cases=b", &err), DFL_OK);
+    cr_expect_eq(read_cases(c, &err), DFL_E_INPUT, "b is selected: its shape key is unread");
+    cr_expect(strstr(err.msg, "[b] shape"), "%s", err.msg);
+    dfl_cfg_free(c);
     /* named only by a key nobody read: not excused */
     c = cfgu_parse("[z]\nx = 2\n[study]\ncases = a\n[a]\nx = 1\n[w]\nother = z\n");
     cr_expect_eq(read_cases(c, &err), DFL_E_INPUT);
