@@ -2,8 +2,8 @@
 """ISA determinism: runs configs once per instruction set this CPU runs
 (DFL_ISA=sse2, avx2, avx512: core/isa.h) and compares every output file
 with the sse2 run byte for byte, with the comparison of check_threads.py
-(in manifest.json only wall times, the date and the command line may
-differ; in CSV tables the wall-clock columns are left out).
+(in manifest.json only wall times, the date, the command line and the
+recorded ISA may differ; in CSV tables the wall-clock columns are left out).
 
     check_isa.py DFLAB [--quick] [--keep DIR] [CONFIG.ini ...]
 

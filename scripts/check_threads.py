@@ -2,7 +2,7 @@
 """Thread-count determinism: runs configs with `--threads 1`, `--threads 2`
 and with OMP_NUM_THREADS=1 (no --threads) and compares every output file
 byte for byte; in manifest.json only the wall times, the date, the
-thread count and the command line may differ, and in CSV tables only the
+thread count, the command line and the ISA the kernels ran may differ, and in CSV tables only the
 columns that hold wall-clock measurements (TIMING below: `seconds`,
 `*_seconds`, `*_ms`, `t_*`, `*ns_per_*`, `*_s`, `*_per_s`, `*_rss_*` -- the timings of
 hvb25's Table 4, of sjp10's fits and of compare_methods), which no two runs share; a CSV's sha256 in the manifest is
@@ -26,7 +26,8 @@ import tempfile
 
 # configs that run in ~1 s each (results_base wall times), for --quick
 QUICK = ["bs04_hetero", "bs04_normalization", "bs04_polygonization", "smoke", "smoke3d"]
-VOLATILE = {"date", "wall_seconds", "total_wall_seconds", "threads", "omp_threads", "command_line"}
+VOLATILE = {"date", "wall_seconds", "total_wall_seconds", "threads", "omp_threads", "command_line",
+            "isa"}
 
 
 # Machine measurements: wall-clock times (`*_s` seconds, `*_per_s` rates

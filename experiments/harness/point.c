@@ -11,6 +11,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "core/isa.h"
 #include "core/sha256.h"
 #include "harness/probe.h"
 #include "harness/sweep.h"
@@ -416,6 +417,9 @@ static dfl_status write_record(const dfl_sweep *s, const dfl_cfg *pt, size_t k, 
     dfl_manifest_put_int(m, "exit_status", 0);
     dfl_manifest_put_string(m, "host", host);
     dfl_manifest_put_int(m, "threads", s->threads);
+    /* the instruction set the hot kernels ran (core/isa.h; the same bytes
+     * on every one, recorded so that a check of that can be traced) */
+    dfl_manifest_put_string(m, "isa", dfl_isa_name(dfl_isa_active()));
     dfl_manifest_put_string(m, "command_line", s->o->cmdline ? s->o->cmdline : "");
     dfl_manifest_put_string(m, "date", date);
     dfl_manifest_put_string(m, "version", DFL_VERSION);

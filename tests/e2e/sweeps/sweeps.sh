@@ -202,6 +202,7 @@ for k in ("inih", "ceres", "openexr", "zlib", "dflab"):
     assert m["libraries"][k] and m["libraries"][k] != "unknown", m["libraries"]
 p = m["points"][7]
 assert p["threads"] >= 1 and p["host"] and p["exit_status"] == 0 and p["wall_seconds"] >= 0
+assert p["isa"] in ("sse2", "avx2", "avx512"), p["isa"]
 assert "--point" not in p["command_line"] and "run" in p["command_line"]
 r = p["resolved"]
 # axes in file order, the last fastest: point 7 = alpha 60, p 2, parts disk
