@@ -3,12 +3,15 @@
  * file:line, [section] and key. */
 #include "cfg/rfunc_cfg.h"
 
+#include <assert.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cfg/curve_cfg.h"
 #include "cfg/field_cfg.h"
+#include "cfg/shape_cfg.h"
+#include "geom/mesh.h"
 #include "geom/surface.h"
 #include "rfunc/normalize.h"
 #include "rfunc/rfield.h"
@@ -70,8 +73,35 @@ static dfl_status vertex_polyline(const dfl_cfg *cfg, const char *sec, dfl_rfunc
     return dfl_cfg_points(cfg, sec, "vertices", s->dim, s->closed ? 3 : 2, &s->v, &s->n, err);
 }
 
+/* Appends the triangles of a [shape] kind = mesh section (geom/mesh.h) as
+ * they are: a mesh is its triangles, there is nothing to triangulate and no
+ * eps; s->mesh stays empty (bs04_surface's patch data is for surfaces). */
+static dfl_status mesh_tris(const dfl_cfg *cfg, const char *sec, dfl_rfunc_field_spec *s,
+                            dfl_err *err)
+{
+    dfl_shape shape;
+    dfl_status st = dfl_shape_from_cfg(cfg, s->surface, &shape, err);
+    if (st) return dfl_cfg_err_at(cfg, sec, "surface", st, err);
+    const dfl_trimesh *M = dfl_shape_mesh_trimesh(&shape);
+    assert(M); /* kind = mesh */
+    double *t = realloc(s->tris, (s->ntris + M->ntris) * 9 * sizeof *t);
+    if (!t) {
+        dfl_shape_free(&shape);
+        return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    }
+    s->tris = t;
+    for (size_t i = 0; i < M->ntris; i++)
+        for (int c = 0; c < 3; c++)
+            memcpy(t + (s->ntris + i) * 9 + 3 * c, M->verts + 3 * M->tris[3 * i + c],
+                   3 * sizeof *t);
+    s->ntris += M->ntris;
+    dfl_shape_free(&shape);
+    return DFL_OK;
+}
+
 /* Appends the triangles of the surface named by [sec] surface (kind
- * bspline_surface or bezier_surface), triangulated to [sec] eps. */
+ * bspline_surface or bezier_surface), triangulated to [sec] eps, or of a
+ * mesh (kind = mesh, its own triangles, no eps). */
 static dfl_status surface_tris(const dfl_cfg *cfg, const char *sec, dfl_rfunc_field_spec *s,
                                dfl_err *err)
 {
@@ -79,15 +109,17 @@ static dfl_status surface_tris(const dfl_cfg *cfg, const char *sec, dfl_rfunc_fi
     long max_tris;
     dfl_status st;
     if ((st = dfl_cfg_string(cfg, sec, "surface", &s->surface, err))) return st;
-    if ((st = dfl_cfg_double(cfg, sec, "eps", 1e-300, 1e300, &s->eps, err))) return st;
-    if ((st = dfl_cfg_int_opt(cfg, sec, "max_tris", 200000, 1, 10000000, &max_tris, err)))
-        return st;
     if (!dfl_cfg_has_section(cfg, s->surface))
         return dfl_cfg_reject(cfg, sec, "surface", err, "no section [%s]", s->surface);
     if ((st = dfl_cfg_string(cfg, s->surface, "kind", &kind, err))) return st;
+    if (strcmp(kind, "mesh") == 0) return mesh_tris(cfg, sec, s, err);
+    if ((st = dfl_cfg_double(cfg, sec, "eps", 1e-300, 1e300, &s->eps, err))) return st;
+    if ((st = dfl_cfg_int_opt(cfg, sec, "max_tris", 200000, 1, 10000000, &max_tris, err)))
+        return st;
     if (strcmp(kind, "bspline_surface") != 0 && strcmp(kind, "bezier_surface") != 0)
         return dfl_cfg_reject(cfg, sec, "surface", err,
-                              "expected a surface (kind = bspline_surface or bezier_surface),"
+                              "expected a surface (kind = bspline_surface, bezier_surface or "
+                              "mesh),"
                               " section [%s] has kind = %s",
                               s->surface, kind);
     dfl_surface_set S = {0};

@@ -24,7 +24,9 @@
  *   surface  = <section>           a bspline_surface or bezier_surface
  *              section, triangulated with Hausdorff bound eps (key eps;
  *              max_tris caps it, default 200000): bs04's triangulated
- *              surfaces; not with curve (both would read eps)
+ *              surfaces; not with curve (both would read eps); or a
+ *              [shape] kind = mesh section, whose triangles are taken as
+ *              they are (no eps, no max_tris)
  *   tri_trim, a, k, smooth         the triangles' trims (with triangles or
  *              surface; dfl_rfunc_tri_opts_from_cfg)
  *   points   = x y[ z]; ...        point parts (rfunc/region.h)

@@ -2,7 +2,9 @@
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cfg_util.h"
 #include "cfg/curve_cfg.h"
@@ -275,4 +277,52 @@ Test(rfunc_cfg, join_trim_tri_readers)
     cr_expect_eq(o.k, d.k);
     cr_expect_eq(o.smooth, d.smooth);
     dfl_cfg_free(cfg);
+}
+
+/* surface = a [shape] kind = mesh section: the mesh's own triangles, as if
+ * written in `triangles` (no eps: a mesh is not triangulated again), the
+ * same values bit for bit; eps with a mesh is an unknown key. */
+Test(rfunc_cfg, surface_of_a_mesh_is_its_triangles)
+{
+    char dir[] = "/tmp/dflab-rfunc-mesh-XXXXXX";
+    cr_assert_not_null(mkdtemp(dir));
+    char path[256];
+    snprintf(path, sizeof path, "%s/two.obj", dir);
+    FILE *fp = fopen(path, "w");
+    cr_assert_not_null(fp);
+    /* coordinates exact in float (the reader rounds to float) */
+    fputs("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0.5 0.5 1\nf 1 2 3\nf 2 4 3\n", fp);
+    fclose(fp);
+    char text[1024];
+    snprintf(text, sizeof text,
+             "[field]\nkind = rfunc\nsurface = m\njoin = requiv\np = 3\n"
+             "[m]\nkind = mesh\nfile = %s\n",
+             path);
+    dfl_field f, g;
+    dfl_err err;
+    cr_assert_eq(build(text, &f, &err), DFL_OK, "%s", err.msg);
+    cr_assert_eq(build("[field]\nkind = rfunc\njoin = requiv\np = 3\n"
+                       "triangles = 0 0 0; 1 0 0; 0 1 0; 1 0 0; 0.5 0.5 1; 0 1 0\n",
+                       &g, &err),
+                 DFL_OK, "%s", err.msg);
+    cr_expect_eq(f.dim, 3);
+    const double pts[][3] = {{0.2, 0.2, 0.0}, {0.3, 0.1, 0.7}, {-1, 2, 0.5}, {0.6, 0.6, 0.6}};
+    for (size_t i = 0; i < sizeof pts / sizeof pts[0]; i++) {
+        const double a = dfl_field_eval1(&f, pts[i], NULL), b = dfl_field_eval1(&g, pts[i], NULL);
+        cr_expect_eq(a, b, "point %zu: %.17g vs %.17g", i, a, b);
+    }
+    cr_expect_eq(dfl_field_eval1(&f, pts[0], NULL), 0.0, "on a triangle: 0");
+    dfl_field_destroy(&f);
+    dfl_field_destroy(&g);
+    snprintf(text, sizeof text,
+             "[field]\nkind = rfunc\nsurface = m\neps = 1e-3\n[m]\nkind = mesh\nfile = %s\n",
+             path);
+    dfl_cfg *cfg = tu_cfg("e.ini", text);
+    cr_assert_eq(dfl_field_from_cfg(cfg, "field", &f, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(dfl_cfg_check_used(cfg, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "eps"), "%s", err.msg);
+    dfl_field_destroy(&f);
+    dfl_cfg_free(cfg);
+    remove(path);
+    rmdir(dir);
 }
