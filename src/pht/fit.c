@@ -3,14 +3,16 @@
  * Per level: Hermite data at the base vertices that have none yet (in
  * parallel over vertices), resolution and spline (serial, cheap), then the
  * estimator in two parallel passes over the cells whose polynomial changed:
- * exact distances at the cell's points (timed as footpoints), then the
- * spline there (timed as spline).  Every per-cell or per-vertex result goes
+ * exact distances at the cell's points (timed as footpoints; only where no
+ * earlier estimate holds them: the exact distance is most of a curve fit's
+ * time), then the spline there (timed as spline).  Every per-cell or per-vertex result goes
  * to its own slot and reductions run in leaf order afterwards, so threads
  * never change a bit. */
 #include "pht/fit.h"
 
 #include <math.h>
 #include <omp.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -74,13 +76,15 @@ typedef struct fitter {
     const dfl_pht_source *src;
     const dfl_pht_fit_opts *o;
     int dim, nd, nc, npts;   /* npts: estimator points per cell */
+    int xstride;             /* exact values per cell: npts (+ npts * dim gradients) */
     dfl_tmesh *mesh;
     dfl_pht_spline *spline;
     double *data;            /* nverts * nd */
     unsigned char *have;     /* data computed from the SDF */
     size_t vcap;
-    /* per tree node: the last estimate of the node as a leaf */
-    double *node_err, *node_sum, *node_coef;
+    /* per tree node: the last estimate of the node as a leaf, and the exact
+     * values at its points (the points are a function of the node alone) */
+    double *node_err, *node_sum, *node_coef, *node_exact;
     unsigned char *node_valid;
     size_t ncap;
     size_t medial;
@@ -119,6 +123,9 @@ static int grow_nodes(fitter *F)
     double *c = realloc(F->node_coef, cap * (size_t)F->nc * sizeof *c);
     if (!c) return -1;
     F->node_coef = c;
+    double *x = realloc(F->node_exact, cap * (size_t)F->xstride * sizeof *x);
+    if (!x) return -1;
+    F->node_exact = x;
     unsigned char *v = realloc(F->node_valid, cap);
     if (!v) return -1;
     F->node_valid = v;
@@ -219,6 +226,115 @@ static void cell_points(const fitter *F, const dfl_tmesh_cell *c, double *pts)
     }
 }
 
+/* Face centres shared within one estimator pass.  The random and gradient
+ * estimators' peak points include the 2 dim face centres of a cell; two
+ * cells of the same size that share a face share that point bit for bit
+ * (the centre's other coordinates are 0.5 (lo + hi) of equal lo and hi, the
+ * face coordinate is the same lattice position), so its exact value is
+ * computed once: the first cell in todo order that has it evaluates it (or
+ * already holds it from the node cache), later ones copy.  Keys are the
+ * coordinates' bits, so only identical points are ever shared. */
+typedef struct shared_pts {
+    int on, nf, first;        /* nf = 2 dim face centres at points first.. */
+    size_t cap;               /* hash slots (a power of 2) */
+    double *key;              /* cap * 3 */
+    size_t *slot_k;           /* todo index of the first occurrence; SIZE_MAX empty */
+    int *slot_p;
+    size_t *src_k;            /* per todo cell and face: the cell to copy from, or SIZE_MAX */
+    int *src_p;
+} shared_pts;
+
+static int shared_init(const fitter *F, size_t nt, shared_pts *sh)
+{
+    memset(sh, 0, sizeof *sh);
+    sh->on = F->o->estimator != DFL_PHT_EST_GRID && F->o->peaks && nt > 1;
+    if (!sh->on) return 0;
+    sh->nf = 2 * F->dim;
+    sh->first = F->o->samples + 1;
+    size_t need = 2 * nt * (size_t)sh->nf;
+    sh->cap = 64;
+    while (sh->cap < need) sh->cap *= 2;
+    sh->key = malloc(sh->cap * 3 * sizeof *sh->key);
+    sh->slot_k = malloc(sh->cap * sizeof *sh->slot_k);
+    sh->slot_p = malloc(sh->cap * sizeof *sh->slot_p);
+    sh->src_k = malloc(nt * (size_t)sh->nf * sizeof *sh->src_k);
+    sh->src_p = malloc(nt * (size_t)sh->nf * sizeof *sh->src_p);
+    if (!sh->key || !sh->slot_k || !sh->slot_p || !sh->src_k || !sh->src_p) return -1;
+    for (size_t i = 0; i < sh->cap; i++) sh->slot_k[i] = SIZE_MAX;
+    for (size_t i = 0; i < nt * (size_t)sh->nf; i++) sh->src_k[i] = SIZE_MAX;
+    return 0;
+}
+
+static void shared_free(shared_pts *sh)
+{
+    free(sh->key);
+    free(sh->slot_k);
+    free(sh->slot_p);
+    free(sh->src_k);
+    free(sh->src_p);
+    memset(sh, 0, sizeof *sh);
+}
+
+
+/* Registers the face centres of todo cell k (tree node id), in todo order;
+ * a cell that evaluates (no node cache) copies those registered before. */
+static void shared_add(const fitter *F, shared_pts *sh, size_t k, size_t id)
+{
+    if (!sh->on) return;
+    const int dim = F->dim, eval = !F->node_valid[id];
+    dfl_tmesh_cell c;
+    dfl_tmesh_cell_get(F->mesh, id, &c);
+    for (int f = 0; f < sh->nf; f++) {
+        /* cell_points' face centre q = f + 1 */
+        double x[3] = {0, 0, 0};
+        for (int j = 0; j < dim; j++) x[j] = 0.5 * (c.lo[j] + c.hi[j]);
+        x[f / 2] = f % 2 ? c.hi[f / 2] : c.lo[f / 2];
+        uint64_t h = 0;
+        for (int j = 0; j < dim; j++) {
+            uint64_t b;
+            memcpy(&b, &x[j], sizeof b);
+            h = mix64(h ^ b);
+        }
+        size_t i = (size_t)h & (sh->cap - 1);
+        while (sh->slot_k[i] != SIZE_MAX &&
+               memcmp(sh->key + 3 * i, x, (size_t)dim * sizeof *x) != 0)
+            i = (i + 1) & (sh->cap - 1);
+        if (sh->slot_k[i] == SIZE_MAX) {
+            memcpy(sh->key + 3 * i, x, sizeof x);
+            sh->slot_k[i] = k;
+            sh->slot_p[i] = sh->first + f;
+        } else if (eval) {
+            sh->src_k[k * (size_t)sh->nf + (size_t)f] = sh->slot_k[i];
+            sh->src_p[k * (size_t)sh->nf + (size_t)f] = sh->slot_p[i];
+        }
+    }
+}
+
+/* Point p of todo cell k is copied from another cell. */
+static int shared_copied(const shared_pts *sh, size_t k, int p)
+{
+    return sh->on && p >= sh->first && p < sh->first + sh->nf &&
+           sh->src_k[k * (size_t)sh->nf + (size_t)(p - sh->first)] != SIZE_MAX;
+}
+
+/* Copies every shared value (and gradient) from the cell that holds it;
+ * sources are first occurrences, never copies themselves. */
+static void shared_copy(const shared_pts *sh, size_t nt, int np, int dim, int grad, int stride,
+                        double *exact)
+{
+    if (!sh->on) return;
+    for (size_t k = 0; k < nt; k++)
+        for (int f = 0; f < sh->nf; f++) {
+            size_t sk = sh->src_k[k * (size_t)sh->nf + (size_t)f];
+            if (sk == SIZE_MAX) continue;
+            int sp = sh->src_p[k * (size_t)sh->nf + (size_t)f], p = sh->first + f;
+            double *e = exact + k * (size_t)stride;
+            const double *se = exact + sk * (size_t)stride;
+            e[p] = se[sp];
+            if (grad) memcpy(e + np + p * dim, se + np + sp * dim, (size_t)dim * sizeof *e);
+        }
+}
+
 /* Estimator over all leaves; per-leaf error into err_out (leaf order), the
  * level's max and mean error into rec.  Times are added to rec->t_foot
  * (exact distances) and rec->t_spline (spline). */
@@ -239,25 +355,56 @@ static dfl_status estimate(fitter *F, double *err_out, dfl_pht_level *rec, dfl_e
         todo[nt++] = i;
     }
     double *exact = malloc((nt ? nt : 1) * (size_t)stride * sizeof *exact);
-    if (!exact) {
+    shared_pts sh;
+    if (!exact || shared_init(F, nt, &sh) != 0) {
         free(todo);
+        free(exact);
+        shared_free(&sh);
         return dfl_err_set(err, DFL_E_NOMEM, "PHT fit: out of memory");
     }
     double t0 = omp_get_wtime();
+    /* re-estimated cells take their exact values from the node cache; the
+     * others share face centres (first occurrence in todo order evaluates) */
+    size_t ncache = 0;
+    for (size_t k = 0; k < nt; k++) {
+        size_t id = leaves[todo[k]];
+        if (F->node_valid[id]) {
+            memcpy(exact + k * (size_t)stride, F->node_exact + id * (size_t)stride,
+                   (size_t)stride * sizeof *exact);
+            ncache++;
+        }
+        shared_add(F, &sh, k, leaves[todo[k]]);
+    }
+    (void)ncache;
     /* small levels stay serial: waking threads costs more than they save */
-    const int par = nt * (size_t)np > 4096;
+    const int par = (nt - ncache) * (size_t)np > 4096;
 #pragma omp parallel if (par)
     {
-        double pts[(4096 + 7) * 3];
+        double pts[(4096 + 7) * 3], q[(4096 + 7) * 3], v[4096 + 7], g[(4096 + 7) * 3];
+        int which[4096 + 7];
 #pragma omp for schedule(dynamic, 4)
         for (size_t k = 0; k < nt; k++) {
+            size_t id = leaves[todo[k]];
+            if (F->node_valid[id]) continue;
             dfl_tmesh_cell c;
-            dfl_tmesh_cell_get(F->mesh, leaves[todo[k]], &c);
+            dfl_tmesh_cell_get(F->mesh, id, &c);
             cell_points(F, &c, pts);
             double *e = exact + k * (size_t)stride;
-            dfl_pht_source_eval(F->src, (size_t)np, pts, e, grad ? e + np : NULL);
+            int n = 0;
+            for (int p = 0; p < np; p++) {
+                if (shared_copied(&sh, k, p)) continue;
+                memcpy(q + n * dim, pts + p * dim, (size_t)dim * sizeof *q);
+                which[n++] = p;
+            }
+            dfl_pht_source_eval(F->src, (size_t)n, q, v, grad ? g : NULL);
+            for (int i = 0; i < n; i++) {
+                e[which[i]] = v[i];
+                if (grad) memcpy(e + np + which[i] * dim, g + i * dim, (size_t)dim * sizeof *g);
+            }
         }
     }
+    shared_copy(&sh, nt, np, dim, grad, stride, exact);
+    shared_free(&sh);
     double t1 = omp_get_wtime();
 #pragma omp parallel if (par)
     {
@@ -291,6 +438,7 @@ static dfl_status estimate(fitter *F, double *err_out, dfl_pht_level *rec, dfl_e
             memcpy(F->node_coef + id * (size_t)F->nc,
                    dfl_pht_spline_cell(F->spline, i, NULL, NULL, NULL),
                    (size_t)F->nc * sizeof(double));
+            memcpy(F->node_exact + id * (size_t)stride, e, (size_t)stride * sizeof *e);
             F->node_valid[id] = 1;
         }
     }
@@ -356,6 +504,7 @@ static dfl_status fitter_init(fitter *F, const dfl_pht_source *src, const dfl_ph
     } else {
         F->npts = o->samples + (o->peaks ? 1 + 2 * F->dim : 0);
     }
+    F->xstride = F->npts * (1 + (o->estimator == DFL_PHT_EST_GRADIENT ? F->dim : 0));
     return dfl_tmesh_new(F->dim, o->lo, o->hi, &F->mesh, err);
 }
 
@@ -375,6 +524,7 @@ static void fitter_finish(fitter *F, dfl_pht_fit *out, double *cell_err, dfl_pht
     free(F->node_err);
     free(F->node_sum);
     free(F->node_coef);
+    free(F->node_exact);
     free(F->node_valid);
 }
 

@@ -42,7 +42,13 @@
  * in parallel over cells and every reduction combines per-cell results in
  * leaf order: results are bit-identical at any OMP_NUM_THREADS.  A cell whose
  * polynomial did not change since the previous level keeps its error (same
- * points, same values) without new distance evaluations.
+ * points, same values) without new distance evaluations.  Exact distances
+ * are reused, never recomputed: a cell re-estimated because its polynomial
+ * changed takes the exact values kept from its first estimate (its points
+ * are a function of the cell), and within one pass a face centre shared
+ * by two cells of equal size (the same point, bit for bit) is evaluated
+ * once; the values used are the same, so are the results.  Memory: the
+ * exact values of every tree node's points are kept for the fit.
  *
  * Uniform mode (dfl_pht_fit_uniform): every cell refined to level k by the
  * cross rule, i.e. the uniform bicubic / tricubic Hermite grid with 2^k

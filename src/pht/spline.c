@@ -341,11 +341,9 @@ static inline size_t locate(const dfl_pht_spline *s, const double *x, const doub
     return (size_t)(-nd[id].child - 1);
 }
 
-/* Location for evaluation (ties to the high side, like locate without a
- * direction): the grid cell by index arithmetic, corrected against the grid
- * lines so that it agrees with the tree's comparisons, then a branch-free
- * descent. */
-DFL_ISA_BODY size_t locate_fast(const dfl_pht_spline *s, const double *x)
+/* The location grid's cell holding x: index arithmetic, corrected against
+ * the grid lines so that it agrees with the tree's comparisons. */
+DFL_ISA_BODY size_t grid_index(const dfl_pht_spline *s, const double *x)
 {
     const int gn = s->gn, dim = s->dim;
     size_t g = 0, mul = 1;
@@ -358,20 +356,7 @@ DFL_ISA_BODY size_t locate_fast(const dfl_pht_spline *s, const double *x)
         g += (size_t)i * mul;
         mul *= (size_t)gn;
     }
-    const snode *nd = s->node;
-    int64_t id = s->gnode[g];
-    while (nd[id].child >= 0) {
-        const snode *q = &nd[id];
-        int idx;
-        if (q->axis >= 0) {
-            idx = x[q->axis] >= q->mid[q->axis];
-        } else {
-            idx = (x[0] >= q->mid[0]) | ((x[1] >= q->mid[1]) << 1);
-            if (dim == 3) idx |= (x[2] >= q->mid[2]) << 2;
-        }
-        id = q->child + idx;
-    }
-    return (size_t)(-nd[id].child - 1);
+    return g;
 }
 
 size_t dfl_pht_spline_locate(const dfl_pht_spline *s, const double *x, const double *dir)
@@ -454,18 +439,125 @@ DFL_ISA_BODY void eval3(const double *cell, const double *x, double *val, double
     }
 }
 
-/* The evaluation loop, compiled per ISA (core/isa.h): same bytes on each. */
+/* Value and gradient without the Hessian's terms: the operations of eval2
+ * and eval3 for val and g, in the same order (the same bytes), with the
+ * second-derivative rows (rpp; r2, s02, s11, s20) left out. */
+DFL_ISA_BODY void eval2_vg(const double *cell, const double *x, double *val, double *g)
+{
+    const double *c = cell + 4, *ih = cell + 2;
+    double u = (x[0] - cell[0]) * ih[0], v = (x[1] - cell[1]) * ih[1];
+    double r[4], rp[4];
+    for (int j = 0; j < 4; j++) {
+        r[j] = H3(c + 4 * j, u);
+        rp[j] = D3(c + 4 * j, u);
+    }
+    *val = H3(r, v);
+    g[0] = (H3(rp, v)) * ih[0];
+    g[1] = (D3(r, v)) * ih[1];
+}
+
+DFL_ISA_BODY void eval3_vg(const double *cell, const double *x, double *val, double *g)
+{
+    const double *c = cell + 6, *ih = cell + 3;
+    double u = (x[0] - cell[0]) * ih[0], v = (x[1] - cell[1]) * ih[1],
+           w = (x[2] - cell[2]) * ih[2];
+    double r0[16], r1[16];
+    for (int jk = 0; jk < 16; jk++) {
+        r0[jk] = H3(c + 4 * jk, u);
+        r1[jk] = D3(c + 4 * jk, u);
+    }
+    double s00[4], s01[4], s10[4];
+    for (int k = 0; k < 4; k++) {
+        s00[k] = H3(r0 + 4 * k, v);
+        s01[k] = D3(r0 + 4 * k, v);
+        s10[k] = H3(r1 + 4 * k, v);
+    }
+    *val = H3(s00, w);
+    g[0] = (H3(s10, w)) * ih[0];
+    g[1] = (H3(s01, w)) * ih[1];
+    g[2] = (D3(s00, w)) * ih[2];
+}
+
+/* Points per block of the value + gradient loop: located together, so that
+ * the cache misses of their tree descents and coefficient rows overlap
+ * (the 3D splines of the studies are tens of MB: a random point's cell is
+ * a miss). */
+#define EVAL_BLOCK 32
+
+/* Location for evaluation of n <= EVAL_BLOCK points (ties to the high
+ * side, like locate without a direction): each point starts at its grid
+ * cell's node and descends with branch-free child selection; the points
+ * descend level by level together, so that the misses on the nodes they
+ * read next (prefetched) overlap.  cells[k] gets point k's row (cell lo,
+ * 1/h, coefficients), whose cache lines are prefetched too. */
+DFL_ISA_BODY void locate_block(const dfl_pht_spline *s, size_t n, const double *pts,
+                               const double **cells)
+{
+    const int dim = s->dim;
+    const snode *nd = s->node;
+    int64_t id[EVAL_BLOCK];
+    for (size_t k = 0; k < n; k++) {
+        id[k] = s->gnode[grid_index(s, pts + k * (size_t)dim)];
+        __builtin_prefetch(&nd[id[k]]);
+    }
+    for (int more = 1; more;) {
+        more = 0;
+        for (size_t k = 0; k < n; k++) {
+            const snode *q = &nd[id[k]];
+            if (q->child < 0) continue;
+            const double *x = pts + k * (size_t)dim;
+            int idx;
+            if (q->axis >= 0) {
+                idx = x[q->axis] >= q->mid[q->axis];
+            } else {
+                idx = (x[0] >= q->mid[0]) | ((x[1] >= q->mid[1]) << 1);
+                if (dim == 3) idx |= (x[2] >= q->mid[2]) << 2;
+            }
+            id[k] = q->child + idx;
+            __builtin_prefetch(&nd[id[k]]);
+            more = 1;
+        }
+    }
+    const size_t bytes = s->stride * sizeof(double);
+    for (size_t k = 0; k < n; k++) {
+        cells[k] = s->cell + (size_t)(-nd[id[k]].child - 1) * s->stride;
+        const char *b = (const char *)cells[k];
+        for (size_t off = 0; off < bytes; off += 64) __builtin_prefetch(b + off);
+        __builtin_prefetch(b + bytes - 1);
+    }
+}
+
+/* The evaluation loop, compiled per ISA (core/isa.h): same bytes on each.
+ * Points go in located blocks, software-pipelined: block b + 1 is located
+ * (and its rows prefetched) before block b is evaluated.  Value + gradient
+ * (the field adapter's call) skips the Hessian's terms. */
 DFL_ISA_BODY void eval_points_body(const dfl_pht_spline *s, size_t m, const double *pts,
                                    double *val, double *grad, double *hess)
 {
-    const int d = s->dim;
-    for (size_t i = 0; i < m; i++) {
-        const double *x = pts + i * (size_t)d;
-        const double *cell = s->cell + locate_fast(s, x) * s->stride;
-        double *v = val ? val + i : NULL, *g = grad ? grad + i * (size_t)d : NULL,
-               *H = hess ? hess + i * (size_t)(d * d) : NULL;
-        if (d == 2) eval2(cell, x, v, g, H);
-        else eval3(cell, x, v, g, H);
+    const int d = s->dim, vg = val && grad && !hess;
+    const double *cells[2][EVAL_BLOCK];
+    if (m) locate_block(s, m < EVAL_BLOCK ? m : EVAL_BLOCK, pts, cells[0]);
+    for (size_t i0 = 0, b = 0; i0 < m; i0 += EVAL_BLOCK, b ^= 1) {
+        const size_t n = m - i0 < EVAL_BLOCK ? m - i0 : EVAL_BLOCK, i1 = i0 + n;
+        if (i1 < m)
+            locate_block(s, m - i1 < EVAL_BLOCK ? m - i1 : EVAL_BLOCK, pts + i1 * (size_t)d,
+                         cells[b ^ 1]);
+        const double *const *cl = cells[b];
+        if (vg && d == 2) {
+            for (size_t k = 0, i = i0; k < n; k++, i++)
+                eval2_vg(cl[k], pts + 2 * i, val + i, grad + 2 * i);
+        } else if (vg) {
+            for (size_t k = 0, i = i0; k < n; k++, i++)
+                eval3_vg(cl[k], pts + 3 * i, val + i, grad + 3 * i);
+        } else {
+            for (size_t k = 0, i = i0; k < n; k++, i++) {
+                const double *x = pts + i * (size_t)d;
+                double *v = val ? val + i : NULL, *g = grad ? grad + i * (size_t)d : NULL,
+                       *H = hess ? hess + i * (size_t)(d * d) : NULL;
+                if (d == 2) eval2(cl[k], x, v, g, H);
+                else eval3(cl[k], x, v, g, H);
+            }
+        }
     }
 }
 DFL_ISA_KERNEL(eval_points,

@@ -15,7 +15,10 @@
  * bicubic (tricubic) polynomial is reproduced exactly.
  *
  * Evaluation: a point is located in the spline's own copy of the cell tree
- * (O(levels), no allocation), then the cell's polynomial, stored as
+ * (a uniform grid of start nodes, then O(levels) steps, no allocation;
+ * dfl_pht_eval locates its points in blocks, so that their cache misses
+ * overlap, and leaves out the Hessian's terms unless asked for them), then
+ * the cell's polynomial, stored as
  * 4^dim power-basis coefficients in the cell's local coordinates
  * u = (x - lo) / (hi - lo), is evaluated by Horner's rule.  Points outside
  * the box are evaluated with the polynomial of the nearest boundary cell

@@ -137,9 +137,8 @@ static dfl_field fit_report(const char *name, const dfl_shape *s, double eps, in
     return fld;
 }
 
-/* Operations of one value + gradient evaluation (pht/spline.c eval2,
- * eval3; the Hessian's terms, which the code also computes, and the cell
- * location are not counted): per Horner cubic H3 3 mul + 3 add, its
+/* Operations of one value + gradient evaluation (pht/spline.c eval2_vg,
+ * eval3_vg; the cell location is not counted): per Horner cubic H3 3 mul + 3 add, its
  * derivative D3 4 mul + 2 add.  2D: the local coordinates (2 sub, 2 mul),
  * H3 and D3 of 4 rows in u, H3 of both in v and D3 of the values in v, 2
  * scalings.  3D: the local coordinates (3, 3), H3 and D3 of 16 rows in u,

@@ -495,3 +495,76 @@ Test(pht_fit, a_nan_estimate_propagates_to_the_maximum)
     dfl_pht_source_free(src);
     dfl_shape_free(&M.plane);
 }
+
+/* A circle whose batch evaluation without gradient (the estimator's exact
+ * distances; Hermite data always ask for the gradient) counts its points. */
+typedef struct counted {
+    dfl_shape circle;
+    size_t n;
+} counted;
+
+static void counted_eval(const void *impl, size_t m, const double *pts, double *val, double *grad)
+{
+    counted *C = (counted *)impl;
+    C->circle.ops->eval(C->circle.impl, m, pts, val, grad);
+    if (!grad) {
+#pragma omp atomic
+        C->n += m;
+    }
+}
+
+static dfl_status counted_jet(const void *impl, const double *x, const double *dir, int K,
+                              dfl_jet *out, dfl_err *err)
+{
+    const counted *C = impl;
+    return C->circle.ops->jet(C->circle.impl, x, dir, K, out, err);
+}
+
+static const dfl_shape_ops counted_ops = {"counted_circle", counted_eval, counted_jet, NULL};
+
+/* Exact distances are computed once per point a pass needs: on the uniform
+ * n x n grid (one pass) every cell has 16 random points, its centre and 4
+ * face centres, and each of the 2 n (n - 1) interior edges' centres is
+ * shared by the two cells beside it, so n^2 21 - 2 n (n - 1) evaluations. */
+Test(pht_fit, shared_face_centres_are_evaluated_once)
+{
+    counted C = {circle(), 0};
+    dfl_shape s = {.dim = 2, .ops = &counted_ops, .impl = &C};
+    dfl_pht_source *src;
+    cr_assert_eq(dfl_pht_source_new(&s, &src, NULL), DFL_OK);
+    dfl_pht_fit_opts o;
+    dfl_pht_fit_opts_default(2, &o);
+    dfl_pht_fit f;
+    for (int L = 1; L <= 4; L++) {
+        C.n = 0;
+        cr_assert_eq(dfl_pht_fit_uniform(src, &o, L, &f, NULL), DFL_OK);
+        const size_t n = (size_t)1 << L;
+        cr_expect_eq(C.n, n * n * 21 - 2 * n * (n - 1), "level %d: %zu evaluations", L, C.n);
+        dfl_pht_fit_free(&f);
+    }
+    dfl_pht_source_free(src);
+    dfl_shape_free(&C.circle);
+}
+
+/* A cell re-estimated because its polynomial changed (a neighbour's
+ * refinement turned a hanging corner into a base vertex) reuses the exact
+ * values at its points: every cell ever created (the root and 4 children
+ * per split, cross rule) evaluates its 16 points once, no more (peaks off:
+ * no shared points).  The circle at eps 1e-5 re-estimates such cells. */
+Test(pht_fit, re_estimated_cells_reuse_their_exact_values)
+{
+    counted C = {circle(), 0};
+    dfl_shape s = {.dim = 2, .ops = &counted_ops, .impl = &C};
+    dfl_pht_fit_opts o;
+    dfl_pht_fit_opts_default(2, &o);
+    o.eps = 1e-5;
+    o.max_level = 12;
+    o.peaks = 0;
+    dfl_pht_fit f;
+    fit(&s, &o, &f);
+    size_t created = 1;
+    for (int k = 0; k < f.nlevels; k++) created += 4 * f.levels[k].refined;
+    cr_expect_eq(C.n, created * 16, "%zu evaluations for %zu cells", C.n, created);
+    dfl_pht_fit_free(&f);
+    dfl_shape_free(&C.circle);
+}

@@ -238,3 +238,47 @@ Test(pht_spline, eval_locates_like_the_tree)
             dfl_tmesh_free(m);
         }
 }
+
+/* A batch goes through blocks of located points (software-pipelined) and,
+ * for value + gradient, a kernel without the Hessian's terms: every output
+ * combination of a batch that spans several blocks and ends mid-block must
+ * give the bytes of dfl_pht_eval_cell on the tree's cell, point by point. */
+Test(pht_spline, batches_give_the_bytes_of_single_cell_evaluation)
+{
+    enum { N = 1000 };
+    for (int dim = 2; dim <= 3; dim++)
+        for (int rule = 0; rule < DFL_PHT_SPLIT_COUNT; rule++) {
+            dfl_tmesh *m = refined(dim, rule, 43, LO, HI);
+            int nd = DFL_PHT_NDATA(dim);
+            size_t nv = dfl_tmesh_nverts(m);
+            double *data = calloc(nv * (size_t)nd, sizeof *data);
+            uint64_t rs = 91;
+            for (size_t v = 0; v < nv * (size_t)nd; v++) data[v] = dfl_rng_splitmix(&rs, -1, 1);
+            dfl_pht_resolve(m, data);
+            dfl_pht_spline *s;
+            cr_assert_eq(dfl_pht_spline_new(m, data, &s, NULL), DFL_OK);
+            static double x[N * 3], v[N], g[N * 3], H[N * 9], v1[N], g1[N * 3], H1[N * 9];
+            for (int i = 0; i < N * dim; i++) {
+                int j = i % dim;
+                x[i] = LO[j] - 0.1 + (HI[j] - LO[j] + 0.2) * dfl_rng_splitmix(&rs, 0, 1);
+            }
+            for (int i = 0; i < N; i++)
+                dfl_pht_eval_cell(s, dfl_pht_spline_locate(s, x + i * dim, NULL), 1, x + i * dim,
+                                  v1 + i, g1 + i * dim, H1 + i * dim * dim);
+            const size_t vb = N * sizeof(double), gb = vb * (size_t)dim, hb = gb * (size_t)dim;
+            for (int mask = 1; mask < 8; mask++) {
+                memset(v, 0xff, sizeof v), memset(g, 0xff, sizeof g), memset(H, 0xff, sizeof H);
+                dfl_pht_eval(s, N, x, mask & 1 ? v : NULL, mask & 2 ? g : NULL,
+                             mask & 4 ? H : NULL);
+                cr_assert(!(mask & 1) || memcmp(v, v1, vb) == 0, "dim %d rule %d mask %d", dim,
+                          rule, mask);
+                cr_assert(!(mask & 2) || memcmp(g, g1, gb) == 0, "dim %d rule %d mask %d", dim,
+                          rule, mask);
+                cr_assert(!(mask & 4) || memcmp(H, H1, hb) == 0, "dim %d rule %d mask %d", dim,
+                          rule, mask);
+            }
+            dfl_pht_spline_free(s);
+            free(data);
+            dfl_tmesh_free(m);
+        }
+}
