@@ -115,12 +115,13 @@ DFL_ISA_BODY void weight(dfl_proxy_filter f, int order, double t, double *w, dou
     }
 }
 
-DFL_ISA_BODY double blend(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, const double x[3],
-                    double *grad)
+/* The blend's corners (lower i0, upper i1 per axis), weights w and their
+ * derivatives dw at x. */
+DFL_ISA_BODY void blend_setup(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o,
+                              const double x[3], size_t i0[3], size_t i1[3], double w[3][2],
+                              double dw[3][2])
 {
     const size_t n = (size_t)g->res;
-    size_t i0[3], i1[3];
-    double w[3][2], dw[3][2];
     for (int j = 0; j < 3; j++) {
         const double s = (x[j] - g->lo[j]) / g->h[j] - 0.5;
         double t, dt = 1.0 / g->h[j];
@@ -150,6 +151,14 @@ DFL_ISA_BODY double blend(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *
         dw[j][0] = -dwt * dt;
         dw[j][1] = dwt * dt;
     }
+}
+
+DFL_ISA_BODY double blend(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, const double x[3],
+                    double *grad)
+{
+    size_t i0[3], i1[3];
+    double w[3][2], dw[3][2];
+    blend_setup(g, o, x, i0, i1, w, dw);
     double val = 0, gr[3] = {0, 0, 0};
     for (int q = 0; q < 8; q++) {
         const int a = q & 1, b = (q >> 1) & 1, c = (q >> 2) & 1;
@@ -309,6 +318,84 @@ DFL_ISA_BODY void nearest_block(const dfl_proxy_grid *g, const dfl_proxy_filter_
     }
 }
 
+/* The blend filters (trilinear, Hermite) for c <= QL queries at x, across
+ * queries as nearest_block does: per query blend_setup's corners and
+ * weights; the 8 corners' scalars gathered into lanes (corner q of query l
+ * in lane l of block q; a short block repeats its last query) and each
+ * block run through nearest_lanes without the fold (clip bound or none;
+ * dist_ijk's decoding, distance and clip, operation for operation); then
+ * per query blend's sum, in blend's order with blend's fold (d < 0: a NaN
+ * is not negated here) and its skip of zero weights without gradient (so
+ * that 0 x inf adds no NaN).  Hence blend's bytes. */
+DFL_ISA_BODY void blend_block(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t c,
+                              const double *x, double *val, double *grad)
+{
+    const int order = g->order, ns = g->nscalar;
+    const dfl_proxy_position pos = g->position;
+    const double clip = o->clip_kind == DFL_PROXY_CLIP_OFF ? 0.0 : o->clip;
+    const size_t n = (size_t)g->res;
+    double S[8][DFL_PROXY_NSCALAR_MAX][QL], XC[8][3][QL], X[3][QL], SIDE[8][QL], V[8][QL],
+        G[8][3][QL], w[QL][3][2], dw[QL][3][2];
+    for (size_t l = 0; l < QL; l++) {
+        const size_t i = l < c ? l : c - 1;
+        size_t i0[3], i1[3];
+        blend_setup(g, o, x + 3 * i, i0, i1, w[l], dw[l]);
+        for (int j = 0; j < 3; j++) X[j][l] = x[3 * i + (size_t)j];
+        for (int q = 0; q < 8; q++) {
+            const size_t id[3] = {q & 1 ? i1[0] : i0[0], (q >> 1) & 1 ? i1[1] : i0[1],
+                                  (q >> 2) & 1 ? i1[2] : i0[2]};
+            const size_t cell = id[0] + n * (id[1] + n * id[2]);
+            double sc[DFL_PROXY_NSCALAR_MAX];
+            dfl_proxy_cell_load(g, cell, sc);
+            for (int k = 0; k < ns; k++) S[q][k][l] = sc[k];
+            for (int k = ns; k < DFL_PROXY_NSCALAR_MAX; k++) S[q][k][l] = 0.0;
+            for (int j = 0; j < 3; j++) XC[q][j][l] = g->lo[j] + ((double)id[j] + 0.5) * g->h[j];
+            SIDE[q][l] = g->side ? g->side[cell] : 1;
+        }
+    }
+    for (int q = 0; q < 8; q++) {
+        if (order == 1 && pos == DFL_PROXY_DISPLACEMENT && clip > 0)
+            nearest_lanes(1, DFL_PROXY_DISPLACEMENT, 1, clip, 1, S[q], XC[q], X, SIDE[q], V[q], G[q]);
+        else if (order == 1 && pos == DFL_PROXY_DISPLACEMENT)
+            nearest_lanes(1, DFL_PROXY_DISPLACEMENT, 0, clip, 1, S[q], XC[q], X, SIDE[q], V[q], G[q]);
+        else if (order == 1 && clip > 0)
+            nearest_lanes(1, DFL_PROXY_ABSOLUTE, 1, clip, 1, S[q], XC[q], X, SIDE[q], V[q], G[q]);
+        else if (order == 1)
+            nearest_lanes(1, DFL_PROXY_ABSOLUTE, 0, clip, 1, S[q], XC[q], X, SIDE[q], V[q], G[q]);
+        else if (pos == DFL_PROXY_DISPLACEMENT && clip > 0)
+            nearest_lanes(2, DFL_PROXY_DISPLACEMENT, 1, clip, 1, S[q], XC[q], X, SIDE[q], V[q], G[q]);
+        else if (pos == DFL_PROXY_DISPLACEMENT)
+            nearest_lanes(2, DFL_PROXY_DISPLACEMENT, 0, clip, 1, S[q], XC[q], X, SIDE[q], V[q], G[q]);
+        else if (clip > 0)
+            nearest_lanes(2, DFL_PROXY_ABSOLUTE, 1, clip, 1, S[q], XC[q], X, SIDE[q], V[q], G[q]);
+        else
+            nearest_lanes(2, DFL_PROXY_ABSOLUTE, 0, clip, 1, S[q], XC[q], X, SIDE[q], V[q], G[q]);
+    }
+    for (size_t l = 0; l < c; l++) {
+        double v = 0, gr[3] = {0, 0, 0};
+        for (int q = 0; q < 8; q++) {
+            const int a = q & 1, b = (q >> 1) & 1, cc = (q >> 2) & 1;
+            const double W = w[l][0][a] * w[l][1][b] * w[l][2][cc];
+            if (W == 0 && !grad) continue;
+            double d = V[q][l], gd[3] = {G[q][0][l], G[q][1][l], G[q][2][l]};
+            if (!o->is_signed && d < 0) {
+                d = -d;
+                for (int j = 0; j < 3; j++) gd[j] = -gd[j];
+            }
+            v += W * d;
+            if (grad) {
+                const double gw[3] = {dw[l][0][a] * w[l][1][b] * w[l][2][cc],
+                                      w[l][0][a] * dw[l][1][b] * w[l][2][cc],
+                                      w[l][0][a] * w[l][1][b] * dw[l][2][cc]};
+                for (int j = 0; j < 3; j++) gr[j] += W * gd[j] + d * gw[j];
+            }
+        }
+        val[l] = v;
+        if (grad)
+            for (int j = 0; j < 3; j++) grad[3 * l + (size_t)j] = gr[j];
+    }
+}
+
 /* The query loop, compiled per ISA (core/isa.h): same bytes on each. */
 DFL_ISA_BODY void queries_body(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t m,
                                const double *x, double *val, double *grad)
@@ -336,7 +423,12 @@ DFL_ISA_BODY void queries_body(const dfl_proxy_grid *g, const dfl_proxy_filter_o
                           grad ? grad + 3 * i : NULL);
         return;
     }
-    for (size_t i = 0; i < m; i++) val[i] = blend(g, o, x + 3 * i, grad ? grad + 3 * i : NULL);
+    if (o->clip_kind == DFL_PROXY_CLIP_PAPER && o->clip > 0) {
+        for (size_t i = 0; i < m; i++) val[i] = blend(g, o, x + 3 * i, grad ? grad + 3 * i : NULL);
+        return;
+    }
+    for (size_t i = 0; i < m; i += QL)
+        blend_block(g, o, m - i < QL ? m - i : QL, x + 3 * i, val + i, grad ? grad + 3 * i : NULL);
 }
 DFL_ISA_KERNEL(queries,
                (const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t m,
