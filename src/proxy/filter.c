@@ -195,7 +195,7 @@ DFL_ISA_BODY double blend(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *
  * that the lanes vectorize; tests/proxy and scripts/check_isa.py hold them
  * to the per-query bytes. */
 DFL_ISA_BODY void nearest_lanes(const int order, const dfl_proxy_position pos, const int clipon,
-                                const double clip, const int sgnd,
+                                const double clip, const int sgnd, const int wantg,
                                 double (*S)[QL], double (*XC)[QL], double (*X)[QL],
                                 const double *SIDE, double *V, double (*G)[QL])
 {
@@ -254,10 +254,41 @@ DFL_ISA_BODY void nearest_lanes(const int order, const dfl_proxy_position pos, c
         }
         const int flip = !sgnd && !(phi >= 0);
         V[l] = flip ? -phi : phi;
-        G[0][l] = flip ? -g0 : g0;
-        G[1][l] = flip ? -g1 : g1;
-        G[2][l] = flip ? -g2 : g2;
+        if (wantg) {
+            /* else the gradient's divisions are dead code, phi unchanged */
+            G[0][l] = flip ? -g0 : g0;
+            G[1][l] = flip ? -g1 : g1;
+            G[2][l] = flip ? -g2 : g2;
+        }
     }
+}
+
+/* nearest_lanes with order, position, clip on/off and the gradient as
+ * constants (one specialised lane loop each, no branch inside). */
+DFL_ISA_BODY void run_lanes(const int order, const dfl_proxy_position pos, const double clip,
+                            const int sgnd, const int wantg, double (*S)[QL], double (*XC)[QL],
+                            double (*X)[QL], const double *SIDE, double *V, double (*G)[QL])
+{
+#define DFL_LANES(o_, p_, c_)                                                         \
+    (wantg ? nearest_lanes(o_, p_, c_, clip, sgnd, 1, S, XC, X, SIDE, V, G)           \
+           : nearest_lanes(o_, p_, c_, clip, sgnd, 0, S, XC, X, SIDE, V, G))
+    if (order == 1 && pos == DFL_PROXY_DISPLACEMENT && clip > 0)
+        DFL_LANES(1, DFL_PROXY_DISPLACEMENT, 1);
+    else if (order == 1 && pos == DFL_PROXY_DISPLACEMENT)
+        DFL_LANES(1, DFL_PROXY_DISPLACEMENT, 0);
+    else if (order == 1 && clip > 0)
+        DFL_LANES(1, DFL_PROXY_ABSOLUTE, 1);
+    else if (order == 1)
+        DFL_LANES(1, DFL_PROXY_ABSOLUTE, 0);
+    else if (pos == DFL_PROXY_DISPLACEMENT && clip > 0)
+        DFL_LANES(2, DFL_PROXY_DISPLACEMENT, 1);
+    else if (pos == DFL_PROXY_DISPLACEMENT)
+        DFL_LANES(2, DFL_PROXY_DISPLACEMENT, 0);
+    else if (clip > 0)
+        DFL_LANES(2, DFL_PROXY_ABSOLUTE, 1);
+    else
+        DFL_LANES(2, DFL_PROXY_ABSOLUTE, 0);
+#undef DFL_LANES
 }
 
 /* The nearest filter for c <= QL queries at x, across queries: the cells'
@@ -295,22 +326,7 @@ DFL_ISA_BODY void nearest_block(const dfl_proxy_grid *g, const dfl_proxy_filter_
     }
     const int sgnd = o->is_signed;
     /* the uniform choices as constants, so that the lane loop has no branch */
-    if (order == 1 && pos == DFL_PROXY_DISPLACEMENT && clip > 0)
-        nearest_lanes(1, DFL_PROXY_DISPLACEMENT, 1, clip, sgnd, S, XC, X, SIDE, V, G);
-    else if (order == 1 && pos == DFL_PROXY_DISPLACEMENT)
-        nearest_lanes(1, DFL_PROXY_DISPLACEMENT, 0, clip, sgnd, S, XC, X, SIDE, V, G);
-    else if (order == 1 && clip > 0)
-        nearest_lanes(1, DFL_PROXY_ABSOLUTE, 1, clip, sgnd, S, XC, X, SIDE, V, G);
-    else if (order == 1)
-        nearest_lanes(1, DFL_PROXY_ABSOLUTE, 0, clip, sgnd, S, XC, X, SIDE, V, G);
-    else if (pos == DFL_PROXY_DISPLACEMENT && clip > 0)
-        nearest_lanes(2, DFL_PROXY_DISPLACEMENT, 1, clip, sgnd, S, XC, X, SIDE, V, G);
-    else if (pos == DFL_PROXY_DISPLACEMENT)
-        nearest_lanes(2, DFL_PROXY_DISPLACEMENT, 0, clip, sgnd, S, XC, X, SIDE, V, G);
-    else if (clip > 0)
-        nearest_lanes(2, DFL_PROXY_ABSOLUTE, 1, clip, sgnd, S, XC, X, SIDE, V, G);
-    else
-        nearest_lanes(2, DFL_PROXY_ABSOLUTE, 0, clip, sgnd, S, XC, X, SIDE, V, G);
+    run_lanes(order, pos, clip, sgnd, grad != NULL, S, XC, X, SIDE, V, G);
     for (size_t l = 0; l < c; l++) {
         val[l] = V[l];
         if (grad)
@@ -336,15 +352,26 @@ DFL_ISA_BODY void blend_block(const dfl_proxy_grid *g, const dfl_proxy_filter_op
     const size_t n = (size_t)g->res;
     double S[8][DFL_PROXY_NSCALAR_MAX][QL], XC[8][3][QL], X[3][QL], SIDE[8][QL], V[8][QL],
         G[8][3][QL], w[QL][3][2], dw[QL][3][2];
+    size_t ids[QL][8][3], cells[QL][8];
+    const size_t bytes = (size_t)ns * dfl_proxy_storage_size(g->storage);
     for (size_t l = 0; l < QL; l++) {
         const size_t i = l < c ? l : c - 1;
         size_t i0[3], i1[3];
         blend_setup(g, o, x + 3 * i, i0, i1, w[l], dw[l]);
         for (int j = 0; j < 3; j++) X[j][l] = x[3 * i + (size_t)j];
         for (int q = 0; q < 8; q++) {
-            const size_t id[3] = {q & 1 ? i1[0] : i0[0], (q >> 1) & 1 ? i1[1] : i0[1],
-                                  (q >> 2) & 1 ? i1[2] : i0[2]};
-            const size_t cell = id[0] + n * (id[1] + n * id[2]);
+            size_t *id = ids[l][q];
+            id[0] = q & 1 ? i1[0] : i0[0];
+            id[1] = (q >> 1) & 1 ? i1[1] : i0[1];
+            id[2] = (q >> 2) & 1 ? i1[2] : i0[2];
+            cells[l][q] = id[0] + n * (id[1] + n * id[2]);
+            /* the 64 cells' loads overlap (queries in no order miss the cache) */
+            __builtin_prefetch((const char *)g->data + cells[l][q] * bytes);
+        }
+    }
+    for (size_t l = 0; l < QL; l++) {
+        for (int q = 0; q < 8; q++) {
+            const size_t *id = ids[l][q], cell = cells[l][q];
             double sc[DFL_PROXY_NSCALAR_MAX];
             dfl_proxy_cell_load(g, cell, sc);
             for (int k = 0; k < ns; k++) S[q][k][l] = sc[k];
@@ -353,31 +380,17 @@ DFL_ISA_BODY void blend_block(const dfl_proxy_grid *g, const dfl_proxy_filter_op
             SIDE[q][l] = g->side ? g->side[cell] : 1;
         }
     }
-    for (int q = 0; q < 8; q++) {
-        if (order == 1 && pos == DFL_PROXY_DISPLACEMENT && clip > 0)
-            nearest_lanes(1, DFL_PROXY_DISPLACEMENT, 1, clip, 1, S[q], XC[q], X, SIDE[q], V[q], G[q]);
-        else if (order == 1 && pos == DFL_PROXY_DISPLACEMENT)
-            nearest_lanes(1, DFL_PROXY_DISPLACEMENT, 0, clip, 1, S[q], XC[q], X, SIDE[q], V[q], G[q]);
-        else if (order == 1 && clip > 0)
-            nearest_lanes(1, DFL_PROXY_ABSOLUTE, 1, clip, 1, S[q], XC[q], X, SIDE[q], V[q], G[q]);
-        else if (order == 1)
-            nearest_lanes(1, DFL_PROXY_ABSOLUTE, 0, clip, 1, S[q], XC[q], X, SIDE[q], V[q], G[q]);
-        else if (pos == DFL_PROXY_DISPLACEMENT && clip > 0)
-            nearest_lanes(2, DFL_PROXY_DISPLACEMENT, 1, clip, 1, S[q], XC[q], X, SIDE[q], V[q], G[q]);
-        else if (pos == DFL_PROXY_DISPLACEMENT)
-            nearest_lanes(2, DFL_PROXY_DISPLACEMENT, 0, clip, 1, S[q], XC[q], X, SIDE[q], V[q], G[q]);
-        else if (clip > 0)
-            nearest_lanes(2, DFL_PROXY_ABSOLUTE, 1, clip, 1, S[q], XC[q], X, SIDE[q], V[q], G[q]);
-        else
-            nearest_lanes(2, DFL_PROXY_ABSOLUTE, 0, clip, 1, S[q], XC[q], X, SIDE[q], V[q], G[q]);
-    }
+    for (int q = 0; q < 8; q++)
+        run_lanes(order, pos, clip, 1, grad != NULL, S[q], XC[q], X, SIDE[q], V[q], G[q]);
     for (size_t l = 0; l < c; l++) {
         double v = 0, gr[3] = {0, 0, 0};
         for (int q = 0; q < 8; q++) {
             const int a = q & 1, b = (q >> 1) & 1, cc = (q >> 2) & 1;
             const double W = w[l][0][a] * w[l][1][b] * w[l][2][cc];
             if (W == 0 && !grad) continue;
-            double d = V[q][l], gd[3] = {G[q][0][l], G[q][1][l], G[q][2][l]};
+            double d = V[q][l], gd[3] = {0, 0, 0};
+            if (grad)
+                for (int j = 0; j < 3; j++) gd[j] = G[q][j][l];
             if (!o->is_signed && d < 0) {
                 d = -d;
                 for (int j = 0; j < 3; j++) gd[j] = -gd[j];
