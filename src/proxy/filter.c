@@ -4,6 +4,7 @@
 #include "proxy/filter.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "core/isa.h"
 #include "core/vec.h"
@@ -291,6 +292,24 @@ DFL_ISA_BODY void run_lanes(const int order, const dfl_proxy_position pos, const
 #undef DFL_LANES
 }
 
+/* The scalars of cells[0..nc) (nc <= 8 QL) as double, cell after cell
+ * (out[j ns + k]): dfl_proxy_cell_load per cell, or for half storage with
+ * f16c one F16C block conversion of the gathered halves (store.h: the
+ * same doubles). */
+DFL_ISA_BODY void load_cells(const dfl_proxy_grid *g, int f16c, size_t nc, const size_t *cells,
+                             double *out)
+{
+    const size_t ns = (size_t)g->nscalar;
+    if (f16c) {
+        uint16_t hb[8 * QL * DFL_PROXY_NSCALAR_MAX];
+        const uint16_t *d = g->data;
+        for (size_t j = 0; j < nc; j++) memcpy(hb + j * ns, d + cells[j] * ns, ns * sizeof *hb);
+        dfl_proxy_store_half_block(1, hb, nc * ns, out);
+        return;
+    }
+    for (size_t j = 0; j < nc; j++) dfl_proxy_cell_load(g, cells[j], out + j * ns);
+}
+
 /* The nearest filter for c <= QL queries at x, across queries: the cells'
  * scalars are gathered into structure-of-arrays lanes (a short block
  * repeats its last query), then decoding, the proxy's distance, the clip
@@ -301,22 +320,25 @@ DFL_ISA_BODY void run_lanes(const int order, const dfl_proxy_position pos, const
  * become selects of values computed either way, and fmax(ball, |phi|) a
  * select (where the clip applies phi is finite and ball is not NaN, so
  * they agree); hence the same bytes. */
-DFL_ISA_BODY void nearest_block(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t c,
-                                const double *x, double *val, double *grad)
+DFL_ISA_BODY void nearest_block(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, int f16c,
+                                size_t c, const double *x, double *val, double *grad)
 {
     const int order = g->order, ns = g->nscalar;
     const dfl_proxy_position pos = g->position;
     /* the lanes compute the bound clip (or none): off is radius 0 */
     const double clip = o->clip_kind == DFL_PROXY_CLIP_OFF ? 0.0 : o->clip;
     double S[DFL_PROXY_NSCALAR_MAX][QL], XC[3][QL], X[3][QL], SIDE[QL], V[QL], G[3][QL];
+    double sc[QL * DFL_PROXY_NSCALAR_MAX];
+    size_t cells[QL], ids[QL][3];
     for (size_t l = 0; l < QL; l++) {
-        const size_t i = l < c ? l : c - 1;
-        size_t id[3];
-        nearest_cell(g, x + 3 * i, id);
-        const size_t n = (size_t)g->res, cell = id[0] + n * (id[1] + n * id[2]);
-        double sc[DFL_PROXY_NSCALAR_MAX];
-        dfl_proxy_cell_load(g, cell, sc);
-        for (int q = 0; q < ns; q++) S[q][l] = sc[q];
+        const size_t i = l < c ? l : c - 1, n = (size_t)g->res;
+        nearest_cell(g, x + 3 * i, ids[l]);
+        cells[l] = ids[l][0] + n * (ids[l][1] + n * ids[l][2]);
+    }
+    load_cells(g, f16c, QL, cells, sc);
+    for (size_t l = 0; l < QL; l++) {
+        const size_t i = l < c ? l : c - 1, cell = cells[l], *id = ids[l];
+        for (int q = 0; q < ns; q++) S[q][l] = sc[l * (size_t)ns + (size_t)q];
         for (int q = ns; q < DFL_PROXY_NSCALAR_MAX; q++) S[q][l] = 0.0;
         for (int j = 0; j < 3; j++) {
             XC[j][l] = g->lo[j] + ((double)id[j] + 0.5) * g->h[j];
@@ -343,8 +365,8 @@ DFL_ISA_BODY void nearest_block(const dfl_proxy_grid *g, const dfl_proxy_filter_
  * per query blend's sum, in blend's order with blend's fold (d < 0: a NaN
  * is not negated here) and its skip of zero weights without gradient (so
  * that 0 x inf adds no NaN).  Hence blend's bytes. */
-DFL_ISA_BODY void blend_block(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t c,
-                              const double *x, double *val, double *grad)
+DFL_ISA_BODY void blend_block(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, int f16c,
+                              size_t c, const double *x, double *val, double *grad)
 {
     const int order = g->order, ns = g->nscalar;
     const dfl_proxy_position pos = g->position;
@@ -369,12 +391,13 @@ DFL_ISA_BODY void blend_block(const dfl_proxy_grid *g, const dfl_proxy_filter_op
             __builtin_prefetch((const char *)g->data + cells[l][q] * bytes);
         }
     }
+    double sc[8 * QL * DFL_PROXY_NSCALAR_MAX];
+    load_cells(g, f16c, 8 * QL, &cells[0][0], sc);
     for (size_t l = 0; l < QL; l++) {
         for (int q = 0; q < 8; q++) {
             const size_t *id = ids[l][q], cell = cells[l][q];
-            double sc[DFL_PROXY_NSCALAR_MAX];
-            dfl_proxy_cell_load(g, cell, sc);
-            for (int k = 0; k < ns; k++) S[q][k][l] = sc[k];
+            const double *cs = sc + (8 * l + (size_t)q) * (size_t)ns;
+            for (int k = 0; k < ns; k++) S[q][k][l] = cs[k];
             for (int k = ns; k < DFL_PROXY_NSCALAR_MAX; k++) S[q][k][l] = 0.0;
             for (int j = 0; j < 3; j++) XC[q][j][l] = g->lo[j] + ((double)id[j] + 0.5) * g->h[j];
             SIDE[q][l] = g->side ? g->side[cell] : 1;
@@ -413,6 +436,8 @@ DFL_ISA_BODY void blend_block(const dfl_proxy_grid *g, const dfl_proxy_filter_op
 DFL_ISA_BODY void queries_body(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t m,
                                const double *x, double *val, double *grad)
 {
+    /* half storage loads through F16C where the process may use it */
+    const int f16c = g->storage == DFL_PROXY_HALF && dfl_proxy_store_has_f16c();
     if (o->filter == DFL_PROXY_NEAREST) {
         if (o->clip_kind == DFL_PROXY_CLIP_PAPER && o->clip > 0) {
             /* the paper's reading of the clip has no lane loop: one query
@@ -432,7 +457,7 @@ DFL_ISA_BODY void queries_body(const dfl_proxy_grid *g, const dfl_proxy_filter_o
             return;
         }
         for (size_t i = 0; i < m; i += QL)
-            nearest_block(g, o, m - i < QL ? m - i : QL, x + 3 * i, val + i,
+            nearest_block(g, o, f16c, m - i < QL ? m - i : QL, x + 3 * i, val + i,
                           grad ? grad + 3 * i : NULL);
         return;
     }
@@ -441,7 +466,8 @@ DFL_ISA_BODY void queries_body(const dfl_proxy_grid *g, const dfl_proxy_filter_o
         return;
     }
     for (size_t i = 0; i < m; i += QL)
-        blend_block(g, o, m - i < QL ? m - i : QL, x + 3 * i, val + i, grad ? grad + 3 * i : NULL);
+        blend_block(g, o, f16c, m - i < QL ? m - i : QL, x + 3 * i, val + i,
+                    grad ? grad + 3 * i : NULL);
 }
 DFL_ISA_KERNEL(queries,
                (const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t m,
