@@ -35,7 +35,10 @@ static double nearest_sample(const dfl_implicit *s, const double q[3])
             if (k < 0 || k >= s->nb[2]) continue;
             for (int j = c0[1] - r; j <= c0[1] + r; j++) {
                 if (j < 0 || j >= s->nb[1]) continue;
-                for (int i = c0[0] - r; i <= c0[0] + r; i++) {
+                /* a row through the ring's inside holds two of its buckets
+                 * (the same buckets in the same order, fewer steps) */
+                const int step = abs(j - c0[1]) < r && abs(k - c0[2]) < r ? 2 * r : 1;
+                for (int i = c0[0] - r; i <= c0[0] + r; i += i == c0[0] - r ? step : 1) {
                     if (i < 0 || i >= s->nb[0]) continue;
                     if (abs(i - c0[0]) < r && abs(j - c0[1]) < r && abs(k - c0[2]) < r) continue;
                     size_t b = bucket_index(s, i, j, k);

@@ -54,6 +54,55 @@ void dfl_poly3_deriv(const dfl_poly3 *P, int axis, dfl_poly3 *out)
     }
 }
 
+/* Orders 0 to 2 (the implicit footpoints' hot path): the general loop
+ * below written out, the same products in the same order, so the same
+ * bits for every input, non-finite ones too.  Per axis and term,
+ * D_m = e (e-1)..(e-m+1) q^(e-m) (0 when e < m); the factorial factor is
+ * the general loop's product of small integers, exact in double, and
+ * 1.0 * q^e is q^e.  H's lower triangle is its upper one: the general
+ * loop forms H[3i + j] and H[3j + i] from the same factors in the same
+ * order. */
+static double eval_low(const dfl_poly3 *P, double (*pw)[DFL_POLY3_MAX_DEGREE + 1], int order,
+                       double gr[3], double H[9])
+{
+    double g = 0.0, g0 = 0.0, g1 = 0.0, g2 = 0.0;
+    double h00 = 0.0, h01 = 0.0, h02 = 0.0, h11 = 0.0, h12 = 0.0, h22 = 0.0;
+    for (int k = 0; k < P->n; k++) {
+        const int e0 = P->e[k][0], e1 = P->e[k][1], e2 = P->e[k][2];
+        const double c = P->c[k];
+        const double a0 = pw[0][e0], b0 = pw[1][e1], c0 = pw[2][e2];
+        g += c * a0 * b0 * c0;
+        if (order < 1) continue;
+        const double a1 = e0 >= 1 ? (double)e0 * pw[0][e0 - 1] : 0.0;
+        const double b1 = e1 >= 1 ? (double)e1 * pw[1][e1 - 1] : 0.0;
+        const double c1 = e2 >= 1 ? (double)e2 * pw[2][e2 - 1] : 0.0;
+        g0 += c * a1 * b0 * c0;
+        g1 += c * a0 * b1 * c0;
+        g2 += c * a0 * b0 * c1;
+        if (order < 2) continue;
+        const double a2 = e0 >= 2 ? (double)(e0 * (e0 - 1)) * pw[0][e0 - 2] : 0.0;
+        const double b2 = e1 >= 2 ? (double)(e1 * (e1 - 1)) * pw[1][e1 - 2] : 0.0;
+        const double c2 = e2 >= 2 ? (double)(e2 * (e2 - 1)) * pw[2][e2 - 2] : 0.0;
+        h00 += c * a2 * b0 * c0;
+        h01 += c * a1 * b1 * c0;
+        h02 += c * a1 * b0 * c1;
+        h11 += c * a0 * b2 * c0;
+        h12 += c * a0 * b1 * c1;
+        h22 += c * a0 * b0 * c2;
+    }
+    if (order >= 1) {
+        gr[0] = g0;
+        gr[1] = g1;
+        gr[2] = g2;
+    }
+    if (order >= 2) {
+        H[0] = h00, H[1] = h01, H[2] = h02;
+        H[3] = h01, H[4] = h11, H[5] = h12;
+        H[6] = h02, H[7] = h12, H[8] = h22;
+    }
+    return g;
+}
+
 double dfl_poly3_eval(const dfl_poly3 *P, const double q[3], int order, double gr[3],
                       double H[9], double T[27])
 {
@@ -63,6 +112,7 @@ double dfl_poly3_eval(const dfl_poly3 *P, const double q[3], int order, double g
         pw[a][0] = 1.0;
         for (int k = 1; k <= P->deg; k++) pw[a][k] = pw[a][k - 1] * q[a];
     }
+    if (order <= 2) return eval_low(P, pw, order, gr, H);
     double g = 0.0;
     if (order >= 1) memset(gr, 0, 3 * sizeof *gr);
     if (order >= 2) memset(H, 0, 9 * sizeof *H);

@@ -16,7 +16,9 @@
  * return 0 then (1 on success) and leave P partly updated; callers that
  * build from validated input (no more terms than the table holds) may
  * ignore it.  Evaluation sums the terms in storage order, so equal inputs
- * give equal bits. */
+ * give equal bits; orders 0 to 2 run a written-out loop that gives the
+ * value, gradient and Hessian bit for bit as order 3 does (a NaN's sign
+ * and payload aside, which C leaves to the compiler). */
 #ifndef DFL_GEOM_POLY3_H
 #define DFL_GEOM_POLY3_H
 

@@ -4,6 +4,7 @@
 #include "proxy/filter.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "core/isa.h"
 #include "core/vec.h"
@@ -115,12 +116,13 @@ DFL_ISA_BODY void weight(dfl_proxy_filter f, int order, double t, double *w, dou
     }
 }
 
-DFL_ISA_BODY double blend(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, const double x[3],
-                    double *grad)
+/* The blend's corners (lower i0, upper i1 per axis), weights w and their
+ * derivatives dw at x. */
+DFL_ISA_BODY void blend_setup(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o,
+                              const double x[3], size_t i0[3], size_t i1[3], double w[3][2],
+                              double dw[3][2])
 {
     const size_t n = (size_t)g->res;
-    size_t i0[3], i1[3];
-    double w[3][2], dw[3][2];
     for (int j = 0; j < 3; j++) {
         const double s = (x[j] - g->lo[j]) / g->h[j] - 0.5;
         double t, dt = 1.0 / g->h[j];
@@ -150,6 +152,14 @@ DFL_ISA_BODY double blend(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *
         dw[j][0] = -dwt * dt;
         dw[j][1] = dwt * dt;
     }
+}
+
+DFL_ISA_BODY double blend(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, const double x[3],
+                    double *grad)
+{
+    size_t i0[3], i1[3];
+    double w[3][2], dw[3][2];
+    blend_setup(g, o, x, i0, i1, w, dw);
     double val = 0, gr[3] = {0, 0, 0};
     for (int q = 0; q < 8; q++) {
         const int a = q & 1, b = (q >> 1) & 1, c = (q >> 2) & 1;
@@ -186,7 +196,7 @@ DFL_ISA_BODY double blend(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *
  * that the lanes vectorize; tests/proxy and scripts/check_isa.py hold them
  * to the per-query bytes. */
 DFL_ISA_BODY void nearest_lanes(const int order, const dfl_proxy_position pos, const int clipon,
-                                const double clip, const int sgnd,
+                                const double clip, const int sgnd, const int wantg,
                                 double (*S)[QL], double (*XC)[QL], double (*X)[QL],
                                 const double *SIDE, double *V, double (*G)[QL])
 {
@@ -245,10 +255,59 @@ DFL_ISA_BODY void nearest_lanes(const int order, const dfl_proxy_position pos, c
         }
         const int flip = !sgnd && !(phi >= 0);
         V[l] = flip ? -phi : phi;
-        G[0][l] = flip ? -g0 : g0;
-        G[1][l] = flip ? -g1 : g1;
-        G[2][l] = flip ? -g2 : g2;
+        if (wantg) {
+            /* else the gradient's divisions are dead code, phi unchanged */
+            G[0][l] = flip ? -g0 : g0;
+            G[1][l] = flip ? -g1 : g1;
+            G[2][l] = flip ? -g2 : g2;
+        }
     }
+}
+
+/* nearest_lanes with order, position, clip on/off and the gradient as
+ * constants (one specialised lane loop each, no branch inside). */
+DFL_ISA_BODY void run_lanes(const int order, const dfl_proxy_position pos, const double clip,
+                            const int sgnd, const int wantg, double (*S)[QL], double (*XC)[QL],
+                            double (*X)[QL], const double *SIDE, double *V, double (*G)[QL])
+{
+#define DFL_LANES(o_, p_, c_)                                                         \
+    (wantg ? nearest_lanes(o_, p_, c_, clip, sgnd, 1, S, XC, X, SIDE, V, G)           \
+           : nearest_lanes(o_, p_, c_, clip, sgnd, 0, S, XC, X, SIDE, V, G))
+    if (order == 1 && pos == DFL_PROXY_DISPLACEMENT && clip > 0)
+        DFL_LANES(1, DFL_PROXY_DISPLACEMENT, 1);
+    else if (order == 1 && pos == DFL_PROXY_DISPLACEMENT)
+        DFL_LANES(1, DFL_PROXY_DISPLACEMENT, 0);
+    else if (order == 1 && clip > 0)
+        DFL_LANES(1, DFL_PROXY_ABSOLUTE, 1);
+    else if (order == 1)
+        DFL_LANES(1, DFL_PROXY_ABSOLUTE, 0);
+    else if (pos == DFL_PROXY_DISPLACEMENT && clip > 0)
+        DFL_LANES(2, DFL_PROXY_DISPLACEMENT, 1);
+    else if (pos == DFL_PROXY_DISPLACEMENT)
+        DFL_LANES(2, DFL_PROXY_DISPLACEMENT, 0);
+    else if (clip > 0)
+        DFL_LANES(2, DFL_PROXY_ABSOLUTE, 1);
+    else
+        DFL_LANES(2, DFL_PROXY_ABSOLUTE, 0);
+#undef DFL_LANES
+}
+
+/* The scalars of cells[0..nc) (nc <= 8 QL) as double, cell after cell
+ * (out[j ns + k]): dfl_proxy_cell_load per cell, or for half storage with
+ * f16c one F16C block conversion of the gathered halves (store.h: the
+ * same doubles). */
+DFL_ISA_BODY void load_cells(const dfl_proxy_grid *g, int f16c, size_t nc, const size_t *cells,
+                             double *out)
+{
+    const size_t ns = (size_t)g->nscalar;
+    if (f16c) {
+        uint16_t hb[8 * QL * DFL_PROXY_NSCALAR_MAX];
+        const uint16_t *d = g->data;
+        for (size_t j = 0; j < nc; j++) memcpy(hb + j * ns, d + cells[j] * ns, ns * sizeof *hb);
+        dfl_proxy_store_half_block(1, hb, nc * ns, out);
+        return;
+    }
+    for (size_t j = 0; j < nc; j++) dfl_proxy_cell_load(g, cells[j], out + j * ns);
 }
 
 /* The nearest filter for c <= QL queries at x, across queries: the cells'
@@ -261,22 +320,25 @@ DFL_ISA_BODY void nearest_lanes(const int order, const dfl_proxy_position pos, c
  * become selects of values computed either way, and fmax(ball, |phi|) a
  * select (where the clip applies phi is finite and ball is not NaN, so
  * they agree); hence the same bytes. */
-DFL_ISA_BODY void nearest_block(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t c,
-                                const double *x, double *val, double *grad)
+DFL_ISA_BODY void nearest_block(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, int f16c,
+                                size_t c, const double *x, double *val, double *grad)
 {
     const int order = g->order, ns = g->nscalar;
     const dfl_proxy_position pos = g->position;
     /* the lanes compute the bound clip (or none): off is radius 0 */
     const double clip = o->clip_kind == DFL_PROXY_CLIP_OFF ? 0.0 : o->clip;
     double S[DFL_PROXY_NSCALAR_MAX][QL], XC[3][QL], X[3][QL], SIDE[QL], V[QL], G[3][QL];
+    double sc[QL * DFL_PROXY_NSCALAR_MAX];
+    size_t cells[QL], ids[QL][3];
     for (size_t l = 0; l < QL; l++) {
-        const size_t i = l < c ? l : c - 1;
-        size_t id[3];
-        nearest_cell(g, x + 3 * i, id);
-        const size_t n = (size_t)g->res, cell = id[0] + n * (id[1] + n * id[2]);
-        double sc[DFL_PROXY_NSCALAR_MAX];
-        dfl_proxy_cell_load(g, cell, sc);
-        for (int q = 0; q < ns; q++) S[q][l] = sc[q];
+        const size_t i = l < c ? l : c - 1, n = (size_t)g->res;
+        nearest_cell(g, x + 3 * i, ids[l]);
+        cells[l] = ids[l][0] + n * (ids[l][1] + n * ids[l][2]);
+    }
+    load_cells(g, f16c, QL, cells, sc);
+    for (size_t l = 0; l < QL; l++) {
+        const size_t i = l < c ? l : c - 1, cell = cells[l], *id = ids[l];
+        for (int q = 0; q < ns; q++) S[q][l] = sc[l * (size_t)ns + (size_t)q];
         for (int q = ns; q < DFL_PROXY_NSCALAR_MAX; q++) S[q][l] = 0.0;
         for (int j = 0; j < 3; j++) {
             XC[j][l] = g->lo[j] + ((double)id[j] + 0.5) * g->h[j];
@@ -286,22 +348,7 @@ DFL_ISA_BODY void nearest_block(const dfl_proxy_grid *g, const dfl_proxy_filter_
     }
     const int sgnd = o->is_signed;
     /* the uniform choices as constants, so that the lane loop has no branch */
-    if (order == 1 && pos == DFL_PROXY_DISPLACEMENT && clip > 0)
-        nearest_lanes(1, DFL_PROXY_DISPLACEMENT, 1, clip, sgnd, S, XC, X, SIDE, V, G);
-    else if (order == 1 && pos == DFL_PROXY_DISPLACEMENT)
-        nearest_lanes(1, DFL_PROXY_DISPLACEMENT, 0, clip, sgnd, S, XC, X, SIDE, V, G);
-    else if (order == 1 && clip > 0)
-        nearest_lanes(1, DFL_PROXY_ABSOLUTE, 1, clip, sgnd, S, XC, X, SIDE, V, G);
-    else if (order == 1)
-        nearest_lanes(1, DFL_PROXY_ABSOLUTE, 0, clip, sgnd, S, XC, X, SIDE, V, G);
-    else if (pos == DFL_PROXY_DISPLACEMENT && clip > 0)
-        nearest_lanes(2, DFL_PROXY_DISPLACEMENT, 1, clip, sgnd, S, XC, X, SIDE, V, G);
-    else if (pos == DFL_PROXY_DISPLACEMENT)
-        nearest_lanes(2, DFL_PROXY_DISPLACEMENT, 0, clip, sgnd, S, XC, X, SIDE, V, G);
-    else if (clip > 0)
-        nearest_lanes(2, DFL_PROXY_ABSOLUTE, 1, clip, sgnd, S, XC, X, SIDE, V, G);
-    else
-        nearest_lanes(2, DFL_PROXY_ABSOLUTE, 0, clip, sgnd, S, XC, X, SIDE, V, G);
+    run_lanes(order, pos, clip, sgnd, grad != NULL, S, XC, X, SIDE, V, G);
     for (size_t l = 0; l < c; l++) {
         val[l] = V[l];
         if (grad)
@@ -309,10 +356,88 @@ DFL_ISA_BODY void nearest_block(const dfl_proxy_grid *g, const dfl_proxy_filter_
     }
 }
 
+/* The blend filters (trilinear, Hermite) for c <= QL queries at x, across
+ * queries as nearest_block does: per query blend_setup's corners and
+ * weights; the 8 corners' scalars gathered into lanes (corner q of query l
+ * in lane l of block q; a short block repeats its last query) and each
+ * block run through nearest_lanes without the fold (clip bound or none;
+ * dist_ijk's decoding, distance and clip, operation for operation); then
+ * per query blend's sum, in blend's order with blend's fold (d < 0: a NaN
+ * is not negated here) and its skip of zero weights without gradient (so
+ * that 0 x inf adds no NaN).  Hence blend's bytes. */
+DFL_ISA_BODY void blend_block(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, int f16c,
+                              size_t c, const double *x, double *val, double *grad)
+{
+    const int order = g->order, ns = g->nscalar;
+    const dfl_proxy_position pos = g->position;
+    const double clip = o->clip_kind == DFL_PROXY_CLIP_OFF ? 0.0 : o->clip;
+    const size_t n = (size_t)g->res;
+    double S[8][DFL_PROXY_NSCALAR_MAX][QL], XC[8][3][QL], X[3][QL], SIDE[8][QL], V[8][QL],
+        G[8][3][QL], w[QL][3][2], dw[QL][3][2];
+    size_t ids[QL][8][3], cells[QL][8];
+    const size_t bytes = (size_t)ns * dfl_proxy_storage_size(g->storage);
+    for (size_t l = 0; l < QL; l++) {
+        const size_t i = l < c ? l : c - 1;
+        size_t i0[3], i1[3];
+        blend_setup(g, o, x + 3 * i, i0, i1, w[l], dw[l]);
+        for (int j = 0; j < 3; j++) X[j][l] = x[3 * i + (size_t)j];
+        for (int q = 0; q < 8; q++) {
+            size_t *id = ids[l][q];
+            id[0] = q & 1 ? i1[0] : i0[0];
+            id[1] = (q >> 1) & 1 ? i1[1] : i0[1];
+            id[2] = (q >> 2) & 1 ? i1[2] : i0[2];
+            cells[l][q] = id[0] + n * (id[1] + n * id[2]);
+            /* the 64 cells' loads overlap (queries in no order miss the cache) */
+            __builtin_prefetch((const char *)g->data + cells[l][q] * bytes);
+        }
+    }
+    double sc[8 * QL * DFL_PROXY_NSCALAR_MAX];
+    load_cells(g, f16c, 8 * QL, &cells[0][0], sc);
+    for (size_t l = 0; l < QL; l++) {
+        for (int q = 0; q < 8; q++) {
+            const size_t *id = ids[l][q], cell = cells[l][q];
+            const double *cs = sc + (8 * l + (size_t)q) * (size_t)ns;
+            for (int k = 0; k < ns; k++) S[q][k][l] = cs[k];
+            for (int k = ns; k < DFL_PROXY_NSCALAR_MAX; k++) S[q][k][l] = 0.0;
+            for (int j = 0; j < 3; j++) XC[q][j][l] = g->lo[j] + ((double)id[j] + 0.5) * g->h[j];
+            SIDE[q][l] = g->side ? g->side[cell] : 1;
+        }
+    }
+    for (int q = 0; q < 8; q++)
+        run_lanes(order, pos, clip, 1, grad != NULL, S[q], XC[q], X, SIDE[q], V[q], G[q]);
+    for (size_t l = 0; l < c; l++) {
+        double v = 0, gr[3] = {0, 0, 0};
+        for (int q = 0; q < 8; q++) {
+            const int a = q & 1, b = (q >> 1) & 1, cc = (q >> 2) & 1;
+            const double W = w[l][0][a] * w[l][1][b] * w[l][2][cc];
+            if (W == 0 && !grad) continue;
+            double d = V[q][l], gd[3] = {0, 0, 0};
+            if (grad)
+                for (int j = 0; j < 3; j++) gd[j] = G[q][j][l];
+            if (!o->is_signed && d < 0) {
+                d = -d;
+                for (int j = 0; j < 3; j++) gd[j] = -gd[j];
+            }
+            v += W * d;
+            if (grad) {
+                const double gw[3] = {dw[l][0][a] * w[l][1][b] * w[l][2][cc],
+                                      w[l][0][a] * dw[l][1][b] * w[l][2][cc],
+                                      w[l][0][a] * w[l][1][b] * dw[l][2][cc]};
+                for (int j = 0; j < 3; j++) gr[j] += W * gd[j] + d * gw[j];
+            }
+        }
+        val[l] = v;
+        if (grad)
+            for (int j = 0; j < 3; j++) grad[3 * l + (size_t)j] = gr[j];
+    }
+}
+
 /* The query loop, compiled per ISA (core/isa.h): same bytes on each. */
 DFL_ISA_BODY void queries_body(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t m,
                                const double *x, double *val, double *grad)
 {
+    /* half storage loads through F16C where the process may use it */
+    const int f16c = g->storage == DFL_PROXY_HALF && dfl_proxy_store_has_f16c();
     if (o->filter == DFL_PROXY_NEAREST) {
         if (o->clip_kind == DFL_PROXY_CLIP_PAPER && o->clip > 0) {
             /* the paper's reading of the clip has no lane loop: one query
@@ -332,11 +457,17 @@ DFL_ISA_BODY void queries_body(const dfl_proxy_grid *g, const dfl_proxy_filter_o
             return;
         }
         for (size_t i = 0; i < m; i += QL)
-            nearest_block(g, o, m - i < QL ? m - i : QL, x + 3 * i, val + i,
+            nearest_block(g, o, f16c, m - i < QL ? m - i : QL, x + 3 * i, val + i,
                           grad ? grad + 3 * i : NULL);
         return;
     }
-    for (size_t i = 0; i < m; i++) val[i] = blend(g, o, x + 3 * i, grad ? grad + 3 * i : NULL);
+    if (o->clip_kind == DFL_PROXY_CLIP_PAPER && o->clip > 0) {
+        for (size_t i = 0; i < m; i++) val[i] = blend(g, o, x + 3 * i, grad ? grad + 3 * i : NULL);
+        return;
+    }
+    for (size_t i = 0; i < m; i += QL)
+        blend_block(g, o, f16c, m - i < QL ? m - i : QL, x + 3 * i, val + i,
+                    grad ? grad + 3 * i : NULL);
 }
 DFL_ISA_KERNEL(queries,
                (const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t m,

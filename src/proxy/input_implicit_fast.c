@@ -135,7 +135,10 @@ static size_t nearest(const dfl_imp_index *ix, const double x[3])
             if (k < 0 || k >= ix->nb[2]) continue;
             for (int j = c0[1] - r; j <= c0[1] + r; j++) {
                 if (j < 0 || j >= ix->nb[1]) continue;
-                for (int i = c0[0] - r; i <= c0[0] + r; i++) {
+                /* a row through the ring's inside holds two of its buckets
+                 * (the same buckets in the same order, fewer steps) */
+                const int step = abs(j - c0[1]) < r && abs(k - c0[2]) < r ? 2 * r : 1;
+                for (int i = c0[0] - r; i <= c0[0] + r; i += i == c0[0] - r ? step : 1) {
                     if (i < 0 || i >= ix->nb[0]) continue;
                     if (abs(i - c0[0]) < r && abs(j - c0[1]) < r && abs(k - c0[2]) < r) continue;
                     size_t b = bucket_id(ix, i, j, k);

@@ -11,6 +11,8 @@
 
 enum { P_SPHERE, P_TORUS, P_CONE, P_SURFACE };
 #define NSTART 3 /* most starts (dfl_param_input_opts.starts) */
+#define GRID_MAX 512 /* most nodes per row (dfl_param_input_opts.grid) */
+#define NODE_TABLE_MAX (1 << 16) /* most nodes (all patches) with a start table */
 
 typedef struct patch {
     int type;
@@ -21,11 +23,19 @@ typedef struct patch {
     int per_u, per_v;                  /* periodic in u, v */
 } patch;
 
+/* A grid node as Newton's start: (u, v) after clamp_uv, its bound flags
+ * and patch_eval there. */
+typedef struct node {
+    double u, v, D[18];
+    int bu, bv;
+} node;
+
 typedef struct param_ctx {
     int npatch, grid, max_iter, closed, starts, prune;
     patch *pt;
     double *samp;        /* npatch * grid * grid points */
     double *rowbox;      /* per (patch, row j): lo[3], hi[3] of its grid nodes */
+    node *node;          /* per (patch, row j, node i) when prune and small, else NULL */
     double scale;
     dfl_surface_set set; /* owned patches (P_SURFACE) */
 } param_ctx;
@@ -113,6 +123,20 @@ static double row_bound(const param_ctx *c, int p, int j, const double x[3])
     return s;
 }
 
+/* dist2(x, node) of the G nodes of row (p, j), in dist2's operations
+ * (one row at a time, so that the loop vectorizes; same bits). */
+static void row_dist2(const param_ctx *c, int p, int j, const double x[3], double *rd)
+{
+    const int G = c->grid;
+    const double *s = c->samp + 3 * ((size_t)(p * G + j) * G);
+    const double x0 = x[0], x1 = x[1], x2 = x[2];
+#pragma omp simd
+    for (int i = 0; i < G; i++) {
+        const double a = x0 - s[3 * i], b = x1 - s[3 * i + 1], e = x2 - s[3 * i + 2];
+        rd[i] = 0.0 + a * a + b * b + e * e;
+    }
+}
+
 /* The c->starts nearest grid nodes, pairwise at least two grid steps apart
  * (or on different patches); returns their count. */
 static int find_starts(const param_ctx *c, const double x[3], start *st)
@@ -123,8 +147,10 @@ static int find_starts(const param_ctx *c, const double x[3], start *st)
         for (int j = 0; j < G; j++) {
             /* every node of the row would take the `continue` below */
             if (c->prune && n == c->starts && row_bound(c, p, j, x) >= st[n - 1].d2) continue;
+            double rd[GRID_MAX];
+            row_dist2(c, p, j, x, rd);
             for (int i = 0; i < G; i++) {
-                double d2 = dist2(x, c->samp + 3 * ((size_t)(p * G + j) * G + i));
+                double d2 = rd[i];
                 if (n == c->starts && d2 >= st[n - 1].d2) continue;
                 int near = -1;
                 for (int k = 0; k < n; k++) {
@@ -185,13 +211,33 @@ static double f_noise(const param_ctx *c, double f)
 }
 
 /* Geometric Newton from (u, v); see the header for the method. */
-static void newton(const param_ctx *c, const patch *P, const double x[3], double u, double v,
-                   foot *o)
+/* Newton's start at node (i, j) of patch p: (u, v) clamped, its bound
+ * flags and S's derivatives, from the node table when there is one. */
+static void node_start(const param_ctx *c, int p, int i, int j, double *u, double *v, int *bu,
+                       int *bv, double D[18])
 {
-    double D[18], r[3];
+    if (c->node) {
+        const node *nd = c->node + ((size_t)p * c->grid + j) * c->grid + i;
+        *u = nd->u;
+        *v = nd->v;
+        *bu = nd->bu;
+        *bv = nd->bv;
+        memcpy(D, nd->D, sizeof nd->D);
+        return;
+    }
+    const patch *P = &c->pt[p];
+    *u = grid_u(c, P, i);
+    *v = grid_v(c, P, j);
+    clamp_uv(P, u, v, bu, bv);
+    patch_eval(P, *u, *v, D);
+}
+
+static void newton(const param_ctx *c, int p, int i0, int j0, const double x[3], foot *o)
+{
+    const patch *P = &c->pt[p];
+    double D[18], r[3], u, v;
     int bu, bv;
-    clamp_uv(P, &u, &v, &bu, &bv);
-    patch_eval(P, u, v, D);
+    node_start(c, p, i0, j0, &u, &v, &bu, &bv, D);
     double f = 0.5 * dist2(D, x);
     o->ok = 0;
     for (int it = 0; it < c->max_iter; it++) {
@@ -268,10 +314,10 @@ static int add_patch_starts(const param_ctx *c, const double x[3], start *st, in
         start b = {p, 0, 0, HUGE_VAL};
         for (int j = 0; j < G; j++) {
             if (c->prune && row_bound(c, p, j, x) >= b.d2) continue; /* no node beats b */
-            for (int i = 0; i < G; i++) {
-                double d2 = dist2(x, c->samp + 3 * ((size_t)(p * G + j) * G + i));
-                if (d2 < b.d2) b = (start){p, i, j, d2};
-            }
+            double rd[GRID_MAX];
+            row_dist2(c, p, j, x, rd);
+            for (int i = 0; i < G; i++)
+                if (rd[i] < b.d2) b = (start){p, i, j, rd[i]};
         }
         st[n++] = b;
     }
@@ -286,8 +332,7 @@ static void point_query(const param_ctx *c, const double x[3], int need_curv, df
     foot best = {0}, cur;
     int have = 0;
     for (int k = 0; k < ns; k++) {
-        const patch *P = &c->pt[st[k].patch];
-        newton(c, P, x, grid_u(c, P, st[k].i), grid_v(c, P, st[k].j), &cur);
+        newton(c, st[k].patch, st[k].i, st[k].j, x, &cur);
         /* within f's rounding the smaller stationarity residual wins */
         if (!have || cur.f < best.f - f_noise(c, best.f) ||
             (cur.f <= best.f + f_noise(c, best.f) && tangential(cur.D, x) < tangential(best.D, x))) {
@@ -337,6 +382,7 @@ static void param_destroy(void *vctx)
     free(c->pt);
     free(c->samp);
     free(c->rowbox);
+    free(c->node);
     dfl_surface_set_free(&c->set);
     free(c);
 }
@@ -348,7 +394,7 @@ static dfl_status finish(param_ctx *c, const dfl_param_input_opts *opt, dfl_prox
     dfl_param_input_opts d;
     dfl_param_input_opts_default(&d);
     if (opt) d = *opt;
-    if (d.grid < 4 || d.grid > 512 || d.max_iter < 1 || d.starts < 1 || d.starts > NSTART) {
+    if (d.grid < 4 || d.grid > GRID_MAX || d.max_iter < 1 || d.starts < 1 || d.starts > NSTART) {
         param_destroy(c);
         return dfl_err_set(err, DFL_E_INPUT,
                            "parametric input: grid %d (4..512), max_iter %d (>= 1), starts %d (1..%d)",
@@ -381,6 +427,20 @@ static dfl_status finish(param_ctx *c, const dfl_param_input_opts *opt, dfl_prox
                 }
             }
     c->scale = 1.0 + sqrt(dist2(lo, hi));
+    /* the starts' evaluations, once per node instead of per query (the
+     * same calls, so the same bits); not for huge tables */
+    if (c->prune && (size_t)c->npatch * G * G <= NODE_TABLE_MAX &&
+        (c->node = malloc((size_t)c->npatch * G * G * sizeof *c->node)))
+        for (int p = 0; p < c->npatch; p++)
+            for (size_t j = 0; j < G; j++)
+                for (size_t i = 0; i < G; i++) {
+                    node *nd = c->node + (p * G + j) * G + i;
+                    const patch *P = &c->pt[p];
+                    nd->u = grid_u(c, P, (int)i);
+                    nd->v = grid_v(c, P, (int)j);
+                    clamp_uv(P, &nd->u, &nd->v, &nd->bu, &nd->bv);
+                    patch_eval(P, nd->u, nd->v, nd->D);
+                }
     out->name = "parametric";
     out->query = param_query;
     out->destroy = param_destroy;

@@ -56,8 +56,10 @@ typedef struct dfl_param_input_opts {
     int prune;      /* 1 (default): the node scans skip a grid row whose
                        bounding box is no nearer than the worst start kept
                        (the same nodes, in the same order, win: every answer
-                       is bit for bit the brute-force scan's); 0: brute force,
-                       for tests */
+                       is bit for bit the brute-force scan's), and Newton's
+                       start evaluations come from a table made once (up to
+                       65536 nodes over all patches; the same calls, so the
+                       same bits); 0: brute force, for tests */
 } dfl_param_input_opts;
 
 void dfl_param_input_opts_default(dfl_param_input_opts *o);

@@ -8,6 +8,8 @@
  *   dfl_proxy_storage_size      bytes per stored scalar (8, 4, 2)
  *   dfl_proxy_store_put         round a double to the storage type, store it
  *   dfl_proxy_store_get         load a stored scalar as double (exact)
+ *   dfl_proxy_store_half_block  load n halves as double (F16C where it runs)
+ *   dfl_proxy_store_has_f16c    the process may use F16C
  *
  * Rounding: float is the C conversion (round to nearest even); half goes
  * double -> float -> half (Imath's imath_float_to_half, round to nearest
@@ -97,6 +99,19 @@ static inline double dfl_proxy_store_get(dfl_proxy_storage s, const void *base, 
     default: return imath_half_to_float(((const uint16_t *)base)[i]);
     }
 }
+
+/* n halves h[0..n) as double into out, each what dfl_proxy_store_get
+ * gives (Imath's imath_half_to_float, then exact widening), bit for bit
+ * for all 65536 halves.  With f16c != 0 the CPU's F16C conversion runs
+ * 8 at a time (the caller checked dfl_proxy_store_has_f16c(); F16C quiets
+ * a signalling NaN where Imath keeps it, but widening to double quiets it
+ * in both, so the doubles agree); f16c == 0 is Imath's, one at a time.
+ * No allocation. */
+void dfl_proxy_store_half_block(int f16c, const uint16_t *h, size_t n, double *out);
+
+/* 1 when the process's ISA (core/isa.h) is avx2 or avx512 and the CPU has
+ * F16C: DFL_ISA=sse2 keeps to the baseline instructions. */
+int dfl_proxy_store_has_f16c(void);
 
 /* The value dfl_proxy_store_put then dfl_proxy_store_get give back. */
 static inline double dfl_proxy_store_round(dfl_proxy_storage s, double v)

@@ -130,3 +130,64 @@ Test(poly3, series_evaluation_is_the_taylor_expansion)
     /* degree 3: nothing beyond */
     cr_assert(fabs(out.c[4]) < 1e-15 && fabs(out.c[5]) < 1e-15);
 }
+
+/* Orders 0, 1 and 2 (their own written-out loop) give the value, gradient
+ * and Hessian bit for bit as order 3 (the general loop) does, for random
+ * polynomials up to the largest degree and points with zero, negative zero,
+ * subnormal, huge (overflowing powers), infinite and NaN coordinates; a NaN
+ * where order 3 has a NaN (C leaves a NaN's sign and payload to the
+ * compiler's choice of operand order). */
+static int same(const double *a, const double *b, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!(isnan(a[i]) && isnan(b[i])) && memcmp(a + i, b + i, sizeof *a) != 0) return 0;
+    return 1;
+}
+
+Test(poly3, low_orders_equal_the_general_loop_bit_for_bit)
+{
+    const double special[] = {0.0, -0.0, 1.0, -1.0, 0x1p-1060, 1e30, -1e200, INFINITY,
+                              -INFINITY, NAN, 0.7, -2.5};
+    const int ns = (int)(sizeof special / sizeof special[0]);
+    uint64_t s = 19;
+    for (int it = 0; it < 400; it++) {
+        dfl_poly3 P;
+        memset(&P, 0, sizeof P);
+        int nt = 1 + (int)dfl_rng_splitmix(&s, 0, 40);
+        for (int t = 0; t < nt; t++) {
+            int e[3], left = DFL_POLY3_MAX_DEGREE;
+            for (int a = 0; a < 3; a++) {
+                e[a] = (int)dfl_rng_splitmix(&s, 0, left + 0.999);
+                left -= e[a];
+            }
+            double c = dfl_rng_splitmix(&s, -3, 3);
+            if (t % 7 == 3) c *= 1e300;
+            cr_assert(dfl_poly3_term(&P, c, e[0], e[1], e[2]));
+        }
+        for (int k = 0; k < 20; k++) {
+            double q[3];
+            for (int a = 0; a < 3; a++)
+                q[a] = dfl_rng_splitmix(&s, 0, 1) < 0.3
+                           ? special[(int)dfl_rng_splitmix(&s, 0, ns - 0.001)]
+                           : dfl_rng_splitmix(&s, -1.6, 1.6);
+            double g3, gr3[3], H3[9], T3[27];
+            g3 = dfl_poly3_eval(&P, q, 3, gr3, H3, T3);
+            for (int order = 0; order <= 2; order++) {
+                double gr[3] = {7, 7, 7}, H[9] = {7, 7, 7, 7, 7, 7, 7, 7, 7};
+                double g = dfl_poly3_eval(&P, q, order, gr, H, NULL);
+                cr_assert(same(&g, &g3, 1), "order %d value at (%g %g %g)", order,
+                          q[0], q[1], q[2]);
+                if (order >= 1)
+                    cr_assert(same(gr, gr3, 3), "order %d gradient at (%g %g %g)", order, q[0],
+                              q[1], q[2]);
+                else
+                    cr_assert(gr[0] == 7 && gr[1] == 7 && gr[2] == 7, "order 0 writes no gradient");
+                if (order >= 2)
+                    cr_assert(same(H, H3, 9), "order %d Hessian at (%g %g %g)",
+                              order, q[0], q[1], q[2]);
+                else
+                    for (int i = 0; i < 9; i++) cr_assert(H[i] == 7, "order %d writes no Hessian", order);
+            }
+        }
+    }
+}

@@ -368,3 +368,140 @@ Test(proxy_filter, check_refuses_non_finite_clip)
     cr_expect_eq(dfl_proxy_filter_check(&g, &o, &err), DFL_OK);
     dfl_proxy_grid_free(&g);
 }
+
+/* The blends as filter.h states them, one query at a time from
+ * dfl_proxy_proxy_dist: per axis s = (x - lo) / h - 1/2 clamped to the
+ * centres' hull (lower corner floor(s), at most res - 2; t = s - floor(s),
+ * 0 below and 1 above the hull, dt = 1/h inside, 0 outside), weights
+ * (1 - w(t), w(t)) with w = t (trilinear), h3 or h5 (Hermite); corners in
+ * the order x fastest, each folded before the sum (d < 0 negated, with its
+ * gradient), a zero weight skipped when no gradient is asked for. */
+static double blend_ref(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o,
+                        const double x[3], double *grad)
+{
+    size_t i0[3], i1[3];
+    double w[3][2], dw[3][2];
+    for (int j = 0; j < 3; j++) {
+        const double s = (x[j] - g->lo[j]) / g->h[j] - 0.5;
+        double t, dt = 1.0 / g->h[j];
+        if (g->res == 1 || s <= 0) {
+            i0[j] = 0, t = 0, dt = 0;
+        } else if (s >= g->res - 1) {
+            i0[j] = (size_t)g->res - 2, t = 1, dt = 0;
+        } else {
+            double f = floor(s);
+            if (f > g->res - 2) f = g->res - 2;
+            i0[j] = (size_t)f;
+            t = s - f;
+        }
+        i1[j] = g->res == 1 ? 0 : i0[j] + 1;
+        double wt, dwt;
+        if (o->filter == DFL_PROXY_TRILINEAR) {
+            wt = t, dwt = 1.0;
+        } else if (g->order == 1) {
+            wt = t * t * (3.0 - 2.0 * t), dwt = 6.0 * t * (1.0 - t);
+        } else {
+            wt = t * t * t * (10.0 + t * (-15.0 + 6.0 * t));
+            const double u = t * (1.0 - t);
+            dwt = 30.0 * u * u;
+        }
+        w[j][0] = 1.0 - wt, w[j][1] = wt;
+        dw[j][0] = -dwt * dt, dw[j][1] = dwt * dt;
+    }
+    const size_t n = (size_t)g->res;
+    double val = 0, gr[3] = {0, 0, 0};
+    for (int q = 0; q < 8; q++) {
+        const int a = q & 1, b = (q >> 1) & 1, c = (q >> 2) & 1;
+        const double W = w[0][a] * w[1][b] * w[2][c];
+        if (W == 0 && !grad) continue;
+        const size_t cell = (a ? i1[0] : i0[0]) + n * ((b ? i1[1] : i0[1]) + n * (c ? i1[2] : i0[2]));
+        double gd[3];
+        double d = dfl_proxy_proxy_dist(g, cell, o->clip_kind, o->clip, x, grad ? gd : NULL);
+        if (!o->is_signed && d < 0) {
+            d = -d;
+            if (grad)
+                for (int j = 0; j < 3; j++) gd[j] = -gd[j];
+        }
+        val += W * d;
+        if (grad) {
+            const double gw[3] = {dw[0][a] * w[1][b] * w[2][c], w[0][a] * dw[1][b] * w[2][c],
+                                  w[0][a] * w[1][b] * dw[2][c]};
+            for (int j = 0; j < 3; j++) gr[j] += W * gd[j] + d * gw[j];
+        }
+    }
+    if (grad)
+        for (int j = 0; j < 3; j++) grad[j] = gr[j];
+    return val;
+}
+
+/* Trilinear and Hermite (batched across queries) are blend_ref byte for
+ * byte (memcmp): every order, position, storage, clip kind with the clip on
+ * and off, signed and unsigned, at 61 points (blocks and a short last
+ * one; some outside the box, some on centre planes where weights vanish),
+ * with one failed (NaN) cell in the grid, so that NaN corners meet both
+ * zero weights (skipped without gradient, NaN with it) and non-zero ones. */
+Test(proxy_filter, blends_are_the_corner_proxies_byte_for_byte)
+{
+    enum { M = 61 };
+    double x[3 * M], v[M], v2[M], gr[3 * M];
+    uint64_t seed = 21;
+    for (int i = 0; i < 3 * M; i++) x[i] = dfl_rng_splitmix(&seed, -1.3, 1.3);
+    /* res 8 on [-1, 1]^3: centre j at -1 + (j + 1/2) / 4 */
+    for (int i = 0; i < M; i += 3) x[3 * i + 1] = -1 + 2.5 * 0.25; /* centre plane j = 2 */
+    for (int i = 1; i < M; i += 5) x[3 * i] = -1 + 3.5 * 0.25;     /* centre plane i = 3 */
+    for (int i = 0; i < M; i += 3) {
+        /* every other one of these next to the failed cell (3, 3, 4): on
+         * the plane j = 2 (weight 0 for j = 3) or off it (weight > 0) */
+        if (i % 2) continue;
+        x[3 * i] = -1 + (3.5 + dfl_rng_splitmix(&seed, 0, 1)) * 0.25;
+        x[3 * i + 2] = -1 + (4.5 + dfl_rng_splitmix(&seed, 0, 1)) * 0.25;
+        if (i % 4 == 0) x[3 * i + 1] = -1 + (2.5 + dfl_rng_splitmix(&seed, 0, 1)) * 0.25;
+    }
+    for (int order = 1; order <= 2; order++)
+        for (int pos = 0; pos < 2; pos++)
+            for (int st = 0; st < DFL_PROXY_STORAGE_COUNT; st++) {
+                dfl_proxy_input in;
+                ta_input(&torus, &in);
+                dfl_proxy_build_opts bo;
+                dfl_proxy_build_opts_default(&bo);
+                bo.order = order;
+                bo.res = 8;
+                bo.storage = (dfl_proxy_storage)st;
+                bo.position = (dfl_proxy_position)pos;
+                dfl_proxy_grid g;
+                cr_assert_eq(dfl_proxy_grid_build(&in, &bo, &g, NULL), DFL_OK);
+                /* cell (3, 3, 4) failed: its scalars NaN */
+                const size_t bad = 3 + 8 * (3 + 8 * 4);
+                for (int k = 0; k < g.nscalar; k++) {
+                    const size_t at = bad * (size_t)g.nscalar + (size_t)k;
+                    if (st == DFL_PROXY_DOUBLE) ((double *)g.data)[at] = NAN;
+                    else if (st == DFL_PROXY_FLOAT) ((float *)g.data)[at] = NAN;
+                    else ((uint16_t *)g.data)[at] = 0x7e00;
+                }
+                for (int f = DFL_PROXY_TRILINEAR; f <= DFL_PROXY_HERMITE; f++)
+                    for (int variant = 0; variant < 4 * DFL_PROXY_CLIP_COUNT; variant++) {
+                        dfl_proxy_filter_opts o;
+                        dfl_proxy_filter_opts_default((dfl_proxy_filter)f, &g, &o);
+                        o.clip = variant & 1 ? 0 : dfl_proxy_cell_size(&g);
+                        o.is_signed = (variant >> 1) & 1;
+                        o.clip_kind = (dfl_proxy_clip)(variant >> 2);
+                        dfl_proxy_filter_eval(&g, &o, M, x, v, gr);
+                        dfl_proxy_filter_eval(&g, &o, M, x, v2, NULL);
+                        for (int i = 0; i < M; i++) {
+                            double gw[3];
+                            const double w = blend_ref(&g, &o, x + 3 * i, gw);
+                            const double w2 = blend_ref(&g, &o, x + 3 * i, NULL);
+                            cr_expect(memcmp(&w, &v[i], sizeof w) == 0,
+                                      "filter %d order %d pos %d storage %d variant %d point %d: "
+                                      "%.17g vs %.17g", f, order, pos, st, variant, i, v[i], w);
+                            cr_expect(memcmp(&w2, &v2[i], sizeof w2) == 0,
+                                      "value without gradient: filter %d variant %d point %d: "
+                                      "%.17g vs %.17g", f, variant, i, v2[i], w2);
+                            cr_expect(memcmp(gw, gr + 3 * i, sizeof gw) == 0,
+                                      "gradient: filter %d order %d pos %d storage %d variant %d "
+                                      "point %d", f, order, pos, st, variant, i);
+                        }
+                    }
+                dfl_proxy_grid_free(&g);
+            }
+}

@@ -38,3 +38,33 @@ Test(proxy_store, rounding)
     dfl_proxy_store_put(DFL_PROXY_HALF, buf, 0, 70000.0);
     cr_expect(isinf(dfl_proxy_store_get(DFL_PROXY_HALF, buf, 0)));
 }
+
+/* dfl_proxy_store_half_block is dfl_proxy_store_get (Imath) bit for bit on
+ * all 65536 halves (zeros, subnormals, infinities, quiet and signalling
+ * NaNs), on both paths (F16C where this CPU has it), in blocks of 8 and in
+ * a short tail. */
+Test(proxy_store, half_blocks_equal_imath_on_every_half)
+{
+    enum { N = 65536 };
+    static uint16_t h[N];
+    static double want[N], got[N];
+    for (size_t i = 0; i < N; i++) {
+        h[i] = (uint16_t)i;
+        want[i] = dfl_proxy_store_get(DFL_PROXY_HALF, h, i);
+    }
+    cr_assert(isnan(want[0x7c01]) && isinf(want[0x7c00]) && want[1] > 0, "Imath's reference");
+    for (int f16c = 0; f16c <= 1; f16c++) {
+        if (f16c && !__builtin_cpu_supports("f16c")) continue;
+        memset(got, 0, sizeof got);
+        dfl_proxy_store_half_block(f16c, h, N, got);
+        for (size_t i = 0; i < N; i++)
+            cr_assert(memcmp(&got[i], &want[i], sizeof got[i]) == 0,
+                      "f16c %d half 0x%04zx: %a vs %a", f16c, i, got[i], want[i]);
+        for (size_t at = 0x7bf9; at < 0x7c11; at++) { /* lengths 1..13 around the NaNs */
+            double t[13];
+            size_t len = 1 + at % 13;
+            dfl_proxy_store_half_block(f16c, h + at, len, t);
+            cr_assert(memcmp(t, want + at, len * sizeof *t) == 0, "f16c %d tail at 0x%zx", f16c, at);
+        }
+    }
+}
