@@ -20,6 +20,8 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <time.h>
 
 #include "bench.h"
 #include "core/rng.h"
@@ -94,6 +96,17 @@ static void run_sign(void *arg)
 {
     mesh_job *j = arg;
     for (size_t i = 0; i < j->n; i++) j->val[i] = dfl_mesh_bvh_inside(j->bvh, j->pts + 3 * i);
+}
+
+/* CPU seconds of the calling thread for fn(arg) (one-thread jobs run on
+ * it): on a machine shared beyond its cores, wall time counts the waits. */
+static double thread_cpu(void (*fn)(void *), void *arg)
+{
+    struct timespec a, b;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &a);
+    fn(arg);
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &b);
+    return (double)(b.tv_sec - a.tv_sec) + 1e-9 * (double)(b.tv_nsec - a.tv_nsec);
 }
 
 typedef struct vdb_job {
@@ -190,6 +203,31 @@ void bench_mesh(bench_ctx *ctx)
         bench_report(name, N / tu, "queries/s");
         snprintf(name, sizeof name, "mesh.wuson.signed_over_unsigned_%dthread%s", th, th > 1 ? "s" : "");
         bench_report(name, tu / ts, "x");
+    }
+    {   /* one thread, CPU time, the three runs interleaved (best of 3 each) */
+        const size_t n = N / 4;
+        mesh_job js1 = {&sg, &copy, n, pts, val, 1, bv}, jl1 = {&sg, &copy, n, pts, val, 1, bv},
+                 ju1 = {&su, &copy, n, pts, val, 1, bv};
+        double cs = INFINITY, cl = INFINITY, cu = INFINITY;
+        for (int rep = 0; rep < 3; rep++) {
+            cs = fmin(cs, thread_cpu(run_shape, &js1));
+            cl = fmin(cl, thread_cpu(run_ladder, &jl1));
+            cu = fmin(cu, thread_cpu(run_shape, &ju1));
+        }
+        bench_pair("mesh.wuson.signed_vs_ladder_1thread_cpu", n / cs, n / cl, "queries/s per core");
+        bench_report("mesh.wuson.unsigned_1thread_cpu", n / cu, "queries/s per core");
+        bench_report("mesh.wuson.signed_1thread_cpu_times_2", 2 * n / cs,
+                     "queries/s (aim: >= 1e6 on 2 cores)");
+    }
+    {   /* the peer's values are the shape's, bit for bit */
+        double *v2 = malloc((N / 4) * sizeof *v2);
+        mesh_job a = {&sg, &copy, N / 4, pts, val, THREADS, bv}, l = {&sg, &copy, N / 4, pts, v2, THREADS, bv};
+        run_shape(&a);
+        run_ladder(&l);
+        size_t diff = 0;
+        for (size_t i = 0; i < N / 4; i++) diff += memcmp(val + i, v2 + i, sizeof *v2) != 0;
+        bench_report("mesh.wuson.signed_vs_ladder.values_differing", (double)diff, "points");
+        free(v2);
     }
     mesh_job js = {&sg, &copy, N, pts, val, THREADS, bv};
     mesh_job jb = {&sg, &copy, NB, pts, val, THREADS, bv};
