@@ -414,17 +414,71 @@ static double tight_bound(const wnode *n, const double *x, double R)
  * |W - 1/2| > B + 1e-9 (*state = 1), or (!sign) B <= tol (*state = 1);
  * otherwise it opens the frontier cluster of largest bound (best first:
  * the bound it removes is the largest available); a leaf is replaced by
- * its exact sum.  *state = 0 when everything is exact and the rule still
+ * its exact sum.  The frontier starts from a depth-first pass (PRE_BOUND)
+ * rather than from the root alone.  *state = 0 when everything is exact and the rule still
  * does not hold, -1 when the frontier would exceed FRONT. */
+/* Restores the heap order below i. */
+static void sift_down(wfront *h, int nh, int i)
+{
+    const wfront v = h[i];
+    for (;;) {
+        int c = 2 * i + 1;
+        if (c >= nh) break;
+        if (c + 1 < nh && h[c + 1].key > h[c].key) c++;
+        if (h[c].key <= v.key) break;
+        h[i] = h[c];
+        i = c;
+    }
+    h[i] = v;
+}
+
+/* The first pass's opening threshold: on Wuson's bench points a pass
+ * that opens every cluster above 0.01 and then refines best first took
+ * about 2/3 of the time of best first from the root (the heap's cost per
+ * cluster is then paid only where the decision is close); 0.005 to 0.04
+ * were within 10 % of it. */
+#define PRE_BOUND 0.01
+
 static double adaptive(const dfl_mesh_bvh *b, const double *x, int sign, double tol, double *bound,
                        int *state)
 {
     wfront h[FRONT];
     int nh = 0, unused = 0;
     double W = 0.0, B = 0.0;
-    const wnode *open[2] = {b->root, NULL};
-    int nopen = 1;
     *state = 0;
+    /* the first pass, depth first without the heap: every cluster whose
+     * bound is unusable or above PRE_BOUND is opened (a leaf summed
+     * exactly), the others form the frontier, made a heap at once */
+    const wnode *stack[DFL_MESH_BVH_STACK];
+    int top = 0;
+    stack[top++] = b->root;
+    while (top > 0) {
+        const wnode *n = stack[--top];
+        double d[3] = {n->p[0] - x[0], n->p[1] - x[1], n->p[2] - x[2]};
+        const double R = dfl_vec3_norm(d);
+        const double bn = tight_bound(n, x, R);
+        if (bn <= PRE_BOUND) {
+            if (nh == FRONT) {
+                *state = -1;
+                *bound = INFINITY;
+                return W;
+            }
+            h[nh] = (wfront){bn, far_field(n, d, R), n};
+            W += h[nh].w;
+            B += bn;
+            nh++;
+        } else if (n->n > 0) {
+            W += leaf_exact(b, n, x);
+        } else {
+            assert(top + 2 <= DFL_MESH_BVH_STACK);
+            stack[top++] = n->child[1];
+            stack[top++] = n->child[0];
+        }
+    }
+    for (int i = nh / 2 - 1; i >= 0; i--) sift_down(h, nh, i);
+    /* then best first */
+    const wnode *open[2] = {NULL, NULL};
+    int nopen = 0;
     for (;;) {
         if (nh + nopen > FRONT) {
             *state = -1;
