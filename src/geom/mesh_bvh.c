@@ -397,12 +397,28 @@ static double tight_bound(const wnode *n, const double *x, double R)
 {
     double e = 0.0;
     for (int j = 0; j < 3; j++) {
-        const double t = fmax(fmax(n->lo[j] - x[j], x[j] - n->hi[j]), 0.0);
-        e += t * t;
+        const double lo = n->lo[j] - x[j], hi = x[j] - n->hi[j];
+        const double t = lo > hi ? lo : hi;
+        if (t > 0.0) e += t * t;
     }
-    const double g = fmax(R - n->rx, sqrt(e));
-    if (!(g > 0.0)) return INFINITY;
-    return 3.0 * n->I2 / (4.0 * DFL_PI * g * g * g * g);
+    const double gb = sqrt(e);
+    double g = R - n->rx;
+    if (gb > g) g = gb;
+    if (!(g > 0.0)) return INFINITY; /* NaN x lands here too */
+    const double g2 = g * g;
+    return (3.0 / (4.0 * DFL_PI)) * n->I2 / (g2 * g2);
+}
+
+/* far_field with one division (the traversal's decisions do not depend on
+ * the last bits of a far field: the bounds and the margin cover them). */
+static double far_field_fast(const wnode *n, const double *d, double R)
+{
+    const double *M = n->M;
+    double dMd = 0.0;
+    for (int j = 0; j < 3; j++) dMd += d[j] * (M[3 * j] * d[0] + M[3 * j + 1] * d[1] + M[3 * j + 2] * d[2]);
+    const double iR = 1.0 / R, iR2 = iR * iR;
+    return (n->N[0] * d[0] + n->N[1] * d[1] + n->N[2] * d[2] + M[0] + M[4] + M[8] - 3.0 * dMd * iR2) *
+           (iR * iR2 * (1.0 / (4.0 * DFL_PI)));
 }
 
 /* The best-first traversal behind dfl_mesh_bvh_inside and
@@ -463,7 +479,7 @@ static double adaptive(const dfl_mesh_bvh *b, const double *x, int sign, double 
                 *bound = INFINITY;
                 return W;
             }
-            h[nh] = (wfront){bn, far_field(n, d, R), n};
+            h[nh] = (wfront){bn, far_field_fast(n, d, R), n};
             W += h[nh].w;
             B += bn;
             nh++;
@@ -492,7 +508,7 @@ static double adaptive(const dfl_mesh_bvh *b, const double *x, int sign, double 
             const double bn = tight_bound(n, x, R);
             if (bn <= OPEN_ALWAYS) {
                 e.key = bn;
-                e.w = far_field(n, d, R);
+                e.w = far_field_fast(n, d, R);
                 W += e.w;
                 B += bn;
             }

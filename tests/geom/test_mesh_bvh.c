@@ -244,6 +244,41 @@ Test(mesh_bvh, sharper_bound_holds_and_is_nearly_attained)
     dfl_mesh_bvh_free(b);
 }
 
+/* The far field's terms (area vector and first moment, built leaf by leaf
+ * and moved up the tree) are right: a soup of 40 random triangles in
+ * [-1, 1]^3 without any symmetry, seen from 3 to 300 units away, where the
+ * bound (3 I2 / (4 pi g^4), about R^-4) is far below the first-order term
+ * itself (about R^-3): a wrong term would exceed it. */
+Test(mesh_bvh, sharper_bound_holds_far_from_a_random_soup)
+{
+    enum { NT = 40 };
+    double V[9 * NT];
+    size_t T[3 * NT];
+    uint64_t s = 21;
+    for (int i = 0; i < 9 * NT; i++) V[i] = dfl_rng_splitmix(&s, -1, 1);
+    for (int i = 0; i < 3 * NT; i++) T[i] = (size_t)i;
+    dfl_mesh_bvh *b;
+    cr_assert_eq(dfl_mesh_bvh_new(V, 3 * NT, T, NT, &b, NULL), DFL_OK);
+    int used = 0;
+    for (int it = 0; it < 400; it++) {
+        double u[3], l = 0.0;
+        for (int j = 0; j < 3; j++) {
+            u[j] = dfl_rng_splitmix(&s, -1, 1);
+            l += u[j] * u[j];
+        }
+        const double R = 3.0 * pow(100.0, (it % 20) / 19.0);
+        double x[3];
+        for (int j = 0; j < 3; j++) x[j] = R * u[j] / sqrt(l);
+        double B;
+        const double w = dfl_mesh_bvh_winding_within(b, x, 1.0, &B);
+        const double wx = dfl_winding_brute(V, T, NT, x);
+        cr_assert(fabs(w - wx) <= B + 1e-15, "R %g: |%.17g - %.17g| > bound %g", R, w, wx, B);
+        used += B > 0.0;
+    }
+    cr_expect_gt(used, 300);
+    dfl_mesh_bvh_free(b);
+}
+
 /* The sharper bound holds on Wuson: random points in and around the box
  * and points within 1e-2 of vertices, at tolerances from coarse to fine;
  * the returned bound is <= tol, and tol = 0 gives the exact sum. */
