@@ -45,8 +45,9 @@
  * dfl_mesh_bvh_inside makes one adaptive traversal: it keeps the sum W of
  * the exact leaves and far fields of a frontier of clusters and the sum B
  * of their bounds (the sharper bound of dfl_mesh_bvh_winding_within
- * below; a cluster is usable when it is finite), opens the frontier
- * cluster of largest bound (a leaf: its exact sum) while
+ * below; a cluster is usable when it is finite), starts from the frontier
+ * of a depth-first pass in which every bound is at most 0.01, then opens
+ * the frontier cluster of largest bound (a leaf: its exact sum) while
  * |W - 1/2| <= B + 1e-9 or an unusable cluster is left, and returns
  * W > 1/2 as soon as |W - 1/2| > B + 1e-9; when everything is exact and
  * still undecided (or the frontier would exceed its fixed capacity), the
