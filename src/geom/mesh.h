@@ -41,8 +41,9 @@
  *
  * Thread-safety: eval and jet allocate nothing and are safe from many
  * threads (OpenMP callers).  Cost per point: one Embree point query plus,
- * when signed, one clustered winding sum (rarely the exact sum, when the
- * bound does not decide). */
+ * when signed, one adaptive clustered winding traversal that opens
+ * clusters only until the sign is certain (rarely the exact sum, when the
+ * bounds do not decide). */
 #ifndef DFL_GEOM_MESH_H
 #define DFL_GEOM_MESH_H
 

@@ -7,6 +7,7 @@
  *   dfl_mesh_bvh_new(verts, nverts, tris, ntris, out, err)
  *   dfl_mesh_bvh_closest(b, x, hit)          exact distance, closest point, triangle, feature
  *   dfl_mesh_bvh_winding(b, x, beta, bound)  clustered winding number and its error bound
+ *   dfl_mesh_bvh_winding_within(b, x, tol, bound)  adaptive, bound <= tol
  *   dfl_mesh_bvh_inside(b, x)                w(x) > 1/2, certified
  *   dfl_mesh_bvh_free(b)
  *
@@ -36,15 +37,23 @@
  * J = (I - 3 u u^T) / R^3, u = (p - x) / R; since int_t (y - p) dA =
  * A_t (c_t - p) that is exact to first order.  The remainder involves
  * D^2 K = -D^3 (1/|y - x|), whose norm is at most 3! / |y - x|^4 (the
- * Legendre bound |P_3| <= 1 of the Newton kernel's derivatives), so that
+ * Legendre bound |P_3| <= 1 of the Newton kernel's derivatives; for a
+ * symmetric trilinear form the norm is reached with equal arguments), so that
  * cluster's error is at most 3 A r^2 / (4 pi (R - r)^4).  The sum of these
  * is the returned bound; leaves that are not accepted are summed exactly
  * (Van Oosterom-Strackee).
- * dfl_mesh_bvh_inside tries beta = DFL_MESH_WINDING_BETA, 2 and 4 times
- * that, and takes the first result with |w - 1/2| > bound + 1e-9; when
- * none decides, the exact sum over every triangle.  Its answer is
- * therefore that of the exact winding number (up to the rounding of the
- * sums, the 1e-9).
+ * dfl_mesh_bvh_inside makes one adaptive traversal: it keeps the sum W of
+ * the exact leaves and far fields of a frontier of clusters and the sum B
+ * of their bounds (the sharper bound of dfl_mesh_bvh_winding_within
+ * below; a cluster is usable when it is finite), starts from the frontier
+ * of a depth-first pass in which every bound is at most 0.01, then opens
+ * the frontier cluster of largest bound (a leaf: its exact sum) while
+ * |W - 1/2| <= B + 1e-9 or an unusable cluster is left, and returns
+ * W > 1/2 as soon as |W - 1/2| > B + 1e-9; when everything is exact and
+ * still undecided (or the frontier would exceed its fixed capacity), the
+ * exact sum over every triangle decides.  Its answer is therefore that of
+ * the exact winding number (up to the rounding of the sums, the 1e-9),
+ * the same as the earlier ladder of beta = 3, 6, 12 and exact sum.
  *
  * Thread-safety: after dfl_mesh_bvh_new everything is read-only; queries
  * allocate nothing (a fixed stack of DFL_MESH_BVH_STACK nodes; the tree's
@@ -77,6 +86,15 @@ dfl_status dfl_mesh_bvh_new(const double *verts, size_t nverts, const size_t *tr
 void dfl_mesh_bvh_closest(const dfl_mesh_bvh *b, const double *x, dfl_mesh_hit *hit);
 /* beta > 1; *bound (may be NULL) gets the error bound of the result. */
 double dfl_mesh_bvh_winding(const dfl_mesh_bvh *b, const double *x, double beta, double *bound);
+/* The adaptive traversal of dfl_mesh_bvh_inside (above) run until its
+ * bound B <= tol (tol >= 0; 0 opens every cluster, the sum is then exact
+ * to rounding): returns W, *bound (may be NULL) gets B.  The bound used is
+ * 3 I2 / (4 pi g^4) per cluster, I2 = sum_t int_t |y - p|^2 dA <= A r^2
+ * and g = max(R - rx, dist(x, box)) >= R - r, rx the farthest vertex from
+ * p and box the vertices' bounding box (derived in mesh_bvh.c).  If the
+ * fixed frontier would overflow: the exact sum, bound 0. */
+double dfl_mesh_bvh_winding_within(const dfl_mesh_bvh *b, const double *x, double tol,
+                                   double *bound);
 int dfl_mesh_bvh_inside(const dfl_mesh_bvh *b, const double *x);
 void dfl_mesh_bvh_free(dfl_mesh_bvh *b);
 

@@ -188,3 +188,199 @@ Test(mesh_bvh, inside_near_one_half_is_the_exact_sum_against_one_half)
     }
     dfl_mesh_bvh_free(b);
 }
+
+/* The far-field bound 3 A r^2 / (4 pi (R - r)^4) (header) holds and is
+ * nearly attained.  Two tiny triangles of area a with normal +x at
+ * (+-rho, 0, 0) seen from x = (R, 0, 0): their first moment vanishes, so
+ * the clustered value is the monopole 2 a / (4 pi R^2) and the error is
+ * the second-order term, a / (4 pi) |2 / R^2 - 1 / (R - rho)^2 -
+ * 1 / (R + rho)^2| -> 6 a rho^2 / (4 pi R^4) for R >> rho, i.e. the
+ * bound's 3 (2 a) rho^2 / (4 pi R^4) up to (R - r)^4 / R^4.  At R = 20 rho
+ * the error is about 0.8 of the bound: the test fails if the bound were
+ * taken at half its value, and of course if it were exceeded. */
+Test(mesh_bvh, far_field_bound_holds_and_is_nearly_attained)
+{
+    const double s = 1e-4, rho = 0.05;
+    const double V[18] = {-rho, 0, 0, -rho, s, 0, -rho, 0, s, rho, 0, 0, rho, s, 0, rho, 0, s};
+    const size_t T[6] = {0, 1, 2, 3, 4, 5};
+    dfl_mesh_bvh *b;
+    cr_assert_eq(dfl_mesh_bvh_new(V, 6, T, 2, &b, NULL), DFL_OK);
+    double worst = 0.0;
+    for (double R = 3 * rho; R <= 40 * rho; R *= 1.25) {
+        const double x[3] = {R, s / 3, s / 3};
+        double B;
+        const double w = dfl_mesh_bvh_winding(b, x, 2.0, &B);
+        const double wx = dfl_winding_brute(V, T, 2, x);
+        cr_assert_gt(B, 0.0, "R %g: the cluster is used", R);
+        cr_assert(fabs(w - wx) <= B, "R %g: |%.17g - %.17g| > bound %g", R, w, wx, B);
+        worst = fmax(worst, fabs(w - wx) / B);
+    }
+    cr_expect_gt(worst, 0.5, "largest error / bound %g", worst);
+    dfl_mesh_bvh_free(b);
+}
+
+/* The same two-triangle cluster against dfl_mesh_bvh_winding_within's
+ * sharper bound 3 I2 / (4 pi g^4) (header): here I2 = A rho^2 (+ the
+ * triangles' own O(s^2) moments) and g = R - rho, so it is as tight as the
+ * ladder's; tol = 1 stops at the root cluster. */
+Test(mesh_bvh, sharper_bound_holds_and_is_nearly_attained)
+{
+    const double s = 1e-4, rho = 0.05;
+    const double V[18] = {-rho, 0, 0, -rho, s, 0, -rho, 0, s, rho, 0, 0, rho, s, 0, rho, 0, s};
+    const size_t T[6] = {0, 1, 2, 3, 4, 5};
+    dfl_mesh_bvh *b;
+    cr_assert_eq(dfl_mesh_bvh_new(V, 6, T, 2, &b, NULL), DFL_OK);
+    double worst = 0.0;
+    for (double R = 3 * rho; R <= 40 * rho; R *= 1.25) {
+        const double x[3] = {R, s / 3, s / 3};
+        double B;
+        const double w = dfl_mesh_bvh_winding_within(b, x, 1.0, &B);
+        const double wx = dfl_winding_brute(V, T, 2, x);
+        cr_assert_gt(B, 0.0, "R %g: the cluster is used", R);
+        cr_assert(fabs(w - wx) <= B, "R %g: |%.17g - %.17g| > bound %g", R, w, wx, B);
+        worst = fmax(worst, fabs(w - wx) / B);
+    }
+    cr_expect_gt(worst, 0.5, "largest error / bound %g", worst);
+    dfl_mesh_bvh_free(b);
+}
+
+/* The far field's terms (area vector and first moment, built leaf by leaf
+ * and moved up the tree) are right: a soup of 40 random triangles in
+ * [-1, 1]^3 without any symmetry, seen from 3 to 300 units away, where the
+ * bound (3 I2 / (4 pi g^4), about R^-4) is far below the first-order term
+ * itself (about R^-3): a wrong term would exceed it. */
+Test(mesh_bvh, sharper_bound_holds_far_from_a_random_soup)
+{
+    enum { NT = 40 };
+    double V[9 * NT];
+    size_t T[3 * NT];
+    uint64_t s = 21;
+    for (int i = 0; i < 9 * NT; i++) V[i] = dfl_rng_splitmix(&s, -1, 1);
+    for (int i = 0; i < 3 * NT; i++) T[i] = (size_t)i;
+    dfl_mesh_bvh *b;
+    cr_assert_eq(dfl_mesh_bvh_new(V, 3 * NT, T, NT, &b, NULL), DFL_OK);
+    int used = 0;
+    for (int it = 0; it < 400; it++) {
+        double u[3], l = 0.0;
+        for (int j = 0; j < 3; j++) {
+            u[j] = dfl_rng_splitmix(&s, -1, 1);
+            l += u[j] * u[j];
+        }
+        const double R = 3.0 * pow(100.0, (it % 20) / 19.0);
+        double x[3];
+        for (int j = 0; j < 3; j++) x[j] = R * u[j] / sqrt(l);
+        double B;
+        const double w = dfl_mesh_bvh_winding_within(b, x, 1.0, &B);
+        const double wx = dfl_winding_brute(V, T, NT, x);
+        cr_assert(fabs(w - wx) <= B + 1e-15, "R %g: |%.17g - %.17g| > bound %g", R, w, wx, B);
+        used += B > 0.0;
+    }
+    cr_expect_gt(used, 300);
+    dfl_mesh_bvh_free(b);
+}
+
+/* The sharper bound holds on Wuson: random points in and around the box
+ * and points within 1e-2 of vertices, at tolerances from coarse to fine;
+ * the returned bound is <= tol, and tol = 0 gives the exact sum. */
+Test(mesh_bvh, winding_within_its_bound_on_wuson)
+{
+    dfl_trimesh m;
+    wuson(&m);
+    dfl_mesh_bvh *b;
+    cr_assert_eq(dfl_mesh_bvh_new(m.verts, m.nverts, m.tris, m.ntris, &b, NULL), DFL_OK);
+    uint64_t s = 13;
+    const double tols[] = {0.5, 0.05, 1e-3, 0.0};
+    int used = 0;
+    for (int it = 0; it < 1200; it++) {
+        double x[3];
+        if (it % 2) {
+            const size_t v = (size_t)dfl_rng_splitmix(&s, 0, (double)m.nverts);
+            for (int j = 0; j < 3; j++) x[j] = m.verts[3 * v + j] + dfl_rng_splitmix(&s, -1e-2, 1e-2);
+        } else {
+            for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(&s, -1.2, 1.2);
+        }
+        const double wx = dfl_winding_brute(m.verts, m.tris, m.ntris, x);
+        const double tol = tols[it % 4];
+        double B;
+        const double w = dfl_mesh_bvh_winding_within(b, x, tol, &B);
+        cr_assert_leq(B, tol);
+        cr_assert(fabs(w - wx) <= B + 1e-12, "tol %g: |%.17g - %.17g| > bound %g", tol, w, wx, B);
+        used += B > 0;
+    }
+    cr_expect(used > 300, "clusters are used: %d", used);
+    dfl_mesh_bvh_free(b);
+    dfl_trimesh_free(&m);
+}
+
+/* The boundary edges of m (used by exactly one triangle), as vertex pairs
+ * into e (2 per edge, capacity 2 * 3 * ntris); returns their count. */
+static size_t boundary_edges(const dfl_trimesh *m, size_t *e)
+{
+    size_t n = 0;
+    for (size_t t = 0; t < m->ntris; t++)
+        for (int k = 0; k < 3; k++) {
+            size_t a = m->tris[3 * t + k], c = m->tris[3 * t + (k + 1) % 3];
+            int uses = 0;
+            for (size_t u = 0; u < m->ntris && uses < 2; u++)
+                for (int l = 0; l < 3; l++) {
+                    size_t p = m->tris[3 * u + l], q = m->tris[3 * u + (l + 1) % 3];
+                    uses += (p == a && q == c) || (p == c && q == a);
+                }
+            if (uses == 1) {
+                e[2 * n] = a;
+                e[2 * n + 1] = c;
+                n++;
+            }
+        }
+    return n;
+}
+
+/* The inside test is the exact sum's decision w > 1/2 (header) on points
+ * where it is hardest: uniform in and around the box, within 1e-3 and
+ * 1e-7 of random points of random triangles (both sides of the surface),
+ * and within 1e-3 and 1e-7 of random points of Wuson's boundary edges (it
+ * is not closed: there w passes through 1/2 on the film across a hole). */
+Test(mesh_bvh, inside_equals_the_exact_sum_near_surface_and_boundary)
+{
+    dfl_trimesh m;
+    wuson(&m);
+    dfl_mesh_bvh *b;
+    cr_assert_eq(dfl_mesh_bvh_new(m.verts, m.nverts, m.tris, m.ntris, &b, NULL), DFL_OK);
+    size_t *e = malloc(6 * m.ntris * sizeof *e);
+    const size_t ne = boundary_edges(&m, e);
+    cr_assert_gt(ne, 0, "Wuson has holes");
+    uint64_t s = 77;
+    int inside = 0, near_half = 0;
+    const int n = 6000;
+    for (int it = 0; it < n; it++) {
+        double x[3], y[3];
+        const int kind = it % 5;
+        const double eps = it % 2 ? 1e-3 : 1e-7;
+        if (kind == 0) {
+            for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(&s, -1, 1);
+        } else if (kind <= 2) { /* a random point of a random triangle */
+            const size_t t = (size_t)dfl_rng_splitmix(&s, 0, (double)m.ntris);
+            double u = dfl_rng_splitmix(&s, 0, 1), v = dfl_rng_splitmix(&s, 0, 1);
+            if (u + v > 1) u = 1 - u, v = 1 - v;
+            const double *A = m.verts + 3 * m.tris[3 * t], *B = m.verts + 3 * m.tris[3 * t + 1],
+                         *C = m.verts + 3 * m.tris[3 * t + 2];
+            for (int j = 0; j < 3; j++) y[j] = A[j] + u * (B[j] - A[j]) + v * (C[j] - A[j]);
+            for (int j = 0; j < 3; j++) x[j] = y[j] + dfl_rng_splitmix(&s, -eps, eps);
+        } else { /* a random point of a boundary edge */
+            const size_t k = (size_t)dfl_rng_splitmix(&s, 0, (double)ne);
+            const double *A = m.verts + 3 * e[2 * k], *B = m.verts + 3 * e[2 * k + 1];
+            const double u = dfl_rng_splitmix(&s, 0, 1);
+            for (int j = 0; j < 3; j++) x[j] = A[j] + u * (B[j] - A[j]) + dfl_rng_splitmix(&s, -eps, eps);
+        }
+        const double wx = dfl_winding_brute(m.verts, m.tris, m.ntris, x);
+        inside += wx > 0.5;
+        near_half += fabs(wx - 0.5) < 0.1;
+        cr_assert_eq(dfl_mesh_bvh_inside(b, x), wx > 0.5, "kind %d at (%.17g %.17g %.17g): w = %.17g",
+                     kind, x[0], x[1], x[2], wx);
+    }
+    cr_expect(inside > n / 10 && inside < n - n / 10, "both sides sampled: %d inside", inside);
+    cr_expect(near_half > 50, "points near the film w = 1/2: %d", near_half);
+    free(e);
+    dfl_mesh_bvh_free(b);
+    dfl_trimesh_free(&m);
+}
