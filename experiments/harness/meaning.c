@@ -72,7 +72,7 @@ static const knob knobs[] = {
     {"*", "field", "param_grid", "parametric input: start-grid nodes per patch and direction"},
     {"*", "field", "param_starts", "parametric input: nearest start nodes refined by Newton"},
     {"*", "field", "implicit_resolution", "implicit input: surface samples along the longest side"},
-    {"*", "field", "method", "grid peer: trilinear0, taylor1 or taylor2 samples of the SDF"},
+    {"*", "field", "method", "grid peer: trilinear0, taylor1, taylor2 or tricubic samples of the SDF"},
     {"*", "field", "shape", "the section holding the shape the field approximates"},
     {"*", "field", "implicit", "the section holding the implicit function to normalize"},
     {"*", "field", "m", "normalization order m (appendix A recursion)"},
