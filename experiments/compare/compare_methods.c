@@ -215,7 +215,9 @@ static dfl_status method_copy(const dfl_cfg *cfg, const method *m, const char *s
 }
 
 /* The shape of ssec and its box, read from a copy of cfg so that the
- * copy's section can be checked for unread keys. */
+ * copy's section can be checked for unread keys; cfg then claims what the
+ * copy read (ssec and the sections it follows: CSG operands, a mesh's
+ * polygonized shape). */
 static dfl_status shape_from_cfg(const dfl_cfg *cfg, const char *ssec, dfl_shape *shape,
                                  double *lo, double *hi, dfl_err *err)
 {
@@ -230,6 +232,7 @@ static dfl_status shape_from_cfg(const dfl_cfg *cfg, const char *ssec, dfl_shape
     for (int a = 0; !st && a < shape->dim; a++)
         if (!(lo[a] < hi[a])) st = dfl_cfg_reject(w, ssec, "hi", err, "expected hi > lo");
     if (!st) st = dfl_cfg_check_used_in(w, ssec, err);
+    if (!st) dfl_cfg_claim_read(cfg, w);
     if (st && shape->ops) dfl_shape_free(shape);
     dfl_cfg_free(w);
     return st;
@@ -298,7 +301,6 @@ static dfl_status study_from_cfg(const dfl_cfg *cfg, study_cfg *s, dfl_err *err)
         if ((st = shape_from_cfg(cfg, s->shapes.w[j], &shape, lo, hi, err))) return st;
         const int dim = shape.dim;
         dfl_shape_free(&shape);
-        dfl_cfg_claim_section(cfg, s->shapes.w[j]);
         /* each value's copy through the kind's cost reader: kind, ranges */
         for (size_t i = 0; i < s->methods.n; i++) {
             char why[160];

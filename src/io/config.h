@@ -14,7 +14,7 @@
  *                                    dfl_cfg_points, dfl_cfg_doubles, dfl_cfg_point_dim
  *   locations      config_where.c    dfl_cfg_where, dfl_cfg_err_at, dfl_cfg_reject,
  *                                    dfl_cfg_check_used, dfl_cfg_check_used_in,
- *                                    dfl_cfg_claim_section,
+ *                                    dfl_cfg_claim_section, dfl_cfg_claim_read,
  *                                    dfl_cfg_defer_sections, dfl_cfg_unused_deferred
  *   read record    config_log.c      dfl_cfg_reads, dfl_cfg_read_at,
  *                                    dfl_cfg_validate_only, dfl_cfg_validated
@@ -239,6 +239,13 @@ dfl_status dfl_cfg_check_used_in(const dfl_cfg *c, const char *sec, dfl_err *err
  * point of c, changed by dfl_cfg_set) and checks the copy's section with
  * dfl_cfg_check_used_in itself.  Records nothing in the read record. */
 void dfl_cfg_claim_section(const dfl_cfg *c, const char *sec);
+/* Marks read in c every key a reader read in point, a sweep point of c
+ * (dfl_cfg_sweep_point): for a caller that hands a reader the copy and
+ * cannot name every section it follows (a CSG shape's operands, a mesh's
+ * polygonized section).  Entries are matched by position, section and key;
+ * those a dfl_cfg_set added to point are not c's and are skipped.  Records
+ * nothing in the read record. */
+void dfl_cfg_claim_read(const dfl_cfg *c, const dfl_cfg *point);
 /* Defers the sections named `name` and `name_*` (name: at most 40 bytes;
  * NULL or "" undoes it): dfl_cfg_check_used skips their keys, which another
  * reader checks later (dflab's runner: the probe's [field] and [field_*]
