@@ -229,7 +229,9 @@ int dfl_cfg_point_dim(const char *value);
  * key that was read names it (a word of its value, split at blanks, commas
  * and semicolons), or named it before: the list a --set replaced, a sweep's
  * other items (e.g. `--set study.cases=circle` leaves the other cases
- * unselected, not unknown). */
+ * unselected, not unknown); and so is a section that a key of such an
+ * unselected section names, up to 4 sections deep (the operands of a CSG
+ * shape the run did not select). */
 dfl_status dfl_cfg_check_used(const dfl_cfg *c, dfl_err *err);
 /* Same, restricted to section sec (for commands that read only part of a
  * study config, such as `dflab probe` reading [field] and [shape]). */

@@ -106,16 +106,25 @@ static bool has_word(const char *text, const char *w)
 /* Section sec is the config's though the study read none of it: no key of
  * it was read, and a key the study did read names it in its value or in a
  * value it had before (a list --set narrowed, a sweep's other items): a
- * case the run did not select, not a typo. */
-static bool unselected(const dfl_cfg *c, const char *sec)
+ * case the run did not select, not a typo.  So is a section a key of such
+ * an unselected section names (the operands of an unselected CSG shape),
+ * up to depth sections deep (bounds the work, and ends a cycle). */
+static bool unselected_at(const dfl_cfg *c, const char *sec, int depth)
 {
     for (size_t i = 0; i < c->n; i++)
         if (c->used[i] && strcmp(c->e[i].sec, sec) == 0) return false;
     for (size_t i = 0; i < c->n; i++)
         if (c->used[i] && (has_word(c->e[i].value, sec) || has_word(c->e[i].named, sec)))
             return true;
+    if (depth <= 0) return false;
+    for (size_t i = 0; i < c->n; i++)
+        if (!c->used[i] && strcmp(c->e[i].sec, sec) != 0 && has_word(c->e[i].value, sec) &&
+            unselected_at(c, c->e[i].sec, depth - 1))
+            return true;
     return false;
 }
+
+static bool unselected(const dfl_cfg *c, const char *sec) { return unselected_at(c, sec, 4); }
 
 /* The first unread key of section sec (any section but the deferred ones
  * and the unselected ones when sec is NULL). */
