@@ -9,7 +9,11 @@
  *             medial_draws = 100000, band = 0.05, medial_band = 0.02,
  *             pairs = 20000, seed = 1, repeats = 3 (timed evaluations)
  *   a shape section: a [shape] (include = ...) plus lo, hi: the box of its
- *             error points, which every method with a box is given
+ *             error points, which every method with a box is given, and
+ *             optionally max_values = K: on this shape each method runs
+ *             its first K values only (method sections list them coarse
+ *             to fine), the others give a skipped row saying so (a shape
+ *             whose exact distance is dear: implicit footpoints)
  *   a method section: a [field] section of any kind of
  *             experiments/cfg/field_cfg.c (its keys as there) plus the
  *             study's own keys
@@ -219,7 +223,7 @@ static dfl_status method_copy(const dfl_cfg *cfg, const method *m, const char *s
  * copy read (ssec and the sections it follows: CSG operands, a mesh's
  * polygonized shape). */
 static dfl_status shape_from_cfg(const dfl_cfg *cfg, const char *ssec, dfl_shape *shape,
-                                 double *lo, double *hi, dfl_err *err)
+                                 double *lo, double *hi, long *max_values, dfl_err *err)
 {
     if (!dfl_cfg_has_section(cfg, ssec))
         return dfl_cfg_reject(cfg, "study", "shapes", err, "no section [%s]", ssec);
@@ -229,6 +233,7 @@ static dfl_status shape_from_cfg(const dfl_cfg *cfg, const char *ssec, dfl_shape
     st = dfl_shape_from_cfg(w, ssec, shape, err);
     if (!st) st = dfl_cfg_vec(w, ssec, "lo", shape->dim, lo, err);
     if (!st) st = dfl_cfg_vec(w, ssec, "hi", shape->dim, hi, err);
+    if (!st) st = dfl_cfg_int_opt(w, ssec, "max_values", MAX_LIST, 1, MAX_LIST, max_values, err);
     for (int a = 0; !st && a < shape->dim; a++)
         if (!(lo[a] < hi[a])) st = dfl_cfg_reject(w, ssec, "hi", err, "expected hi > lo");
     if (!st) st = dfl_cfg_check_used_in(w, ssec, err);
@@ -298,7 +303,8 @@ static dfl_status study_from_cfg(const dfl_cfg *cfg, study_cfg *s, dfl_err *err)
     for (size_t j = 0; j < s->shapes.n; j++) {
         dfl_shape shape;
         double lo[3], hi[3];
-        if ((st = shape_from_cfg(cfg, s->shapes.w[j], &shape, lo, hi, err))) return st;
+        long maxv;
+        if ((st = shape_from_cfg(cfg, s->shapes.w[j], &shape, lo, hi, &maxv, err))) return st;
         const int dim = shape.dim;
         dfl_shape_free(&shape);
         /* each value's copy through the kind's cost reader: kind, ranges */
@@ -442,7 +448,8 @@ static dfl_status run_shape(const dfl_cfg *cfg, const study_cfg *s, const char *
 {
     dfl_shape shape;
     cmp_points_opts po = s->po;
-    dfl_status st = shape_from_cfg(cfg, ssec, &shape, po.lo, po.hi, err);
+    long maxv;
+    dfl_status st = shape_from_cfg(cfg, ssec, &shape, po.lo, po.hi, &maxv, err);
     if (st) return st;
     cmp_points p;
     st = cmp_points_build(&shape, &po, &p, err);
@@ -460,8 +467,18 @@ static dfl_status run_shape(const dfl_cfg *cfg, const study_cfg *s, const char *
             st = row_head(t, m, kind, ssec, dim, "", why, err);
             continue;
         }
-        for (size_t v = 0; !st && v < m->values.n; v++)
+        for (size_t v = 0; !st && v < m->values.n; v++) {
+            if ((long)v >= maxv) {
+                char why[160];
+                snprintf(why, sizeof why, "beyond [%s] max_values = %ld (its reduced sweep)",
+                         ssec, maxv);
+                const char *kind = "";
+                dfl_cfg_string(cfg, m->sec, "kind", &kind, NULL);
+                st = row_head(t, m, kind, ssec, dim, m->values.w[v], why, err);
+                continue;
+            }
             st = run_one(cfg, m, ssec, &p, m->values.w[v], s->repeats, t, err);
+        }
     }
     cmp_points_free(&p);
     return st;
@@ -500,6 +517,9 @@ static dfl_status compare_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
     for (size_t j = 0; !st && j < s->shapes.n; j++) {
         const char *ssec = s->shapes.w[j];
         const int dim = dfl_shape_dim_guess(cfg, ssec);
+        long maxv = MAX_LIST;
+        if ((st = dfl_cfg_int_opt(cfg, ssec, "max_values", MAX_LIST, 1, MAX_LIST, &maxv, err)))
+            break;
         const double n = dim == 2 ? s->po.grid2d : s->po.grid3d;
         const double m = pow(n, dim) + (double)s->po.surface + (double)s->po.medial_draws;
         pts_bytes = fmax(pts_bytes, m * (8.0 * (3 * dim + 4) + 2));
@@ -509,7 +529,7 @@ static dfl_status compare_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
         for (size_t i = 0; !st && i < s->methods.n; i++) {
             char why[160];
             if (not_applicable(cfg, &s->m[i], ssec, dim, why, sizeof why)) continue;
-            for (size_t v = 0; !st && v < s->m[i].values.n; v++) {
+            for (size_t v = 0; !st && v < s->m[i].values.n && (long)v < maxv; v++) {
                 dfl_cfg *w;
                 if ((st = method_copy(cfg, &s->m[i], ssec, dim, lo, hi, s->m[i].values.w[v], &w,
                                       err)))

@@ -36,6 +36,7 @@ static const knob knobs[] = {
     {"compare_methods", "*", "shape_kinds", "only shapes of these kinds (default any); others are skipped rows"},
     {"compare_methods", "*", "box", "the method's field keys that receive the box (lo hi); none: no box"},
     {"compare_methods", "*", "distance", "what the method approximates: signed d or unsigned |d|"},
+    {"compare_methods", "*", "max_values", "a shape's reduced sweep: each method's first K values only (others: skipped rows)"},
     {"compare_methods", "*", "faces", "where the method's cell faces lie: none, count (N per box) or size (voxels)"},
     /* [output] (harness/field_out.h) */
     {"*", "output", "vti", "write the VTK ImageData volume/image files (.vti)"},
