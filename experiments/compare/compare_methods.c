@@ -25,6 +25,9 @@
  *       shape_key  = shape        the field key that receives the shape
  *                                 section (rfunc: curve)
  *       shape_kinds = K ...       only shapes of these kinds (default any)
+ *       skip_kinds = K ...        not shapes of these kinds (default none;
+ *                                 e.g. input = sdf proxies on an implicit
+ *                                 shape, which offers footpoints only)
  *       box        = lo hi        the field keys that receive the box; none:
  *                                 the method has no box (rfunc)
  *       distance   = signed | unsigned   what the field approximates: d, or
@@ -111,7 +114,7 @@ static dfl_status words_from_cfg(const dfl_cfg *cfg, const char *sec, const char
 typedef struct method {
     const char *sec;
     const char *key;         /* resolution */
-    words values, shape_kinds, box;
+    words values, shape_kinds, skip_kinds, box;
     int dims;                /* bit 2: 2D, bit 3: 3D */
     const char *shape_key;
     int unsigned_ref;
@@ -142,6 +145,7 @@ static dfl_status method_from_cfg(const dfl_cfg *cfg, const char *sec, method *m
     if (!st) st = words_from_cfg(cfg, sec, "dims", "2 3", 0, &dims, err);
     if (!st) st = dfl_cfg_string_opt(cfg, sec, "shape_key", "shape", &m->shape_key, err);
     if (!st) st = words_from_cfg(cfg, sec, "shape_kinds", "", 0, &m->shape_kinds, err);
+    if (!st) st = words_from_cfg(cfg, sec, "skip_kinds", "", 0, &m->skip_kinds, err);
     if (!st) st = words_from_cfg(cfg, sec, "box", "lo hi", 0, &m->box, err);
     if (!st) st = dfl_cfg_enum_opt(cfg, sec, "distance", distance_names, 2, 0, &dist, err);
     if (!st) st = dfl_cfg_enum_opt(cfg, sec, "faces", faces_names, 3, 0, &m->faces, err);
@@ -170,9 +174,14 @@ static const char *not_applicable(const dfl_cfg *cfg, const method *m, const cha
         snprintf(buf, size, "the method applies to dims other than %d", dim);
         return buf;
     }
+    const char *kind = "";
+    dfl_cfg_string(cfg, ssec, "kind", &kind, NULL);
+    for (size_t i = 0; i < m->skip_kinds.n; i++)
+        if (strcmp(m->skip_kinds.w[i], kind) == 0) {
+            snprintf(buf, size, "shape kind %s is in skip_kinds", kind);
+            return buf;
+        }
     if (m->shape_kinds.n) {
-        const char *kind = "";
-        dfl_cfg_string(cfg, ssec, "kind", &kind, NULL);
         for (size_t i = 0; i < m->shape_kinds.n; i++)
             if (strcmp(m->shape_kinds.w[i], kind) == 0) return NULL;
         snprintf(buf, size, "shape kind %s is not in shape_kinds", kind);

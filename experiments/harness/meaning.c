@@ -34,6 +34,7 @@ static const knob knobs[] = {
     {"compare_methods", "*", "dims", "the dimensions (2, 3) the method applies to; others are skipped rows"},
     {"compare_methods", "*", "shape_key", "the method's field key that receives the shape section"},
     {"compare_methods", "*", "shape_kinds", "only shapes of these kinds (default any); others are skipped rows"},
+    {"compare_methods", "*", "skip_kinds", "not shapes of these kinds (default none); they are skipped rows"},
     {"compare_methods", "*", "box", "the method's field keys that receive the box (lo hi); none: no box"},
     {"compare_methods", "*", "distance", "what the method approximates: signed d or unsigned |d|"},
     {"compare_methods", "*", "max_values", "a shape's reduced sweep: each method's first K values only (others: skipped rows)"},

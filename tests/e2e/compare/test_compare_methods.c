@@ -235,3 +235,18 @@ Test(e2e_compare, max_values_reduces_a_shapes_sweep, .timeout = 60)
     e2e_rmtree(t.dir);
     e2e_expect_bad_config(CSG_STUDY CSG_S "max_values = 0\n" CSG_OPS, "[s] max_values", NULL);
 }
+
+/* skip_kinds: a method skips shapes of the kinds listed, one row saying
+ * so; other methods still run on the shape. */
+Test(e2e_compare, skip_kinds_skips_with_the_reason, .timeout = 60)
+{
+    e2e_table t = {0};
+    cr_assert_eq(e2e_ini_table(&t, "sk.ini", CSG_STUDY "skip_kinds = sphere csg\n" CSG_SHAPE,
+                               "compare_methods", 2), 2);
+    char *sk0 = e2e_csv_cell(t.csv, 0, "skipped"), *sk1 = e2e_csv_cell(t.csv, 1, "skipped");
+    cr_assert(sk0 && sk1);
+    cr_expect_str_eq(sk0, "", "the exact field runs");
+    cr_expect_str_eq(sk1, "shape kind csg is in skip_kinds");
+    free(sk0), free(sk1);
+    e2e_rmtree(t.dir);
+}
