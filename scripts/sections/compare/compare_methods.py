@@ -51,7 +51,10 @@ ASSUMPTIONS = [
     "eps 0.1; its SDF through footpoints on the zero set, about 0.1–0.3 ms each) and its "
     "marching-cubes mesh (s_genus2_mc: watertight, vertices on the surface) lie in "
     "[-1.07, 1.07]² × [-0.105, 0.105]; their box is [-1.25, 1.25]² × [-0.5, 0.5] (grid "
-    "methods get flat cells there, 2.5 : 1). The CSG scene (s_scene2: hvb25's Scene 2 "
+    "methods get flat cells there, 2.5 : 1). The implicit surface runs a reduced sweep "
+    "(max_values = 4 in methods.ini: each method's first four settings; the rest are skipped "
+    "rows), and the SDF-input proxies skip it (an implicit shape offers footpoints, no SDF "
+    "representation). The CSG scene (s_scene2: hvb25's Scene 2 "
     "stand-in, a box with a bowl cut and a ring over it) is the min/max of exact SDFs: exact "
     "outside the union, a bound inside near the seams; that min/max field is the reference "
     "every method is measured against.",
