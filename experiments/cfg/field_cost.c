@@ -103,10 +103,17 @@ static dfl_status gridpeer_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c
     if (!st) st = dfl_cfg_int_opt(cfg, sec, "res", 16, 1, 1024, &n, err);
     if (!st) st = dfl_cfg_string_opt(cfg, sec, "shape", "shape", &shape, err);
     if (st) return st;
+    if (kind == DFL_GRIDPEER_TRICUBIC && n < 4)
+        return dfl_cfg_reject(cfg, sec, "res", err, "expected res >= 4 for tricubic, got %ld", n);
     const double scalars = (double)dfl_gridpeer_scalars((dfl_gridpeer_kind)kind, (int)n);
-    /* the build keeps float64 values before a float16 grid is packed */
-    dfl_cost_add_bytes(c, sec, "res", scalars * (storage == DFL_GRIDPEER_FLOAT64 ? 8 : 10),
-                       "a grid peer of %ld^3 cells (%.3g scalars)", n, scalars);
+    /* the build keeps float64 values before a float16 grid is packed;
+     * tricubic keeps its coefficients as doubles (either storage: the
+     * halves' values) and their (n + 2)^3 extension with the ghosts, plus
+     * a prefilter line of 3n doubles per thread (negligible) */
+    double bytes = scalars * (storage == DFL_GRIDPEER_FLOAT64 ? 8 : 10);
+    if (kind == DFL_GRIDPEER_TRICUBIC) bytes = scalars * 8 + 8.0 * pow((double)n + 2, 3);
+    dfl_cost_add_bytes(c, sec, "res", bytes, "a grid peer of %ld^3 cells (%.3g scalars)", n,
+                       scalars);
     const double nodes = (double)(n + 1) * (n + 1) * (n + 1);
     dfl_cost_add_work(c, sec, "res", dfl_shape_cost_class(cfg, shape), nodes,
                       "%.3g distances", nodes);

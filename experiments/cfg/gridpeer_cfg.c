@@ -20,6 +20,8 @@ dfl_status dfl_gridpeer_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_
     if (!st) st = dfl_cfg_vec_opt(cfg, sec, "hi", 3, dhi, o.hi, err);
     if (!st) st = dfl_cfg_string_opt(cfg, sec, "shape", "shape", &shape_sec, err);
     if (st) return st;
+    if (kind == DFL_GRIDPEER_TRICUBIC && n < 4)
+        return dfl_cfg_reject(cfg, sec, "res", err, "expected res >= 4 for tricubic, got %ld", n);
     for (int a = 0; a < 3; a++)
         if (!(o.lo[a] < o.hi[a]))
             return dfl_cfg_reject(cfg, sec, "hi", err, "expected hi > lo on axis %d", a);

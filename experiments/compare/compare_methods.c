@@ -9,7 +9,11 @@
  *             medial_draws = 100000, band = 0.05, medial_band = 0.02,
  *             pairs = 20000, seed = 1, repeats = 3 (timed evaluations)
  *   a shape section: a [shape] (include = ...) plus lo, hi: the box of its
- *             error points, which every method with a box is given
+ *             error points, which every method with a box is given, and
+ *             optionally max_values = K: on this shape each method runs
+ *             its first K values only (method sections list them coarse
+ *             to fine), the others give a skipped row saying so (a shape
+ *             whose exact distance is dear: implicit footpoints)
  *   a method section: a [field] section of any kind of
  *             experiments/cfg/field_cfg.c (its keys as there) plus the
  *             study's own keys
@@ -21,6 +25,9 @@
  *       shape_key  = shape        the field key that receives the shape
  *                                 section (rfunc: curve)
  *       shape_kinds = K ...       only shapes of these kinds (default any)
+ *       skip_kinds = K ...        not shapes of these kinds (default none;
+ *                                 e.g. input = sdf proxies on an implicit
+ *                                 shape, which offers footpoints only)
  *       box        = lo hi        the field keys that receive the box; none:
  *                                 the method has no box (rfunc)
  *       distance   = signed | unsigned   what the field approximates: d, or
@@ -107,7 +114,7 @@ static dfl_status words_from_cfg(const dfl_cfg *cfg, const char *sec, const char
 typedef struct method {
     const char *sec;
     const char *key;         /* resolution */
-    words values, shape_kinds, box;
+    words values, shape_kinds, skip_kinds, box;
     int dims;                /* bit 2: 2D, bit 3: 3D */
     const char *shape_key;
     int unsigned_ref;
@@ -138,6 +145,7 @@ static dfl_status method_from_cfg(const dfl_cfg *cfg, const char *sec, method *m
     if (!st) st = words_from_cfg(cfg, sec, "dims", "2 3", 0, &dims, err);
     if (!st) st = dfl_cfg_string_opt(cfg, sec, "shape_key", "shape", &m->shape_key, err);
     if (!st) st = words_from_cfg(cfg, sec, "shape_kinds", "", 0, &m->shape_kinds, err);
+    if (!st) st = words_from_cfg(cfg, sec, "skip_kinds", "", 0, &m->skip_kinds, err);
     if (!st) st = words_from_cfg(cfg, sec, "box", "lo hi", 0, &m->box, err);
     if (!st) st = dfl_cfg_enum_opt(cfg, sec, "distance", distance_names, 2, 0, &dist, err);
     if (!st) st = dfl_cfg_enum_opt(cfg, sec, "faces", faces_names, 3, 0, &m->faces, err);
@@ -166,9 +174,14 @@ static const char *not_applicable(const dfl_cfg *cfg, const method *m, const cha
         snprintf(buf, size, "the method applies to dims other than %d", dim);
         return buf;
     }
+    const char *kind = "";
+    dfl_cfg_string(cfg, ssec, "kind", &kind, NULL);
+    for (size_t i = 0; i < m->skip_kinds.n; i++)
+        if (strcmp(m->skip_kinds.w[i], kind) == 0) {
+            snprintf(buf, size, "shape kind %s is in skip_kinds", kind);
+            return buf;
+        }
     if (m->shape_kinds.n) {
-        const char *kind = "";
-        dfl_cfg_string(cfg, ssec, "kind", &kind, NULL);
         for (size_t i = 0; i < m->shape_kinds.n; i++)
             if (strcmp(m->shape_kinds.w[i], kind) == 0) return NULL;
         snprintf(buf, size, "shape kind %s is not in shape_kinds", kind);
@@ -215,9 +228,11 @@ static dfl_status method_copy(const dfl_cfg *cfg, const method *m, const char *s
 }
 
 /* The shape of ssec and its box, read from a copy of cfg so that the
- * copy's section can be checked for unread keys. */
+ * copy's section can be checked for unread keys; cfg then claims what the
+ * copy read (ssec and the sections it follows: CSG operands, a mesh's
+ * polygonized shape). */
 static dfl_status shape_from_cfg(const dfl_cfg *cfg, const char *ssec, dfl_shape *shape,
-                                 double *lo, double *hi, dfl_err *err)
+                                 double *lo, double *hi, long *max_values, dfl_err *err)
 {
     if (!dfl_cfg_has_section(cfg, ssec))
         return dfl_cfg_reject(cfg, "study", "shapes", err, "no section [%s]", ssec);
@@ -227,9 +242,11 @@ static dfl_status shape_from_cfg(const dfl_cfg *cfg, const char *ssec, dfl_shape
     st = dfl_shape_from_cfg(w, ssec, shape, err);
     if (!st) st = dfl_cfg_vec(w, ssec, "lo", shape->dim, lo, err);
     if (!st) st = dfl_cfg_vec(w, ssec, "hi", shape->dim, hi, err);
+    if (!st) st = dfl_cfg_int_opt(w, ssec, "max_values", MAX_LIST, 1, MAX_LIST, max_values, err);
     for (int a = 0; !st && a < shape->dim; a++)
         if (!(lo[a] < hi[a])) st = dfl_cfg_reject(w, ssec, "hi", err, "expected hi > lo");
     if (!st) st = dfl_cfg_check_used_in(w, ssec, err);
+    if (!st) dfl_cfg_claim_read(cfg, w);
     if (st && shape->ops) dfl_shape_free(shape);
     dfl_cfg_free(w);
     return st;
@@ -332,10 +349,10 @@ static dfl_status study_from_cfg(const dfl_cfg *cfg, study_cfg *s, dfl_err *err)
     for (size_t j = 0; j < s->shapes.n; j++) {
         dfl_shape shape;
         double lo[3], hi[3];
-        if ((st = shape_from_cfg(cfg, s->shapes.w[j], &shape, lo, hi, err))) return st;
+        long maxv;
+        if ((st = shape_from_cfg(cfg, s->shapes.w[j], &shape, lo, hi, &maxv, err))) return st;
         const int dim = shape.dim;
         dfl_shape_free(&shape);
-        dfl_cfg_claim_section(cfg, s->shapes.w[j]);
         /* each value's copy through the kind's cost reader: kind, ranges */
         for (size_t i = 0; i < s->methods.n; i++) {
             char why[160];
@@ -479,7 +496,8 @@ static dfl_status run_shape(const dfl_cfg *cfg, const study_cfg *s, const char *
 {
     dfl_shape shape;
     cmp_points_opts po = s->po;
-    dfl_status st = shape_from_cfg(cfg, ssec, &shape, po.lo, po.hi, err);
+    long maxv;
+    dfl_status st = shape_from_cfg(cfg, ssec, &shape, po.lo, po.hi, &maxv, err);
     if (st) return st;
     cmp_points p;
     st = cmp_points_build(&shape, &po, &p, err);
@@ -497,8 +515,18 @@ static dfl_status run_shape(const dfl_cfg *cfg, const study_cfg *s, const char *
             st = row_head(t, m, kind, ssec, dim, "", why, err);
             continue;
         }
-        for (size_t v = 0; !st && v < m->values.n; v++)
+        for (size_t v = 0; !st && v < m->values.n; v++) {
+            if ((long)v >= maxv) {
+                char why[160];
+                snprintf(why, sizeof why, "beyond [%s] max_values = %ld (its reduced sweep)",
+                         ssec, maxv);
+                const char *kind = "";
+                dfl_cfg_string(cfg, m->sec, "kind", &kind, NULL);
+                st = row_head(t, m, kind, ssec, dim, m->values.w[v], why, err);
+                continue;
+            }
             st = run_one(cfg, m, ssec, &p, m->values.w[v], s->repeats, t, err);
+        }
     }
     cmp_points_free(&p);
     return st;
@@ -537,6 +565,9 @@ static dfl_status compare_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
     for (size_t j = 0; !st && j < s->shapes.n; j++) {
         const char *ssec = s->shapes.w[j];
         const int dim = dfl_shape_dim_guess(cfg, ssec);
+        long maxv = MAX_LIST;
+        if ((st = dfl_cfg_int_opt(cfg, ssec, "max_values", MAX_LIST, 1, MAX_LIST, &maxv, err)))
+            break;
         const double n = dim == 2 ? s->po.grid2d : s->po.grid3d;
         const double m = pow(n, dim) + (double)s->po.surface + (double)s->po.medial_draws;
         pts_bytes = fmax(pts_bytes, m * (8.0 * (3 * dim + 4) + 2));
@@ -546,7 +577,7 @@ static dfl_status compare_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
         for (size_t i = 0; !st && i < s->methods.n; i++) {
             char why[160];
             if (not_applicable(cfg, &s->m[i], ssec, dim, why, sizeof why)) continue;
-            for (size_t v = 0; !st && v < s->m[i].values.n; v++) {
+            for (size_t v = 0; !st && v < s->m[i].values.n && (long)v < maxv; v++) {
                 dfl_cfg *w;
                 if ((st = method_copy(cfg, &s->m[i], ssec, dim, lo, hi, s->m[i].values.w[v], &w,
                                       err)))

@@ -3,11 +3,12 @@
  * grid of the same N spends.
  *
  * Function index
- *   dfl_gridpeer_kind       trilinear0 | taylor1 | taylor2 (X-macro names)
+ *   dfl_gridpeer_kind       trilinear0 | taylor1 | taylor2 | tricubic (X-macro names)
  *   dfl_gridpeer_storage    float64 | float16
  *   dfl_gridpeer_new        build one as a dfl_field
  *   dfl_gridpeer_scalars    the number of stored scalars
  *   dfl_gridpeer_field_info kind, storage, n of a grid peer field
+ *   dfl_gridpeer_stored     the stored scalars (their exact values)
  *   dfl_gridpeer_kind_name, _parse; dfl_gridpeer_storage_name, _parse
  *
  * Grid: N cells per axis over the box [lo, hi]; cell (i, j, k) has centre
@@ -24,10 +25,33 @@
  *               expansion)
  *   taylor2     + Hessian (6 scalars)     (10 scalars) u = d + g.r + r.H r / 2,
  *               r = x - c
+ *   tricubic    c(i, j, k)                (1 scalar)  the tensor cubic
+ *               B-spline with knots at the centres whose coefficients c
+ *               interpolate the samples d(centre) (the prefilter of SciPy's
+ *               map_coordinates(order = 3)): C2 everywhere, the samples
+ *               exactly (to rounding).  Boundary: not-a-knot (the third
+ *               derivative is continuous at the second and the last-but-one
+ *               centre of each axis, i.e. the first and last two centre
+ *               intervals are one cubic piece); the n stored coefficients
+ *               per axis determine the two ghost coefficients beyond them,
+ *               c(-1) = 4 c(0) - 6 c(1) + 4 c(2) - c(3) (likewise at n), and
+ *               the outer half cells and the outside of the box extrapolate
+ *               the end pieces, as trilinear0 does.  Why not SciPy's mirror
+ *               or reflect: they force d'(x) = 0 at a centre or at the box
+ *               face, so a linear SDF (a plane, the far field of any shape)
+ *               is decoded wrongly near every face; not-a-knot reproduces
+ *               every cubic polynomial per axis (so the whole tensor space
+ *               of degree <= 3 per variable) exactly everywhere, also in the
+ *               outer cells and beyond the box.  It is the spline of SciPy's
+ *               make_interp_spline(k = 3) (bc_type 'not-a-knot'), per axis.
+ *               Needs n >= 4.  float16 storage rounds the coefficients (the
+ *               samples are prefiltered in double first), so the samples
+ *               are then reproduced to the coefficients' rounding only.
  * The nearest centre is the one of the cell holding x, x clamped into the
  * box (queries outside the box decode the boundary cell).  The value is
  * signed as the shape's SDF (negative inside).  Gradients are those of the
- * decoded polynomial (trilinear: of the trilinear interpolant, piecewise).
+ * decoded polynomial (trilinear: of the trilinear interpolant, piecewise;
+ * tricubic: of the spline).
  * Storage: float64 keeps the doubles; float16 rounds every stored scalar to
  * the nearest IEEE half (Imath's imath_float_to_half of the value rounded to
  * float first; |v| >= 65520 would become inf, and is rejected at build).
@@ -47,7 +71,8 @@
 #define DFL_GRIDPEER_KIND_LIST(X)                                 \
     X(DFL_GRIDPEER_TRILINEAR0, "trilinear0", 1)                   \
     X(DFL_GRIDPEER_TAYLOR1, "taylor1", 4)                         \
-    X(DFL_GRIDPEER_TAYLOR2, "taylor2", 10)
+    X(DFL_GRIDPEER_TAYLOR2, "taylor2", 10)                        \
+    X(DFL_GRIDPEER_TRICUBIC, "tricubic", 1)
 
 typedef enum dfl_gridpeer_kind { DFL_GRIDPEER_KIND_LIST(DFL_NAMES_CODE) } dfl_gridpeer_kind;
 enum { DFL_GRIDPEER_KIND_COUNT = 0 DFL_GRIDPEER_KIND_LIST(DFL_NAMES_ONE) };
@@ -80,7 +105,8 @@ typedef struct dfl_gridpeer_opts {
  * and wraps the grid as a field (eval is batched and OpenMP-free; the
  * field has no jets).  taylor2 needs the shape's jets (dfl_shape_derivs_at).
  * Errors: DFL_E_INPUT for n outside 1..1024, lo >= hi, a 2D shape, taylor2
- * of a shape without jets, or a float16 scalar that overflows a half;
+ * of a shape without jets, tricubic with n < 4, or a float16 scalar
+ * (tricubic: a coefficient) that overflows a half;
  * DFL_E_NUMERIC when a sample is not finite; DFL_E_NOMEM.  *out is
  * untouched on failure. */
 dfl_status dfl_gridpeer_new(const dfl_shape *shape, const dfl_gridpeer_opts *o, dfl_field *out,
@@ -92,5 +118,12 @@ size_t dfl_gridpeer_scalars(dfl_gridpeer_kind kind, int n);
 /* The options f was built with into *out; 0 (out untouched) when f is not
  * a grid peer field, else 1. */
 int dfl_gridpeer_field_info(const dfl_field *f, dfl_gridpeer_opts *out);
+
+/* The stored scalars of grid peer f as their exact values (float16: each
+ * the half's value), dfl_gridpeer_scalars(kind, n) of them, cell index
+ * i + n (j + n k) times the kind's scalars per cell (tricubic: the spline
+ * coefficient of centre (i, j, k)); owned by f, valid while f lives.
+ * NULL (*count untouched) when f is not a grid peer field. */
+const double *dfl_gridpeer_stored(const dfl_field *f, size_t *count);
 
 #endif

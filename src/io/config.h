@@ -15,7 +15,7 @@
  *   locations      config_where.c    dfl_cfg_where, dfl_cfg_err_at, dfl_cfg_reject,
  *                                    dfl_cfg_check_used, dfl_cfg_check_used_in,
  *                                    dfl_cfg_used,
- *                                    dfl_cfg_claim_section,
+ *                                    dfl_cfg_claim_section, dfl_cfg_claim_read,
  *                                    dfl_cfg_defer_sections, dfl_cfg_unused_deferred
  *   read record    config_log.c      dfl_cfg_reads, dfl_cfg_read_at,
  *                                    dfl_cfg_validate_only, dfl_cfg_validated,
@@ -232,7 +232,8 @@ int dfl_cfg_point_dim(const char *value);
  * and semicolons), or named it before: the list a --set replaced, a sweep's
  * other items (e.g. `--set study.cases=circle` leaves the other cases
  * unselected, not unknown); and so is a section named by a key of a section
- * so excused, to any depth (the shape section of an unselected case). */
+ * so excused, to any depth (the shape section of an unselected case, the
+ * operands of a CSG shape the run did not select). */
 dfl_status dfl_cfg_check_used(const dfl_cfg *c, dfl_err *err);
 /* Same, restricted to section sec (for commands that read only part of a
  * study config, such as `dflab probe` reading [field] and [shape]). */
@@ -245,6 +246,13 @@ bool dfl_cfg_used(const dfl_cfg *c, const char *sec, const char *key);
  * point of c, changed by dfl_cfg_set) and checks the copy's section with
  * dfl_cfg_check_used_in itself.  Records nothing in the read record. */
 void dfl_cfg_claim_section(const dfl_cfg *c, const char *sec);
+/* Marks read in c every key a reader read in point, a sweep point of c
+ * (dfl_cfg_sweep_point): for a caller that hands a reader the copy and
+ * cannot name every section it follows (a CSG shape's operands, a mesh's
+ * polygonized section).  Entries are matched by position, section and key;
+ * those a dfl_cfg_set added to point are not c's and are skipped.  Records
+ * nothing in the read record. */
+void dfl_cfg_claim_read(const dfl_cfg *c, const dfl_cfg *point);
 /* Defers the sections named `name` and `name_*` (name: at most 40 bytes;
  * NULL or "" undoes it): dfl_cfg_check_used skips their keys, which another
  * reader checks later (dflab's runner: the probe's [field] and [field_*]

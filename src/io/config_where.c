@@ -67,6 +67,17 @@ void dfl_cfg_claim_section(const dfl_cfg *c, const char *sec)
         if (strcmp(c->e[i].sec, sec) == 0) c->used[i] = 1;
 }
 
+void dfl_cfg_claim_read(const dfl_cfg *c, const dfl_cfg *point)
+{
+    /* a sweep point copies c's entries in order; dfl_cfg_set replaces
+     * values in place or appends, so position, section and key agree for
+     * every entry that is c's */
+    for (size_t i = 0; i < c->n && i < point->n; i++)
+        if (point->used[i] && strcmp(c->e[i].sec, point->e[i].sec) == 0 &&
+            strcmp(c->e[i].key, point->e[i].key) == 0)
+            c->used[i] = 1;
+}
+
 void dfl_cfg_defer_sections(dfl_cfg *c, const char *name)
 {
     snprintf(c->defer, sizeof c->defer, "%s", name ? name : "");

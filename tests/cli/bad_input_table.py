@@ -122,6 +122,12 @@ runc("proxy grid over the default memory budget",
 runc("grid peer 1024^3 over the memory budget",
      ACC + b"memory_budget = 10\n" + SPHERE + b"[field]\nkind = gridpeer\nres = 1024\n",
      "bad.ini:10", "[field] res", "needs about 34.4 GB", "memory budget of 10 GB")
+# [field] kind = gridpeer: the kinds of field/gridpeer.h, tricubic's not-a-knot minimum
+GP = HEAD + SPHERE + b"[field]\nkind = gridpeer\n"
+runc("grid peer unknown method", GP + b"method = tricubic5\n" + GRID, "bad.ini:9", "[field] method",
+     "trilinear0|taylor1|taylor2|tricubic")
+runc("grid peer tricubic below res 4", GP + b"method = tricubic\nres = 3\n" + GRID, "bad.ini:10",
+     "[field] res", "res >= 4 for tricubic")
 # [field] kind = openvdb (field/vdb.h): its keys and its bound from the box
 VDB = HEAD + b"memory_budget = 10\n" + SPHERE.replace(b"radius = 1", b"radius = 0.5") + b"[field]\nkind = openvdb\n"
 VGRID = b"[grid]\nn = 8\nlo = -1 -1 -1\nhi = 1 1 1\n"

@@ -125,6 +125,19 @@ Test(config, unselected_sections_are_not_unused)
     cr_expect_eq(read_cases(c, &err), DFL_E_INPUT);
     cr_expect(strstr(err.msg, "[z] x"), "%s", err.msg);
     dfl_cfg_free(c);
+    /* the sections an unselected section names (a CSG case's operands, and
+     * theirs; a cycle ends) are unselected too; one nothing names is not */
+    c = cfgu_parse("[study]\ncases = a b\n[a]\nx = 1\n[b]\nop = b1\n[b1]\nop = b2\n"
+                   "[b2]\nop = b1\n[q]\nx = 5\n");
+    cr_assert_eq(dfl_cfg_set(c, "study.cases=a", &err), DFL_OK);
+    cr_expect_eq(read_cases(c, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "[q] x"), "only [q] is unknown: %s", err.msg);
+    dfl_cfg_free(c);
+    c = cfgu_parse("[study]\ncases = a b\n[a]\nx = 1\n[b]\nop = b1\n[b1]\nop = b2\n"
+                   "[b2]\nop = b1\n");
+    cr_assert_eq(dfl_cfg_set(c, "study.cases=a", &err), DFL_OK);
+    cr_expect_eq(read_cases(c, &err), DFL_OK, "%s", err.msg);
+    dfl_cfg_free(c);
 }
 
 /* Reads what a field factory would: [f] kind, then kind a's key `order`

@@ -117,3 +117,30 @@ Test(config, used_is_present_and_read)
     cr_expect(strstr(err.msg, "j"), "%s", err.msg);
     dfl_cfg_free(cfg);
 }
+
+/* claim_read marks in the original exactly the keys read in a sweep point
+ * of it (sections a reader followed included), not those of a key the
+ * point added, and records nothing in the read record. */
+Test(config, claim_read_marks_what_the_point_read)
+{
+    dfl_cfg *c = cfgu_parse("[a]\nx = 1\nnext = b\n[b]\nz = 3\n[c]\nw = 4\n");
+    dfl_cfg *p;
+    dfl_err err;
+    cr_assert_eq(dfl_cfg_sweep_point(c, 0, &p, &err), DFL_OK);
+    cr_assert_eq(dfl_cfg_set(p, "c.extra=5", &err), DFL_OK, "%s", err.msg);
+    const char *v;
+    long z;
+    cr_assert_eq(dfl_cfg_string(p, "a", "x", &v, &err), DFL_OK);
+    cr_assert_eq(dfl_cfg_string(p, "a", "next", &v, &err), DFL_OK);
+    cr_assert_eq(dfl_cfg_int(p, "b", "z", 0, 9, &z, &err), DFL_OK);
+    cr_assert_eq(dfl_cfg_string(p, "c", "extra", &v, &err), DFL_OK);
+    const size_t reads = dfl_cfg_reads(c);
+    dfl_cfg_claim_read(c, p);
+    cr_expect_eq(dfl_cfg_reads(c), reads);
+    cr_expect_eq(dfl_cfg_check_used_in(c, "a", &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(dfl_cfg_check_used_in(c, "b", &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(dfl_cfg_check_used(c, &err), DFL_E_INPUT);
+    cr_expect(strstr(err.msg, "t.ini:7: [c] w") != NULL, "%s", err.msg);
+    dfl_cfg_free(p);
+    dfl_cfg_free(c);
+}

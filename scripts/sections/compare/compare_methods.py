@@ -41,6 +41,23 @@ ASSUMPTIONS = [
     "C0 only, and the near-surface band L∞ of every method is set there. Methods that assume "
     "smoothness (order-2 proxies, Taylor-2 grid peers, C1 PHT splines) lose their order on it; "
     "the rates table shows how far each still falls.",
+    "The tricubic grid peer (m_gp_tricubic, field/gridpeer.h) stores one coefficient per cell, "
+    "as trilinear0 does, so the two meet at equal bytes: the C2 cubic B-spline interpolating "
+    "the same samples, not-a-knot at the box faces (exact for every cubic up to and beyond "
+    "them). It assumes smoothness: across a crease of the SDF (a mesh's edges, a CSG seam, "
+    "the medial axis) it overshoots where the trilinear grid does not, so its whole-box L∞ "
+    "can exceed trilinear's while its band error is lower.",
+    "The genus-2 surface (s_genus2: geom/implicit.h's tube around Bernoulli's lemniscate, "
+    "eps 0.1; its SDF through footpoints on the zero set, about 0.1–0.3 ms each) and its "
+    "marching-cubes mesh (s_genus2_mc: watertight, vertices on the surface) lie in "
+    "[-1.07, 1.07]² × [-0.105, 0.105]; their box is [-1.25, 1.25]² × [-0.5, 0.5] (grid "
+    "methods get flat cells there, 2.5 : 1). The implicit surface runs a reduced sweep "
+    "(max_values = 4 in methods.ini: each method's first four settings; the rest are skipped "
+    "rows), and the SDF-input proxies skip it (an implicit shape offers footpoints, no SDF "
+    "representation). The CSG scene (s_scene2: hvb25's Scene 2 "
+    "stand-in, a box with a bowl cut and a ring over it) is the min/max of exact SDFs: exact "
+    "outside the union, a bound inside near the seams; that min/max field is the reference "
+    "every method is measured against.",
     "OpenVDB (kind = openvdb) is a narrow-band level set: outside |d| < band·voxel its value is "
     "the background, so its rows enter the near-surface columns only (their band of 8 voxels "
     "covers |d| ≤ 0.05 at every voxel used), never the whole-box ones. Its bytes are OpenVDB's "

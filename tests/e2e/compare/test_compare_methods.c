@@ -10,7 +10,8 @@
  *     c1 <= 2 delta |Hess d| with |Hess d| <= 1 / 0.02 off the medial band;
  *   - bytes: a proxy grid holds res^3 cells x DFL_PROXY_NSCALAR(order)
  *     doubles, plus one sign byte per cell for order 1 with an inside
- *     (proxy/proxy.h); a grid peer res^3 x its scalars (1, 4, 10) doubles;
+ *     (proxy/proxy.h); a grid peer res^3 x its scalars (1, 4, 10; tricubic
+ *     1) doubles;
  *   - trilinear interpolation of the torus SDF on the centre grid of
  *     h = 2/32: |e| <= h^2/8 (|d_xx| + |d_yy| + |d_zz|) over the cell, and
  *     the cell's centres lie within sqrt(3) h of a band point, where |d| <=
@@ -21,6 +22,10 @@
  *     count): a trilinear grid is C0 (c0 <= 20 delta) and kinked (c1 > 1e-2);
  *   - a PHT spline is C1: c1_jump is 2 delta |Hess u|, under 1e-4 unless
  *     |Hess u| > 2.5e4; a trilinear grid is C0 and kinked across its faces;
+ *     the tricubic spline is C2: its pair jumps are 2 delta |grad u| and
+ *     2 delta |Hess u|, |Hess u| <= 4 sqrt(3) max|c| / h^2 (the second
+ *     derivative weights of a cubic B-spline sum to <= 4 in absolute value,
+ *     the first to <= 1): under 1e-3 unless max|c| > 2e3 at h = 1/16;
  *   - the protocol's point counts: 101^2 and 25^3 grid nodes, 4000 surface
  *     points (all stay in the boxes: the shapes lie 0.15 inside them),
  *     count = grid + surface + medial, no non-finite value anywhere. */
@@ -46,10 +51,10 @@ static double ipow3(double x) { return x * x * x; }
 Test(e2e_compare, quick_config_derived, .timeout = 300)
 {
     char out[512], csv[700];
-    e2e_run_table("configs/compare/quick.ini", NULL, "compare_methods", 53, out, sizeof out, csv,
+    e2e_run_table("configs/compare/quick.ini", NULL, "compare_methods", 59, out, sizeof out, csv,
                   sizeof csv);
     int exact = 0, proxies = 0, peers = 0, skipped = 0, trilinear32 = 0, vdb = 0;
-    for (long r = 0; r < 53; r++) {
+    for (long r = 0; r < 59; r++) {
         char *m = e2e_csv_cell(csv, r, "method"), *sk = e2e_csv_cell(csv, r, "skipped");
         char *set = e2e_csv_cell(csv, r, "setting");
         cr_assert(m && sk && set);
@@ -98,13 +103,20 @@ Test(e2e_compare, quick_config_derived, .timeout = 300)
         } else if (strncmp(m, "m_gp_", 5) == 0) {
             peers++;
             const double res = atof(set + strlen("res="));
-            const int k = strcmp(m, "m_gp_tri") == 0 ? 1 : strcmp(m, "m_gp_t1") == 0 ? 4 : 10;
+            const int cubic = strcmp(m, "m_gp_tricubic") == 0;
+            const int k = strcmp(m, "m_gp_tri") == 0 || cubic ? 1
+                          : strcmp(m, "m_gp_t1") == 0    ? 4
+                                                         : 10;
             cr_expect_eq(bytes, ipow3(res) * k * 8, "row %ld", r);
-            if (k == 1) {
+            if (cubic) {
+                cr_expect_leq(c0, 2 * delta * 10, "row %ld: tricubic is continuous", r);
+                cr_expect_lt(c1, 1e-3, "row %ld: tricubic is C2", r);
+            }
+            if (k == 1 && !cubic) {
                 cr_expect_leq(c0, 2 * delta * 10, "row %ld: trilinear is C0", r);
                 cr_expect_gt(c1, 1e-2, "row %ld: trilinear is kinked across faces", r);
             }
-            if (k == 1 && res == 32 && torus) {
+            if (k == 1 && !cubic && res == 32 && torus) {
                 trilinear32++;
                 const double h = 2.0 / 32, dmax = 0.05 + sqrt(3.0) * h;
                 const double hmax = 1.0 / (0.25 - dmax);
@@ -128,11 +140,11 @@ Test(e2e_compare, quick_config_derived, .timeout = 300)
     }
     cr_expect_eq(exact, 4);
     cr_expect_eq(proxies, 8);
-    cr_expect_eq(peers, 12);
+    cr_expect_eq(peers, 16);
     cr_expect_eq(trilinear32, 1);
     cr_expect_eq(vdb, 4);
-    /* circle: rfunc, 2 proxies, 3 peers, vdb; convex: 6; torus, Wuson: rfunc */
-    cr_expect_eq(skipped, 7 + 6 + 1 + 1);
+    /* circle: rfunc, 2 proxies, 4 peers, vdb; convex: 7; torus, Wuson: rfunc */
+    cr_expect_eq(skipped, 8 + 7 + 1 + 1);
 }
 
 /* A config around the quick one's keys, with one method and one shape. */
@@ -180,4 +192,71 @@ Test(e2e_compare, bad_shape_sections_exit_2, .timeout = 60)
                           "[s]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\nlo = -1 -1 -1\n"
                           "hi = 1 1 1\ncolour = red\n[m]\nkind = exact\nresolution = none\nbox = none\n",
                           "[s] colour", "unknown key");
+}
+
+/* A CSG shape follows sections the study does not name (its operands, and
+ * theirs): they count as read, so it runs; a typo in a nested operand is
+ * still an unknown key.  The union of two disjoint spheres: the exact
+ * field has error 0, one row per method value. */
+#define CSG_S "[s]\nkind = csg\nop = union\na = left\nb = pair\nlo = -1 -1 -1\nhi = 1 1 1\n"
+#define CSG_SHAPE CSG_S CSG_OPS
+#define CSG_OPS                                                                               \
+    "[pair]\nkind = csg\nop = union\na = right\nb = top\n"                                   \
+    "[left]\nkind = sphere\ncenter = -0.5 0 0\nradius = 0.3\n"                               \
+    "[right]\nkind = sphere\ncenter = 0.5 0 0\nradius = 0.3\n"                               \
+    "[top]\nkind = sphere\ncenter = 0 0.5 0.3\nradius = 0.2\n"
+#define CSG_STUDY                                                                             \
+    "[study]\nname = compare_methods\nmethods = m g\nshapes = s\n"                             \
+    "[compare]\ngrid3d = 5\nsurface = 10\nmedial_draws = 10\npairs = 10\n"                     \
+    "[m]\nkind = exact\nresolution = none\nbox = none\n"                                      \
+    "[g]\nkind = gridpeer\nmethod = tricubic\nresolution = res\nvalues = 4 8\ndims = 3\n"
+
+Test(e2e_compare, nested_csg_shape_runs, .timeout = 60)
+{
+    e2e_table t = {0};
+    cr_assert_eq(e2e_ini_table(&t, "csg.ini", CSG_STUDY CSG_SHAPE, "compare_methods", 3), 3);
+    for (long r = 0; r < 3; r++) {
+        char *sk = e2e_csv_cell(t.csv, r, "skipped");
+        cr_expect(sk && !sk[0], "row %ld skipped: %s", r, sk ? sk : "?");
+        free(sk);
+    }
+    cr_expect_eq(e2e_csv_get(t.csv, 0, "linf"), 0.0);
+    e2e_rmtree(t.dir);
+    e2e_expect_bad_config(CSG_STUDY CSG_SHAPE "colour = red\n", "[top] colour", "unknown key");
+}
+
+/* max_values = 1 on a shape: each method's first value runs, the others
+ * are skipped rows naming the key (and the exact field's single row runs);
+ * out of [1, 32] it is bad input at the key. */
+Test(e2e_compare, max_values_reduces_a_shapes_sweep, .timeout = 60)
+{
+    e2e_table t = {0};
+    cr_assert_eq(e2e_ini_table(&t, "mv.ini", CSG_STUDY CSG_S "max_values = 1\n" CSG_OPS,
+                               "compare_methods", 3), 3);
+    static const char *const want_set[] = {"", "res=4", "res=8"};
+    for (long r = 0; r < 3; r++) {
+        char *sk = e2e_csv_cell(t.csv, r, "skipped"), *set = e2e_csv_cell(t.csv, r, "setting");
+        cr_assert(sk && set);
+        cr_expect_str_eq(set, want_set[r], "row %ld", r);
+        if (r < 2) cr_expect_str_eq(sk, "", "row %ld", r);
+        else cr_expect(strstr(sk, "[s] max_values = 1"), "row %ld: %s", r, sk);
+        free(sk), free(set);
+    }
+    e2e_rmtree(t.dir);
+    e2e_expect_bad_config(CSG_STUDY CSG_S "max_values = 0\n" CSG_OPS, "[s] max_values", NULL);
+}
+
+/* skip_kinds: a method skips shapes of the kinds listed, one row saying
+ * so; other methods still run on the shape. */
+Test(e2e_compare, skip_kinds_skips_with_the_reason, .timeout = 60)
+{
+    e2e_table t = {0};
+    cr_assert_eq(e2e_ini_table(&t, "sk.ini", CSG_STUDY "skip_kinds = sphere csg\n" CSG_SHAPE,
+                               "compare_methods", 2), 2);
+    char *sk0 = e2e_csv_cell(t.csv, 0, "skipped"), *sk1 = e2e_csv_cell(t.csv, 1, "skipped");
+    cr_assert(sk0 && sk1);
+    cr_expect_str_eq(sk0, "", "the exact field runs");
+    cr_expect_str_eq(sk1, "shape kind csg is in skip_kinds");
+    free(sk0), free(sk1);
+    e2e_rmtree(t.dir);
 }

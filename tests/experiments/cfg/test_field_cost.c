@@ -44,6 +44,12 @@ Test(field_cost, gridpeer_and_pht_level_bound)
     snprintf(t, sizeof t, "[field]\nkind = gridpeer\nmethod = taylor1\nres = 1024\n%s", SPHERE);
     dfl_cost c = cost_of(t);
     cr_expect_eq(c.bytes, 4.0 * 1024 * 1024 * 1024 * 8, "4 scalars of 8 bytes per cell");
+    /* tricubic: n^3 coefficients and their (n + 2)^3 extension, doubles,
+     * also for float16 storage */
+    snprintf(t, sizeof t, "[field]\nkind = gridpeer\nmethod = tricubic\nstorage = float16\n"
+                          "res = 100\n%s", SPHERE);
+    c = cost_of(t);
+    cr_expect_eq(c.bytes, (100.0 * 100 * 100 + 102.0 * 102 * 102) * 8);
     /* 2D pht, cross split: 4^L leaves, 4/3 for inner cells, DFL_PHT_CELL_BYTES each */
     c = cost_of("[field]\nkind = pht\nmax_level = 12\n"
                 "[shape]\nkind = circle\ncenter = 0.5 0.5\nradius = 0.3\n");
