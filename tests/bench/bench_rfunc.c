@@ -451,9 +451,9 @@ typedef struct kind_row {
      * build/src/rfunc/batch_*.o: its vmulpd, vaddpd + vsubpd, vdivpd,
      * vsqrtpd per vector of parts); all zero: not counted (per-point
      * path, or a kernel whose loops depend on the input: regions' edge
-     * counts, mixed kinds, the corrected join's vertex layouts; the
-     * R-conjunction, whose fold loop gcc unrolls so that a vector of
-     * parts cannot be read off one loop). */
+     * counts, mixed kinds, the corrected join's vertex layouts).  The
+     * R-conjunction's loop runs two vectors of points (batch_rconj.c
+     * RC_LANES): its counts are half the loop's. */
     bench_ops op;
     /* What bounds it beyond the operation counts: the dependency chain
      * through the divider (a division or root waiting on another), where
@@ -475,10 +475,10 @@ static void bench_kinds(bench_ctx *c)
         {"disk_smooth3", NULL, k_smooth3, NSEG, 1e9, "eq. 5 (batch_smooth.c): ~48 mul (13 in 1/sqrt), 2 div per part", {49, 37, 2, 0}, "two divisions in series per part"},
         {"rconj2", NULL, k_rconj2, NSEG, 1e9,
          "two roots per part (h and (1 + r^2)^(1/2), Newton steps): 49 multiplications and 2"
-         " divisions per part against R-equivalence's 15", {0, 0, 0, 0}, "the fold across parts is one chain per point (each part waits on the last)"},
+         " divisions per part against R-equivalence's 15", {49, 28, 2, 0}, "the fold across parts is one chain per point (each part waits on the last): 16 points side by side"},
         {"rconj3", NULL, k_rconj3, NSEG, 1e9,
          "as rconj2 with the 3D carrier (two normals): 62 multiplications and 2 divisions per"
-         " part", {0, 0, 0, 0}, "the fold across parts is one chain per point (each part waits on the last)"},
+         " part", {62, 39, 2, 0}, "the fold across parts is one chain per point (each part waits on the last): 16 points side by side"},
         {"corrected2", NULL, k_corrected2, NSEG, 1e9,
          "per part a segment and a guarded vertex term: ~26 mul, 2 div, ~45 add/cmp/blend"
          " (batch_corrected.c): ~2.5x the disk2 kernel's work", {0, 0, 0, 0}, NULL},
