@@ -5,7 +5,7 @@
  * The join is a left fold in part order, u_1 = h_1, u_k = u_(k-1) ^ h_k,
  *     a ^ b = lo - hi ((1 + r^p)^(1/p) - 1),  lo = min, hi = max, r = lo/hi
  * (rfunc/join.h), so it is sequential over parts, but lanes are points: a
- * block of LANES points runs through the parts in order, each lane with its
+ * block of RC_LANES points runs through the parts in order, each lane with its
  * own u and grad u, and the gradient is carried forward,
  *     grad u_k = F_a grad u_(k-1) + F_b grad h_k,
  * with the partials of join.c's dfl_rfunc_rconj2: 1 - (hi/N)^(p-1) for the
@@ -214,6 +214,14 @@ DFL_INLINE double fold(double u, double h, int p, const double *a,
     return F;
 }
 
+/* Points per block: two AVX-512 vectors.  The fold is one chain per
+ * point through the parts, so a block runs as many chains side by side as
+ * it has lanes; with the int flags below, 16 lanes also let gcc pick
+ * 512-bit vectors (16 ints fill one; with 8 it vectorized the whole lane
+ * loop at 256 bits, half the AVX-512 width), while AVX2 and SSE2 keep
+ * their 8 and 4 lanes per vector of ints. */
+#define RC_LANES 16
+
 /* The fast values of m <= SCRATCH points and, per point, whether it must
  * fall back (ok[i] = 0); grad gets dim doubles per point. */
 DFL_INLINE void run_p(const dfl_rfunc_batch *b, size_t m, const double *pts, double *val,
@@ -221,20 +229,20 @@ DFL_INLINE void run_p(const dfl_rfunc_batch *b, size_t m, const double *pts, dou
 {
     const rconj_kd *kd = b->kd;
     const size_t n = b->n, D = (size_t)dim;
-    for (size_t i0 = 0; i0 < m; i0 += LANES) {
-        const size_t c = m - i0 < LANES ? m - i0 : LANES;
-        double X[LANES], Y[LANES], Z[LANES] = {0}, U[LANES], G0[LANES], G1[LANES],
-            G2[LANES] = {0};
-        int bad[LANES] = {0};
+    for (size_t i0 = 0; i0 < m; i0 += RC_LANES) {
+        const size_t c = m - i0 < RC_LANES ? m - i0 : RC_LANES;
+        double X[RC_LANES], Y[RC_LANES], Z[RC_LANES] = {0}, U[RC_LANES], G0[RC_LANES],
+            G1[RC_LANES], G2[RC_LANES] = {0};
+        int bad[RC_LANES] = {0};
         /* a short last block repeats its last point in the spare lanes */
-        for (size_t l = 0; l < LANES; l++) {
+        for (size_t l = 0; l < RC_LANES; l++) {
             const size_t i = i0 + (l < c ? l : c - 1);
             X[l] = pts[D * i];
             Y[l] = pts[D * i + 1];
             if (dim == 3) Z[l] = pts[D * i + 2];
         }
 #pragma omp simd
-        for (int l = 0; l < LANES; l++) {
+        for (int l = 0; l < RC_LANES; l++) {
             double g0, g1, g2;
             const double h2 = seg_h2(X[l], Y[l], Z[l], b, 0, dim, strip, &g0, &g1, &g2);
             const double rh = rsqrt_newton(h2);
@@ -246,7 +254,7 @@ DFL_INLINE void run_p(const dfl_rfunc_batch *b, size_t m, const double *pts, dou
         }
         for (size_t k = 1; k < n; k++) {
 #pragma omp simd
-            for (int l = 0; l < LANES; l++) {
+            for (int l = 0; l < RC_LANES; l++) {
                 double g0, g1, g2, Fu, Fh;
                 const double h2 = seg_h2(X[l], Y[l], Z[l], b, k, dim, strip, &g0, &g1, &g2);
                 const double rh = rsqrt_newton(h2);

@@ -54,13 +54,27 @@ DFL_INLINE void seg_term(double x, double y, const dfl_rfunc_batch *b, size_t k,
  * tests/e2e/bs04/test_bs04_fields.c, which checks u <= min h).
  * r h^2 below 1e-300 (a point on the segment, h^2 near the double range)
  * poisons *S with NaN so that the point falls back.
- * Adds h^-p to *S; returns q = h^-(p+2) (the factor of the carrier's
- * f grad f) and *qe (the factor of -e).  Counts (mul, add; div, sqrt). */
-DFL_INLINE double strip_term(double F2, double p1, double p2, int p, double *S, double *qe)
+ *
+ * The term runs in two stages: strip_t (r and t: a root, then a division
+ * that waits on it) and strip_term (mt, h^2, then the division R that
+ * waits on t).  Per part that is a root and two divisions in series, ~80
+ * cycles of latency against ~11 cycles of divider work per vector, more
+ * than the out-of-order window covers; so the lane loops (strip_lanes
+ * below) run strip_t one part ahead of strip_term: each stage's chain
+ * then overlaps the other's, with the same operations per value. */
+DFL_INLINE double strip_t(double p1, double p2, double *r)
 {
-    const double r = sqrt(p1 * p1 + p2 * p2);     /* 2, 1; sqrt */
+    *r = sqrt(p1 * p1 + p2 * p2);                 /* 2, 1; sqrt */
     const double P = p1 * p2;                     /* 1, 0 */
-    const double t = (P + P) / ((p1 + p2) + r);   /* 0, 3; div */
+    return (P + P) / ((p1 + p2) + *r);            /* 0, 3; div */
+}
+
+/* Adds h^-p to *S; returns q = h^-(p+2) (the factor of the carrier's
+ * f grad f) and *qe (the factor of -e), from strip_t's r and t.  Counts
+ * (mul, add; div, sqrt). */
+DFL_INLINE double strip_term(double F2, double p1, double p2, double r, double t, int p,
+                             double *S, double *qe)
+{
     const double mt = 0.5 * (fabs(t) - t);        /* 1, 1: max(-t, 0) exactly */
     const double h2 = F2 + mt * mt;               /* 1, 1 */
     double rr, r2i, w;
@@ -87,17 +101,25 @@ DFL_INLINE double strip_term(double F2, double p1, double p2, int p, double *S, 
     return q;
 }
 
-/* 2D segment with the strip trim. */
-DFL_INLINE void seg_term_strip2(double x, double y, const dfl_rfunc_batch *b, size_t k, int p,
-                                double *S, double *Vx, double *Vy)
+/* 2D segment with the strip trim, first stage: the carrier f and the
+ * trim's p1, p2, r, t of part k at (x, y). */
+DFL_INLINE void strip2_a(double x, double y, const dfl_rfunc_batch *b, size_t k, double *f,
+                         double *p1, double *p2, double *r, double *t)
 {
     const double wx = x - b->ax[k], wy = y - b->ay[k];                   /* 0, 2 */
     const double vx = x - b->bx[k], vy = y - b->by[k];                   /* 0, 2 */
-    const double f = wx * b->nx[k] + wy * b->ny[k];                      /* 2, 1 */
-    const double p1 = wx * b->ex[k] + wy * b->ey[k];                     /* 2, 1 */
-    const double p2 = -(vx * b->ex[k] + vy * b->ey[k]);                  /* 2, 1 */
+    *f = wx * b->nx[k] + wy * b->ny[k];                                  /* 2, 1 */
+    *p1 = wx * b->ex[k] + wy * b->ey[k];                                 /* 2, 1 */
+    *p2 = -(vx * b->ex[k] + vy * b->ey[k]);                              /* 2, 1 */
+    *t = strip_t(*p1, *p2, r);
+}
+
+/* Second stage: adds part k's terms to *S, *Vx, *Vy. */
+DFL_INLINE void strip2_b(const dfl_rfunc_batch *b, size_t k, int p, double f, double p1,
+                         double p2, double r, double t, double *S, double *Vx, double *Vy)
+{
     double qe;
-    const double q = strip_term(f * f, p1, p2, p, S, &qe);               /* 1 + above */
+    const double q = strip_term(f * f, p1, p2, r, t, p, S, &qe);         /* 1 + above */
     const double qf = q * f;                                             /* 1, 0 */
     *Vx += qf * b->nx[k] - qe * b->ex[k];                                /* 2, 2 */
     *Vy += qf * b->ny[k] - qe * b->ey[k];                                /* 2, 2 */
@@ -106,7 +128,7 @@ DFL_INLINE void seg_term_strip2(double x, double y, const dfl_rfunc_batch *b, si
 /* 3D segment (space curves): f^2 = s1^2 + s2^2 with the two normals, the
  * sphere (strip = 0) or slab (strip = 1) trim. */
 DFL_INLINE void seg_term3(double x, double y, double z, const dfl_rfunc_batch *b, size_t k,
-                          int p, int strip, double *S, double *Vx, double *Vy, double *Vz)
+                          int p, double *S, double *Vx, double *Vy, double *Vz)
 {
     const double wx = x - b->ax[k], wy = y - b->ay[k], wz = z - b->az[k];
     const double vx = x - b->bx[k], vy = y - b->by[k], vz = z - b->bz[k];
@@ -114,16 +136,6 @@ DFL_INLINE void seg_term3(double x, double y, double z, const dfl_rfunc_batch *b
     const double s2 = wx * b->mx[k] + wy * b->my[k] + wz * b->mz[k];
     double gx = s1 * b->nx[k] + s2 * b->mx[k], gy = s1 * b->ny[k] + s2 * b->my[k],
            gz = s1 * b->nz[k] + s2 * b->mz[k];
-    if (strip) {
-        const double p1 = wx * b->ex[k] + wy * b->ey[k] + wz * b->ez[k];
-        const double p2 = -(vx * b->ex[k] + vy * b->ey[k] + vz * b->ez[k]);
-        double qe;
-        const double q = strip_term(s1 * s1 + s2 * s2, p1, p2, p, S, &qe);
-        *Vx += q * gx - qe * b->ex[k];
-        *Vy += q * gy - qe * b->ey[k];
-        *Vz += q * gz - qe * b->ez[k];
-        return;
-    }
     const double m2 = wx * vx + wy * vy + wz * vz;
     const double mp = m2 + fabs(m2);
     const double mt = mp * b->hid[k];
@@ -137,15 +149,99 @@ DFL_INLINE void seg_term3(double x, double y, double z, const dfl_rfunc_batch *b
     *Vz += q * gz;
 }
 
+/* 3D segment with the slab trim, first stage: the carrier's s1, s2 and
+ * the trim's p1, p2, r, t of part k at (x, y, z). */
+DFL_INLINE void strip3_a(double x, double y, double z, const dfl_rfunc_batch *b, size_t k,
+                         double *s1, double *s2, double *p1, double *p2, double *r, double *t)
+{
+    const double wx = x - b->ax[k], wy = y - b->ay[k], wz = z - b->az[k];
+    const double vx = x - b->bx[k], vy = y - b->by[k], vz = z - b->bz[k];
+    *s1 = wx * b->nx[k] + wy * b->ny[k] + wz * b->nz[k];
+    *s2 = wx * b->mx[k] + wy * b->my[k] + wz * b->mz[k];
+    *p1 = wx * b->ex[k] + wy * b->ey[k] + wz * b->ez[k];
+    *p2 = -(vx * b->ex[k] + vy * b->ey[k] + vz * b->ez[k]);
+    *t = strip_t(*p1, *p2, r);
+}
+
+/* Second stage: adds part k's terms to *S, *Vx, *Vy, *Vz. */
+DFL_INLINE void strip3_b(const dfl_rfunc_batch *b, size_t k, int p, double s1, double s2,
+                         double p1, double p2, double r, double t, double *S, double *Vx,
+                         double *Vy, double *Vz)
+{
+    const double gx = s1 * b->nx[k] + s2 * b->mx[k], gy = s1 * b->ny[k] + s2 * b->my[k],
+                 gz = s1 * b->nz[k] + s2 * b->mz[k];
+    double qe;
+    const double q = strip_term(s1 * s1 + s2 * s2, p1, p2, r, t, p, S, &qe);
+    *Vx += q * gx - qe * b->ex[k];
+    *Vy += q * gy - qe * b->ey[k];
+    *Vz += q * gz - qe * b->ez[k];
+}
+
+/* The strip kernels' lane loop: DFL_BATCH_SUMS (batch_impl.h) with the
+ * first stage one part ahead (see strip_term).  Lane l keeps part k's
+ * first-stage values (C1 = f or s1, C2 = s2, P1, P2, R, T) while the loop
+ * computes part k + 1's and adds part k's terms, so each point still sums
+ * its parts in order with the same operations. */
+DFL_INLINE void strip_lanes(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out,
+                            const int p, const int dim)
+{
+    const size_t n = b->n, w = (size_t)dim + 1;
+    for (size_t i0 = 0; i0 < m; i0 += LANES) {
+        const size_t c = m - i0 < LANES ? m - i0 : LANES;
+        double X[LANES], Y[LANES], Z[LANES] = {0}, S[LANES] = {0}, Vx[LANES] = {0},
+               Vy[LANES] = {0}, Vz[LANES] = {0};
+        double C1[LANES], C2[LANES] = {0}, P1[LANES], P2[LANES], R[LANES], T[LANES];
+        /* a short last block repeats its last point in the spare lanes */
+        for (size_t l = 0; l < LANES; l++) {
+            const size_t i = i0 + (l < c ? l : c - 1);
+            X[l] = pts[(size_t)dim * i];
+            Y[l] = pts[(size_t)dim * i + 1];
+            if (dim == 3) Z[l] = pts[3 * i + 2];
+        }
+#pragma omp simd
+        for (int l = 0; l < LANES; l++) {
+            if (dim == 2) strip2_a(X[l], Y[l], b, 0, &C1[l], &P1[l], &P2[l], &R[l], &T[l]);
+            else strip3_a(X[l], Y[l], Z[l], b, 0, &C1[l], &C2[l], &P1[l], &P2[l], &R[l], &T[l]);
+        }
+        for (size_t k = 0; k + 1 < n; k++) {
+#pragma omp simd
+            for (int l = 0; l < LANES; l++) {
+                const double c1 = C1[l], c2 = C2[l], p1 = P1[l], p2 = P2[l], r = R[l], t = T[l];
+                if (dim == 2) {
+                    strip2_a(X[l], Y[l], b, k + 1, &C1[l], &P1[l], &P2[l], &R[l], &T[l]);
+                    strip2_b(b, k, p, c1, p1, p2, r, t, &S[l], &Vx[l], &Vy[l]);
+                } else {
+                    strip3_a(X[l], Y[l], Z[l], b, k + 1, &C1[l], &C2[l], &P1[l], &P2[l], &R[l],
+                             &T[l]);
+                    strip3_b(b, k, p, c1, c2, p1, p2, r, t, &S[l], &Vx[l], &Vy[l], &Vz[l]);
+                }
+            }
+        }
+#pragma omp simd
+        for (int l = 0; l < LANES; l++) {
+            if (dim == 2)
+                strip2_b(b, n - 1, p, C1[l], P1[l], P2[l], R[l], T[l], &S[l], &Vx[l], &Vy[l]);
+            else
+                strip3_b(b, n - 1, p, C1[l], C2[l], P1[l], P2[l], R[l], T[l], &S[l], &Vx[l],
+                         &Vy[l], &Vz[l]);
+        }
+        for (size_t l = 0; l < c; l++) {
+            out[w * (i0 + l)] = S[l];
+            out[w * (i0 + l) + 1] = Vx[l];
+            out[w * (i0 + l) + 2] = Vy[l];
+            if (dim == 3) out[w * (i0 + l) + 3] = Vz[l];
+        }
+    }
+}
+
 /* The strip and 3D kernels' sums: 1 + dim doubles per point (S, V). */
 DFL_INLINE void sums_gen_p(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out,
                            const int p, const int dim, const int strip)
 {
-    if (dim == 2)
-        DFL_BATCH_SUMS(b, m, pts, out, 2, seg_term_strip2(X[l], Y[l], b, k, p, &S[l], &Vx[l], &Vy[l]));
+    if (strip) strip_lanes(b, m, pts, out, p, dim);
     else
         DFL_BATCH_SUMS(b, m, pts, out, 3,
-                       seg_term3(X[l], Y[l], Z[l], b, k, p, strip, &S[l], &Vx[l], &Vy[l], &Vz[l]));
+                       seg_term3(X[l], Y[l], Z[l], b, k, p, &S[l], &Vx[l], &Vy[l], &Vz[l]));
 }
 
 DFL_INLINE void sums_strip2_body(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out)

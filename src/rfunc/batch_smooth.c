@@ -51,11 +51,18 @@
 #define SM_LO 1e-290
 #define SM_HI 1e290
 
-/* One segment k at one point (x, y, z): adds h^-p to *S and h^-(p+2) h grad h
- * to *Vx, *Vy (*Vz in 3D).  dim, strip and p are compile-time constants. */
-DFL_INLINE void smooth_term(double x, double y, double z, const dfl_rfunc_batch *b, size_t k,
-                            int p, int dim, int strip, double *S, double *Vx, double *Vy,
-                            double *Vz, double *r2lo, double *r2hi, double *qhi)
+/* One segment k at one point (x, y, z), first stage: the carrier (f1, f2,
+ * F), grad t = *kt (ux, uy, uz), r^2 = t^2 + F^2, *rr = 1/r and g, which
+ * ends in the division F^2/s.  dim and strip are compile-time constants.
+ *
+ * The part's chain (1/sqrt by Newton steps, then F^2/s, then 1/h^2 in
+ * pow_term) is longer than the out-of-order window covers at the kernel's
+ * throughput, so the lane loop (sums_sm_p) runs this stage one part ahead
+ * of smooth_b: the same operations per value, the parts summed in order. */
+DFL_INLINE void smooth_a(double x, double y, double z, const dfl_rfunc_batch *b, size_t k,
+                         int dim, int strip, double *f1o, double *f2o, double *Fo, double *kto,
+                         double *uxo, double *uyo, double *uzo, double *r2o, double *rro,
+                         double *go)
 {
     const double wx = x - b->ax[k], wy = y - b->ay[k], wz = dim == 3 ? z - b->az[k] : 0.0;
     const double vx = x - b->bx[k], vy = y - b->by[k], vz = dim == 3 ? z - b->bz[k] : 0.0;
@@ -91,7 +98,19 @@ DFL_INLINE void smooth_term(double x, double y, double z, const dfl_rfunc_batch 
     const double rr = rsqrt_newton(r2);
     const double sg = r2 * rr + fabs(t);
     /* g = F^2/s + (|t| - t): no select (see the top of the file) */
-    const double g = F2 / sg + (fabs(t) - t);
+    *go = F2 / sg + (fabs(t) - t);
+    *f1o = f1, *f2o = f2, *Fo = F, *kto = kt, *uxo = ux, *uyo = uy, *uzo = uz, *r2o = r2;
+    *rro = rr;
+}
+
+/* Second stage: adds h^-p to *S and h^-(p+2) h grad h to *Vx, *Vy (*Vz in
+ * 3D) from smooth_a's values of segment k.  dim and p are compile-time
+ * constants. */
+DFL_INLINE void smooth_b(const dfl_rfunc_batch *b, size_t k, int p, int dim, double f1,
+                         double f2, double F, double kt, double ux, double uy, double uz,
+                         double r2, double rr, double g, double *S, double *Vx, double *Vy,
+                         double *Vz, double *r2lo, double *r2hi, double *qhi)
+{
     const double qg = 0.25 * g;
     const double h2 = F + qg * g;
     const double c = qg * rr;
@@ -120,7 +139,9 @@ DFL_INLINE void smooth_term(double x, double y, double z, const dfl_rfunc_batch 
  * file gets S = NaN, which accept() (batch.c) sends to the per-point path;
  * checking once per point rather than per part keeps selects out of the
  * part loop, and asks only that the largest h^-(p+2) be normal (the
- * parts that dominate V), not every one. */
+ * parts that dominate V), not every one.  smooth_a runs one part ahead:
+ * the lanes keep part k's first-stage values while part k + 1's are
+ * computed. */
 DFL_INLINE void sums_sm_p(const dfl_rfunc_batch *b, size_t m, const double *pts, double *out,
                           const int p, const int dim, const int strip)
 {
@@ -129,6 +150,8 @@ DFL_INLINE void sums_sm_p(const dfl_rfunc_batch *b, size_t m, const double *pts,
         const size_t c = m - i0 < LANES ? m - i0 : LANES;
         double X[LANES], Y[LANES], Z[LANES] = {0}, S[LANES] = {0}, Vx[LANES] = {0},
                Vy[LANES] = {0}, Vz[LANES] = {0}, lo[LANES], hi[LANES], qh[LANES];
+        double F1[LANES], F2[LANES], FF[LANES], KT[LANES], UX[LANES], UY[LANES], UZ[LANES],
+            R2[LANES], RR[LANES], G[LANES];
         for (size_t l = 0; l < LANES; l++) {
             const size_t i = i0 + (l < c ? l : c - 1);
             X[l] = pts[(size_t)dim * i];
@@ -136,12 +159,25 @@ DFL_INLINE void sums_sm_p(const dfl_rfunc_batch *b, size_t m, const double *pts,
             if (dim == 3) Z[l] = pts[3 * i + 2];
             lo[l] = INFINITY, hi[l] = 0.0, qh[l] = 0.0;
         }
-        for (size_t k = 0; k < n; k++) {
 #pragma omp simd
-            for (int l = 0; l < LANES; l++)
-                smooth_term(X[l], Y[l], Z[l], b, k, p, dim, strip, &S[l], &Vx[l], &Vy[l], &Vz[l],
-                            &lo[l], &hi[l], &qh[l]);
+        for (int l = 0; l < LANES; l++)
+            smooth_a(X[l], Y[l], Z[l], b, 0, dim, strip, &F1[l], &F2[l], &FF[l], &KT[l], &UX[l],
+                     &UY[l], &UZ[l], &R2[l], &RR[l], &G[l]);
+        for (size_t k = 0; k + 1 < n; k++) {
+#pragma omp simd
+            for (int l = 0; l < LANES; l++) {
+                const double f1 = F1[l], f2 = F2[l], F = FF[l], kt = KT[l], ux = UX[l],
+                             uy = UY[l], uz = UZ[l], r2 = R2[l], rr = RR[l], g = G[l];
+                smooth_a(X[l], Y[l], Z[l], b, k + 1, dim, strip, &F1[l], &F2[l], &FF[l], &KT[l],
+                         &UX[l], &UY[l], &UZ[l], &R2[l], &RR[l], &G[l]);
+                smooth_b(b, k, p, dim, f1, f2, F, kt, ux, uy, uz, r2, rr, g, &S[l], &Vx[l],
+                         &Vy[l], &Vz[l], &lo[l], &hi[l], &qh[l]);
+            }
         }
+#pragma omp simd
+        for (int l = 0; l < LANES; l++)
+            smooth_b(b, n - 1, p, dim, F1[l], F2[l], FF[l], KT[l], UX[l], UY[l], UZ[l], R2[l],
+                     RR[l], G[l], &S[l], &Vx[l], &Vy[l], &Vz[l], &lo[l], &hi[l], &qh[l]);
         for (size_t l = 0; l < c; l++) {
             const int ok = lo[l] >= SM_LO && hi[l] <= SM_HI && qh[l] >= SM_LO;
             out[w * (i0 + l)] = ok ? S[l] : NAN;

@@ -28,6 +28,12 @@ typedef struct bench_floor {
     int has[BENCH_LEVELS];
     int has_fma;
     double fma[BENCH_LEVELS], muladd[BENCH_LEVELS], div[BENCH_LEVELS], sqrt[BENCH_LEVELS];
+    /* divsqrt: a mix of 2 divisions to 1 root (as the strip trims), ops/s;
+     * one_divider: the mix runs no faster than divisions and roots queued
+     * on one unit (its time >= 0.8 x the sum of their separate times), so
+     * a kernel's division and root times add up in its floor. */
+    double divsqrt[BENCH_LEVELS];
+    int one_divider[BENCH_LEVELS];
     double fma_peak;    /* max of fma[] (muladd's when no FMA): the machine's flop/s per core */
     double muladd_peak; /* max of muladd[] */
 } bench_floor;

@@ -8,6 +8,9 @@
  *            compute: no contraction, core/isa.h)
  *   div      divisions
  *   sqrt     square roots
+ *   divsqrt  two divisions to one root (8 + 4 chains): whether divisions
+ *            and roots share one unit (they do on current x86 cores), so
+ *            that a kernel's division and root times add up
  *
  * each a loop over NACC independent dependency chains (more than latency x
  * throughput on current x86 cores: FMA latency 4, 2 pipes, 8 in flight),
@@ -39,6 +42,10 @@
 #define MIX12(M, A) M(a0); A(a1); M(a2); A(a3); M(a4); A(a5); M(a6); A(a7); M(a8); A(a9); \
     M(a10); A(a11)
 
+/* the division/root mix: two dividing chains to one rooting chain */
+#define MIX3(D, R) D(a0); D(a1); R(a2); D(a3); D(a4); R(a5); D(a6); D(a7); R(a8); D(a9); \
+    D(a10); R(a11)
+
 /* One loop family per level: T the register type, P the intrinsic prefix,
  * SFX its suffix (pd, sd), TGT the target attribute. */
 #define FLOOR_LOOPS(lv, T, P, SFX, TGT, TGTF)                                             \
@@ -69,6 +76,16 @@
         for (long i = 0; i < n; i++) {                                                    \
             __asm__("" ::: "memory");                                                     \
             STEP12(DIV_S);                                                                \
+        }                                                                                 \
+        return SUM12(ADD_F)[0];                                                           \
+    }                                                                                     \
+    TGT static double divsqrt_##lv(long n)                                                \
+    {                                                                                     \
+        CHAINS(T, P##_set1_pd, 1.3);                                                      \
+        const T c = P##_set1_pd(2.0);                                                     \
+        for (long i = 0; i < n; i++) {                                                    \
+            __asm__("" ::: "memory");                                                     \
+            MIX3(DIV_S, SQRT_S);                                                          \
         }                                                                                 \
         return SUM12(ADD_F)[0];                                                           \
     }                                                                                     \
@@ -155,11 +172,11 @@ void bench_floor_measure(bench_floor *f)
     __builtin_cpu_init();
     const int fma = __builtin_cpu_supports("fma");
     f->has_fma = fma;
-    const loop_fn loops[BENCH_LEVELS][4] = {
-        {fma_scalar, muladd_scalar, div_scalar, sqrt_scalar},
-        {fma_sse2, muladd_sse2, div_sse2, sqrt_sse2},
-        {fma_avx2, muladd_avx2, div_avx2, sqrt_avx2},
-        {fma_avx512, muladd_avx512, div_avx512, sqrt_avx512}};
+    const loop_fn loops[BENCH_LEVELS][5] = {
+        {fma_scalar, muladd_scalar, div_scalar, sqrt_scalar, divsqrt_scalar},
+        {fma_sse2, muladd_sse2, div_sse2, sqrt_sse2, divsqrt_sse2},
+        {fma_avx2, muladd_avx2, div_avx2, sqrt_avx2, divsqrt_avx2},
+        {fma_avx512, muladd_avx512, div_avx512, sqrt_avx512, divsqrt_avx512}};
     const int has[BENCH_LEVELS] = {1, 1, __builtin_cpu_supports("avx2"),
                                    __builtin_cpu_supports("avx512f")};
     double sink = 0;
@@ -178,6 +195,11 @@ void bench_floor_measure(bench_floor *f)
         f->muladd[lv] = ops / time_loop(loops[lv][1], &sink);
         f->div[lv] = ops / time_loop(loops[lv][2], &sink);
         f->sqrt[lv] = ops / time_loop(loops[lv][3], &sink);
+        f->divsqrt[lv] = ops / time_loop(loops[lv][4], &sink);
+        /* per op of the mix: 2/3 of a division's time and 1/3 of a root's
+         * if they queue on one unit, their max if they do not */
+        const double t_one = (2.0 / 3.0) / f->div[lv] + (1.0 / 3.0) / f->sqrt[lv];
+        f->one_divider[lv] = 1.0 / f->divsqrt[lv] >= 0.8 * t_one;
         char name[96];
         snprintf(name, sizeof name, "floor.%s.fma", level_names[lv]);
         bench_report(name, f->fma[lv] / 1e9, "GFLOP/s (2 per FMA)");
@@ -187,6 +209,10 @@ void bench_floor_measure(bench_floor *f)
         bench_report(name, f->div[lv] / 1e9, "G div/s");
         snprintf(name, sizeof name, "floor.%s.sqrt", level_names[lv]);
         bench_report(name, f->sqrt[lv] / 1e9, "G sqrt/s");
+        snprintf(name, sizeof name, "floor.%s.divsqrt", level_names[lv]);
+        bench_report(name, f->divsqrt[lv] / 1e9,
+                     f->one_divider[lv] ? "G div-or-sqrt/s (2:1 mix; one unit: times add up)"
+                                        : "G div-or-sqrt/s (2:1 mix; separate units)");
         if (!(f->fma_peak >= f->fma[lv])) f->fma_peak = f->fma[lv];
         if (!(f->muladd_peak >= f->muladd[lv])) f->muladd_peak = f->muladd[lv];
     }
@@ -204,6 +230,10 @@ double bench_floor_fraction(const bench_floor *f, int level, double rate, const 
     const double t_sqrt = op->sqrt / f->sqrt[level];
     double t = t_ma;
     *bound = "mul+add";
+    if (f->one_divider[level] && op->div > 0 && op->sqrt > 0) {
+        if (t_div + t_sqrt > t) t = t_div + t_sqrt, *bound = "div+sqrt (one divider)";
+        return rate * t;
+    }
     if (t_div > t) t = t_div, *bound = "div";
     if (t_sqrt > t) t = t_sqrt, *bound = "sqrt";
     return rate * t;

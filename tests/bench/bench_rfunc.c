@@ -244,13 +244,14 @@ typedef struct kind_job {
     const double *pts;
     size_t m;
     double *v, *g;
+    int threads;
 } kind_job;
 
 static void run_points(void *a)
 {
     kind_job *j = a;
     /* chunks of 256 points, in parallel: what the samplers do */
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(j->threads)
     for (size_t i = 0; i < j->m; i += 256) {
         const size_t c = j->m - i < 256 ? j->m - i : 256;
         const int d = j->f->dim;
@@ -272,10 +273,11 @@ static double *kind_points(int dim, int n)
     return pts;
 }
 
-/* Rate of f at n x n points: parts x points / best time. */
-static double kind_rate(const dfl_field *f, size_t parts, int n, int reps)
+/* Rate of f at n x n points on `threads` threads: parts x points / best
+ * time. */
+static double kind_rate(const dfl_field *f, size_t parts, int n, int reps, int threads)
 {
-    kind_job j = {f, kind_points(f->dim, n), (size_t)n * (size_t)n, NULL, NULL};
+    kind_job j = {f, kind_points(f->dim, n), (size_t)n * (size_t)n, NULL, NULL, threads};
     j.v = malloc(j.m * sizeof *j.v);
     j.g = malloc(j.m * (size_t)f->dim * sizeof *j.g);
     const double r = (double)j.m * (double)parts / bench_best(reps, run_points, &j);
@@ -443,44 +445,58 @@ typedef struct kind_row {
     size_t parts;
     double aim; /* part-evals/s the batched kernel aims at (issue: all threads) */
     const char *why; /* why it stays on the per-point path, or below its aim when batched */
+    /* Operations per part evaluation at p = 2 (value + gradient; mul, add
+     * (add, sub), div, sqrt; compares, min/max, |.| and blends are not
+     * counted), read off the AVX-512 kernel's p = 2 loop (objdump -d of
+     * build/src/rfunc/batch_*.o: its vmulpd, vaddpd + vsubpd, vdivpd,
+     * vsqrtpd per vector of parts); all zero: not counted (per-point
+     * path, or a kernel whose loops depend on the input: regions' edge
+     * counts, mixed kinds, the corrected join's vertex layouts).  The
+     * R-conjunction's loop runs two vectors of points (batch_rconj.c
+     * RC_LANES): its counts are half the loop's. */
+    bench_ops op;
+    /* What bounds it beyond the operation counts: the dependency chain
+     * through the divider (a division or root waiting on another), where
+     * that is why the kernel sits below its floor. */
+    const char *chain;
 } kind_row;
 
-static void bench_kinds(void)
+static void bench_kinds(bench_ctx *c)
 {
     static const kind_row rows[] = {
         {"strip2", "strip2", k_strip2, NSEG, 1e9,
-         "per part 24 muls, 2 divisions and a sqrt on the divider"},
+         "per part 24 mul, 20 add, 2 divisions and a root, the three on one divider", {24, 20, 2, 1}, "sqrt -> division (t) -> division (1/(r h^2)) in series per part"},
         {"disk3", "disk3", k_disk3, NSEG, 1e9,
-         "per part 27 muls (3D dot products with two normals) and a division; ~6 cycles/part/core measured"},
+         "per part 27 muls (3D dot products with two normals) and a division; ~6 cycles/part/core measured", {27, 28, 1, 0}, NULL},
         {"strip3", "strip3", k_strip3, NSEG, 1e9,
-         "per part 38 muls, 2 divisions and a sqrt; ~13 cycles/part/core measured"},
-        {"disk_smooth2", NULL, k_smooth2, NSEG, 1e9, "eq. 5 (batch_smooth.c): ~36 mul (13 in 1/sqrt), 2 div per part vs ~17 mul, 1 div for disk2"},
-        {"strip_smooth2", NULL, k_strip_smooth2, NSEG, 1e9, "eq. 5 (batch_smooth.c): ~55 mul (26 in two 1/sqrt), 3 div per part"},
-        {"disk_smooth3", NULL, k_smooth3, NSEG, 1e9, "eq. 5 (batch_smooth.c): ~48 mul (13 in 1/sqrt), 2 div per part"},
+         "per part 38 mul, 33 add, 2 divisions and a root, the three on one divider", {38, 33, 2, 1}, "sqrt -> division (t) -> division (1/(r h^2)) in series per part"},
+        {"disk_smooth2", NULL, k_smooth2, NSEG, 1e9, "eq. 5 (batch_smooth.c): ~36 mul (13 in 1/sqrt), 2 div per part vs ~17 mul, 1 div for disk2", {36, 25, 2, 0}, "two divisions in series per part"},
+        {"strip_smooth2", NULL, k_strip_smooth2, NSEG, 1e9, "eq. 5 (batch_smooth.c): ~55 mul (26 in two 1/sqrt), 3 div per part", {55, 34, 3, 0}, "three divisions in series per part"},
+        {"disk_smooth3", NULL, k_smooth3, NSEG, 1e9, "eq. 5 (batch_smooth.c): ~48 mul (13 in 1/sqrt), 2 div per part", {49, 37, 2, 0}, "two divisions in series per part"},
         {"rconj2", NULL, k_rconj2, NSEG, 1e9,
          "two roots per part (h and (1 + r^2)^(1/2), Newton steps): 49 multiplications and 2"
-         " divisions per part against R-equivalence's 15"},
+         " divisions per part against R-equivalence's 15", {49, 28, 2, 0}, "the fold across parts is one chain per point (each part waits on the last): 16 points side by side"},
         {"rconj3", NULL, k_rconj3, NSEG, 1e9,
          "as rconj2 with the 3D carrier (two normals): 62 multiplications and 2 divisions per"
-         " part"},
+         " part", {62, 39, 2, 0}, "the fold across parts is one chain per point (each part waits on the last): 16 points side by side"},
         {"corrected2", NULL, k_corrected2, NSEG, 1e9,
          "per part a segment and a guarded vertex term: ~26 mul, 2 div, ~45 add/cmp/blend"
-         " (batch_corrected.c): ~2.5x the disk2 kernel's work"},
+         " (batch_corrected.c): ~2.5x the disk2 kernel's work", {0, 0, 0, 0}, NULL},
         {"corrected2_eq20", NULL, k_corrected2_eq20, NSEG, 1e9,
-         "per part a segment and a vertex term: ~25 mul, 2 div, ~25 add"},
+         "per part a segment and a vertex term: ~25 mul, 2 div, ~25 add", {0, 0, 0, 0}, NULL},
         {"triangles_prism", NULL, k_tri_prism, NTRI, 4e8,
          "57 mul, 47 add, 2 sqrt, 1 div per triangle (vsqrtpd ymm ~9.5 cycles), ~48"
          " instructions per part and lane: ~14 cycles per part per core measured; 4e8 on 2"
-         " cores needs 12.25"},
+         " cores needs 12.25", {57, 47, 1, 2}, "three phases through stack scratch: two roots, then the division"},
         {"triangles_conditional", NULL, k_tri_cond, NTRI, 4e8,
          "66 mul, 53 add, 2 sqrt, 1 div per triangle, ~55 instructions per part and lane:"
-         " ~16 cycles per part per core measured; 4e8 on 2 cores needs 12.25"},
-        {"points", NULL, k_points, NSEG, 1e9, NULL},
+         " ~16 cycles per part per core measured; 4e8 on 2 cores needs 12.25", {66, 53, 1, 2}, "three phases through stack scratch: two roots, then the division"},
+        {"points", NULL, k_points, NSEG, 1e9, NULL, {5, 7, 1, 0}, NULL},
         {"regions", NULL, k_regions, NREG, 1e9,
          "23 mul, 1 div per square (multiply floor 2.9 cycles), ~30 instructions per part and"
-         " lane: ~7 cycles per part per core measured; 1e9 on 2 cores needs 4.9"},
+         " lane: ~7 cycles per part per core measured; 1e9 on 2 cores needs 4.9", {0, 0, 0, 0}, NULL},
         {"mixed2", NULL, k_mixed2, NSEG + NSEG / 10 + NREG / 4, 1e9,
-         "the sum of the disk, point and region kernels (the regions' edge loops); ~5 cycles/part/core measured"},
+         "the sum of the disk, point and region kernels (the regions' edge loops); ~5 cycles/part/core measured", {0, 0, 0, 0}, NULL},
     };
     for (size_t i = 0; i < sizeof rows / sizeof rows[0]; i++) {
         const kind_row *k = &rows[i];
@@ -493,8 +509,9 @@ static void bench_kinds(void)
         const bool batched = dfl_rfield_is_fast(&fast);
         char name[160], unit[160];
         const int n = batched ? 160 : 48;
-        const double rf = kind_rate(&fast, k->parts, n, 3);
-        const double rs = batched ? kind_rate(&slow, k->parts, 48, 3) : rf;
+        const int threads = omp_get_max_threads();
+        const double rf = kind_rate(&fast, k->parts, n, 3, threads);
+        const double rs = batched ? kind_rate(&slow, k->parts, 48, 3, threads) : rf;
         snprintf(name, sizeof name, "bs04.rfunc.kind.%s.p2.part_evals", k->name);
         snprintf(unit, sizeof unit, "part-evals/s (%s; aim: >= %.0e, %s)",
                  batched ? "batched" : "per-point path", k->aim,
@@ -506,6 +523,16 @@ static void bench_kinds(void)
             snprintf(name, sizeof name, "bs04.rfunc.kind.%s.p2.vs_per_point", k->name);
             bench_report(name, rf / rs, "x");
             if (rf < k->aim && k->why) printf("# %s below its aim: %s\n", k->name, k->why);
+            /* the gap to the floor: one thread, as disk2's rows above */
+            const double r1 = kind_rate(&fast, k->parts, n, 3, 1);
+            snprintf(name, sizeof name, "bs04.rfunc.kind.%s.p2.part_evals.one_thread", k->name);
+            bench_report(name, r1, "part-evals/s");
+            if (k->op.mul + k->op.add + k->op.div + k->op.sqrt > 0) {
+                bench_kernel_floor(c, name, r1, &k->op);
+            } else {
+                printf("# %s: operations not counted, no floor fraction\n", k->name);
+            }
+            if (k->chain) printf("# %s: dependency chain: %s\n", k->name, k->chain);
         } else {
             printf("# %s stays on the per-point path: %s\n", k->name,
                    k->why ? k->why : "no batched kernel takes it");
@@ -528,7 +555,7 @@ void bench_rfunc(bench_ctx *c)
            bench_level_name(bench_active_level()), dfl_rfunc_batch_simd_width());
     bench_order(2, c);
     bench_order(7, c);
-    bench_kinds();
+    bench_kinds(c);
     printf("# Gap to the floor.  floor_fraction: the kernel's multiplications and additions\n"
            "# (no contraction: FMA is not used, core/isa.h) and divisions at the one-thread\n"
            "# rate against the measured mul/add and divide throughput of the kernels' ISA\n"
