@@ -73,7 +73,9 @@ const char *bench_level_name(int level);
 int bench_active_level(void);
 /* Prints name.floor_fraction (of the active level's floor, with its
  * bound) and name.fma_peak_fraction for a one-thread rate of op; returns
- * the FMA-peak fraction. */
+ * the floor fraction, which the summary's floor_fraction column holds
+ * (the FMA-peak fraction would understate a kernel bound by adds,
+ * divisions or roots). */
 double bench_kernel_floor(const bench_ctx *c, const char *name, double rate1,
                           const bench_ops *op);
 /* Appends a summary row (NULL peer: none; NAN values: empty). */

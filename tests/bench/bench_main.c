@@ -88,7 +88,7 @@ double bench_kernel_floor(const bench_ctx *c, const char *name, double rate1, co
     bench_report(buf, ff, unit);
     snprintf(buf, sizeof buf, "%s.fma_peak_fraction", name);
     bench_report(buf, fp, "of the machine's FMA peak (one thread)");
-    return fp;
+    return ff;
 }
 
 void bench_summary_add(bench_ctx *c, const char *measure, double dflab, const char *peer,
