@@ -6,18 +6,11 @@
 #include <string.h>
 
 #include "io/config.h"
-
-static dfl_cfg *parse(const char *text)
-{
-    dfl_cfg *cfg;
-    dfl_err err;
-    cr_assert_eq(dfl_cfg_parse_string("v.ini", text, &cfg, &err), DFL_OK, "%s", err.msg);
-    return cfg;
-}
+#include "util/config_util.h"
 
 Test(config_log, validating_only_after_validate_only)
 {
-    dfl_cfg *cfg = parse("[a]\nk = 1\n");
+    dfl_cfg *cfg = cfgu_parse("[a]\nk = 1\n");
     cr_expect_not(dfl_cfg_validating(cfg));
     cr_expect_not(dfl_cfg_validated(cfg));
     long v;
@@ -34,13 +27,13 @@ Test(config_log, validating_only_after_validate_only)
 
 Test(config_log, a_validation_pass_names_an_unknown_key_first)
 {
-    dfl_cfg *cfg = parse("[a]\nk = 1\ntypo = 2\n");
+    dfl_cfg *cfg = cfgu_parse("[a]\nk = 1\ntypo = 2\n");
     dfl_cfg_validate_only(cfg);
     long v;
     dfl_err err;
     cr_assert_eq(dfl_cfg_int(cfg, "a", "k", 0, 9, &v, &err), DFL_OK, "%s", err.msg);
     cr_expect_eq(dfl_cfg_check_used(cfg, &err), DFL_E_INPUT);
-    cr_expect(strstr(err.msg, "typo") && strstr(err.msg, "v.ini:3"), "%s", err.msg);
+    cr_expect(strstr(err.msg, "typo") && strstr(err.msg, "t.ini:3"), "%s", err.msg);
     cr_expect_not(dfl_cfg_validated(cfg));
     cr_expect(dfl_cfg_validating(cfg));
     dfl_cfg_free(cfg);
@@ -49,7 +42,7 @@ Test(config_log, a_validation_pass_names_an_unknown_key_first)
 /* a sweep point is a config of its own: a pass is set per copy */
 Test(config_log, a_sweep_point_copy_is_not_a_pass_of_its_own)
 {
-    dfl_cfg *cfg = parse("[a]\nk = 1, 2\n");
+    dfl_cfg *cfg = cfgu_parse("[a]\nk = 1, 2\n");
     dfl_cfg_validate_only(cfg);
     dfl_cfg *pt;
     dfl_err err;

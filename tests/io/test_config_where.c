@@ -93,18 +93,10 @@ Test(config, claim_section_marks_one_section)
     dfl_cfg_free(c);
 }
 
-static dfl_cfg *parse_used(const char *text)
-{
-    dfl_cfg *cfg;
-    dfl_err err;
-    cr_assert_eq(dfl_cfg_parse_string("v.ini", text, &cfg, &err), DFL_OK, "%s", err.msg);
-    return cfg;
-}
-
 /* dfl_cfg_used: present and read; absent is false; marks nothing */
 Test(config, used_is_present_and_read)
 {
-    dfl_cfg *cfg = parse_used("[a]\nk = 1\nj = 2\n");
+    dfl_cfg *cfg = cfgu_parse("[a]\nk = 1\nj = 2\n");
     cr_expect_not(dfl_cfg_used(cfg, "a", "k"));
     cr_expect_not(dfl_cfg_used(cfg, "a", "nope"));
     long v;

@@ -13,7 +13,8 @@
 static const ta_shape torus = {TA_TORUS, {0.05, -0.02, 0.03}, {0, 0.6, 0.8}, 0.6, 0.25};
 static const ta_shape sphere = {TA_SPHERE, {0.02, -0.03, 0.01}, {0, 0, 1}, 0.5, 0};
 
-static void build(const ta_shape *s, int order, int res, dfl_proxy_storage st, dfl_proxy_grid *g)
+static void build_at(const ta_shape *s, int order, int res, dfl_proxy_storage st,
+                     dfl_proxy_position pos, dfl_proxy_grid *g)
 {
     dfl_proxy_input in;
     ta_input(s, &in);
@@ -22,7 +23,16 @@ static void build(const ta_shape *s, int order, int res, dfl_proxy_storage st, d
     o.order = order;
     o.res = res;
     o.storage = st;
+    o.position = pos;
     cr_assert_eq(dfl_proxy_grid_build(&in, &o, g, NULL), DFL_OK);
+}
+
+/* The grid at the default footpoint position. */
+static void build(const ta_shape *s, int order, int res, dfl_proxy_storage st, dfl_proxy_grid *g)
+{
+    dfl_proxy_build_opts o;
+    dfl_proxy_build_opts_default(&o);
+    build_at(s, order, res, st, o.position, g);
 }
 
 Test(proxy_filter, names_and_check)
@@ -291,16 +301,8 @@ Test(proxy_filter, nearest_is_the_cell_proxy_byte_for_byte)
     for (int order = 1; order <= 2; order++)
         for (int pos = 0; pos < 2; pos++)
             for (int st = 0; st < DFL_PROXY_STORAGE_COUNT; st += 2) {
-                dfl_proxy_input in;
-                ta_input(&torus, &in);
-                dfl_proxy_build_opts bo;
-                dfl_proxy_build_opts_default(&bo);
-                bo.order = order;
-                bo.res = 8;
-                bo.storage = (dfl_proxy_storage)st;
-                bo.position = (dfl_proxy_position)pos;
                 dfl_proxy_grid g;
-                cr_assert_eq(dfl_proxy_grid_build(&in, &bo, &g, NULL), DFL_OK);
+                build_at(&torus, order, 8, (dfl_proxy_storage)st, (dfl_proxy_position)pos, &g);
                 for (int variant = 0; variant < 4 * DFL_PROXY_CLIP_COUNT; variant++) {
                     dfl_proxy_filter_opts o;
                     dfl_proxy_filter_opts_default(DFL_PROXY_NEAREST, &g, &o);
@@ -460,16 +462,8 @@ Test(proxy_filter, blends_are_the_corner_proxies_byte_for_byte)
     for (int order = 1; order <= 2; order++)
         for (int pos = 0; pos < 2; pos++)
             for (int st = 0; st < DFL_PROXY_STORAGE_COUNT; st++) {
-                dfl_proxy_input in;
-                ta_input(&torus, &in);
-                dfl_proxy_build_opts bo;
-                dfl_proxy_build_opts_default(&bo);
-                bo.order = order;
-                bo.res = 8;
-                bo.storage = (dfl_proxy_storage)st;
-                bo.position = (dfl_proxy_position)pos;
                 dfl_proxy_grid g;
-                cr_assert_eq(dfl_proxy_grid_build(&in, &bo, &g, NULL), DFL_OK);
+                build_at(&torus, order, 8, (dfl_proxy_storage)st, (dfl_proxy_position)pos, &g);
                 /* cell (3, 3, 4) failed: its scalars NaN */
                 const size_t bad = 3 + 8 * (3 + 8 * 4);
                 for (int k = 0; k < g.nscalar; k++) {
