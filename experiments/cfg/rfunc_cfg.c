@@ -73,6 +73,20 @@ static dfl_status vertex_polyline(const dfl_cfg *cfg, const char *sec, dfl_rfunc
     return dfl_cfg_points(cfg, sec, "vertices", s->dim, s->closed ? 3 : 2, &s->v, &s->n, err);
 }
 
+/* Appends M's triangles to s->tris as 9 coordinates each. */
+static dfl_status append_tris(dfl_rfunc_field_spec *s, const dfl_trimesh *M, dfl_err *err)
+{
+    double *t = realloc(s->tris, (s->ntris + M->ntris) * 9 * sizeof *t);
+    if (!t) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    s->tris = t;
+    for (size_t i = 0; i < M->ntris; i++)
+        for (int c = 0; c < 3; c++)
+            memcpy(t + (s->ntris + i) * 9 + 3 * c, M->verts + 3 * M->tris[3 * i + c],
+                   3 * sizeof *t);
+    s->ntris += M->ntris;
+    return DFL_OK;
+}
+
 /* Appends the triangles of a [shape] kind = mesh section (geom/mesh.h) as
  * they are: a mesh is its triangles, there is nothing to triangulate and no
  * eps; s->mesh stays empty (bs04_surface's patch data is for surfaces). */
@@ -84,19 +98,9 @@ static dfl_status mesh_tris(const dfl_cfg *cfg, const char *sec, dfl_rfunc_field
     if (st) return dfl_cfg_err_at(cfg, sec, "surface", st, err);
     const dfl_trimesh *M = dfl_shape_mesh_trimesh(&shape);
     assert(M); /* kind = mesh */
-    double *t = realloc(s->tris, (s->ntris + M->ntris) * 9 * sizeof *t);
-    if (!t) {
-        dfl_shape_free(&shape);
-        return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
-    }
-    s->tris = t;
-    for (size_t i = 0; i < M->ntris; i++)
-        for (int c = 0; c < 3; c++)
-            memcpy(t + (s->ntris + i) * 9 + 3 * c, M->verts + 3 * M->tris[3 * i + c],
-                   3 * sizeof *t);
-    s->ntris += M->ntris;
+    st = append_tris(s, M, err);
     dfl_shape_free(&shape);
-    return DFL_OK;
+    return st;
 }
 
 /* Appends the triangles of the surface named by [sec] surface (kind
@@ -129,17 +133,10 @@ static dfl_status surface_tris(const dfl_cfg *cfg, const char *sec, dfl_rfunc_fi
     st = dfl_polygonize_surface(&S, s->eps, (size_t)max_tris, &M, err);
     dfl_surface_set_free(&S);
     if (st) return dfl_cfg_err_at(cfg, sec, "eps", st, err);
-    double *t = realloc(s->tris, (s->ntris + M.ntris) * 9 * sizeof *t);
-    if (!t) {
+    if ((st = append_tris(s, &M, err))) {
         dfl_trimesh_free(&M);
-        return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+        return st;
     }
-    s->tris = t;
-    for (size_t i = 0; i < M.ntris; i++)
-        for (int c = 0; c < 3; c++)
-            memcpy(t + (s->ntris + i) * 9 + 3 * c, M.verts + 3 * M.tris[3 * i + c],
-                   3 * sizeof *t);
-    s->ntris += M.ntris;
     s->mesh = M;
     return DFL_OK;
 }
