@@ -365,7 +365,12 @@ static dfl_status study_from_cfg(const dfl_cfg *cfg, study_cfg *s, dfl_err *err)
                 dfl_cost c;
                 memset(&c, 0, sizeof c);
                 st = dfl_field_cost_from_cfg(w, s->m[i].sec, &c, err);
-                if (!st && dfl_cfg_validating(cfg)) st = method_validate(w, &s->m[i], err);
+                /* the factory pass once per method and shape: the other values
+                 * change only the swept key, whose range the cost reader
+                 * has just checked (a shape may change the keys a kind
+                 * reads, a value does not) */
+                if (!st && v == 0 && dfl_cfg_validating(cfg))
+                    st = method_validate(w, &s->m[i], err);
                 dfl_cfg_free(w);
                 if (st) return value_err(cfg, &s->m[i], s->m[i].values.w[v], st, err);
             }
