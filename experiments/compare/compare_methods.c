@@ -124,6 +124,20 @@ typedef struct method {
 static const char *const distance_names[] = {"signed", "unsigned"};
 static const char *const faces_names[] = {"none", "count", "size"};
 
+/* Every word of [sec] key is a shape kind (geom/shape.h's table): a typo
+ * in shape_kinds or skip_kinds would silently select or skip nothing. */
+static dfl_status kinds_known(const dfl_cfg *cfg, const char *sec, const char *key,
+                              const words *w, dfl_err *err)
+{
+    for (size_t i = 0; i < w->n; i++) {
+        dfl_shape_kind k;
+        dfl_err e2;
+        if (dfl_shape_kind_parse(w->w[i], &k, &e2) != DFL_OK)
+            return dfl_cfg_reject(cfg, sec, key, err, "%s", e2.msg);
+    }
+    return DFL_OK;
+}
+
 static dfl_status method_from_cfg(const dfl_cfg *cfg, const char *sec, method *m, dfl_err *err)
 {
     memset(m, 0, sizeof *m);
@@ -146,6 +160,8 @@ static dfl_status method_from_cfg(const dfl_cfg *cfg, const char *sec, method *m
     if (!st) st = dfl_cfg_string_opt(cfg, sec, "shape_key", "shape", &m->shape_key, err);
     if (!st) st = words_from_cfg(cfg, sec, "shape_kinds", "", 0, &m->shape_kinds, err);
     if (!st) st = words_from_cfg(cfg, sec, "skip_kinds", "", 0, &m->skip_kinds, err);
+    if (!st) st = kinds_known(cfg, sec, "shape_kinds", &m->shape_kinds, err);
+    if (!st) st = kinds_known(cfg, sec, "skip_kinds", &m->skip_kinds, err);
     if (!st) st = words_from_cfg(cfg, sec, "box", "lo hi", 0, &m->box, err);
     if (!st) st = dfl_cfg_enum_opt(cfg, sec, "distance", distance_names, 2, 0, &dist, err);
     if (!st) st = dfl_cfg_enum_opt(cfg, sec, "faces", faces_names, 3, 0, &m->faces, err);

@@ -241,6 +241,10 @@ case("compare: a typo in the last method is named at plan", ["plan", QUICK, "--s
      "m_vdb.samplr=box"], ["m_vdb", "samplr", "unknown key"])
 case("compare: a bad value of a method key is named at plan", ["plan", QUICK, "--set",
      "m_vdb.sampler=cubic"], ["m_vdb.sampler", "box|quadratic|staggered"])
+case("compare: an unknown shape kind in skip_kinds is named", ["plan", QUICK, "--set",
+     "m_gp_tri.skip_kinds=spheer"], ["m_gp_tri.skip_kinds", "unknown shape kind 'spheer'"])
+case("compare: an unknown shape kind in shape_kinds is named", ["plan", QUICK, "--set",
+     "m_rfunc.shape_kinds=bspline"], ["m_rfunc.shape_kinds", "unknown shape kind 'bspline'"])
 case("missing config", ["run", "{D}/nope.ini", "--out", "{D}/o"], ["nope.ini", "cannot open"])
 case("missing CONFIG", ["run"], ["missing CONFIG.ini"])
 case("two configs", ["run", "{D}/bad.ini", "{D}/bad.ini"], ["unexpected argument"], ini=GOOD)
