@@ -484,6 +484,13 @@ dfl_status dfl_pht_validate_cells(const dfl_pht_spline *s, const dfl_shape *shap
         out->off_max = fmax(out->off_max, p->off_max);
         out->medial_max = fmax(out->medial_max, p->medial_max);
     }
+    /* a maximum over no point is no number: NaN, not 0 (0 would read as an
+     * exact fit, e.g. cv_band_max of a band of width 0 or of a box the
+     * medial axis misses) */
+    if (!out->n) out->max = out->gmax = NAN;
+    if (!out->band) out->band_max = NAN;
+    if (!out->off) out->off_max = NAN;
+    if (!out->medial) out->medial_max = NAN;
     free(parts);
     return DFL_OK;
 }

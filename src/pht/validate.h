@@ -119,13 +119,13 @@ typedef struct dfl_pht_cellval_opts {
 typedef struct dfl_pht_cellval {
     size_t n;            /* points with a finite exact SDF (all below count these) */
     size_t skipped;      /* points where the exact SDF is not finite */
-    double max, gmax;    /* whole domain: max |f - d|, max |grad f - grad d| */
+    double max, gmax;    /* whole domain: max |f - d|, max |grad f - grad d| (NaN if n = 0) */
     size_t band;         /* points in the band of width w */
-    double band_max;     /* max |f - d| over them (0 if none) */
+    double band_max;     /* max |f - d| over them (NaN if none) */
     size_t off;          /* points off the band */
-    double off_max;      /* max |f - d| over them (0 if none) */
+    double off_max;      /* max |f - d| over them (NaN if none) */
     size_t medial;       /* near-medial points (x_m and its offsets) */
-    double medial_max;   /* max |f - d| over them (0 if none) */
+    double medial_max;   /* max |f - d| over them (NaN if none) */
     size_t medial_cells; /* leaf cells that got the dense sub-grid */
     size_t above;        /* points with |f - d| > eps */
     size_t nonfinite;    /* of n: points where the spline's value or gradient is

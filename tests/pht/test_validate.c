@@ -190,6 +190,33 @@ Test(pht_validate, cell_protocol_max_is_within_10_percent_of_a_dense_probe_circl
     dfl_shape_free(&s);
 }
 
+/* validate.h: a maximum over an empty set is NaN, not 0.  Band width 0
+ * puts every point off the band: band 0, band_max NaN, off_max = max.  A
+ * circle of radius 0.3 centred in the box has its medial point (the centre)
+ * inside, so the medial set is not empty and its max is a number. */
+Test(pht_validate, the_max_over_an_empty_set_is_nan)
+{
+    dfl_shape s;
+    const double c[2] = {0.43, 0.521};
+    cr_assert_eq(dfl_shape_circle(c, 0.3, &s, NULL), DFL_OK);
+    dfl_pht_source *src;
+    dfl_pht_fit fit;
+    small_fit(&s, 1e-3, 4, &src, &fit);
+    dfl_pht_cellval_opts o;
+    dfl_pht_cellval_opts_default(2, &o);
+    o.band = 0.0;
+    dfl_pht_cellval v;
+    cr_assert_eq(dfl_pht_validate_cells(fit.spline, &s, &o, &v, NULL), DFL_OK);
+    cr_assert_eq(v.band, 0);
+    cr_assert(isnan(v.band_max), "band_max %g over no point", v.band_max);
+    cr_assert_eq(v.off, v.n);
+    cr_assert(v.n > 0 && v.off_max == v.max && isfinite(v.max));
+    cr_assert(v.medial > 0 && isfinite(v.medial_max));
+    dfl_pht_fit_free(&fit);
+    dfl_pht_source_free(src);
+    dfl_shape_free(&s);
+}
+
 Test(pht_validate, cell_protocol_max_is_within_10_percent_of_a_dense_probe_deeper)
 {
     dfl_shape s;
