@@ -81,6 +81,10 @@ double bench_kernel_floor(const bench_ctx *c, const char *name, double rate1,
 /* Appends a summary row (NULL peer: none; NAN values: empty). */
 void bench_summary_add(bench_ctx *c, const char *measure, double dflab, const char *peer,
                        double peer_value, double ratio, double floor_fraction);
+/* Sets the peer, its value and the ratio dflab / peer_value of the summary
+ * row named measure, added earlier by another group (the proxy builds' rows
+ * get the OpenVDB fill); nothing if no such row (that group did not run). */
+void bench_summary_peer(bench_ctx *c, const char *measure, const char *peer, double peer_value);
 /* Wall seconds (monotonic). */
 double bench_now(void);
 /* The CPU's model name from /proc/cpuinfo into buf ("unknown" if none). */

@@ -95,6 +95,12 @@ void bench_summary_add(bench_ctx *c, const char *measure, double dflab, const ch
                        double peer_value, double ratio, double floor_fraction)
 {
     if (c->nrows == BENCH_ROWS) abort(); /* the table is sized for the measures */
+    /* the CSV is written without quoting: a comma or quote in a name, or
+     * a name cut to its field, is the bench's own bug */
+    if (strpbrk(measure, ",\"\n") || (peer && strpbrk(peer, ",\"\n")) ||
+        strlen(measure) >= sizeof c->rows[0].measure ||
+        (peer && strlen(peer) >= sizeof c->rows[0].peer))
+        abort();
     bench_row *r = &c->rows[c->nrows++];
     snprintf(r->measure, sizeof r->measure, "%s", measure);
     snprintf(r->peer, sizeof r->peer, "%s", peer ? peer : "");
@@ -102,6 +108,18 @@ void bench_summary_add(bench_ctx *c, const char *measure, double dflab, const ch
     r->peer_value = peer_value;
     r->ratio = ratio;
     r->floor_fraction = floor_fraction;
+}
+
+void bench_summary_peer(bench_ctx *c, const char *measure, const char *peer, double peer_value)
+{
+    if (strpbrk(peer, ",\"\n") || strlen(peer) >= sizeof c->rows[0].peer) abort();
+    for (int i = 0; i < c->nrows; i++) {
+        bench_row *r = &c->rows[i];
+        if (strcmp(r->measure, measure) != 0) continue;
+        snprintf(r->peer, sizeof r->peer, "%s", peer);
+        r->peer_value = peer_value;
+        r->ratio = r->dflab / peer_value;
+    }
 }
 
 static void put_num(FILE *fp, double v)
