@@ -250,8 +250,11 @@ void dfl_cfg_claim_section(const dfl_cfg *c, const char *sec);
  * (dfl_cfg_sweep_point): for a caller that hands a reader the copy and
  * cannot name every section it follows (a CSG shape's operands, a mesh's
  * polygonized section).  Entries are matched by position, section and key;
- * those a dfl_cfg_set added to point are not c's and are skipped.  Records
- * nothing in the read record. */
+ * those a dfl_cfg_set added to point are not c's and are skipped.  Appends
+ * to c's read record (below) point's records of keys c holds and of
+ * defaults (keys absent from both), after c's own, the first read
+ * counting: `dflab help` and the manifest then show what the copy's reader
+ * read; a key point added is not recorded. */
 void dfl_cfg_claim_read(const dfl_cfg *c, const dfl_cfg *point);
 /* Defers the sections named `name` and `name_*` (name: at most 40 bytes;
  * NULL or "" undoes it): dfl_cfg_check_used skips their keys, which another

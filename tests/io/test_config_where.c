@@ -112,7 +112,8 @@ Test(config, used_is_present_and_read)
 
 /* claim_read marks in the original exactly the keys read in a sweep point
  * of it (sections a reader followed included), not those of a key the
- * point added, and records nothing in the read record. */
+ * point added, and appends the point's read records of c's keys and of
+ * defaults (not of the added key) to c's record. */
 Test(config, claim_read_marks_what_the_point_read)
 {
     dfl_cfg *c = cfgu_parse("[a]\nx = 1\nnext = b\n[b]\nz = 3\n[c]\nw = 4\n");
@@ -126,9 +127,26 @@ Test(config, claim_read_marks_what_the_point_read)
     cr_assert_eq(dfl_cfg_string(p, "a", "next", &v, &err), DFL_OK);
     cr_assert_eq(dfl_cfg_int(p, "b", "z", 0, 9, &z, &err), DFL_OK);
     cr_assert_eq(dfl_cfg_string(p, "c", "extra", &v, &err), DFL_OK);
+    long dflt;
+    cr_assert_eq(dfl_cfg_int_opt(p, "b", "absent", 7, 0, 9, &dflt, &err), DFL_OK);
     const size_t reads = dfl_cfg_reads(c);
     dfl_cfg_claim_read(c, p);
-    cr_expect_eq(dfl_cfg_reads(c), reads);
+    cr_expect_eq(dfl_cfg_reads(c), reads + 4, "a.x, a.next, b.z, b.absent (not c.extra)");
+    dfl_cfg_read r;
+    cr_assert(dfl_cfg_read_at(c, reads + 2, &r));
+    cr_expect_str_eq(r.sec, "b");
+    cr_expect_str_eq(r.key, "z");
+    cr_expect_str_eq(r.value, "3");
+    cr_expect(!r.is_default);
+    cr_expect(strstr(r.expect, "[0, 9]") != NULL, "%s", r.expect);
+    cr_assert(dfl_cfg_read_at(c, reads + 3, &r));
+    cr_expect_str_eq(r.key, "absent");
+    cr_expect(r.is_default);
+    cr_expect_str_eq(r.value, "7");
+    for (size_t i = 0; dfl_cfg_read_at(c, i, &r); i++)
+        cr_expect(strcmp(r.key, "extra") != 0, "the point's own key was recorded");
+    dfl_cfg_claim_read(c, p);
+    cr_expect_eq(dfl_cfg_reads(c), reads + 4, "a second claim records nothing new");
     cr_expect_eq(dfl_cfg_check_used_in(c, "a", &err), DFL_OK, "%s", err.msg);
     cr_expect_eq(dfl_cfg_check_used_in(c, "b", &err), DFL_OK, "%s", err.msg);
     cr_expect_eq(dfl_cfg_check_used(c, &err), DFL_E_INPUT);
