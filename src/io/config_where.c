@@ -77,13 +77,13 @@ void dfl_cfg_claim_read(const dfl_cfg *c, const dfl_cfg *point)
             strcmp(c->e[i].key, point->e[i].key) == 0)
             c->used[i] = 1;
     /* and what the point's reader read, for c's help and manifest: a key c
-     * holds, or a default (the key absent from both); not a key the point
-     * added (present in the point, absent from c) */
+     * holds, or a default (the key absent from the point, hence from c,
+     * whose entries the point copies); not a key the point added (present
+     * in the point, absent from c) */
     const dfl_cfg_log *l = point->log;
     for (size_t i = 0; l && i < l->n; i++) {
         const dfl_cfg_readrec *r = &l->r[i];
         if (!r->def && dfl_cfgi_find(c, r->sec, r->key) < 0) continue;
-        if (r->def && dfl_cfgi_find(c, r->sec, r->key) >= 0) continue;
         dfl_cfgi_log(c, r->sec, r->key, r->expect, r->def);
     }
 }
