@@ -61,7 +61,10 @@ dfl_status dfl_proxy_cfg_read(const dfl_cfg *cfg, const char *sec, dfl_proxy_cfg
 /* Reads [sec], builds the input from [sec] and [shape_sec], builds the grid
  * into *grid and the filter options into *fo (clip in length units).
  * *grid holds no buffers on failure; release it with dfl_proxy_grid_free.
- * The input is released before returning. */
+ * The input is released before returning.  DFL_E_INPUT at [sec] curvature
+ * for order 2 on a triangle mesh ([shape_sec] kind = mesh) with the sdf
+ * input's analytic curvature: a mesh's SDF has no curvature at edges and
+ * vertices (curvature = fit, or order 1). */
 dfl_status dfl_proxy_grid_from_cfg(const dfl_cfg *cfg, const char *sec, const char *shape_sec,
                                    dfl_proxy_grid *grid, dfl_proxy_filter_opts *fo,
                                    dfl_err *err);

@@ -38,6 +38,7 @@
 
 #define DFL_CURVFIT_MAX_G 15
 #define DFL_CURVFIT_NCOEF 7
+#define DFL_CURVFIT_MIN_NODES 10 /* nodes a fit needs (dfl_curvfit_sdf) */
 
 typedef struct dfl_curvfit {
     int g;                   /* grid nodes per side */
@@ -58,9 +59,18 @@ void dfl_curvfit_from_heights(const dfl_curvfit *F, const double *z, const doubl
                               const double b2[3], const double n[3], dfl_curvature *out);
 
 /* The method on the 3D shape s at the footpoint p with unit normal n.
- * DFL_E_NUMERIC when a projection fails (the normal line misses the surface
- * within 3 grid widths, or is nearly tangent to it, or no convergence in 30
- * steps); out is then untouched. */
+ * Each node's height is the root of t -> f(q + t n) with |t| <= 3 grid
+ * widths: Newton from t = 0 (all nodes in one batch, 30 steps); a node
+ * where Newton fails (slope along n below 0.1, a non-finite value, a step
+ * beyond the reach, no convergence) takes the sign change of f nearest to
+ * t = 0 on the ladder +-h/2, +-h, +-2h, ... and Illinois steps (a triangle
+ * mesh's kinks: the normal line meets a face at a grazing angle).  Where
+ * Newton succeeds for every node the result is Newton's alone.  A node
+ * with no sign change within the reach (its normal line misses the
+ * surface: past a boundary, through a mesh's hole) or a non-finite f is
+ * left out, and the least squares is solved on the nodes that remain;
+ * DFL_E_NUMERIC when fewer than DFL_CURVFIT_MIN_NODES remain or their
+ * design is singular; out is then untouched. */
 dfl_status dfl_curvfit_sdf(const dfl_curvfit *F, const dfl_shape *s, const double p[3],
                            const double n[3], dfl_curvature *out);
 

@@ -234,6 +234,7 @@ case("config stem .. with --set", ["run", "{D}/...ini", "--set", "grid.n=8"], ["
      files={"...ini": GOOD})
 case("plan config stem ..", ["plan", "{D}/...ini"], ["name '..'"], files={"...ini": GOOD})
 QUICK = os.path.join(REPO, "configs/compare/quick.ini")
+WUSON_PATH = "/usr/share/assimp/models/AC/Wuson.ac"
 # the validation pass reads every method section through its kind's factory
 # (nothing built), so a typo in the last method is named before the first
 # method is built, by plan as by run
@@ -284,6 +285,13 @@ runc("proxy lo = -1e200 beyond |x| <= 1e150", PX, "field.lo", "[-1e+150, 1e+150]
 for h in ["1e-300", "1e300", "1e-8", "1e6"]:
     runc("fit_spacing = " + h + " is input (not a singular design)", PX, "field.fit_spacing",
          "[1e-06, 10000]", extra=["--set", "field.fit_spacing=" + h])
+# order 2 on a triangle mesh with the SDF's analytic curvature: a mesh has
+# none at its edges and vertices (the old run built needle proxies that
+# flipped the sign of whole cells); refused, naming the key to change
+MESHPX = (b"[study]\nname = hvb25_accuracy\n[shape]\nkind = mesh\nfile = " +
+          WUSON_PATH.encode() + b"\nfit = box\n[field]\nkind = proxy\norder = 2\nres = 4\n[eval]\nn = 5\n")
+runc("proxy order 2 on a mesh needs curvature = fit", MESHPX, "[field] curvature",
+     "triangle mesh", "curvature = fit")
 runc("proxy clip = nope names the kinds", PX, "field.clip", "bound|paper|off",
      extra=["--set", "field.clip=nope"])
 runc("proxy clip = off with a clip_radius", PX.replace(b"[eval]", b"clip = off\nclip_radius = 1\n[eval]"), "[field] clip_radius",

@@ -6,11 +6,16 @@
  *   fit's error is P times the remainder r_k = h(x_k) - T2(x_k) exactly: the
  *   tolerance is the derived bound |dA| <= sum_k |P_0k| |r_k| (likewise B,
  *   C), pushed to the eigenvalues by Weyl's inequality with the Frobenius
- *   norm, plus 1e-10 for the projections' rounding. */
+ *   norm, plus 1e-10 for the projections' rounding.
+ * - On triangle meshes (a box): heights found by bracketing where Newton
+ *   gives up (an edge: heights in closed form), nodes whose normal line
+ *   misses the surface left out (a thin slab: the plane, or too few). */
 #include <criterion/criterion.h>
 #include <math.h>
 
 #include "core/vec.h"
+#include "geom/mesh.h"
+#include "geom/mesh_fixtures.h"
 #include "proxy/curvfit.h"
 
 Test(curvfit, reproduces_a_cubic)
@@ -103,5 +108,87 @@ Test(curvfit, torus_equators_within_the_truncation_bound)
         /* the principal direction of 1/r is the z axis */
         cr_assert(fabs(fabs(cv.e2[2]) - 1) < 1e-6);
     }
+    dfl_shape_free(&s);
+}
+
+/* ---- triangle meshes (dfl_curvfit_sdf's fallbacks, curvfit.h) ---- */
+
+/* mf_cube scaled per axis by s: the box [-s, s]. */
+static void box_shape(const double s[3], dfl_shape *out)
+{
+    dfl_trimesh m;
+    mf_cube(&m);
+    for (size_t i = 0; i < 3 * m.nverts; i++) m.verts[i] *= s[i % 3];
+    cr_assert_eq(dfl_shape_mesh(&m, DFL_MESH_SIGNED, out, NULL), DFL_OK);
+}
+
+/* A footpoint on an edge of the box [-1/2, 1/2]^3 with the bisecting
+ * normal n = (1, 1, 0) / sqrt 2: the mesh's gradient at p (distance 0) is
+ * 0 / 0, so Newton gives up on that node at once and on nodes it lands on
+ * the surface; the bracketing fallback must find every height.  Near the
+ * edge the surface is max(x, y) = 1/2, so the node at tangent offset
+ * e = u b1 + v b2 has height t = -sqrt 2 max(e_x, e_y) along n (exactly):
+ * the curvature is the fit of those heights. */
+Test(curvfit, a_mesh_edge_heights_by_bracketing)
+{
+    const double half[3] = {0.5, 0.5, 0.5}, p[3] = {0.5, 0.5, 0.05};
+    const double r2 = sqrt(0.5), n[3] = {r2, r2, 0};
+    dfl_shape s;
+    box_shape(half, &s);
+    dfl_curvfit F;
+    cr_assert_eq(dfl_curvfit_init(5, 0.01, &F, NULL), DFL_OK);
+    double b1[3], b2[3], z[DFL_CURVFIT_MAX_G * DFL_CURVFIT_MAX_G];
+    dfl_vec3_tangent_basis(n, b1, b2);
+    for (int k = 0; k < F.npts; k++) {
+        const double ex = F.xy[2 * k] * b1[0] + F.xy[2 * k + 1] * b2[0];
+        const double ey = F.xy[2 * k] * b1[1] + F.xy[2 * k + 1] * b2[1];
+        z[k] = -sqrt(2.0) * fmax(ex, ey);
+    }
+    dfl_curvature want, got;
+    dfl_curvfit_from_heights(&F, z, b1, b2, n, &want);
+    cr_assert_eq(dfl_curvfit_sdf(&F, &s, p, n, &got), DFL_OK);
+    cr_expect(fabs(got.k1 - want.k1) <= 1e-9 * (1 + fabs(want.k1)), "k1 %.17g, want %.17g", got.k1,
+              want.k1);
+    cr_expect(fabs(got.k2 - want.k2) <= 1e-9 * (1 + fabs(want.k2)), "k2 %.17g, want %.17g", got.k2,
+              want.k2);
+    /* a convex fold: the fit bends away from n across the edge */
+    cr_expect_gt(want.k2, 1.0);
+    dfl_shape_free(&s);
+}
+
+/* A thin slab [-1/2, 1/2] x [-hy, hy] x [-1/2, 1/2], footpoint at the
+ * centre of its face x = 1/2, n = +x, a 7 x 7 grid of spacing 0.005
+ * (offsets 0, +-0.005, +-0.01, +-0.015 along y and z: tangent_basis(+x)
+ * spans them).  hy = 0.0125: the normal lines at y offset +-0.015 pass
+ * beside the slab (no sign change within the reach), the other 35 nodes
+ * meet the face at height 0: the fit of the nodes left is the plane,
+ * curvatures 0 (to the heights' rounding).  hy = 0.003: only the 7 nodes at y offset 0 are
+ * left, fewer than DFL_CURVFIT_MIN_NODES: DFL_E_NUMERIC, out untouched. */
+Test(curvfit, nodes_whose_normal_line_misses_are_left_out)
+{
+    const double p[3] = {0.5, 0, 0}, n[3] = {1, 0, 0};
+    dfl_curvfit F;
+    cr_assert_eq(dfl_curvfit_init(7, 0.005, &F, NULL), DFL_OK);
+    double b1[3], b2[3];
+    dfl_vec3_tangent_basis(n, b1, b2);
+    cr_assert(fabs(b1[0]) < 1e-15 && fabs(b2[0]) < 1e-15);
+    cr_assert(fabs(fabs(b1[1]) + fabs(b2[1]) - 1) < 1e-15, "the grid's y offsets: 0.005 steps");
+    dfl_shape s;
+    const double wide[3] = {0.5, 0.0125, 0.5}, thin[3] = {0.5, 0.003, 0.5};
+    box_shape(wide, &s);
+    dfl_curvature c;
+    cr_assert_eq(dfl_curvfit_sdf(&F, &s, p, n, &c), DFL_OK);
+    /* heights 0 up to the mesh distance's rounding (< 1e-14 here); the
+     * partial fit's weights are those of a subset, bounded like P's by the
+     * derived tolerance of the full grid with a margin of 10 */
+    double rem[DFL_CURVFIT_MAX_G * DFL_CURVFIT_MAX_G];
+    for (int k = 0; k < F.npts; k++) rem[k] = 1e-13;
+    const double tol = tolerance(&F, rem);
+    cr_expect(fabs(c.k1) <= tol && fabs(c.k2) <= tol, "k1 %g k2 %g (tol %g)", c.k1, c.k2, tol);
+    dfl_shape_free(&s);
+    box_shape(thin, &s);
+    c.k1 = 12345;
+    cr_expect_eq(dfl_curvfit_sdf(&F, &s, p, n, &c), DFL_E_NUMERIC);
+    cr_expect_eq(c.k1, 12345, "out untouched");
     dfl_shape_free(&s);
 }
