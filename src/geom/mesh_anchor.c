@@ -11,27 +11,37 @@
 #include "core/vec.h"
 #include "geom/mesh_bvh.h"
 
-/* Depth of the finest cells: the root cube (side twice the mesh's largest
- * extent) over 2^MAXD.  On Wuson 9 (cells of 1/320 of the mesh's side)
- * decided more of the bench's near-vertex points than 8 at a build time
- * still well under a second. */
-#define MAXD 8
-/* A cell meeting more triangles than this is split (down to MAXD). */
+/* The octree's parameters, chosen on Wuson (fitted to 1.6) with the
+ * bench's points (half uniform in [-1, 1]^3, half within 0.02 of a
+ * vertex; shares decided, uniform / near-vertex, and one build's CPU time
+ * measured by one run each):
+ *   MAXD 8, no FDEPTH:            95 % / 78 %, 16 k leaves
+ *   MAXD 9, FDEPTH 5:             98 % / 82 %, 53 k leaves, 0.7 s
+ *   MAXD 9, FDEPTH 6:             99.4 % / 83 %, 85 k leaves, 1.0 s
+ *   MAXD 10, KSPLIT 2, FDEPTH 6:  99.5 % / 88 %, 230 k leaves, 5.8 s
+ * Depth of the finest cells: the root cube (side twice the mesh's largest
+ * extent) over 2^MAXD. */
+#define MAXD 9
+/* A cell meeting more than TMAX triangles is split, down to TDEPTH. */
 #define TMAX 16
-/* A cell whose bound G r of the change of w over it exceeds FSPLIT, and
- * whose nearest edge of nonzero n_e is within KSPLIT radii of its ball,
- * is split. */
+#define TDEPTH 8
+/* A cell whose bound G r of the change of w over its ball exceeds FSPLIT
+ * is split when its nearest edge of nonzero n_e is within KSPLIT radii of
+ * its ball (down to MAXD), or whatever that distance down to FDEPTH. */
 #define FSPLIT 0.1
 #define KSPLIT 1.0
+#define FDEPTH 5
 /* Edges of nonzero n_e beyond KFAR cell radii of a cell count in its far
  * bound and are not passed to its children; within KNEAR radii of a leaf
- * they are evaluated per query against the segment. */
+ * they are refined per query against the segment (when needed). */
 #define KFAR 8.0
 #define KNEAR 2.0
 /* Relative tolerance of the barycentric tests. */
 #define BARY 1e-9
-/* The anchors' winding numbers are computed to this bound. */
-#define ANCHOR_TOL 0.05
+/* The anchors' winding numbers are computed to this bound (one pass of
+ * dfl_mesh_bvh_winding_budget: 0.05 cost 20 % more build time for the
+ * same shares). */
+#define ANCHOR_TOL 0.1
 /* A leaf (high bit set) or the index of the first of 8 children. */
 #define LEAF_BIT 0x80000000u
 
@@ -52,6 +62,11 @@ typedef struct nearent {
     uint32_t e;
     double D, S;
 } nearent;
+
+typedef struct dedge {
+    size_t a, b;
+    int n;
+} dedge;
 
 typedef struct bedge {
     uint32_t a, b; /* vertex indices */
@@ -297,11 +312,6 @@ void dfl_mesh_anchor_free(dfl_mesh_anchor *a)
 
 /* ---- build ------------------------------------------------------------------ */
 
-typedef struct dedge {
-    size_t a, b;
-    int n;
-} dedge;
-
 static int dedge_cmp(const void *x, const void *y)
 {
     const dedge *p = x, *q = y;
@@ -451,7 +461,7 @@ static void leaf_anchor(const dfl_mesh_anchor *a, const struct dfl_mesh_bvh *bvh
         double p[3], B;
         for (int j = 0; j < 3; j++) p[j] = c[j] + off[i][j] * h;
         if (!anchor_clear(a, a->tl + l->t0, l->nt, p)) continue;
-        const double w = dfl_mesh_bvh_winding_within(bvh, p, ANCHOR_TOL, &B);
+        const double w = dfl_mesh_bvh_winding_budget(bvh, p, ANCHOR_TOL, &B);
         if (!(B < INFINITY) || !isfinite(w)) continue;
         memcpy(l->c, p, sizeof p);
         l->w = w;
@@ -484,7 +494,8 @@ static int build(bctx *x, uint32_t k, const double *c, double h, int depth, cons
         }
         Dmin = fmin(Dmin, D);
     }
-    const int split = depth < MAXD && (nt > TMAX || (!(Fc * r <= FSPLIT) && Dmin < KSPLIT * r));
+    const int split = depth < MAXD && ((nt > TMAX && depth < TDEPTH) ||
+                                       (!(Fc * r <= FSPLIT) && (Dmin < KSPLIT * r || depth < FDEPTH)));
     if (!split) return make_leaf(x, k, c, h, tl, nt, el, ne, F);
     if (!grow((void **)&a->node, &a->capnode, a->nnode + 8, sizeof *a->node)) return 0;
     const uint32_t first = (uint32_t)a->nnode;

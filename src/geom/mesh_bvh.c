@@ -548,6 +548,36 @@ static double adaptive(const dfl_mesh_bvh *b, const double *x, int sign, double 
     return W;
 }
 
+/* One depth-first pass: a cluster's far field is used when its bound
+ * (tight_bound) is at most its share tol A_n / A_root of the budget, so
+ * the bounds add up to at most tol without a heap or a second pass. */
+double dfl_mesh_bvh_winding_budget(const dfl_mesh_bvh *b, const double *x, double tol, double *bound)
+{
+    const wnode *stack[DFL_MESH_BVH_STACK];
+    int top = 0;
+    stack[top++] = b->root;
+    const double per_area = b->root->A > 0.0 ? tol / b->root->A : 0.0;
+    double W = 0.0, B = 0.0;
+    while (top > 0) {
+        const wnode *n = stack[--top];
+        double d[3] = {n->p[0] - x[0], n->p[1] - x[1], n->p[2] - x[2]};
+        const double R = dfl_vec3_norm(d);
+        const double bn = tight_bound(n, x, R);
+        if (bn <= per_area * n->A) {
+            W += far_field_fast(n, d, R);
+            B += bn;
+        } else if (n->n > 0) {
+            W += leaf_exact(b, n, x);
+        } else {
+            assert(top + 2 <= DFL_MESH_BVH_STACK);
+            stack[top++] = n->child[1];
+            stack[top++] = n->child[0];
+        }
+    }
+    if (bound) *bound = B;
+    return W;
+}
+
 double dfl_mesh_bvh_winding_within(const dfl_mesh_bvh *b, const double *x, double tol,
                                    double *bound)
 {

@@ -8,6 +8,7 @@
  *   dfl_mesh_bvh_closest(b, x, hit)          exact distance, closest point, triangle, feature
  *   dfl_mesh_bvh_winding(b, x, beta, bound)  clustered winding number and its error bound
  *   dfl_mesh_bvh_winding_within(b, x, tol, bound)  adaptive, bound <= tol
+ *   dfl_mesh_bvh_winding_budget(b, x, tol, bound)  one pass, bound <= tol
  *   dfl_mesh_bvh_inside(b, x)                w(x) > 1/2, certified
  *   dfl_mesh_bvh_inside_traversal(b, x)      the same answer without the anchors
  *   dfl_mesh_bvh_anchors(b)                  the anchor octree (geom/mesh_anchor.h)
@@ -103,6 +104,12 @@ double dfl_mesh_bvh_winding(const dfl_mesh_bvh *b, const double *x, double beta,
  * p and box the vertices' bounding box (derived in mesh_bvh.c).  If the
  * fixed frontier would overflow: the exact sum, bound 0. */
 double dfl_mesh_bvh_winding_within(const dfl_mesh_bvh *b, const double *x, double tol,
+                                   double *bound);
+/* One depth-first pass in which a cluster's far field is used when its
+ * bound (that of _within) is at most tol times its share of the mesh's
+ * area (tol >= 0): returns W with *bound (may be NULL) the sum of the
+ * bounds used, <= tol.  Cheaper than _within far from 1/2 (no heap). */
+double dfl_mesh_bvh_winding_budget(const dfl_mesh_bvh *b, const double *x, double tol,
                                    double *bound);
 int dfl_mesh_bvh_inside(const dfl_mesh_bvh *b, const double *x);
 int dfl_mesh_bvh_inside_traversal(const dfl_mesh_bvh *b, const double *x);

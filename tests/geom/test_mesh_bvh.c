@@ -380,3 +380,36 @@ Test(mesh_bvh, inside_equals_the_exact_sum_near_surface_and_boundary)
     dfl_mesh_bvh_free(b);
     dfl_trimesh_free(&m);
 }
+
+/* The one-pass budget: its bound is at most tol and holds against the
+ * exact sum, uniform in and around Wuson and near its triangles. */
+Test(mesh_bvh, winding_budget_within_its_bound)
+{
+    dfl_trimesh m;
+    wuson(&m);
+    dfl_mesh_bvh *b;
+    cr_assert_eq(dfl_mesh_bvh_new(m.verts, m.nverts, m.tris, m.ntris, &b, NULL), DFL_OK);
+    uint64_t s = 91;
+    const double tols[] = {0.1, 1e-2, 1e-4};
+    int used = 0;
+    for (int it = 0; it < 1500; it++) {
+        double x[3];
+        if (it % 2) {
+            const size_t v = (size_t)dfl_rng_splitmix(&s, 0, (double)m.nverts);
+            for (int j = 0; j < 3; j++) x[j] = m.verts[3 * v + j] + dfl_rng_splitmix(&s, -0.02, 0.02);
+        } else {
+            for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(&s, -1.2, 1.2);
+        }
+        const double tol = tols[it % 3];
+        double B;
+        const double w = dfl_mesh_bvh_winding_budget(b, x, tol, &B);
+        const double wb = dfl_winding_brute(m.verts, m.tris, m.ntris, x);
+        cr_assert_leq(B, tol * (1 + 1e-12), "bound %g above tol %g", B, tol);
+        cr_assert_leq(fabs(w - wb), B + 1e-12, "at (%.17g %.17g %.17g): %.17g vs %.17g, bound %g", x[0],
+                      x[1], x[2], w, wb, B);
+        used += B > 0;
+    }
+    cr_expect_gt(used, 1000, "far fields used: %d", used);
+    dfl_mesh_bvh_free(b);
+    dfl_trimesh_free(&m);
+}
