@@ -2,7 +2,8 @@
  * field/meshdist.h's minimum bit for bit (random points in and around the
  * box, points just off vertices, far points on the brute-force path); the
  * clustered winding number is within its stated bound of the exact sum,
- * and the inside test agrees with the exact sum everywhere sampled. */
+ * and the inside test agrees with the exact sum everywhere sampled, with
+ * the anchors (geom/mesh_anchor.h) and by the traversal alone. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdint.h>
@@ -79,6 +80,8 @@ Test(mesh_bvh, winding_within_its_bound_and_inside_exact)
         accepted_far += B > 0;
         cr_assert_eq(dfl_mesh_bvh_inside(b, x), wx > 0.5, "inside at (%g %g %g): w = %.17g", x[0],
                      x[1], x[2], wx);
+        cr_assert_eq(dfl_mesh_bvh_inside_traversal(b, x), wx > 0.5, "inside at (%g %g %g): w = %.17g", x[0],
+                     x[1], x[2], wx);
     }
     cr_expect(accepted_far > 1000, "clusters are used: %d", accepted_far);
     /* beta = infinity: nothing is accepted, the sum is exact */
@@ -107,6 +110,7 @@ Test(mesh_bvh, closed_mesh_winds_one_inside)
         const double w = dfl_mesh_bvh_winding(b, x, DFL_MESH_WINDING_BETA, &B);
         cr_expect(fabs(w - (in > 0)) <= B + 1e-13, "w %.17g bound %g", w, B);
         cr_expect_eq(dfl_mesh_bvh_inside(b, x), in > 0);
+        cr_expect_eq(dfl_mesh_bvh_inside_traversal(b, x), in > 0);
     }
     dfl_mesh_bvh_free(b);
     dfl_trimesh_free(&m);
@@ -185,6 +189,7 @@ Test(mesh_bvh, inside_near_one_half_is_the_exact_sum_against_one_half)
         cr_assert(fabs(fabs(w) - 0.5) < 1e-9, "z %g: w %.17g", zs[i], w);
         cr_assert(zs[i] > 0 ? (w > 0.0 && w < 0.5) : w < 0.0, "z %g: w %.17g", zs[i], w);
         cr_expect_eq(dfl_mesh_bvh_inside(b, x), w > 0.5, "z %g: w %.17g", zs[i], w);
+        cr_expect_eq(dfl_mesh_bvh_inside_traversal(b, x), w > 0.5, "z %g: w %.17g", zs[i], w);
     }
     dfl_mesh_bvh_free(b);
 }
@@ -372,6 +377,8 @@ Test(mesh_bvh, inside_equals_the_exact_sum_near_surface_and_boundary)
         inside += wx > 0.5;
         near_half += fabs(wx - 0.5) < 0.1;
         cr_assert_eq(dfl_mesh_bvh_inside(b, x), wx > 0.5, "kind %d at (%.17g %.17g %.17g): w = %.17g",
+                     kind, x[0], x[1], x[2], wx);
+        cr_assert_eq(dfl_mesh_bvh_inside_traversal(b, x), wx > 0.5, "kind %d at (%.17g %.17g %.17g): w = %.17g",
                      kind, x[0], x[1], x[2], wx);
     }
     cr_expect(inside > n / 10 && inside < n - n / 10, "both sides sampled: %d inside", inside);
