@@ -75,6 +75,8 @@ typedef struct bedge {
 } bedge;
 
 struct dfl_mesh_anchor {
+    size_t maxnode, maxlist; /* the size caps (header) */
+    int full;                /* a cap was reached: no anchors */
     const double *V;
     const size_t *T;
     double ctr[3], half; /* the root cube */
@@ -409,7 +411,10 @@ static int make_leaf(bctx *x, uint32_t k, const double *c, double h, const uint3
 {
     dfl_mesh_anchor *a = x->a;
     const double r = h * sqrt(3.0) + a->eps;
-    if (a->nleaf >= LEAF_BIT) return 0;
+    if (a->ntl + nt + a->nel + ne > a->maxlist) {
+        a->full = 1;
+        return 0;
+    }
     if (!grow((void **)&a->leaf, &a->capleaf, a->nleaf + 1, sizeof *a->leaf)) return 0;
     if (!grow((void **)&a->tl, &a->captl, a->ntl + nt, sizeof *a->tl)) return 0;
     if (!grow((void **)&a->el, &a->capel, a->nel + ne, sizeof *a->el)) return 0;
@@ -497,6 +502,10 @@ static int build(bctx *x, uint32_t k, const double *c, double h, int depth, cons
     const int split = depth < MAXD && ((nt > TMAX && depth < TDEPTH) ||
                                        (!(Fc * r <= FSPLIT) && (Dmin < KSPLIT * r || depth < FDEPTH)));
     if (!split) return make_leaf(x, k, c, h, tl, nt, el, ne, F);
+    if (a->nnode + 8 > a->maxnode) {
+        a->full = 1;
+        return 0;
+    }
     if (!grow((void **)&a->node, &a->capnode, a->nnode + 8, sizeof *a->node)) return 0;
     const uint32_t first = (uint32_t)a->nnode;
     a->nnode += 8;
@@ -530,7 +539,12 @@ dfl_status dfl_mesh_anchor_new(const double *verts, size_t nverts, const size_t 
         ext = fmax(ext, hi[j] - lo[j]);
         vmax = fmax(vmax, fmax(fabs(lo[j]), fabs(hi[j])));
     }
-    a->half = nverts <= UINT32_MAX ? ext : -1.0; /* edges keep 32-bit vertex indices */
+    /* with ntris < 2^23 the caps keep node indices below LEAF_BIT and the
+     * list offsets in 32 bits */
+    const int small = nverts <= UINT32_MAX && ntris < (1u << 23);
+    a->maxnode = small ? 64 * ntris + (1u << 18) : 0;
+    a->maxlist = small ? 256 * ntris + (1u << 20) : 0;
+    a->half = small ? ext : -1.0; /* edges keep 32-bit vertex indices */
     a->tol = 1e-9 * fmax(ext, vmax);
     a->eps = a->tol;
     bctx x = {a, bvh, {NULL}, {NULL}};
@@ -564,6 +578,11 @@ dfl_status dfl_mesh_anchor_new(const double *verts, size_t nverts, const size_t 
     for (int d = 0; d <= MAXD; d++) {
         free(x.tbuf[d]);
         free(x.ebuf[d]);
+    }
+    if (!ok && a->full) { /* too large for its caps: the traversal alone */
+        dfl_mesh_anchor_free(a);
+        *out = NULL;
+        return DFL_OK;
     }
     if (!ok) {
         dfl_mesh_anchor_free(a);

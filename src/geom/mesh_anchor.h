@@ -32,16 +32,20 @@
  *
  * The anchors.  An octree over the cube of side twice the mesh's largest
  * extent about its box's centre is refined where a cell meets more than a
- * few triangles or lies near an edge of nonzero n_e (down to a fixed
- * depth).  Each leaf keeps an anchor c in it (its centre moved by a fixed
- * small fraction of the cell, away from the mesh), w(c) within a bound
- * B_c (dfl_mesh_bvh_winding_within), the triangles that may meet the cell,
- * the edges of nonzero n_e near it, and a bound F of the far edges' part
- * of G over the whole cell (its ball).  For x in the leaf the segment
- * c -> x stays in the cell: J is counted over the leaf's triangles, G is F
- * plus the near edges' terms at their distance from the segment (a
+ * few triangles, where it lies near an edge of nonzero n_e, and (down to a
+ * moderate depth) wherever the boundary's bound G r over the cell is
+ * large (the parameters and their measured effect are in mesh_anchor.c).
+ * Each leaf keeps an anchor c in it (its centre moved by a fixed small
+ * fraction of the cell, clear of the leaf's triangles), w(c) within a
+ * bound B_c (dfl_mesh_bvh_winding_budget), the triangles that may meet
+ * the cell, the edges of nonzero n_e near it with their distance D from
+ * the cell's ball, and a bound F of the other edges' part of G over the
+ * ball.  For x in the leaf the segment c -> x stays in the cell: J is
+ * counted over the leaf's triangles and G is F plus the near edges'
+ * terms, each at D or, where needed, at its distance from the segment (a
  * rigorous lower bound: the gap of the two segments' projections on the
- * direction between their computed closest points), and
+ * direction between their computed closest points; refined largest term
+ * first, only until the margin decides), and
  *   est = w(c) + J,  margin = G |x - c| + B_c,
  * |w(x) - est| <= margin in exact arithmetic.  The anchor decides when
  * |est - 1/2| > margin + 1e-9, with the answer est > 1/2, the exact sum's
@@ -50,8 +54,15 @@
  * crossing is not clear (see _crossings), or a near edge touches the
  * segment.
  *
- * Memory: the octree nodes (4 bytes each), 64 bytes per leaf and 4 bytes
- * per listed triangle and edge (dfl_mesh_anchor_stats).  Everything is
+ * Memory: the octree nodes (4 bytes each), 72 bytes per leaf, 4 bytes per
+ * listed triangle and 24 per listed near edge (dfl_mesh_anchor_stats; on
+ * Wuson about 7 MB, on a single triangle about 7 MB too: the cells follow
+ * the rims).  The octree has at most 64 ntris + 2^18 nodes and its lists
+ * at most 256 ntris + 2^20 entries (so at most about 45 MB + 10 kB per
+ * triangle in all): a mesh that would need more
+ * (or has 2^23 triangles or more) gets no anchors (*out = NULL, DFL_OK;
+ * dfl_mesh_bvh_inside then uses the traversal alone).  Build: one budgeted winding sum per leaf, in
+ * parallel (OpenMP).  Everything is
  * read-only after _new; queries allocate nothing and are thread-safe.
  * The arrays are borrowed and must outlive a; bvh is used only during
  * _new.  Errors: DFL_E_NOMEM. */

@@ -306,3 +306,33 @@ Test(mesh_anchor, sign_is_the_exact_sums_on_small_open_meshes)
     inconsistent(&m);
     check_mesh(&m, 4000, 5, 0.3, 0.5, 0, "inconsistent pair");
 }
+
+/* A soup of small random triangles (every edge on a rim) would need more
+ * cells than the cap of 64 per triangle and 2^18 (header): it gets no anchors, and
+ * the inside test is still the exact sum's. */
+Test(mesh_anchor, a_soup_beyond_the_caps_gets_no_anchors)
+{
+    const size_t n = 3000;
+    double *v = malloc(9 * n * sizeof *v);
+    size_t *t = malloc(3 * n * sizeof *t);
+    uint64_t s = 8;
+    for (size_t i = 0; i < n; i++) {
+        double c[3];
+        for (int j = 0; j < 3; j++) c[j] = dfl_rng_splitmix(&s, -1, 1);
+        for (int k = 0; k < 3; k++) {
+            for (int j = 0; j < 3; j++) v[9 * i + 3 * k + j] = c[j] + dfl_rng_splitmix(&s, -0.1, 0.1);
+            t[3 * i + k] = 3 * i + (size_t)k;
+        }
+    }
+    dfl_mesh_bvh *b;
+    cr_assert_eq(dfl_mesh_bvh_new(v, 3 * n, t, n, &b, NULL), DFL_OK);
+    cr_expect_null(dfl_mesh_bvh_anchors(b));
+    for (int it = 0; it < 200; it++) {
+        double x[3];
+        for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(&s, -1.2, 1.2);
+        cr_assert_eq(dfl_mesh_bvh_inside(b, x), dfl_winding_brute(v, t, n, x) > 0.5);
+    }
+    dfl_mesh_bvh_free(b);
+    free(v);
+    free(t);
+}
