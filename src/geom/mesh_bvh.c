@@ -15,6 +15,7 @@
 #include <embree3/rtcore_builder.h>
 
 #include "core/vec.h"
+#include "geom/mesh_anchor.h"
 #include "geom/winding.h"
 
 /* Relative widening of boxes and radii: 2^-20 is 16 float ulps. */
@@ -43,6 +44,7 @@ struct dfl_mesh_bvh {
     RTCScene scene;
     RTCBVH bvh;
     wnode *root;
+    dfl_mesh_anchor *anchor; /* the fast path of the inside test */
 };
 
 static const double *tv(const dfl_mesh_bvh *b, size_t t, int k) { return b->V + 3 * b->T[3 * t + k]; }
@@ -280,6 +282,8 @@ static double far_field(const wnode *n, const double *d, double R)
         for (int k = 0; k < 3; k++) uMu += u[j] * M[3 * j + k] * u[k];
     return (dfl_vec3_dot(n->N, d) / R + (M[0] + M[4] + M[8] - 3.0 * uMu) / R) / (4.0 * DFL_PI * R * R);
 }
+
+const dfl_mesh_anchor *dfl_mesh_bvh_anchors(const dfl_mesh_bvh *b) { return b->anchor; }
 
 static double leaf_exact(const dfl_mesh_bvh *b, const wnode *n, const double *x)
 {
@@ -544,6 +548,36 @@ static double adaptive(const dfl_mesh_bvh *b, const double *x, int sign, double 
     return W;
 }
 
+/* One depth-first pass: a cluster's far field is used when its bound
+ * (tight_bound) is at most its share tol A_n / A_root of the budget, so
+ * the bounds add up to at most tol without a heap or a second pass. */
+double dfl_mesh_bvh_winding_budget(const dfl_mesh_bvh *b, const double *x, double tol, double *bound)
+{
+    const wnode *stack[DFL_MESH_BVH_STACK];
+    int top = 0;
+    stack[top++] = b->root;
+    const double per_area = b->root->A > 0.0 ? tol / b->root->A : 0.0;
+    double W = 0.0, B = 0.0;
+    while (top > 0) {
+        const wnode *n = stack[--top];
+        double d[3] = {n->p[0] - x[0], n->p[1] - x[1], n->p[2] - x[2]};
+        const double R = dfl_vec3_norm(d);
+        const double bn = tight_bound(n, x, R);
+        if (bn <= per_area * n->A) {
+            W += far_field_fast(n, d, R);
+            B += bn;
+        } else if (n->n > 0) {
+            W += leaf_exact(b, n, x);
+        } else {
+            assert(top + 2 <= DFL_MESH_BVH_STACK);
+            stack[top++] = n->child[1];
+            stack[top++] = n->child[0];
+        }
+    }
+    if (bound) *bound = B;
+    return W;
+}
+
 double dfl_mesh_bvh_winding_within(const dfl_mesh_bvh *b, const double *x, double tol,
                                    double *bound)
 {
@@ -562,6 +596,13 @@ double dfl_mesh_bvh_winding_within(const dfl_mesh_bvh *b, const double *x, doubl
  * index order does, as the ladder did: the answer is the exact sum's. */
 int dfl_mesh_bvh_inside(const dfl_mesh_bvh *b, const double *x)
 {
+    int in;
+    if (b->anchor && dfl_mesh_anchor_decide(b->anchor, x, &in)) return in;
+    return dfl_mesh_bvh_inside_traversal(b, x);
+}
+
+int dfl_mesh_bvh_inside_traversal(const dfl_mesh_bvh *b, const double *x)
+{
     int state;
     double B;
     const double w = adaptive(b, x, 1, 0.0, &B, &state);
@@ -574,6 +615,7 @@ int dfl_mesh_bvh_inside(const dfl_mesh_bvh *b, const double *x)
 void dfl_mesh_bvh_free(dfl_mesh_bvh *b)
 {
     if (!b) return;
+    dfl_mesh_anchor_free(b->anchor);
     if (b->bvh) rtcReleaseBVH(b->bvh);
     if (b->scene) rtcReleaseScene(b->scene);
     if (b->dev) rtcReleaseDevice(b->dev);
@@ -652,6 +694,11 @@ dfl_status dfl_mesh_bvh_new(const double *verts, size_t nverts, const size_t *tr
     b->root = b->bvh ? rtcBuildBVH(&a) : NULL;
     free(prims);
     if (!b->root || !cluster_data(b, b->root, 0)) return embree_fail(b, "winding BVH", err);
+    dfl_status st = dfl_mesh_anchor_new(verts, nverts, tris, ntris, b, &b->anchor, err);
+    if (st != DFL_OK) {
+        dfl_mesh_bvh_free(b);
+        return st;
+    }
     *out = b;
     return DFL_OK;
 }

@@ -8,7 +8,10 @@
  *   dfl_mesh_bvh_closest(b, x, hit)          exact distance, closest point, triangle, feature
  *   dfl_mesh_bvh_winding(b, x, beta, bound)  clustered winding number and its error bound
  *   dfl_mesh_bvh_winding_within(b, x, tol, bound)  adaptive, bound <= tol
+ *   dfl_mesh_bvh_winding_budget(b, x, tol, bound)  one pass, bound <= tol
  *   dfl_mesh_bvh_inside(b, x)                w(x) > 1/2, certified
+ *   dfl_mesh_bvh_inside_traversal(b, x)      the same answer without the anchors
+ *   dfl_mesh_bvh_anchors(b)                  the anchor octree (geom/mesh_anchor.h)
  *   dfl_mesh_bvh_free(b)
  *
  * Closest point.  Every triangle's distance is geom/tridist.h's
@@ -54,6 +57,13 @@
  * exact sum over every triangle decides.  Its answer is therefore that of
  * the exact winding number (up to the rounding of the sums, the 1e-9),
  * the same as the earlier ladder of beta = 3, 6, 12 and exact sum.
+ * Before that traversal, dfl_mesh_bvh_inside asks the anchors
+ * (geom/mesh_anchor.h, built by _new): a point of known winding number
+ * near x, the signed surface crossings between them and a certified bound
+ * on the change of w along the way decide w(x) > 1/2 when the estimate is
+ * more than its bound + 1e-9 away from 1/2; the same rule, so the same
+ * answer; the traversal (dfl_mesh_bvh_inside_traversal) answers the
+ * rest.
  *
  * Thread-safety: after dfl_mesh_bvh_new everything is read-only; queries
  * allocate nothing (a fixed stack of DFL_MESH_BVH_STACK nodes; the tree's
@@ -95,7 +105,15 @@ double dfl_mesh_bvh_winding(const dfl_mesh_bvh *b, const double *x, double beta,
  * fixed frontier would overflow: the exact sum, bound 0. */
 double dfl_mesh_bvh_winding_within(const dfl_mesh_bvh *b, const double *x, double tol,
                                    double *bound);
+/* One depth-first pass in which a cluster's far field is used when its
+ * bound (that of _within) is at most tol times its share of the mesh's
+ * area (tol >= 0): returns W with *bound (may be NULL) the sum of the
+ * bounds used, <= tol.  Cheaper than _within far from 1/2 (no heap). */
+double dfl_mesh_bvh_winding_budget(const dfl_mesh_bvh *b, const double *x, double tol,
+                                   double *bound);
 int dfl_mesh_bvh_inside(const dfl_mesh_bvh *b, const double *x);
+int dfl_mesh_bvh_inside_traversal(const dfl_mesh_bvh *b, const double *x);
+const struct dfl_mesh_anchor *dfl_mesh_bvh_anchors(const dfl_mesh_bvh *b);
 void dfl_mesh_bvh_free(dfl_mesh_bvh *b);
 
 #endif

@@ -27,6 +27,7 @@
 #include "core/rng.h"
 #include "field/meshdist.h"
 #include "field/vdb.h"
+#include "geom/mesh_anchor.h"
 #include "geom/mesh_bvh.h"
 #include "geom/mesh.h"
 #include "geom/trimesh.h"
@@ -96,6 +97,12 @@ static void run_sign(void *arg)
 {
     mesh_job *j = arg;
     for (size_t i = 0; i < j->n; i++) j->val[i] = dfl_mesh_bvh_inside(j->bvh, j->pts + 3 * i);
+}
+
+static void run_sign_traversal(void *arg)
+{
+    mesh_job *j = arg;
+    for (size_t i = 0; i < j->n; i++) j->val[i] = dfl_mesh_bvh_inside_traversal(j->bvh, j->pts + 3 * i);
 }
 
 /* CPU seconds of the calling thread for fn(arg) (one-thread jobs run on
@@ -186,9 +193,24 @@ void bench_mesh(bench_ctx *ctx)
         }
     }
     dfl_mesh_bvh *bv;
+    const double tb0 = dfl_wall_seconds();
     if (dfl_mesh_bvh_new(copy.verts, copy.nverts, copy.tris, copy.ntris, &bv, &err) != DFL_OK) {
         fprintf(stderr, "bench_mesh: %s\n", err.msg);
         return;
+    }
+    bench_report("mesh.wuson.bvh_and_anchors_build", dfl_wall_seconds() - tb0, "s");
+    {   /* the anchors (geom/mesh_anchor.h): size, and the share of the
+         * bench's points whose sign they decide (the rest: the traversal) */
+        size_t leaves, bytes, dec[2] = {0, 0};
+        dfl_mesh_anchor_stats(dfl_mesh_bvh_anchors(bv), &leaves, &bytes);
+        bench_report("mesh.wuson.anchors.leaves", (double)leaves, "cells");
+        bench_report("mesh.wuson.anchors.bytes", (double)bytes, "bytes");
+        for (size_t i = 0; i < N; i++) {
+            int in;
+            dec[i % 2] += dfl_mesh_anchor_decide(dfl_mesh_bvh_anchors(bv), pts + 3 * i, &in);
+        }
+        bench_report("mesh.wuson.anchors.decided_uniform", dec[0] / (0.5 * N), "fraction");
+        bench_report("mesh.wuson.anchors.decided_near_vertex", dec[1] / (0.5 * N), "fraction");
     }
     for (int th = 1; th <= THREADS; th++) {
         char name[64];
@@ -238,6 +260,15 @@ void bench_mesh(bench_ctx *ctx)
     const double tg = bench_best(3, run_sign, &jg);
     const double tgl = bench_best(2, run_sign_ladder, &jg);
     bench_pair("mesh.wuson.sign_only_1thread_vs_ladder", (N / 4) / tg, (N / 4) / tgl, "points/s");
+    {   /* CPU time, interleaved: with the anchors and the traversal alone */
+        double ca = INFINITY, ct = INFINITY;
+        for (int rep = 0; rep < 3; rep++) {
+            ca = fmin(ca, thread_cpu(run_sign, &jg));
+            ct = fmin(ct, thread_cpu(run_sign_traversal, &jg));
+        }
+        bench_pair("mesh.wuson.sign_only_1thread_cpu_vs_traversal", (N / 4) / ca, (N / 4) / ct,
+                   "points/s per core");
+    }
     vdb_job jv = {&copy, 0};
     const double tv = bench_best(3, run_vdb, &jv);
     bench_report("mesh.wuson.vdb_mesh_to_level_set", jv.active / tv, "voxels/s");

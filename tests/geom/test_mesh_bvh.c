@@ -2,7 +2,8 @@
  * field/meshdist.h's minimum bit for bit (random points in and around the
  * box, points just off vertices, far points on the brute-force path); the
  * clustered winding number is within its stated bound of the exact sum,
- * and the inside test agrees with the exact sum everywhere sampled. */
+ * and the inside test agrees with the exact sum everywhere sampled, with
+ * the anchors (geom/mesh_anchor.h) and by the traversal alone. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdint.h>
@@ -79,6 +80,8 @@ Test(mesh_bvh, winding_within_its_bound_and_inside_exact)
         accepted_far += B > 0;
         cr_assert_eq(dfl_mesh_bvh_inside(b, x), wx > 0.5, "inside at (%g %g %g): w = %.17g", x[0],
                      x[1], x[2], wx);
+        cr_assert_eq(dfl_mesh_bvh_inside_traversal(b, x), wx > 0.5, "inside at (%g %g %g): w = %.17g", x[0],
+                     x[1], x[2], wx);
     }
     cr_expect(accepted_far > 1000, "clusters are used: %d", accepted_far);
     /* beta = infinity: nothing is accepted, the sum is exact */
@@ -107,6 +110,7 @@ Test(mesh_bvh, closed_mesh_winds_one_inside)
         const double w = dfl_mesh_bvh_winding(b, x, DFL_MESH_WINDING_BETA, &B);
         cr_expect(fabs(w - (in > 0)) <= B + 1e-13, "w %.17g bound %g", w, B);
         cr_expect_eq(dfl_mesh_bvh_inside(b, x), in > 0);
+        cr_expect_eq(dfl_mesh_bvh_inside_traversal(b, x), in > 0);
     }
     dfl_mesh_bvh_free(b);
     dfl_trimesh_free(&m);
@@ -185,6 +189,7 @@ Test(mesh_bvh, inside_near_one_half_is_the_exact_sum_against_one_half)
         cr_assert(fabs(fabs(w) - 0.5) < 1e-9, "z %g: w %.17g", zs[i], w);
         cr_assert(zs[i] > 0 ? (w > 0.0 && w < 0.5) : w < 0.0, "z %g: w %.17g", zs[i], w);
         cr_expect_eq(dfl_mesh_bvh_inside(b, x), w > 0.5, "z %g: w %.17g", zs[i], w);
+        cr_expect_eq(dfl_mesh_bvh_inside_traversal(b, x), w > 0.5, "z %g: w %.17g", zs[i], w);
     }
     dfl_mesh_bvh_free(b);
 }
@@ -373,10 +378,45 @@ Test(mesh_bvh, inside_equals_the_exact_sum_near_surface_and_boundary)
         near_half += fabs(wx - 0.5) < 0.1;
         cr_assert_eq(dfl_mesh_bvh_inside(b, x), wx > 0.5, "kind %d at (%.17g %.17g %.17g): w = %.17g",
                      kind, x[0], x[1], x[2], wx);
+        cr_assert_eq(dfl_mesh_bvh_inside_traversal(b, x), wx > 0.5, "kind %d at (%.17g %.17g %.17g): w = %.17g",
+                     kind, x[0], x[1], x[2], wx);
     }
     cr_expect(inside > n / 10 && inside < n - n / 10, "both sides sampled: %d inside", inside);
     cr_expect(near_half > 50, "points near the film w = 1/2: %d", near_half);
     free(e);
+    dfl_mesh_bvh_free(b);
+    dfl_trimesh_free(&m);
+}
+
+/* The one-pass budget: its bound is at most tol and holds against the
+ * exact sum, uniform in and around Wuson and near its triangles. */
+Test(mesh_bvh, winding_budget_within_its_bound)
+{
+    dfl_trimesh m;
+    wuson(&m);
+    dfl_mesh_bvh *b;
+    cr_assert_eq(dfl_mesh_bvh_new(m.verts, m.nverts, m.tris, m.ntris, &b, NULL), DFL_OK);
+    uint64_t s = 91;
+    const double tols[] = {0.1, 1e-2, 1e-4};
+    int used = 0;
+    for (int it = 0; it < 1500; it++) {
+        double x[3];
+        if (it % 2) {
+            const size_t v = (size_t)dfl_rng_splitmix(&s, 0, (double)m.nverts);
+            for (int j = 0; j < 3; j++) x[j] = m.verts[3 * v + j] + dfl_rng_splitmix(&s, -0.02, 0.02);
+        } else {
+            for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(&s, -1.2, 1.2);
+        }
+        const double tol = tols[it % 3];
+        double B;
+        const double w = dfl_mesh_bvh_winding_budget(b, x, tol, &B);
+        const double wb = dfl_winding_brute(m.verts, m.tris, m.ntris, x);
+        cr_assert_leq(B, tol * (1 + 1e-12), "bound %g above tol %g", B, tol);
+        cr_assert_leq(fabs(w - wb), B + 1e-12, "at (%.17g %.17g %.17g): %.17g vs %.17g, bound %g", x[0],
+                      x[1], x[2], w, wb, B);
+        used += B > 0;
+    }
+    cr_expect_gt(used, 1000, "far fields used: %d", used);
     dfl_mesh_bvh_free(b);
     dfl_trimesh_free(&m);
 }
