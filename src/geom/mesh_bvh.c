@@ -11,6 +11,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <pthread.h>
+#include <stdatomic.h>
+
 #include <embree3/rtcore.h>
 #include <embree3/rtcore_builder.h>
 
@@ -38,13 +41,19 @@ typedef struct wnode {
 struct dfl_mesh_bvh {
     const double *V;
     const size_t *T;
-    size_t nt;
+    size_t nt, nv;
     double vmax; /* largest |coordinate| of the mesh */
     RTCDevice dev;
     RTCScene scene;
     RTCBVH bvh;
     wnode *root;
-    dfl_mesh_anchor *anchor; /* the fast path of the inside test */
+    /* the fast path of the inside test, built by the first query that
+     * needs it (anchors_ready), under lock: building it costs ~100x the
+     * BVH (0.7 s on Wuson), which a shape built only to be validated, or
+     * queried unsigned, never pays */
+    dfl_mesh_anchor *anchor;
+    pthread_mutex_t lock;
+    atomic_int anchors_ready; /* 0: not tried; 1: tried (anchor may be NULL) */
 };
 
 static const double *tv(const dfl_mesh_bvh *b, size_t t, int k) { return b->V + 3 * b->T[3 * t + k]; }
@@ -283,7 +292,23 @@ static double far_field(const wnode *n, const double *d, double R)
     return (dfl_vec3_dot(n->N, d) / R + (M[0] + M[4] + M[8] - 3.0 * uMu) / R) / (4.0 * DFL_PI * R * R);
 }
 
-const dfl_mesh_anchor *dfl_mesh_bvh_anchors(const dfl_mesh_bvh *b) { return b->anchor; }
+/* Double-checked: the acquire load pairs with the release store, so a
+ * thread that sees 1 sees the finished octree.  A failed build (out of
+ * memory) leaves NULL: the traversal answers alone, the same answers. */
+const dfl_mesh_anchor *dfl_mesh_bvh_anchors(const dfl_mesh_bvh *cb)
+{
+    dfl_mesh_bvh *b = (dfl_mesh_bvh *)cb; /* the lazy member only */
+    if (atomic_load_explicit(&b->anchors_ready, memory_order_acquire)) return b->anchor;
+    pthread_mutex_lock(&b->lock);
+    if (!atomic_load_explicit(&b->anchors_ready, memory_order_relaxed)) {
+        dfl_mesh_anchor *a = NULL;
+        if (dfl_mesh_anchor_new(b->V, b->nv, b->T, b->nt, b, &a, NULL) != DFL_OK) a = NULL;
+        b->anchor = a;
+        atomic_store_explicit(&b->anchors_ready, 1, memory_order_release);
+    }
+    pthread_mutex_unlock(&b->lock);
+    return b->anchor;
+}
 
 static double leaf_exact(const dfl_mesh_bvh *b, const wnode *n, const double *x)
 {
@@ -597,7 +622,8 @@ double dfl_mesh_bvh_winding_within(const dfl_mesh_bvh *b, const double *x, doubl
 int dfl_mesh_bvh_inside(const dfl_mesh_bvh *b, const double *x)
 {
     int in;
-    if (b->anchor && dfl_mesh_anchor_decide(b->anchor, x, &in)) return in;
+    const dfl_mesh_anchor *a = dfl_mesh_bvh_anchors(b);
+    if (a && dfl_mesh_anchor_decide(a, x, &in)) return in;
     return dfl_mesh_bvh_inside_traversal(b, x);
 }
 
@@ -616,6 +642,7 @@ void dfl_mesh_bvh_free(dfl_mesh_bvh *b)
 {
     if (!b) return;
     dfl_mesh_anchor_free(b->anchor);
+    pthread_mutex_destroy(&b->lock);
     if (b->bvh) rtcReleaseBVH(b->bvh);
     if (b->scene) rtcReleaseScene(b->scene);
     if (b->dev) rtcReleaseDevice(b->dev);
@@ -639,9 +666,15 @@ dfl_status dfl_mesh_bvh_new(const double *verts, size_t nverts, const size_t *tr
                            UINT32_MAX - 1);
     dfl_mesh_bvh *b = calloc(1, sizeof *b);
     if (!b) return dfl_err_set(err, DFL_E_NOMEM, "out of memory");
+    if (pthread_mutex_init(&b->lock, NULL) != 0) {
+        free(b);
+        return dfl_err_set(err, DFL_E_NOMEM, "out of memory (mutex)");
+    }
+    atomic_init(&b->anchors_ready, 0);
     b->V = verts;
     b->T = tris;
     b->nt = ntris;
+    b->nv = nverts;
     for (size_t i = 0; i < 3 * nverts; i++) b->vmax = fmax(b->vmax, fabs(verts[i]));
     b->dev = rtcNewDevice(NULL);
     if (!b->dev) return embree_fail(b, "device", err);
@@ -694,11 +727,6 @@ dfl_status dfl_mesh_bvh_new(const double *verts, size_t nverts, const size_t *tr
     b->root = b->bvh ? rtcBuildBVH(&a) : NULL;
     free(prims);
     if (!b->root || !cluster_data(b, b->root, 0)) return embree_fail(b, "winding BVH", err);
-    dfl_status st = dfl_mesh_anchor_new(verts, nverts, tris, ntris, b, &b->anchor, err);
-    if (st != DFL_OK) {
-        dfl_mesh_bvh_free(b);
-        return st;
-    }
     *out = b;
     return DFL_OK;
 }
