@@ -39,8 +39,15 @@ ASSUMPTIONS = [
     "Wuson (s_wuson) is a faceted triangle mesh that is not watertight (its inside is the "
     "generalized winding number's): its SDF has creases at every edge and vertex, where it is "
     "C0 only, and the near-surface band L∞ of every method is set there. Methods that assume "
-    "smoothness (order-2 proxies, Taylor-2 grid peers, C1 PHT splines) lose their order on it; "
-    "the rates table shows how far each still falls.",
+    "smoothness (Taylor-2 grid peers, C1 PHT splines) lose their order on it; the rates table "
+    "shows how far each still falls.",
+    "Order-2 proxies skip the meshes (skip_kinds): a mesh's SDF has no curvature at an edge or "
+    "vertex footpoint (its Hessian there is 1/rounding, of either sign: such proxies flipped "
+    "the sign of whole cells, errors of 2|d|), so the analytic curvature is refused on meshes; "
+    "the fitted one (curvature = fit) finds no surface along the normal lines through Wuson's "
+    "holes at some cells. Order-1 proxies run on them. The implicit surface gets order-2 "
+    "proxies from its own footpoints (m_proxy2_implicit, input = implicit), the sphere and "
+    "torus also from their parametric patches (m_proxy2_param).",
     "The tricubic grid peer (m_gp_tricubic, field/gridpeer.h) stores one coefficient per cell, "
     "as trilinear0 does, so the two meet at equal bytes: the C2 cubic B-spline interpolating "
     "the same samples, not-a-knot at the box faces (exact for every cubic up to and beyond "
@@ -59,7 +66,7 @@ ASSUMPTIONS = [
     "outside the union, a bound inside near the seams; that min/max field is the reference "
     "every method is measured against.",
     "OpenVDB (kind = openvdb) is a narrow-band level set: outside |d| < band·voxel its value is "
-    "the background, so its rows enter the near-surface columns only (their band of 8 voxels "
+    "the background, so its rows enter the near-surface columns only (their band, 10 voxels in methods.ini and 8 at quick.ini's coarser voxels, "
     "covers |d| ≤ 0.05 at every voxel used), never the whole-box ones. Its bytes are OpenVDB's "
     "memUsage (tree nodes, buffers, masks).",
 ]
