@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include "core/rng.h"
+#include "core/vec.h"
 #include "field/meshdist.h"
 #include "geom/mesh_bvh.h"
 #include "geom/trimesh.h"
@@ -419,4 +420,72 @@ Test(mesh_bvh, winding_budget_within_its_bound)
     cr_expect_gt(used, 1000, "far fields used: %d", used);
     dfl_mesh_bvh_free(b);
     dfl_trimesh_free(&m);
+}
+
+/* The traversal decides only past its bound: |W - 1/2| > B + 1e-9.  Built
+ * so that a cluster's far-field error is most of its bound while w is just
+ * above 1/2: the two-triangle cluster of the far-field tests (normals -x,
+ * so that x sees them counter-clockwise and their error W_P - w_P is
+ * negative) at x = (R, s/3, s/3), R = 20 rho, behind a 12-triangle fan of
+ * radius 1/2 in the plane X = R + eps (normal +x, x behind it: w_fan just
+ * below 1/2).  eps is set by bisection so that the exact sum is
+ * w = 1/2 + 0.2 |e|, e the cluster's error, so that the clustered sum is
+ * W = w + e = 1/2 - 0.8 |e|: on the wrong side, by 0.8 |e| <= 0.8 B, more
+ * than half the bound.  The premises are checked (the cluster is one BVH
+ * leaf whose bound and value are the pair's alone, the fan is summed
+ * exactly, |e| > 0.65 B); then the traversal must not stop at W, and its
+ * answer is the exact sum's, inside.  A rule at B / 2 would answer outside. */
+Test(mesh_bvh, a_sum_within_its_bound_of_one_half_does_not_decide)
+{
+    const double s = 1e-2, rho = 0.05, R = 20 * rho, L = 0.5;
+    enum { NF = 12 };
+    double V[3 * (6 + NF + 1)];
+    size_t T[3 * (2 + NF)];
+    const double P[18] = {-rho, 0, 0, -rho, 0, s, -rho, s, 0, rho, 0, 0, rho, 0, s, rho, s, 0};
+    for (int i = 0; i < 18; i++) V[i] = P[i];
+    for (int i = 0; i < 6; i++) T[i] = (size_t)i;
+    const double x[3] = {R, s / 3, s / 3};
+    /* the pair alone: its clustered value and bound at x, and its error */
+    dfl_mesh_bvh *bp;
+    cr_assert_eq(dfl_mesh_bvh_new(V, 6, T, 2, &bp, NULL), DFL_OK);
+    double Bp;
+    const double Wp = dfl_mesh_bvh_winding_within(bp, x, 1.0, &Bp);
+    dfl_mesh_bvh_free(bp);
+    const double e = Wp - dfl_winding_brute(V, T, 2, x);
+    cr_assert(Bp > 0 && e < 0 && -e > 0.65 * Bp, "premise: error %g of bound %g", e, Bp);
+    /* the fan: centre vertex 6, rim 7..18, counter-clockwise in (y, z) */
+    for (int k = 0; k < NF; k++) {
+        T[6 + 3 * k] = 6;
+        T[6 + 3 * k + 1] = 7 + (size_t)k;
+        T[6 + 3 * k + 2] = 7 + (size_t)((k + 1) % NF);
+    }
+    double lo = 1e-9, hi = L;
+    const double target = 0.5 - 0.2 * e;
+    for (int it = 0; it < 200; it++) {
+        const double eps = 0.5 * (lo + hi);
+        for (int k = 0; k <= NF; k++) {
+            const double a = 2 * DFL_PI * (k - 1) / NF, r = k ? L : 0.0;
+            V[18 + 3 * k] = R + eps;
+            V[18 + 3 * k + 1] = x[1] + r * cos(a);
+            V[18 + 3 * k + 2] = x[2] + r * sin(a);
+        }
+        if (dfl_winding_brute(V, T, 2 + NF, x) > target) lo = eps;
+        else hi = eps;
+    }
+    const double w = dfl_winding_brute(V, T, 2 + NF, x);
+    cr_assert(w > 0.5 && fabs(w - target) < 1e-3 * (-e), "w %.17g, target %.17g", w, target);
+    dfl_mesh_bvh *b;
+    cr_assert_eq(dfl_mesh_bvh_new(V, 6 + NF + 1, T, 2 + NF, &b, NULL), DFL_OK);
+    /* premise: stopped at the pair's bound, the traversal holds the pair's
+     * far field and the fan's exact sum, on the wrong side of 1/2 */
+    double B;
+    const double W = dfl_mesh_bvh_winding_within(b, x, 1.0001 * Bp, &B);
+    cr_assert(fabs(B - Bp) <= 1e-9 * Bp, "premise: bound %g, the pair's %g", B, Bp);
+    const double wfan = dfl_winding_brute(V, T + 6, NF, x);
+    cr_assert(fabs(W - (wfan + Wp)) <= 1e-3 * (-e), "premise: W %.17g", W);
+    cr_assert(W < 0.5 && 0.5 - W > 0.5 * B && 0.5 - W <= B, "premise: 1/2 - W = %g, B = %g",
+              0.5 - W, B);
+    cr_expect_eq(dfl_mesh_bvh_inside_traversal(b, x), 1, "w = 1/2 + %g: inside", w - 0.5);
+    cr_expect_eq(dfl_mesh_bvh_inside(b, x), 1);
+    dfl_mesh_bvh_free(b);
 }
