@@ -191,4 +191,11 @@ Test(curvfit, nodes_whose_normal_line_misses_are_left_out)
     cr_expect_eq(dfl_curvfit_sdf(&F, &s, p, n, &c), DFL_E_NUMERIC);
     cr_expect_eq(c.k1, 12345, "out untouched");
     dfl_shape_free(&s);
+    /* a short square rod, |y|, |z| <= 0.0075: the 3 x 3 nodes at offsets 0,
+     * +-0.005 are left, 9 < DFL_CURVFIT_MIN_NODES (their design alone is
+     * regular: the rule, not a singular system, refuses them) */
+    const double rod[3] = {0.5, 0.0075, 0.0075};
+    box_shape(rod, &s);
+    cr_expect_eq(dfl_curvfit_sdf(&F, &s, p, n, &c), DFL_E_NUMERIC);
+    dfl_shape_free(&s);
 }
