@@ -39,6 +39,17 @@ static dfl_status read_keys(const dfl_cfg *cfg, const char *sec, input_keys *k, 
                                err)) != DFL_OK)
         return st;
     if ((st = dfl_cfg_enum_opt(cfg, sec, "curvature", curvs, 2, 0, &cv, err)) != DFL_OK) return st;
+    static const char *const fallbacks[] = {"none", "plane"};
+    int fb;
+    if ((st = dfl_cfg_enum_opt(cfg, sec, "curvature_fallback", fallbacks, 2, 0, &fb, err)) !=
+        DFL_OK)
+        return st;
+    k->fit.plane_fallback = fb;
+    static const char *const clamps[] = {"none", "focal"};
+    int fc;
+    if ((st = dfl_cfg_enum_opt(cfg, sec, "curvature_clamp", clamps, 2, 0, &fc, err)) != DFL_OK)
+        return st;
+    k->fit.focal_clamp = fc;
     if ((st = dfl_cfg_enum_opt(cfg, sec, "footpoint", dfl_implicit_foot_names,
                                DFL_IMPLICIT_FOOT_COUNT, DFL_IMPLICIT_FOOT_ROBUST, &fp, err)) !=
         DFL_OK)

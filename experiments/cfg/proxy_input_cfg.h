@@ -11,6 +11,13 @@
  *   footpoint = paper | robust | paper_against | paper_walk  (default robust;
  *               implicit only; proxy/input_implicit.h: the paper's method
  *               under three readings of its starts, and dflab's)
+ *   curvature_fallback = none | plane            (default none: the paper's;
+ *               curvature = fit: a cell whose fit fails gets no proxy, or
+ *               with plane the tangent plane (curvatures 0), counted as
+ *               uncertified; proxy/input_sdf.h)
+ *   curvature_clamp = none | focal               (default none: the paper's;
+ *               curvature = fit: focal cuts each fitted curvature k to
+ *               1 + k d >= 0, proxy/input_sdf.h)
  *   fit_grid  = g, 3..15                        (default 5; curvature = fit)
  *   fit_spacing = h in [1e-6, 1e4]              (default 0.01; curvature = fit)
  *   param_grid  = n, 4..512: parameter-grid starts per patch and direction

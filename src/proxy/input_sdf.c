@@ -15,6 +15,7 @@ typedef struct sdf_ctx {
     dfl_shape shape;
     dfl_proxy_curv_method curv;
     dfl_curvfit *fit;   /* curv == FIT only */
+    int plane_fallback, focal_clamp; /* dfl_curvfit_opts' */
 } sdf_ctx;
 
 static void point_curvature(const sdf_ctx *c, dfl_surfpoint *o)
@@ -23,6 +24,23 @@ static void point_curvature(const sdf_ctx *c, dfl_surfpoint *o)
         if (dfl_curvfit_sdf(c->fit, &c->shape, o->p, o->n, &o->curv) != DFL_OK) {
             dfl_curvature_set_nan(&o->curv);
             o->certified = 0;
+            if (c->plane_fallback) {
+                /* the tangent plane: both curvatures 0, any orthonormal
+                 * tangent pair with e1 x e2 = n (the fit's own frame) */
+                dfl_curvature *k = &o->curv;
+                dfl_vec3_tangent_basis(o->n, k->e1, k->e2);
+                for (int j = 0; j < 3; j++) k->n[j] = o->n[j];
+                k->k1 = k->k2 = k->K = k->H = 0.0;
+            }
+        } else if (c->focal_clamp) {
+            /* 1 + k d >= 0 for both: the cut keeps k1 <= k2 (both are
+             * raised to the same -1/d when d > 0, lowered to it when d < 0) */
+            dfl_curvature *k = &o->curv;
+            const double d = o->d;
+            if (1.0 + k->k1 * d < 0.0) k->k1 = -1.0 / d;
+            if (1.0 + k->k2 * d < 0.0) k->k2 = -1.0 / d;
+            k->K = k->k1 * k->k2;
+            k->H = 0.5 * (k->k1 + k->k2);
         }
         return;
     }
@@ -92,6 +110,8 @@ dfl_status dfl_proxy_input_sdf(dfl_shape *shape, dfl_proxy_curv_method curv,
             goto fail;
         }
         if ((st = dfl_curvfit_init(fit->g, fit->spacing, c->fit, err)) != DFL_OK) goto fail;
+        c->plane_fallback = fit->plane_fallback != 0;
+        c->focal_clamp = fit->focal_clamp != 0;
     }
     c->shape = *shape;
     memset(shape, 0, sizeof *shape);

@@ -19,7 +19,11 @@
  *     (geom/shape.h's dfl_shape_hessian: closed form for sphere, torus,
  *     cylinder, plane and exact CSG of them, else six order-2 jets);
  *     shapes without either give NAN curvatures and certified = 0.
- *   fit: the paper's cubic fit on a g x g tangent grid (proxy/curvfit.h).
+ *   fit: the paper's cubic fit on a g x g tangent grid (proxy/curvfit.h);
+ *     where it fails (fewer than 10 grid nodes whose normal line meets the
+ *     surface: a boundary, a mesh's hole) the curvatures are NAN, or, with
+ *     plane_fallback, 0 (the tangent plane); certified = 0 either way.
+ *     With focal_clamp the fitted curvatures are cut to 1 + k d >= 0.
  *
  * Thread safety: the input is read-only after construction; queries run
  * concurrently; nothing allocates per point (chunks of 64 on the stack).
@@ -41,6 +45,19 @@ typedef enum dfl_proxy_curv_method {
 typedef struct dfl_curvfit_opts {
     int g;
     double spacing;
+    int plane_fallback; /* 0 (the paper's): a failed fit gives NAN curvatures,
+                           certified = 0, and the builder stores no proxy;
+                           1: curvatures 0 (the tangent plane at p, an
+                           order-2 proxy without bend), certified = 0, so
+                           the grid counts it as uncertified */
+    int focal_clamp;    /* 0 (the paper's): the fitted curvatures as fitted;
+                           1: each principal curvature k cut to 1 + k d >= 0
+                           (d the signed distance of x along n): p is the
+                           closest point from x only if x is not past a
+                           centre of curvature, so a larger bend contradicts
+                           the footpoint (a mesh's crease, fitted at the
+                           stencil's scale), and its proxy turns inside out
+                           at x (errors of 2 |d| measured on Wuson) */
 } dfl_curvfit_opts;
 
 /* Takes ownership of *shape (3D; zeroed on success and on failure).  fit

@@ -92,7 +92,7 @@ static dfl_shape sphere_shape(void)
 static void make_input(int row, dfl_proxy_input *in)
 {
     const double c[3] = {0.01, -0.02, 0.03}, ax[3] = {0, 0, 1};
-    const dfl_curvfit_opts fit = {5, 0.01};
+    const dfl_curvfit_opts fit = {5, 0.01, 0, 0};
     dfl_shape s = sphere_shape();
     dfl_implicit *imp = NULL;
     dfl_status st;

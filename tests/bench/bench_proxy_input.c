@@ -107,7 +107,7 @@ void bench_proxy_input(bench_ctx *ctx)
         dfl_shape_torus(c, ax, R, r, &s2, NULL) != DFL_OK)
         return;
     dfl_proxy_input sdf_a, sdf_f;
-    dfl_curvfit_opts fit = {5, 0.01};
+    dfl_curvfit_opts fit = {5, 0.01, 0, 0};
     dfl_proxy_input_sdf(&s1, DFL_PROXY_CURV_ANALYTIC, NULL, &sdf_a, NULL);
     dfl_proxy_input_sdf(&s2, DFL_PROXY_CURV_FIT, &fit, &sdf_f, NULL);
     job j = {&sdf_a, &base, m, x, o, val, grad, 0};

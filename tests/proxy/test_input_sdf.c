@@ -8,13 +8,15 @@
 
 #include "core/rng.h"
 #include "core/vec.h"
+#include "geom/mesh.h"
+#include "geom/mesh_fixtures.h"
 #include "proxy/input_sdf.h"
 
 static dfl_proxy_input make(dfl_shape *s, dfl_proxy_curv_method cm)
 {
     dfl_proxy_input in;
     dfl_err err;
-    dfl_curvfit_opts fit = {5, 0.01};
+    dfl_curvfit_opts fit = {5, 0.01, 0, 0};
     cr_assert_eq(dfl_proxy_input_sdf(s, cm, &fit, &in, &err), DFL_OK, "%s", err.msg);
     cr_assert_null(s->impl);
     return in;
@@ -167,4 +169,76 @@ Test(input_sdf, non_sdf_is_not_certified)
         cr_expect_eq(n, want[q] ? M : 0, "|grad f| = %.9g: %d of %d certified", ks[q], n, M);
         dfl_proxy_input_free(&in);
     }
+}
+
+/* input_sdf.h: a failed curvature fit.  A short square rod of the box mesh
+ * (|y|, |z| <= 0.0075) seen from x = (0.6, 0, 0): footpoint (0.5, 0, 0),
+ * normal +x; on a 7 x 7 stencil of spacing 0.005 only 9 nodes meet the
+ * rod, fewer than the fit's 10 (curvfit.h).  Without the fallback the
+ * curvatures are NaN; with plane_fallback they are 0 in an orthonormal
+ * tangent frame (e1 x e2 = n); certified = 0 both ways; the footpoint and
+ * normal are the SDF's either way. */
+Test(input_sdf, a_failed_fit_is_nan_or_with_the_fallback_the_tangent_plane)
+{
+    for (int fb = 0; fb <= 1; fb++) {
+        dfl_trimesh m;
+        mf_cube(&m);
+        const double half[3] = {0.5, 0.0075, 0.0075};
+        for (size_t i = 0; i < 3 * m.nverts; i++) m.verts[i] *= half[i % 3];
+        dfl_shape s;
+        cr_assert_eq(dfl_shape_mesh(&m, DFL_MESH_SIGNED, &s, NULL), DFL_OK);
+        dfl_proxy_input in;
+        const dfl_curvfit_opts fit = {7, 0.005, fb, 0};
+        cr_assert_eq(dfl_proxy_input_sdf(&s, DFL_PROXY_CURV_FIT, &fit, &in, NULL), DFL_OK);
+        const double x[3] = {0.6, 0, 0};
+        dfl_surfpoint o;
+        cr_assert_eq(dfl_proxy_input_query(&in, 1, x, 1, &o, NULL), DFL_OK);
+        cr_expect(fabs(o.p[0] - 0.5) < 1e-15 && fabs(o.p[1]) < 1e-15 && fabs(o.p[2]) < 1e-15);
+        cr_expect(fabs(o.n[0] - 1) < 1e-15);
+        cr_expect_eq(o.certified, 0);
+        if (!fb) {
+            cr_expect(isnan(o.curv.k1) && isnan(o.curv.k2));
+        } else {
+            cr_expect(o.curv.k1 == 0 && o.curv.k2 == 0 && o.curv.K == 0 && o.curv.H == 0);
+            double c[3];
+            dfl_vec3_cross(o.curv.e1, o.curv.e2, c);
+            for (int j = 0; j < 3; j++) cr_expect(fabs(c[j] - o.n[j]) < 1e-15, "e1 x e2 = n");
+        }
+        dfl_proxy_input_free(&in);
+    }
+}
+
+/* input_sdf.h: focal_clamp.  A sphere of radius 1/2 seen from x inside,
+ * at |d| = 0.4999 (just off the centre): p is the closest point only while
+ * 1 + k d >= 0, i.e. k <= 1/|d| = 2.0004.  The cubic fit on a wide stencil
+ * (5 x 5, spacing 0.05) overestimates the sphere's k = 2 by its quartic
+ * term (z = -rho^2 / (2r) - rho^4 / (8 r^3) bends faster than the
+ * quadratic): the premise, asserted, is k1, k2 > 1/|d| without the clamp.
+ * With it both are exactly -1/d, and K, H follow. */
+Test(input_sdf, focal_clamp_keeps_x_before_the_centre_of_curvature)
+{
+    double k[2][2], dq = 0;
+    const double x[3] = {0.9999, 0, 0}, d = -0.4999;
+    for (int fc = 0; fc <= 1; fc++) {
+        const double c[3] = {1, 0, 0};
+        dfl_shape s;
+        cr_assert_eq(dfl_shape_sphere(c, 0.5, &s, NULL), DFL_OK);
+        dfl_proxy_input in;
+        const dfl_curvfit_opts fit = {5, 0.05, 0, fc};
+        cr_assert_eq(dfl_proxy_input_sdf(&s, DFL_PROXY_CURV_FIT, &fit, &in, NULL), DFL_OK);
+        dfl_surfpoint o;
+        cr_assert_eq(dfl_proxy_input_query(&in, 1, x, 1, &o, NULL), DFL_OK);
+        cr_assert(fabs(o.d - d) < 1e-12, "d %.17g", o.d);
+        dq = o.d;
+        k[fc][0] = o.curv.k1;
+        k[fc][1] = o.curv.k2;
+        if (fc) {
+            cr_expect(o.curv.K == o.curv.k1 * o.curv.k2 && o.curv.H == 0.5 * (o.curv.k1 + o.curv.k2));
+            cr_expect_eq(o.certified, 1, "the clamp is not a failure");
+        }
+        dfl_proxy_input_free(&in);
+    }
+    cr_assert(k[0][0] > -1 / d && k[0][1] > -1 / d, "premise: k %.17g %.17g, 1/|d| %.17g", k[0][0],
+              k[0][1], -1 / d);
+    cr_expect(k[1][0] == -1 / dq && k[1][1] == -1 / dq, "clamped: %.17g %.17g", k[1][0], k[1][1]);
 }

@@ -1,6 +1,7 @@
 /* End-to-end: compare_methods on configs/compare/quick.ini (every method on
  * the circle, the sjp10 convex curve, the torus and the Wuson mesh; on
- * Wuson every method but order-2 proxies runs and every number is finite).  Expected values are
+ * Wuson every method runs (order-2 proxies with the fitted curvature) and
+ * every number is finite).  Expected values are
  * derived, not copied from a run:
  *   - rows: per shape one row per (applicable method, value) and one
  *     skipped row per method that does not apply (dims, shape_kinds);
@@ -51,10 +52,10 @@ static double ipow3(double x) { return x * x * x; }
 Test(e2e_compare, quick_config_derived, .timeout = 300)
 {
     char out[512], csv[700];
-    e2e_run_table("configs/compare/quick.ini", NULL, "compare_methods", 58, out, sizeof out, csv,
+    e2e_run_table("configs/compare/quick.ini", NULL, "compare_methods", 63, out, sizeof out, csv,
                   sizeof csv);
     int exact = 0, proxies = 0, peers = 0, skipped = 0, trilinear32 = 0, vdb = 0;
-    for (long r = 0; r < 58; r++) {
+    for (long r = 0; r < 63; r++) {
         char *m = e2e_csv_cell(csv, r, "method"), *sk = e2e_csv_cell(csv, r, "skipped");
         char *set = e2e_csv_cell(csv, r, "setting");
         cr_assert(m && sk && set);
@@ -66,9 +67,10 @@ Test(e2e_compare, quick_config_derived, .timeout = 300)
             skipped++;
             const int rf = strcmp(m, "m_rfunc") == 0;
             /* m_proxy2 skips meshes (skip_kinds: order 2 needs a curvature
-             * a mesh's edges do not have) */
+             * a mesh's edges do not have), m_proxy2_fit takes only them */
             const int p2mesh = strcmp(m, "m_proxy2") == 0 && is(csv, r, "shape", "s_wuson");
-            cr_expect(rf ? !is(csv, r, "shape", "s_convex") : p2mesh || dim == 2,
+            const int p2fit = strcmp(m, "m_proxy2_fit") == 0 && !is(csv, r, "shape", "s_wuson");
+            cr_expect(rf ? !is(csv, r, "shape", "s_convex") : p2mesh || p2fit || dim == 2,
                       "row %ld %s skipped", r, m);
             free(m), free(sk), free(set);
             continue;
@@ -142,13 +144,13 @@ Test(e2e_compare, quick_config_derived, .timeout = 300)
         free(m), free(sk), free(set);
     }
     cr_expect_eq(exact, 4);
-    cr_expect_eq(proxies, 6);
+    cr_expect_eq(proxies, 8);
     cr_expect_eq(peers, 16);
     cr_expect_eq(trilinear32, 1);
     cr_expect_eq(vdb, 4);
-    /* circle: rfunc, 2 proxies, 4 peers, vdb; convex: 7; torus: rfunc;
-     * Wuson: rfunc, m_proxy2 */
-    cr_expect_eq(skipped, 8 + 7 + 1 + 2);
+    /* circle: rfunc, 3 proxies, 4 peers, vdb; convex: 8; torus: rfunc,
+     * m_proxy2_fit; Wuson: rfunc, m_proxy2 */
+    cr_expect_eq(skipped, 9 + 8 + 2 + 2);
 }
 
 /* A config around the quick one's keys, with one method and one shape. */
