@@ -421,7 +421,7 @@ static int make_leaf(bctx *x, uint32_t k, const double *c, double h, const uint3
     aleaf *l = a->leaf + a->nleaf;
     l->t0 = (uint32_t)a->ntl;
     l->nt = (uint32_t)nt;
-    memcpy(a->tl + a->ntl, tl, nt * sizeof *tl);
+    if (nt) memcpy(a->tl + a->ntl, tl, nt * sizeof *tl); /* tl may still be NULL when nt = 0 */
     a->ntl += nt;
     l->e0 = (uint32_t)a->nel;
     l->ne = 0;
@@ -435,7 +435,7 @@ static int make_leaf(bctx *x, uint32_t k, const double *c, double h, const uint3
             ne0[l->ne++] = (nearent){el[i], D, edge_bound(e, D)};
         }
     }
-    qsort(ne0, l->ne, sizeof *ne0, near_cmp);
+    if (l->ne > 1) qsort(ne0, l->ne, sizeof *ne0, near_cmp); /* el may be NULL when empty */
     l->nmust = 0;
     double S = 0.0;
     for (uint32_t i = l->ne; i-- > 0;) {
