@@ -177,11 +177,13 @@ static double scipy_rate(const char *peer, int n, int points, double *maxerr)
     const char *py = getenv("DFL_PYTHON");
     if (!py || !*py) py = "/usr/bin/python3";
     char cmd[1024], tmp[] = "/tmp/dflab_bench_scipy_XXXXXX";
+    *maxerr = NAN;
+    if (strchr(py, '\'')) return NAN; /* it is single-quoted below */
     int fd = mkstemp(tmp);
     if (fd < 0) return NAN;
     close(fd);
     snprintf(cmd, sizeof cmd,
-             "'%s' scripts/bench_pht_scipy.py --peer %s --n %d --points %d --reps 3 > %s 2>&1", py,
+             "'%s' scripts/bench_pht_scipy.py --peer %s --n %d --points %d --reps 3 > '%s' 2>&1", py,
              peer, n, points, tmp);
     const int rc = system(cmd);
     FILE *fp = fopen(tmp, "r");
@@ -385,7 +387,13 @@ static void fit_vs_fitpack(bench_ctx *c)
     const char *py = getenv("DFL_PYTHON");
     if (!py || !*py) py = "/usr/bin/python3";
     char cmd[1024], line[512];
-    snprintf(cmd, sizeof cmd, "'%s' scripts/bench_fitpack.py --dir %s --ns %s 2>&1", py, dir, ns);
+    /* single quotes around the paths: $DFL_PYTHON is the user's; dir is
+     * mkdtemp's (no quote in it) */
+    if (strchr(py, '\'')) {
+        fprintf(stderr, "bench_pht: DFL_PYTHON holds a single quote; FITPACK peer skipped\n");
+        bad = 1;
+    }
+    snprintf(cmd, sizeof cmd, "'%s' scripts/bench_fitpack.py --dir '%s' --ns %s 2>&1", py, dir, ns);
     FILE *pp = bad ? NULL : popen(cmd, "r");
     double fit_cpu[NNS], off[NNS];
     int got = 0;

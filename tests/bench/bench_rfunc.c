@@ -108,11 +108,12 @@ static double numpy_rate_kind(const dfl_field *f, const char *kind, int p, int n
     if (!py || !*py) py = "/usr/bin/python3";
     const size_t chk[4] = {0, 37, (size_t)n * (size_t)n / 2 + 5, (size_t)n * (size_t)n - 1};
     char cmd[1024], tmp[] = "/tmp/dflab_bench_numpy_XXXXXX";
+    if (strchr(py, '\'')) return NAN; /* it is single-quoted below */
     int fd = mkstemp(tmp);
     if (fd < 0) return NAN;
     snprintf(cmd, sizeof cmd,
-             "%s scripts/bench_rfunc_numpy.py --kind %s --p %d --segments %d --grid %d --reps 3 "
-             "--check %zu %zu %zu %zu > %s 2>&1",
+             "'%s' scripts/bench_rfunc_numpy.py --kind %s --p %d --segments %d --grid %d --reps 3 "
+             "--check %zu %zu %zu %zu > '%s' 2>&1",
              py, kind, p, NSEG, n, chk[0], chk[1], chk[2], chk[3], tmp);
     const int rc = system(cmd);
     FILE *fp = fopen(tmp, "r");
