@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "geom/mesh_anchor.h"
 #include "geom/mesh_bvh.h"
 #include "geom/shape_impl.h"
 #include "geom/trimesh.h"
@@ -42,10 +43,14 @@ static double side(const mesh_impl *mi, const double *x)
 static void mesh_eval(const void *impl, size_t m, const double *pts, double *val, double *grad)
 {
     const mesh_impl *mi = impl;
+    /* a signed mesh builds its anchors anyway (the sign test): their
+     * leaves also start the closest-point search near x */
+    const struct dfl_mesh_anchor *anc =
+        mi->dist == DFL_MESH_SIGNED ? dfl_mesh_bvh_anchors(mi->bvh) : NULL;
     for (size_t i = 0; i < m; i++) {
         const double *x = pts + 3 * i;
         dfl_mesh_hit h;
-        dfl_mesh_bvh_closest(mi->bvh, x, &h);
+        dfl_mesh_bvh_closest_hint(mi->bvh, x, anc ? dfl_mesh_anchor_hint(anc, x) : SIZE_MAX, &h);
         if (isnan(h.d)) {
             val[i] = NAN;
             if (grad) grad[3 * i] = grad[3 * i + 1] = grad[3 * i + 2] = NAN;

@@ -4,6 +4,7 @@
 #include "geom/mesh_anchor.h"
 
 #include <assert.h>
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -48,10 +49,14 @@
 typedef struct aleaf {
     double c[3];           /* the anchor */
     double w, B;           /* w(c) within B (B = inf: no anchor) */
-    double F;              /* far edges' bound of G over the cell */
+    double g[3];           /* the far edges' first-order term: grad w . (x - c) */
+    double H;              /* the leaf's far edges' bound of |grad g| over its ball */
+    double R;              /* the inherited far edges' bound of |g(y) - g| per length */
+    double Fs;             /* all far edges' bound of |g| (for the rounding term) */
     uint32_t t0, nt;       /* triangles: tl[t0 .. t0 + nt) */
     uint32_t e0, ne;       /* near edges: el[e0 .. e0 + ne) */
     uint32_t nmust;        /* of which the first nmust touch the cell's ball */
+    uint32_t near;         /* the triangle closest to the anchor (UINT32_MAX: none) */
 } aleaf;
 
 /* A near edge of a leaf: its distance D from the leaf's ball (a lower
@@ -69,7 +74,7 @@ typedef struct dedge {
 } dedge;
 
 typedef struct bedge {
-    uint32_t a, b; /* vertex indices */
+    uint32_t a, b; /* vertex indices, a -> b the direction of positive net count */
     double k;      /* |n_e| / (4 pi) */
     double len;
 } bedge;
@@ -82,6 +87,7 @@ struct dfl_mesh_anchor {
     double ctr[3], half; /* the root cube */
     double tol;          /* plane tolerance, 1e-9 of the mesh's scale */
     double eps;          /* widening of cells, 1e-9 of the scale */
+    double scale;        /* the largest |coordinate| of the mesh and the query box */
     uint32_t *node;
     size_t nnode, capnode;
     aleaf *leaf;
@@ -219,6 +225,36 @@ static double edge_bound(const bedge *e, double d)
     return e->k * fmin(e->len / (d * d), 2.0 / d);
 }
 
+/* One edge's bound of the norm of the derivative of its field at distance
+ * >= d: the Jacobian of r / |r|^3 is (I - 3 rr^T / |r|^2) / |r|^3, of
+ * norm 2 / |r|^3, so over the edge k min(2 len / d^3, 4 / d^2) (the
+ * second: the integral of 2 / (d^2 + s^2)^(3/2) over the whole line). */
+static double edge_hess_bound(const bedge *e, double d)
+{
+    if (!(d > 0.0)) return INFINITY;
+    return e->k * fmin(2.0 * e->len / (d * d * d), 4.0 / (d * d));
+}
+
+/* Adds edge e's part of grad w at y: k (|a| + |b|) / (|a||b| (|a||b| +
+ * a.b)) a x b with a = P - y, b = Q - y for the edge P -> Q (the
+ * Biot-Savart field of a straight segment; sign and scale checked against
+ * central differences of dfl_winding_triangle over a triangle's three
+ * directed edges, tests/geom/test_mesh_anchor.c).  y off the edge's line
+ * segment. */
+static void edge_field_add(const dfl_mesh_anchor *a, const bedge *e, const double *y, double *g)
+{
+    const double *P = a->V + 3 * (size_t)e->a, *Q = a->V + 3 * (size_t)e->b;
+    double u[3], v[3], w[3];
+    for (int j = 0; j < 3; j++) {
+        u[j] = P[j] - y[j];
+        v[j] = Q[j] - y[j];
+    }
+    const double lu = sqrt(dfl_vec3_dot(u, u)), lv = sqrt(dfl_vec3_dot(v, v));
+    dfl_vec3_cross(u, v, w);
+    const double f = e->k * (lu + lv) / (lu * lv * (lu * lv + dfl_vec3_dot(u, v)));
+    for (int j = 0; j < 3; j++) g[j] += f * w[j];
+}
+
 /* ---- queries ---------------------------------------------------------------- */
 
 static const aleaf *locate(const dfl_mesh_anchor *a, const double *x)
@@ -256,11 +292,16 @@ static int estimate(const dfl_mesh_anchor *a, const double *x, double stop, doub
     int J;
     if (dfl_mesh_anchor_crossings(a->V, a->T, a->tl + l->t0, l->nt, l->c, x, a->tol, &J) != 0)
         return 0;
-    const double w = l->w + J;
     double d[3] = {x[0] - l->c[0], x[1] - l->c[1], x[2] - l->c[2]};
     const double dx = sqrt(dfl_vec3_dot(d, d));
-    const double lim = fabs(w - 0.5) - stop;
-    double G = l->F;
+    const double w = l->w + J + dfl_vec3_dot(l->g, d);
+    /* the far edges: their first-order term in w; in the margin the rest
+     * (H dx^2 / 2 for the leaf's, R dx for the inherited, see make_leaf)
+     * and the rounding of g . d (each term's few ulps, far below 1e-12 of
+     * its bound) */
+    const double T = (0.5 * l->H * dx + 1e-12 * l->Fs) * dx * (1.0 + 1e-12);
+    const double lim = fabs(w - 0.5) - stop - T;
+    double G = l->R;
     if (dx > 0.0) {
         const nearent *ne = a->el + l->e0;
         uint32_t i = 0;
@@ -273,7 +314,7 @@ static int estimate(const dfl_mesh_anchor *a, const double *x, double stop, doub
         }
         if (i < l->ne) G += ne[i].S;
     }
-    const double m = G * dx * (1.0 + 1e-12) + l->B;
+    const double m = G * dx * (1.0 + 1e-12) + T + l->B;
     if (!(m < INFINITY)) return 0;
     *est = w;
     *margin = m;
@@ -285,13 +326,97 @@ int dfl_mesh_anchor_estimate(const dfl_mesh_anchor *a, const double *x, double *
     return estimate(a, x, INFINITY, est, margin);
 }
 
+/* The solid angle / 4 pi of the triangle of vectors u, v, t from the
+ * observer (geom/winding.c's formula, Van Oosterom and Strackee) and in
+ * *err a bound of its rounding error: each of num and den is a sum of
+ * products of the vectors' components within 32 ulp of |u||v||t|, which
+ * moves atan2 by at most that over hypot(num, den), plus atan2's own ulp.
+ * An infinite *err when num and den are both that small (the observer on
+ * the triangle's boundary). */
+static double tri_w(const double *u, const double *v, const double *t, double *err)
+{
+    double vxt[3];
+    dfl_vec3_cross(v, t, vxt);
+    const double lu = sqrt(dfl_vec3_dot(u, u)), lv = sqrt(dfl_vec3_dot(v, v)),
+                 lt = sqrt(dfl_vec3_dot(t, t));
+    const double num = dfl_vec3_dot(u, vxt);
+    const double den =
+        lu * lv * lt + dfl_vec3_dot(u, v) * lt + dfl_vec3_dot(u, t) * lv + dfl_vec3_dot(v, t) * lu;
+    const double big = 32.0 * DBL_EPSILON * lu * lv * lt, h = hypot(num, den);
+    *err = h > 2.0 * big ? (2.0 * big / h + 4.0 * DBL_EPSILON) / (2.0 * DFL_PI) : INFINITY;
+    return atan2(num, den) / (2.0 * DFL_PI);
+}
+
+/* The second chance of decide: as estimate, but each near edge's part of
+ * w(x) - w(c) - J taken exactly (largest bound first, until the rest's
+ * bound fits).  Why it is exact: along the path c + s d (s in [0, 1], d =
+ * x - c) the field of the edge P -> Q integrates to the Gauss linking
+ * integral of the two segments, the solid angle / 4 pi seen from c of the
+ * parallelogram the edge sweeps when moved by -d (P, Q, Q - d, P - d),
+ * with the opposite orientation (Klenin and Langowski, "Computation of
+ * writhe in modeling of supercoiled DNA", Biopolymers 54 (2000) 307,
+ * doi:10.1002/1097-0282(20001015)54:5<307::AID-BIP20>3.0.CO;2-Y; sign
+ * checked against dfl_winding_triangle over a triangle's three edges,
+ * tests/geom/test_mesh_anchor.c).  The parallelogram is split along P,
+ * Q - d.  c lies on it exactly when the path meets the edge: then (or
+ * when the gap is not certainly positive) it refuses.  Rounding: the
+ * corners are P - c, Q - c, Q - x and P - x, each within an ulp of its
+ * coordinates (the mesh's scale S), which moves the solid angle by at
+ * most the edges' field at the gap g, 2 (2 |PQ| + 2 |d|) / (4 pi g^2),
+ * times that ulp; plus tri_w's own error. */
+static int decide_near_exact(const dfl_mesh_anchor *a, const double *x, int *inside)
+{
+    const aleaf *l = locate(a, x);
+    if (!l || !(l->B < INFINITY)) return 0;
+    int J;
+    if (dfl_mesh_anchor_crossings(a->V, a->T, a->tl + l->t0, l->nt, l->c, x, a->tol, &J) != 0)
+        return 0;
+    double d[3] = {x[0] - l->c[0], x[1] - l->c[1], x[2] - l->c[2]};
+    const double dx = sqrt(dfl_vec3_dot(d, d));
+    double w = l->w + J + dfl_vec3_dot(l->g, d);
+    double m = (0.5 * l->H * dx + 1e-12 * l->Fs + l->R) * dx * (1.0 + 1e-12) + l->B;
+    const nearent *ne = a->el + l->e0;
+    uint32_t i = 0;
+    for (; i < l->ne; i++) {
+        if (i >= l->nmust && fabs(w - 0.5) > m + ne[i].S * dx * (1.0 + 1e-12) + 1e-9) break;
+        const bedge *e = a->edge + ne[i].e;
+        const double *P = a->V + 3 * (size_t)e->a, *Q = a->V + 3 * (size_t)e->b;
+        const double gap = seg_seg_lower(l->c, x, P, Q, a->eps);
+        if (!(gap > 0.0)) return 0;
+        double A[3], B[3], C[3], D[3];
+        for (int j = 0; j < 3; j++) {
+            A[j] = P[j] - l->c[j];
+            B[j] = Q[j] - l->c[j];
+            C[j] = Q[j] - x[j];
+            D[j] = P[j] - x[j];
+        }
+        double e1, e2;
+        const double v = tri_w(A, C, B, &e1) + tri_w(A, D, C, &e2);
+        const double n = (double)lrint(e->k * 4.0 * DFL_PI);
+        const double ulp = DBL_EPSILON * a->scale;
+        w += n * v;
+        m += n * (e1 + e2 + 4.0 * DBL_EPSILON * fabs(v) +
+                  (4.0 * (e->len + dx) / (4.0 * DFL_PI * gap * gap)) * 2.0 * ulp);
+    }
+    if (i < l->ne) m += ne[i].S * dx * (1.0 + 1e-12);
+    if (!(fabs(w - 0.5) > m + 1e-9)) return 0;
+    *inside = w > 0.5;
+    return 1;
+}
+
 int dfl_mesh_anchor_decide(const dfl_mesh_anchor *a, const double *x, int *inside)
 {
     double est, m;
     if (!estimate(a, x, 1e-9, &est, &m)) return 0;
-    if (!(fabs(est - 0.5) > m + 1e-9)) return 0;
+    if (!(fabs(est - 0.5) > m + 1e-9)) return decide_near_exact(a, x, inside);
     *inside = est > 0.5;
     return 1;
+}
+
+size_t dfl_mesh_anchor_hint(const dfl_mesh_anchor *a, const double *x)
+{
+    const aleaf *l = locate(a, x);
+    return l && l->near != UINT32_MAX ? l->near : SIZE_MAX;
 }
 
 void dfl_mesh_anchor_stats(const dfl_mesh_anchor *a, size_t *leaves, size_t *bytes)
@@ -346,7 +471,8 @@ static int net_edges(dfl_mesh_anchor *a, size_t ntris)
         double e[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
         const double len = sqrt(dfl_vec3_dot(e, e));
         if (n != 0 && len > 0.0 && d[i].a != d[i].b)
-            a->edge[a->nedge++] = (bedge){(uint32_t)d[i].a, (uint32_t)d[i].b,
+            a->edge[a->nedge++] = (bedge){(uint32_t)(n > 0 ? d[i].a : d[i].b),
+                                          (uint32_t)(n > 0 ? d[i].b : d[i].a),
                                           abs(n) / (4.0 * DFL_PI), len};
         i = j;
     }
@@ -393,10 +519,27 @@ static int tri_meets_box(const dfl_mesh_anchor *a, size_t t, const double *c, do
     return !(fabs(dfl_vec3_dot(n, ca)) > r * (1.0 + 1e-9) + 1e-12 * r);
 }
 
+/* What a cell inherits of the edges dropped by its ancestors (beyond KFAR
+ * radii of one): the sum g of their fields, each at the centre of the
+ * ancestor that dropped it, R the sum of their H r there (so that
+ * |g_true(y) - g| <= R for y in the cell), F the sum of their bounds of
+ * |g|. */
+typedef struct inherited {
+    double g[3], R, F;
+} inherited;
+
+/* A leaf's own far edges (beyond KNEAR radii): their field at the first
+ * anchor candidate and their bound of |g|, until the anchor is chosen. */
+typedef struct leaffar {
+    double g[3], F;
+} leaffar;
+
 typedef struct bctx {
     dfl_mesh_anchor *a;
     const struct dfl_mesh_bvh *bvh;
     uint32_t *tbuf[MAXD + 1], *ebuf[MAXD + 1];
+    leaffar *lf;
+    size_t caplf;
 } bctx;
 
 /* Whether point p is clear of the leaf's triangles (not within tol of one). */
@@ -406,8 +549,13 @@ static int anchor_clear(const dfl_mesh_anchor *a, const uint32_t *tl, size_t nt,
     return dfl_mesh_anchor_crossings(a->V, a->T, tl, nt, p, p, a->tol * 1e3, &J) == 0;
 }
 
+/* The anchor candidates: the cell's centre plus these times its half side
+ * (off any symmetry plane of the mesh), tried in order. */
+static const double anchor_off[3][3] = {
+    {0.0193, -0.0271, 0.0117}, {-0.2113, 0.1877, 0.1549}, {0.3371, 0.2939, -0.3167}};
+
 static int make_leaf(bctx *x, uint32_t k, const double *c, double h, const uint32_t *tl, size_t nt,
-                     const uint32_t *el, size_t ne, double F)
+                     const uint32_t *el, size_t ne, const inherited *in)
 {
     dfl_mesh_anchor *a = x->a;
     const double r = h * sqrt(3.0) + a->eps;
@@ -416,6 +564,7 @@ static int make_leaf(bctx *x, uint32_t k, const double *c, double h, const uint3
         return 0;
     }
     if (!grow((void **)&a->leaf, &a->capleaf, a->nleaf + 1, sizeof *a->leaf)) return 0;
+    if (!grow((void **)&x->lf, &x->caplf, a->nleaf + 1, sizeof *x->lf)) return 0;
     if (!grow((void **)&a->tl, &a->captl, a->ntl + nt, sizeof *a->tl)) return 0;
     if (!grow((void **)&a->el, &a->capel, a->nel + ne, sizeof *a->el)) return 0;
     aleaf *l = a->leaf + a->nleaf;
@@ -426,11 +575,20 @@ static int make_leaf(bctx *x, uint32_t k, const double *c, double h, const uint3
     l->e0 = (uint32_t)a->nel;
     l->ne = 0;
     nearent *ne0 = a->el + a->nel;
+    /* the far edges still listed: their field at the first candidate
+     * anchor (leaf_anchor folds them into F if another is taken) */
+    double p0[3];
+    for (int j = 0; j < 3; j++) p0[j] = c[j] + anchor_off[0][j] * h;
+    leaffar *lf = x->lf + a->nleaf;
+    *lf = (leaffar){{0.0, 0.0, 0.0}, 0.0};
+    l->H = 0.0;
     for (size_t i = 0; i < ne; i++) {
         const bedge *e = a->edge + el[i];
         const double D = point_seg(c, a->V + 3 * (size_t)e->a, a->V + 3 * (size_t)e->b) - r;
         if (D > KNEAR * r) {
-            F += edge_bound(e, D);
+            lf->F += edge_bound(e, D);
+            l->H += edge_hess_bound(e, D);
+            edge_field_add(a, e, p0, lf->g);
         } else {
             ne0[l->ne++] = (nearent){el[i], D, edge_bound(e, D)};
         }
@@ -444,7 +602,9 @@ static int make_leaf(bctx *x, uint32_t k, const double *c, double h, const uint3
         l->nmust += !(ne0[i].D > 0.0);
     }
     a->nel += l->ne;
-    l->F = F;
+    for (int j = 0; j < 3; j++) l->g[j] = in->g[j] + lf->g[j];
+    l->R = in->R;
+    l->Fs = in->F + lf->F;
     memcpy(l->c, c, 3 * sizeof *c); /* the cell, until leaf_anchor */
     l->w = h;
     a->node[k] = LEAF_BIT | (uint32_t)a->nleaf;
@@ -456,21 +616,28 @@ static int make_leaf(bctx *x, uint32_t k, const double *c, double h, const uint3
  * plane of the mesh, clear of the leaf's triangles, w from the clustered
  * sum within ANCHOR_TOL. */
 static void leaf_anchor(const dfl_mesh_anchor *a, const struct dfl_mesh_bvh *bvh, aleaf *l,
-                        const double *c, double h)
+                        const leaffar *lf, const double *c, double h)
 {
-    static const double off[3][3] = {{0.0193, -0.0271, 0.0117},
-                                     {-0.2113, 0.1877, 0.1549},
-                                     {0.3371, 0.2939, -0.3167}};
     l->B = INFINITY;
+    l->near = UINT32_MAX;
     for (int i = 0; i < 3; i++) {
         double p[3], B;
-        for (int j = 0; j < 3; j++) p[j] = c[j] + off[i][j] * h;
+        for (int j = 0; j < 3; j++) p[j] = c[j] + anchor_off[i][j] * h;
         if (!anchor_clear(a, a->tl + l->t0, l->nt, p)) continue;
         const double w = dfl_mesh_bvh_winding_budget(bvh, p, ANCHOR_TOL, &B);
         if (!(B < INFINITY) || !isfinite(w)) continue;
         memcpy(l->c, p, sizeof p);
         l->w = w;
         l->B = B;
+        dfl_mesh_hit hit;
+        dfl_mesh_bvh_closest(bvh, p, &hit);
+        if (hit.tri < UINT32_MAX) l->near = (uint32_t)hit.tri;
+        if (i > 0) { /* the leaf's far edges' g is the first candidate's:
+                      * their plain bound instead */
+            for (int j = 0; j < 3; j++) l->g[j] -= lf->g[j];
+            l->R += lf->F;
+            l->H = 0.0;
+        }
         return;
     }
 }
@@ -478,7 +645,7 @@ static void leaf_anchor(const dfl_mesh_anchor *a, const struct dfl_mesh_bvh *bvh
 /* Builds node k (cell c +- h at depth) from candidate triangles and edges
  * and the far bound F inherited (edges no longer passed down). */
 static int build(bctx *x, uint32_t k, const double *c, double h, int depth, const uint32_t *tin,
-                 size_t ntin, const uint32_t *ein, size_t nein, double F)
+                 size_t ntin, const uint32_t *ein, size_t nein, const inherited *inh)
 {
     dfl_mesh_anchor *a = x->a;
     const double hw = h + a->eps, r = h * sqrt(3.0) + a->eps;
@@ -486,12 +653,17 @@ static int build(bctx *x, uint32_t k, const double *c, double h, int depth, cons
     size_t nt = 0, ne = 0;
     for (size_t i = 0; i < ntin; i++)
         if (tri_meets_box(a, tin[i], c, hw)) tl[nt++] = tin[i];
-    double Fc = F, Dmin = INFINITY; /* the cell's whole bound, its nearest edge */
+    /* the edges dropped here: their field at the centre, kept as a
+     * constant vector below (for y in the ball |g(y) - g(c)| <= H r) */
+    inherited in = *inh;
+    double Fc = in.F, Dmin = INFINITY; /* the cell's whole bound, its nearest edge */
     for (size_t i = 0; i < nein; i++) {
         const bedge *e = a->edge + ein[i];
         const double D = point_seg(c, a->V + 3 * (size_t)e->a, a->V + 3 * (size_t)e->b) - r;
         if (D > KFAR * r) {
-            F += edge_bound(e, D);
+            in.F += edge_bound(e, D);
+            in.R += edge_hess_bound(e, D) * r;
+            edge_field_add(a, e, c, in.g);
             Fc += edge_bound(e, D);
         } else {
             el[ne++] = ein[i];
@@ -501,7 +673,7 @@ static int build(bctx *x, uint32_t k, const double *c, double h, int depth, cons
     }
     const int split = depth < MAXD && ((nt > TMAX && depth < TDEPTH) ||
                                        (!(Fc * r <= FSPLIT) && (Dmin < KSPLIT * r || depth < FDEPTH)));
-    if (!split) return make_leaf(x, k, c, h, tl, nt, el, ne, F);
+    if (!split) return make_leaf(x, k, c, h, tl, nt, el, ne, &in);
     if (a->nnode + 8 > a->maxnode) {
         a->full = 1;
         return 0;
@@ -514,7 +686,7 @@ static int build(bctx *x, uint32_t k, const double *c, double h, int depth, cons
     for (int i = 0; i < 8; i++) {
         double cc[3];
         for (int j = 0; j < 3; j++) cc[j] = i & (1 << j) ? c[j] + h2 : c[j] - h2;
-        if (!build(x, first + (uint32_t)i, cc, h2, depth + 1, tl, nt, el, ne, F)) return 0;
+        if (!build(x, first + (uint32_t)i, cc, h2, depth + 1, tl, nt, el, ne, &in)) return 0;
     }
     return 1;
 }
@@ -547,7 +719,8 @@ dfl_status dfl_mesh_anchor_new(const double *verts, size_t nverts, const size_t 
     a->half = small ? ext : -1.0; /* edges keep 32-bit vertex indices */
     a->tol = 1e-9 * fmax(ext, vmax);
     a->eps = a->tol;
-    bctx x = {a, bvh, {NULL}, {NULL}};
+    a->scale = 2.0 * fmax(ext, vmax);
+    bctx x = {a, bvh, {NULL}, {NULL}, NULL, 0};
     int ok = net_edges(a, ntris) && grow((void **)&a->node, &a->capnode, 1, sizeof *a->node);
     uint32_t *t0 = malloc(ntris * sizeof *t0), *e0 = malloc((a->nedge + 1) * sizeof *e0);
     ok = ok && t0 && e0;
@@ -560,7 +733,7 @@ dfl_status dfl_mesh_anchor_new(const double *verts, size_t nverts, const size_t 
         for (size_t t = 0; t < ntris; t++) t0[t] = (uint32_t)t;
         for (size_t e = 0; e < a->nedge; e++) e0[e] = (uint32_t)e;
         a->nnode = 1;
-        ok = a->half > 0.0 && isfinite(a->half) ? build(&x, 0, a->ctr, a->half, 0, t0, ntris, e0, a->nedge, 0.0)
+        ok = a->half > 0.0 && isfinite(a->half) ? build(&x, 0, a->ctr, a->half, 0, t0, ntris, e0, a->nedge, &(inherited){{0.0, 0.0, 0.0}, 0.0, 0.0})
                                         : (a->half = -1.0, a->node[0] = 0, 1);
     }
     if (ok) {
@@ -570,11 +743,12 @@ dfl_status dfl_mesh_anchor_new(const double *verts, size_t nverts, const size_t 
             aleaf *l = a->leaf + i;
             double c[3];
             memcpy(c, l->c, sizeof c);
-            leaf_anchor(a, bvh, l, c, l->w);
+            leaf_anchor(a, bvh, l, x.lf + i, c, l->w);
         }
     }
     free(t0);
     free(e0);
+    free(x.lf);
     for (int d = 0; d <= MAXD; d++) {
         free(x.tbuf[d]);
         free(x.ebuf[d]);

@@ -7,6 +7,7 @@
  *   dfl_mesh_anchor_estimate(a, x, est, margin)   w(c) + J and its certified margin
  *   dfl_mesh_anchor_decide(a, x, inside)          1 if the anchor decides w(x) > 1/2
  *   dfl_mesh_anchor_crossings(verts, tris, list, n, c, x, tol, J)  signed crossings of c -> x
+ *   dfl_mesh_anchor_hint(a, x)                    a triangle near x (a closest-point start)
  *   dfl_mesh_anchor_stats(a, leaves, bytes)
  *   dfl_mesh_anchor_free(a)
  *
@@ -39,30 +40,45 @@
  * fraction of the cell, clear of the leaf's triangles), w(c) within a
  * bound B_c (dfl_mesh_bvh_winding_budget), the triangles that may meet
  * the cell, the edges of nonzero n_e near it with their distance D from
- * the cell's ball, and a bound F of the other edges' part of G over the
- * ball.  For x in the leaf the segment c -> x stays in the cell: J is
- * counted over the leaf's triangles and G is F plus the near edges'
- * terms, each at D or, where needed, at its distance from the segment (a
- * rigorous lower bound: the gap of the two segments' projections on the
- * direction between their computed closest points; refined largest term
- * first, only until the margin decides), and
- *   est = w(c) + J,  margin = G |x - c| + B_c,
+ * the cell's ball, and for the other ("far") edges the first-order term
+ * of their part g of grad w: an edge dropped at an ancestor cell (beyond a
+ * few of its radii) contributes its field at that cell's centre, with R =
+ * sum H_e r over them bounding |g_e(y) - that| in the leaf (H_e the bound
+ * k min(2 len / d^3, 4 / d^2) of the field's derivative: the Jacobian of
+ * r / |r|^3 has norm 2 / |r|^3); an edge dropped at the leaf contributes
+ * its field at the anchor, the rest of its integral bounded by H_e |x -
+ * c|^2 / 2.  For x in the leaf the segment c -> x stays in the cell: J is
+ * counted over the leaf's triangles, g0 is the sum of the far edges'
+ * fields so kept, G is R plus the near edges' terms, each at D or, where
+ * needed, at its distance from the segment (a rigorous lower bound: the
+ * gap of the two segments' projections on the direction between their
+ * computed closest points; refined largest term first, only until the
+ * margin decides), and
+ *   est = w(c) + J + g0 . (x - c),
+ *   margin = G |x - c| + H |x - c|^2 / 2 + B_c (+ 1e-12 of the far
+ *            edges' |g| bound times |x - c|, for the rounding of g0),
  * |w(x) - est| <= margin in exact arithmetic.  The anchor decides when
  * |est - 1/2| > margin + 1e-9, with the answer est > 1/2, the exact sum's
- * answer up to the 1e-9 of mesh_bvh.h.  It refuses (returns 0) when x is
+ * answer up to the 1e-9 of mesh_bvh.h.  Where it does not, decide tries
+ * once more with the near edges' parts taken exactly (largest bound
+ * first, until the rest's bound fits): an edge's field integrated along
+ * the segment is the Gauss linking integral of the two segments, the
+ * solid angle of the parallelogram the edge sweeps when moved by c - x,
+ * seen from c (mesh_anchor.c), with a bound of its rounding in the margin.
+ * It refuses (returns 0) when x is
  * outside the root cube or not finite, the leaf has no usable anchor, or a
  * crossing is not clear (see _crossings), or a near edge touches the
  * segment.
  *
- * Memory: the octree nodes (4 bytes each), 72 bytes per leaf, 4 bytes per
+ * Memory: the octree nodes (4 bytes each), 112 bytes per leaf, 4 bytes per
  * listed triangle and 24 per listed near edge (dfl_mesh_anchor_stats; on
- * Wuson about 7 MB, on a single triangle about 7 MB too: the cells follow
+ * Wuson about 9 MB, on a single triangle about 10 MB too: the cells follow
  * the rims).  The octree has at most 64 ntris + 2^18 nodes and its lists
  * at most 256 ntris + 2^20 entries (so at most about 45 MB + 10 kB per
  * triangle in all): a mesh that would need more
  * (or has 2^23 triangles or more) gets no anchors (*out = NULL, DFL_OK;
- * dfl_mesh_bvh_inside then uses the traversal alone).  Build: one budgeted winding sum per leaf, in
- * parallel (OpenMP).  Everything is
+ * dfl_mesh_bvh_inside then uses the traversal alone).  Build: one budgeted
+ * winding sum and one closest-point query per leaf, in parallel (OpenMP).  Everything is
  * read-only after _new; queries allocate nothing and are thread-safe.
  * The arrays are borrowed and must outlive a; bvh is used only during
  * _new.  Errors: DFL_E_NOMEM. */
@@ -83,7 +99,9 @@ dfl_status dfl_mesh_anchor_new(const double *verts, size_t nverts, const size_t 
  * *margin = G |x - c| + B_c (|w(x) - est| <= margin in exact arithmetic);
  * 0 if it refuses (est, margin untouched). */
 int dfl_mesh_anchor_estimate(const dfl_mesh_anchor *a, const double *x, double *est, double *margin);
-/* 1 and *inside = (w(x) > 1/2) when |est - 1/2| > margin + 1e-9, else 0. */
+/* 1 and *inside = (w(x) > 1/2) when |est - 1/2| > margin + 1e-9, or when
+ * that holds with the near edges' parts taken exactly (the header's
+ * second chance); else 0. */
 int dfl_mesh_anchor_decide(const dfl_mesh_anchor *a, const double *x, int *inside);
 /* Signed crossings J of the segment c -> x with triangles list[0..n) (all
  * n triangles if list is NULL): +1 per triangle interior crossed from the
@@ -96,6 +114,10 @@ int dfl_mesh_anchor_decide(const dfl_mesh_anchor *a, const double *x, int *insid
  * (their winding number is 0 everywhere). */
 int dfl_mesh_anchor_crossings(const double *verts, const size_t *tris, const uint32_t *list,
                               size_t n, const double *c, const double *x, double tol, int *J);
+/* The triangle closest to the anchor of x's leaf (the start of
+ * dfl_mesh_bvh_closest_hint: near x when the leaf is small), SIZE_MAX when
+ * x is outside the root cube, not finite or its leaf has no anchor. */
+size_t dfl_mesh_anchor_hint(const dfl_mesh_anchor *a, const double *x);
 void dfl_mesh_anchor_stats(const dfl_mesh_anchor *a, size_t *leaves, size_t *bytes);
 void dfl_mesh_anchor_free(dfl_mesh_anchor *a);
 

@@ -112,6 +112,14 @@ static bool query_cb(struct RTCPointQueryFunctionArguments *args)
 
 void dfl_mesh_bvh_closest(const dfl_mesh_bvh *b, const double *x, dfl_mesh_hit *hit)
 {
+    dfl_mesh_bvh_closest_hint(b, x, SIZE_MAX, hit);
+}
+
+/* The hint's distance starts the radius small, so Embree prunes from the
+ * first node on; the minimum and its tie rule do not depend on the order
+ * in which triangles are considered. */
+void dfl_mesh_bvh_closest_hint(const dfl_mesh_bvh *b, const double *x, size_t t0, dfl_mesh_hit *hit)
+{
     hit->d = INFINITY;
     hit->tri = SIZE_MAX;
     hit->feat = DFL_TRI_FACE;
@@ -125,10 +133,15 @@ void dfl_mesh_bvh_closest(const dfl_mesh_bvh *b, const double *x, dfl_mesh_hit *
         for (size_t t = 0; t < b->nt; t++) consider(b, x, t, hit);
         return;
     }
-    struct RTCPointQuery q = {(float)x[0], (float)x[1], (float)x[2], 0.0f, INFINITY};
+    cp_state s = {b, x, 2.0 * WIDEN * (xm + b->vmax), hit};
+    float r0 = INFINITY;
+    if (t0 < b->nt) {
+        consider(b, x, t0, hit);
+        r0 = nextafterf((float)(hit->d + s.pad), INFINITY);
+    }
+    struct RTCPointQuery q = {(float)x[0], (float)x[1], (float)x[2], 0.0f, r0};
     struct RTCPointQueryContext ctx;
     rtcInitPointQueryContext(&ctx);
-    cp_state s = {b, x, 2.0 * WIDEN * (xm + b->vmax), hit};
     rtcPointQuery(b->scene, &q, &ctx, query_cb, &s);
     assert(hit->tri != SIZE_MAX);
 }

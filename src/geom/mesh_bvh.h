@@ -6,6 +6,7 @@
  *
  *   dfl_mesh_bvh_new(verts, nverts, tris, ntris, out, err)
  *   dfl_mesh_bvh_closest(b, x, hit)          exact distance, closest point, triangle, feature
+ *   dfl_mesh_bvh_closest_hint(b, x, t0, hit) the same, started from triangle t0
  *   dfl_mesh_bvh_winding(b, x, beta, bound)  clustered winding number and its error bound
  *   dfl_mesh_bvh_winding_within(b, x, tol, bound)  adaptive, bound <= tol
  *   dfl_mesh_bvh_winding_budget(b, x, tol, bound)  one pass, bound <= tol
@@ -98,6 +99,12 @@ typedef struct dfl_mesh_hit {
 dfl_status dfl_mesh_bvh_new(const double *verts, size_t nverts, const size_t *tris, size_t ntris,
                             dfl_mesh_bvh **out, dfl_err *err);
 void dfl_mesh_bvh_closest(const dfl_mesh_bvh *b, const double *x, dfl_mesh_hit *hit);
+/* dfl_mesh_bvh_closest's result, bit for bit and with its tie rule,
+ * whatever t0: triangle t0 (when t0 < ntris; any other value is no hint)
+ * is considered first, so that the search starts with its distance as the
+ * radius (fast when t0 is near x, e.g. dfl_mesh_anchor_hint). */
+void dfl_mesh_bvh_closest_hint(const dfl_mesh_bvh *b, const double *x, size_t t0,
+                               dfl_mesh_hit *hit);
 /* beta > 1; *bound (may be NULL) gets the error bound of the result. */
 double dfl_mesh_bvh_winding(const dfl_mesh_bvh *b, const double *x, double beta, double *bound);
 /* The adaptive traversal of dfl_mesh_bvh_inside (above) run until its

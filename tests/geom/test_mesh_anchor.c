@@ -13,6 +13,7 @@
 #include "geom/mesh_anchor.h"
 #include "geom/mesh_bvh.h"
 #include "geom/trimesh.h"
+#include "geom/tridist.h"
 #include "geom/winding.h"
 #include "mesh_fixtures.h"
 
@@ -335,4 +336,42 @@ Test(mesh_anchor, a_soup_beyond_the_caps_gets_no_anchors)
     dfl_mesh_bvh_free(b);
     free(v);
     free(t);
+}
+
+/* The hint is a triangle near x (the closest to x's leaf anchor): within
+ * 1e-3 of a Wuson vertex most leaves are small, so on average its distance
+ * from x exceeds x's own by less than 0.01 (a triangle chosen at random is
+ * about 0.5 away; leaves over flat parts with few triangles are larger);
+ * outside the root cube or not finite: none. */
+Test(mesh_anchor, hint_is_a_triangle_near_x_or_none)
+{
+    dfl_trimesh m;
+    wuson(&m);
+    dfl_mesh_bvh *b;
+    cr_assert_eq(dfl_mesh_bvh_new(m.verts, m.nverts, m.tris, m.ntris, &b, NULL), DFL_OK);
+    const dfl_mesh_anchor *a = dfl_mesh_bvh_anchors(b);
+    cr_assert_not_null(a);
+    uint64_t s = 19;
+    double excess = 0.0;
+    for (int it = 0; it < 500; it++) {
+        const size_t v = (size_t)dfl_rng_splitmix(&s, 0, (double)m.nverts);
+        double x[3];
+        for (int j = 0; j < 3; j++) x[j] = m.verts[3 * v + j] + dfl_rng_splitmix(&s, -1e-3, 1e-3);
+        const size_t t = dfl_mesh_anchor_hint(a, x);
+        cr_assert_lt(t, m.ntris);
+        const size_t *T = m.tris + 3 * t;
+        const double dt = dfl_tridist_closest(x, m.verts + 3 * T[0], m.verts + 3 * T[1],
+                                              m.verts + 3 * T[2], NULL, NULL);
+        dfl_mesh_hit h;
+        dfl_mesh_bvh_closest(b, x, &h);
+        cr_assert_geq(dt, h.d);
+        excess += dt - h.d;
+    }
+    cr_expect_lt(excess / 500, 0.01, "mean excess distance of the hint %g", excess / 500);
+    cr_log_info("hint: mean excess distance %g", excess / 500);
+    const double out[3] = {10.0, 0.0, 0.0}, nan[3] = {0.0, NAN, 0.0};
+    cr_expect_eq(dfl_mesh_anchor_hint(a, out), SIZE_MAX);
+    cr_expect_eq(dfl_mesh_anchor_hint(a, nan), SIZE_MAX);
+    dfl_mesh_bvh_free(b);
+    dfl_trimesh_free(&m);
 }

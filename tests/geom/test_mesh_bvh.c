@@ -7,6 +7,7 @@
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "core/rng.h"
 #include "core/vec.h"
@@ -42,8 +43,19 @@ Test(mesh_bvh, distance_equals_brute_force_bit_for_bit)
         } else {
             for (int j = 0; j < 3; j++) x[j] = dfl_rng_splitmix(&s, -1.5, 1.5);
         }
-        dfl_mesh_hit h;
+        dfl_mesh_hit h, hh;
         dfl_mesh_bvh_closest(b, x, &h);
+        /* any start gives the same hit, bit for bit: a random triangle,
+         * the hit's own, or none (SIZE_MAX, ntris: not a triangle) */
+        const size_t starts[4] = {(size_t)dfl_rng_splitmix(&s, 0, (double)m.ntris), h.tri, SIZE_MAX,
+                                  m.ntris};
+        for (int k = 0; k < 4; k++) {
+            dfl_mesh_bvh_closest_hint(b, x, starts[k], &hh);
+            cr_assert(hh.d == h.d && hh.tri == h.tri && hh.feat == h.feat &&
+                          memcmp(hh.q, h.q, sizeof h.q) == 0,
+                      "start %zu at (%.17g %.17g %.17g): %.17g (triangle %zu) vs %.17g (%zu)",
+                      starts[k], x[0], x[1], x[2], hh.d, hh.tri, h.d, h.tri);
+        }
         double bf = dfl_meshdist_eval(&m, x);
         cr_assert_eq(h.d, bf, "at (%.17g %.17g %.17g): %.17g vs brute %.17g", x[0], x[1], x[2],
                      h.d, bf);
@@ -164,6 +176,12 @@ Test(mesh_bvh, ties_go_to_the_smallest_triangle_index)
                 cr_assert_eq(h.d, bd);
                 cr_expect_eq(h.tri, best, "mesh %d, vertices %zu %zu: triangle %zu, want %zu (of %d)",
                              mesh, v, w, h.tri, best, nties);
+                /* started from the last triangle (a tied one considered
+                 * first), the smallest index still wins */
+                dfl_mesh_bvh_closest_hint(b, x, m.ntris - 1, &h);
+                cr_assert_eq(h.d, bd);
+                cr_expect_eq(h.tri, best, "hint: mesh %d, vertices %zu %zu: triangle %zu, want %zu",
+                             mesh, v, w, h.tri, best);
             }
         cr_expect(tied > 10, "mesh %d: %d tied points", mesh, tied);
         dfl_mesh_bvh_free(b);
