@@ -364,7 +364,8 @@ static double tri_w(const double *u, const double *v, const double *t, double *e
  * coordinates (the mesh's scale S), which moves the solid angle by at
  * most the edges' field at the gap g, 2 (2 |PQ| + 2 |d|) / (4 pi g^2),
  * times that ulp; plus tri_w's own error. */
-static int decide_near_exact(const dfl_mesh_anchor *a, const double *x, int *inside)
+static int estimate_near(const dfl_mesh_anchor *a, const double *x, double stop, double *est,
+                         double *margin)
 {
     const aleaf *l = locate(a, x);
     if (!l || !(l->B < INFINITY)) return 0;
@@ -373,12 +374,13 @@ static int decide_near_exact(const dfl_mesh_anchor *a, const double *x, int *ins
         return 0;
     double d[3] = {x[0] - l->c[0], x[1] - l->c[1], x[2] - l->c[2]};
     const double dx = sqrt(dfl_vec3_dot(d, d));
-    double w = l->w + J + dfl_vec3_dot(l->g, d);
+    double w = l->w + J;
+    w += dfl_vec3_dot(l->g, d); /* the far edges' first-order term */
     double m = (0.5 * l->H * dx + 1e-12 * l->Fs + l->R) * dx * (1.0 + 1e-12) + l->B;
     const nearent *ne = a->el + l->e0;
     uint32_t i = 0;
     for (; i < l->ne; i++) {
-        if (i >= l->nmust && fabs(w - 0.5) > m + ne[i].S * dx * (1.0 + 1e-12) + 1e-9) break;
+        if (i >= l->nmust && fabs(w - 0.5) - stop > m + ne[i].S * dx * (1.0 + 1e-12)) break;
         const bedge *e = a->edge + ne[i].e;
         const double *P = a->V + 3 * (size_t)e->a, *Q = a->V + 3 * (size_t)e->b;
         const double gap = seg_seg_lower(l->c, x, P, Q, a->eps);
@@ -399,16 +401,25 @@ static int decide_near_exact(const dfl_mesh_anchor *a, const double *x, int *ins
                   (4.0 * (e->len + dx) / (4.0 * DFL_PI * gap * gap)) * 2.0 * ulp);
     }
     if (i < l->ne) m += ne[i].S * dx * (1.0 + 1e-12);
-    if (!(fabs(w - 0.5) > m + 1e-9)) return 0;
-    *inside = w > 0.5;
+    if (!(m < INFINITY)) return 0;
+    *est = w;
+    *margin = m;
     return 1;
+}
+
+int dfl_mesh_anchor_estimate_near(const dfl_mesh_anchor *a, const double *x, double stop,
+                                  double *est, double *margin)
+{
+    return estimate_near(a, x, stop, est, margin);
 }
 
 int dfl_mesh_anchor_decide(const dfl_mesh_anchor *a, const double *x, int *inside)
 {
     double est, m;
     if (!estimate(a, x, 1e-9, &est, &m)) return 0;
-    if (!(fabs(est - 0.5) > m + 1e-9)) return decide_near_exact(a, x, inside);
+    if (!(fabs(est - 0.5) > m + 1e-9) &&
+        !(estimate_near(a, x, 1e-9, &est, &m) && fabs(est - 0.5) > m + 1e-9))
+        return 0;
     *inside = est > 0.5;
     return 1;
 }

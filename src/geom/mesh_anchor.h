@@ -5,6 +5,7 @@
  *
  *   dfl_mesh_anchor_new(verts, nverts, tris, ntris, bvh, out, err)
  *   dfl_mesh_anchor_estimate(a, x, est, margin)   w(c) + J and its certified margin
+ *   dfl_mesh_anchor_estimate_near(a, x, stop, est, margin)  the same, near edges exact
  *   dfl_mesh_anchor_decide(a, x, inside)          1 if the anchor decides w(x) > 1/2
  *   dfl_mesh_anchor_crossings(verts, tris, list, n, c, x, tol, J)  signed crossings of c -> x
  *   dfl_mesh_anchor_hint(a, x)                    a triangle near x (a closest-point start)
@@ -99,6 +100,12 @@ dfl_status dfl_mesh_anchor_new(const double *verts, size_t nverts, const size_t 
  * *margin = G |x - c| + B_c (|w(x) - est| <= margin in exact arithmetic);
  * 0 if it refuses (est, margin untouched). */
 int dfl_mesh_anchor_estimate(const dfl_mesh_anchor *a, const double *x, double *est, double *margin);
+/* The second chance: as _estimate, with near edges' parts taken exactly,
+ * largest bound first, until |est - 1/2| - stop exceeds the margin with
+ * the rest's bound (stop = INFINITY: every near edge exactly); the rest's
+ * bound is in *margin.  0 also when a near edge touches the segment. */
+int dfl_mesh_anchor_estimate_near(const dfl_mesh_anchor *a, const double *x, double stop,
+                                  double *est, double *margin);
 /* 1 and *inside = (w(x) > 1/2) when |est - 1/2| > margin + 1e-9, or when
  * that holds with the near edges' parts taken exactly (the header's
  * second chance); else 0. */

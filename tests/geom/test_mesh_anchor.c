@@ -250,6 +250,8 @@ static void check_mesh(dfl_trimesh *m, int n, uint64_t seed, double min_decided,
     uint64_t s = seed;
     int decided = 0, inside = 0, estimated = 0;
     double worst = 0.0; /* the largest |w - est| / margin */
+    double worst_near[2] = {0.0, 0.0};
+    int near_estimated = 0;
     for (int it = 0; it < n; it++) {
         double x[3];
         sample(m, be, nbe, &s, it, x);
@@ -270,6 +272,16 @@ static void check_mesh(dfl_trimesh *m, int n, uint64_t seed, double min_decided,
                           "margin %.3g", name, x[0], x[1], x[2], w, est, margin);
             if (margin > 0) worst = fmax(worst, fabs(w - est) / margin);
         }
+        /* the second chance, as decide stops it and with every near edge */
+        const double stops[2] = {1e-9, INFINITY};
+        for (int k = 0; k < 2; k++)
+            if (dfl_mesh_anchor_estimate_near(a, x, stops[k], &est, &margin)) {
+                near_estimated++;
+                cr_assert_leq(fabs(w - est), margin + 1e-12, "%s near (stop %g): at (%.17g %.17g %.17g): "
+                              "w = %.17g, est %.17g margin %.3g", name, stops[k], x[0], x[1], x[2], w,
+                              est, margin);
+                if (margin > 0) worst_near[k] = fmax(worst_near[k], fabs(w - est) / margin);
+            }
     }
     if (sheet)
         cr_expect_eq(inside, 0, "%s: a single triangle's w is at most 1/2", name);
@@ -278,6 +290,11 @@ static void check_mesh(dfl_trimesh *m, int n, uint64_t seed, double min_decided,
     cr_expect_gt(worst, tight, "%s: the margin is attained within %g: %g", name, tight, worst);
     cr_expect_geq(decided, (int)(min_decided * n), "%s: the anchors decided %d of %d", name, decided, n);
     cr_expect_gt(estimated, n / 2, "%s: %d estimated", name, estimated);
+    cr_expect_gt(near_estimated, n, "%s: %d estimated with near edges exact", name, near_estimated);
+    cr_expect_gt(worst_near[0], tight, "%s: the second chance's margin is attained within %g: %g",
+                 name, tight, worst_near[0]);
+    cr_log_info("%s: second chance worst |w - est| / margin %.3g (stop 1e-9), %.3g (all exact)", name,
+                worst_near[0], worst_near[1]);
     cr_log_info("%s: decided %d / %d, worst |w - est| / margin %.3f", name, decided, n, worst);
     free(be);
     dfl_mesh_bvh_free(b);

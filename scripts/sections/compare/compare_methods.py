@@ -40,7 +40,11 @@ ASSUMPTIONS = [
     "generalized winding number's): its SDF has creases at every edge and vertex, where it is "
     "C0 only, and the near-surface band L∞ of every method is set there. Methods that assume "
     "smoothness (Taylor-2 grid peers, C1 PHT splines) lose their order on it; the rates table "
-    "shows how far each still falls.",
+    "shows how far each still falls. Worse than creases: where w passes 1/2 off the mesh (the "
+    "sheets that close its 2,338 open edges) the sign flips at |d| > 0, so the SDF jumps by "
+    "2|d|, up to 0.1 inside the band |d| ≤ 0.05. A continuous method's band L∞ cannot fall "
+    "below about half the largest jump its error points straddle, whatever its resolution; "
+    "a PHT band L∞ that stays near 0.05 at every eps is that floor, not the fit's.",
     "Order-2 proxies with the analytic curvature skip the meshes (skip_kinds): a mesh's SDF has "
     "no curvature at an edge or vertex footpoint (its Hessian there is 1/rounding, of either "
     "sign: such proxies flipped the sign of whole cells, errors of 2|d|), and dflab refuses "
