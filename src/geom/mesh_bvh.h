@@ -69,7 +69,7 @@
  * Thread-safety: after dfl_mesh_bvh_new everything is read-only but the
  * anchor octree, which the first dfl_mesh_bvh_inside or
  * dfl_mesh_bvh_anchors call builds, once, under the BVH's lock (other
- * threads wait for it; about 0.7 s of CPU and 7 MB on Wuson, so that a
+ * threads wait for it; about 0.9 s of CPU and 9 MB on Wuson, so that a
  * mesh that is only validated or queried unsigned never pays it); queries
  * allocate nothing else (a fixed stack of DFL_MESH_BVH_STACK nodes; the
  * tree's depth is capped below it at build).  The arrays passed to _new are
