@@ -7,9 +7,11 @@ recorded ISA may differ; in CSV tables the wall-clock columns are left out).
 
     check_isa.py DFLAB [--quick] [--keep DIR] [CONFIG.ini ...]
 
-Without configs: every configs/paper/*/*.ini and configs/smoke/*.ini
-(`make check-isa`); --quick: a fast subset (part of `make test`): the
-paper configs that run in a few seconds, paper configs of the PHT and
+Without configs: every configs/paper/*/*.ini, the study folders' configs
+(configs/<folder>/*.ini, e.g. configs/compare/) and configs/smoke/*.ini
+(`make check-isa`, as check_threads.py); --quick: a fast subset (part of
+`make test`): the paper configs that run in a few seconds, the comparison
+study's quick.ini (every method's kernels), paper configs of the PHT and
 proxy kernels with their sizes cut down by --set (QUICK_SET), and the
 smoke configs.  Also checks that DFL_ISA=bogus is exit 2 with one line.
 Prints one line per difference and a summary; exit 0 when all agree."""
@@ -25,7 +27,8 @@ ISAS = ["sse2", "avx2", "avx512"]
 # paper configs that run in a few seconds at full size
 QUICK = ["bs04_corrected", "bs04_fields", "bs04_gradbounds", "bs04_hetero",
          "bs04_normalization", "bs04_polygonization", "bs04_triangle", "bs04_triedge",
-         "hvb25_full217", "hvb25_peers_sphere", "hvb25_peers_torus", "smoke", "smoke3d"]
+         "hvb25_full217", "hvb25_peers_sphere", "hvb25_peers_torus", "smoke", "smoke3d",
+         "quick"]
 # paper configs cut down: (config stem, --set overrides)
 QUICK_SET = {
     "sjp10_fig1": ["fit.eps=1e-2", "fit.max_level=5", "study.val_n=41", "study.image_n=21",
@@ -72,7 +75,7 @@ def main():
     dflab, quick, keep, given = args
     cfgs = [(a, []) for a in given]
     if not cfgs:
-        every = every_config(studies=False)
+        every = every_config()
         if quick:
             cfgs = [(c, []) for c in every if stem(c) in QUICK]
             cfgs += [(c, QUICK_SET[stem(c)]) for c in every if stem(c) in QUICK_SET]
