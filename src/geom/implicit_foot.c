@@ -19,6 +19,27 @@ typedef struct start_set {
     double d0;                  /* distance of the nearest sample */
 } start_set;
 
+/* A lower bound of dist2_to(q, t) over the samples t of bucket (i, j, k):
+ * the squared distance to the bucket's cube grown by BUCKET_SLACK of its
+ * side.  bucket_of places a sample within a few roundings of its cube
+ * (relative 1e-16 of the coordinates), far inside the slack, and the
+ * slack outweighs the roundings of this sum and of dist2_to's for any
+ * finite geometry (gaps below 1e6 cube sides), so the bound never exceeds
+ * a sample's computed distance.  q not finite: 0 (no comparison holds). */
+#define BUCKET_SLACK 1e-6
+static double bucket_lb2(const dfl_implicit *s, const double q[3], int i, int j, int k)
+{
+    const int c[3] = {i, j, k};
+    const double m = BUCKET_SLACK * s->bcell;
+    double lb = 0;
+    for (int a = 0; a < 3; a++) {
+        const double lo = s->blo[a] + c[a] * s->bcell - m, hi = lo + s->bcell + 2 * m;
+        const double o = q[a] < lo ? lo - q[a] : (q[a] > hi ? q[a] - hi : 0.0);
+        lb += o * o;
+    }
+    return lb;
+}
+
 static double nearest_sample(const dfl_implicit *s, const double q[3])
 {
     double qc[3];
@@ -42,6 +63,10 @@ static double nearest_sample(const dfl_implicit *s, const double q[3])
                     if (i < 0 || i >= s->nb[0]) continue;
                     if (abs(i - c0[0]) < r && abs(j - c0[1]) < r && abs(k - c0[2]) < r) continue;
                     size_t b = bucket_index(s, i, j, k);
+                    /* only the smallest distance is kept, so a bucket no
+                     * nearer than it changes nothing */
+                    if (s->bstart[b] == s->bstart[b + 1] || bucket_lb2(s, q, i, j, k) >= best2)
+                        continue;
                     for (size_t t = s->bstart[b]; t < s->bstart[b + 1]; t++) {
                         double d2 = dist2_to(q, s->samp + 3 * t);
                         if (d2 < best2) best2 = d2;
@@ -70,6 +95,10 @@ static void collect_starts(const dfl_implicit *s, const double q[3], start_set *
         for (int j = clo[1]; j <= chi[1]; j++)
             for (int i = clo[0]; i <= chi[0]; i++) {
                 size_t b = bucket_index(s, i, j, k);
+                /* every sample of a bucket beyond rb takes the `continue`
+                 * below (sqrt is monotone) */
+                if (s->bstart[b] == s->bstart[b + 1] || sqrt(bucket_lb2(s, q, i, j, k)) > rb)
+                    continue;
                 for (size_t t = s->bstart[b]; t < s->bstart[b + 1]; t++) {
                     const double *p = s->samp + 3 * t;
                     double d = sqrt(dist2_to(q, p));

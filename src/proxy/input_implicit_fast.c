@@ -16,6 +16,7 @@ struct dfl_imp_index {
     double *soa;            /* the same by coordinate: x y z of the points, then
                                of the normals, ns each (the cap test's lanes) */
     size_t *start;          /* nb[0] nb[1] nb[2] + 1 bucket starts */
+    double *bbox;           /* per bucket: lo[3], hi[3] of its samples (exact) */
     double lo[3], cell, h;
     int nb[3];
 };
@@ -87,9 +88,20 @@ dfl_imp_index *dfl_imp_index_new(const dfl_implicit *s)
     }
     free(fill);
     free(bid);
-    if (!(ix->soa = malloc((6 * ns + 1) * sizeof *ix->soa))) {
+    if (!(ix->soa = malloc((6 * ns + 1) * sizeof *ix->soa)) ||
+        !(ix->bbox = malloc(6 * nbt * sizeof *ix->bbox))) {
         dfl_imp_index_free(ix);
         return NULL;
+    }
+    for (size_t b = 0; b < nbt; b++) {
+        double *bx = ix->bbox + 6 * b;
+        for (int a = 0; a < 3; a++) bx[a] = bx[3 + a] = NAN; /* empty: never looked at */
+        for (size_t t = ix->start[b]; t < ix->start[b + 1]; t++)
+            for (int a = 0; a < 3; a++) {
+                const double v = ix->pts[3 * t + a];
+                bx[a] = t == ix->start[b] ? v : fmin(bx[a], v);
+                bx[3 + a] = t == ix->start[b] ? v : fmax(bx[3 + a], v);
+            }
     }
     for (size_t t = 0; t < ns; t++)
         for (int a = 0; a < 3; a++) {
@@ -105,6 +117,7 @@ void dfl_imp_index_free(dfl_imp_index *ix)
     free(ix->pts);
     free(ix->nrm);
     free(ix->soa);
+    free(ix->bbox);
     free(ix->start);
     free(ix);
 }
@@ -117,6 +130,23 @@ static double box_d2(const dfl_imp_index *ix, const double x[3], int i, int j, i
     for (int a = 0; a < 3; a++) {
         double lo = ix->lo[a] + b[a] * ix->cell, hi = lo + ix->cell;
         double o = x[a] < lo ? lo - x[a] : (x[a] > hi ? x[a] - hi : 0.0);
+        s += o * o;
+    }
+    return s;
+}
+
+/* A lower bound of d2(x, s) over the samples s of bucket b, in floating
+ * point too: per axis the gap to the samples' box is no larger in
+ * magnitude than x - s (rounding is monotone and symmetric), and squares
+ * and the same left-to-right sum are monotone (0 + o^2 is o^2).  So a
+ * bucket is passed over only when each of its samples would be, one at a
+ * time.  NaN (x not finite): no comparison holds, nothing is passed over. */
+static double tight_d2(const dfl_imp_index *ix, const double x[3], size_t b)
+{
+    const double *bx = ix->bbox + 6 * b;
+    double s = 0;
+    for (int a = 0; a < 3; a++) {
+        double o = x[a] < bx[a] ? bx[a] - x[a] : (x[a] > bx[3 + a] ? x[a] - bx[3 + a] : 0.0);
         s += o * o;
     }
     return s;
@@ -154,7 +184,8 @@ static size_t nearest(const dfl_imp_index *ix, const double x[3])
                     if (i < 0 || i >= ix->nb[0]) continue;
                     if (abs(i - c0[0]) < r && abs(j - c0[1]) < r && abs(k - c0[2]) < r) continue;
                     size_t b = bucket_id(ix, i, j, k);
-                    if (ix->start[b] == ix->start[b + 1] || box_d2(ix, x, i, j, k) >= best)
+                    if (ix->start[b] == ix->start[b + 1] || box_d2(ix, x, i, j, k) >= best ||
+                        tight_d2(ix, x, b) >= best) /* no sample would win */
                         continue;
                     for (size_t t = ix->start[b]; t < ix->start[b + 1]; t++) {
                         double e = d2(x, ix->pts + 3 * t);
@@ -254,7 +285,9 @@ static int cap_test(const dfl_imp_index *ix, const double x[3], const double p[3
         for (int j = bl[1]; j <= bh[1]; j++)
             for (int i = bl[0]; i <= bh[0]; i++) {
                 size_t b = bucket_id(ix, i, j, k);
-                if (ix->start[b] == ix->start[b + 1] || box_d2(ix, x, i, j, k) > rb * rb) continue;
+                if (ix->start[b] == ix->start[b + 1] || box_d2(ix, x, i, j, k) > rb * rb ||
+                    tight_d2(ix, x, b) > rb * rb) /* no sample in the ball */
+                    continue;
                 if (!cap_run(ix, ix->start[b], ix->start[b + 1], x, p, rb * rb, near2)) return 0;
             }
     return 1;
