@@ -25,19 +25,22 @@ typedef struct start_set {
  * (relative 1e-16 of the coordinates), far inside the slack, and the
  * slack outweighs the roundings of this sum and of dist2_to's for any
  * finite geometry (gaps below 1e6 cube sides), so the bound never exceeds
- * a sample's computed distance.  q not finite: 0 (no comparison holds). */
+ * a sample's computed distance.  q not finite: 0 (no comparison holds).
+ * slab_gap is one axis' term (cell c of axis a); with the terms of some
+ * axes taken as 0 the sum is no larger (rounding is monotone), a bound
+ * for a whole row or plane of buckets. */
 #define BUCKET_SLACK 1e-6
+static double slab_gap(const dfl_implicit *s, const double q[3], int a, int c)
+{
+    const double m = BUCKET_SLACK * s->bcell;
+    const double lo = s->blo[a] + c * s->bcell - m, hi = lo + s->bcell + 2 * m;
+    return q[a] < lo ? lo - q[a] : (q[a] > hi ? q[a] - hi : 0.0);
+}
+
 static double bucket_lb2(const dfl_implicit *s, const double q[3], int i, int j, int k)
 {
-    const int c[3] = {i, j, k};
-    const double m = BUCKET_SLACK * s->bcell;
-    double lb = 0;
-    for (int a = 0; a < 3; a++) {
-        const double lo = s->blo[a] + c[a] * s->bcell - m, hi = lo + s->bcell + 2 * m;
-        const double o = q[a] < lo ? lo - q[a] : (q[a] > hi ? q[a] - hi : 0.0);
-        lb += o * o;
-    }
-    return lb;
+    const double o0 = slab_gap(s, q, 0, i), o1 = slab_gap(s, q, 1, j), o2 = slab_gap(s, q, 2, k);
+    return 0.0 + o0 * o0 + o1 * o1 + o2 * o2;
 }
 
 static double nearest_sample(const dfl_implicit *s, const double q[3])
@@ -54,8 +57,12 @@ static double nearest_sample(const dfl_implicit *s, const double q[3])
     for (int r = 0; r <= rmax; r++) {
         for (int k = c0[2] - r; k <= c0[2] + r; k++) {
             if (k < 0 || k >= s->nb[2]) continue;
+            const double o2 = slab_gap(s, q, 2, k);
+            if (0.0 + 0.0 + 0.0 + o2 * o2 >= best2) continue; /* the plane's bound */
             for (int j = c0[1] - r; j <= c0[1] + r; j++) {
                 if (j < 0 || j >= s->nb[1]) continue;
+                const double o1 = slab_gap(s, q, 1, j);
+                if (0.0 + 0.0 + o1 * o1 + o2 * o2 >= best2) continue; /* the row's */
                 /* a row through the ring's inside holds two of its buckets
                  * (the same buckets in the same order, fewer steps) */
                 const int step = abs(j - c0[1]) < r && abs(k - c0[2]) < r ? 2 * r : 1;
