@@ -21,8 +21,11 @@ typedef struct start_set {
 
 /* A lower bound of dist2_to(q, t) over the samples t of bucket (i, j, k):
  * the squared distance to the bucket's cube grown by BUCKET_SLACK of its
- * side.  bucket_of places a sample within a few roundings of its cube
- * (relative 1e-16 of the coordinates), far inside the slack, and the
+ * side, and without end on a side where the grid ends (bucket_of clamps a
+ * sample beyond the grid, as projected samples of a surface leaving the
+ * box may be, into the last cube).  bucket_of places any other sample
+ * within a few roundings of its cube (relative 1e-16 of the coordinates),
+ * far inside the slack, and the
  * slack outweighs the roundings of this sum and of dist2_to's for any
  * finite geometry (gaps below 1e6 cube sides), so the bound never exceeds
  * a sample's computed distance.  q not finite: 0 (no comparison holds).
@@ -32,8 +35,8 @@ typedef struct start_set {
 #define BUCKET_SLACK 1e-6
 static double slab_gap(const dfl_implicit *s, const double q[3], int a, int c)
 {
-    const double m = BUCKET_SLACK * s->bcell;
-    const double lo = s->blo[a] + c * s->bcell - m, hi = lo + s->bcell + 2 * m;
+    const double m = BUCKET_SLACK * s->bcell, b = s->blo[a] + c * s->bcell - m;
+    const double lo = c == 0 ? -HUGE_VAL : b, hi = c == s->nb[a] - 1 ? HUGE_VAL : b + s->bcell + 2 * m;
     return q[a] < lo ? lo - q[a] : (q[a] > hi ? q[a] - hi : 0.0);
 }
 
