@@ -66,6 +66,8 @@ $(BUILD)/src/rfunc/batch_tri.o $(BUILD)/src/rfunc/batch_region.o: CFLAGS += -fno
 # The nearest filter's lane loop (src/proxy/filter.c nearest_block): sqrt and
 # the clip's selects vectorize under the same two flags.
 $(BUILD)/src/proxy/filter.o: CFLAGS += -fno-math-errno -fno-trapping-math
+# The implicit cap test's lane loop (src/proxy/input_implicit_fast.c cap_run): the same.
+$(BUILD)/src/proxy/input_implicit_fast.o: CFLAGS += -fno-math-errno -fno-trapping-math
 
 
 LIB     := $(BUILD)/libdfl.a

@@ -19,6 +19,33 @@ typedef struct start_set {
     double d0;                  /* distance of the nearest sample */
 } start_set;
 
+/* A lower bound of dist2_to(q, t) over the samples t of bucket (i, j, k):
+ * the squared distance to the bucket's cube grown by BUCKET_SLACK of its
+ * side, and without end on a side where the grid ends (bucket_of clamps a
+ * sample beyond the grid, as projected samples of a surface leaving the
+ * box may be, into the last cube).  bucket_of places any other sample
+ * within a few roundings of its cube (relative 1e-16 of the coordinates),
+ * far inside the slack, and the
+ * slack outweighs the roundings of this sum and of dist2_to's for any
+ * finite geometry (gaps below 1e6 cube sides), so the bound never exceeds
+ * a sample's computed distance.  q not finite: 0 (no comparison holds).
+ * slab_gap is one axis' term (cell c of axis a); with the terms of some
+ * axes taken as 0 the sum is no larger (rounding is monotone), a bound
+ * for a whole row or plane of buckets. */
+#define BUCKET_SLACK 1e-6
+static double slab_gap(const dfl_implicit *s, const double q[3], int a, int c)
+{
+    const double m = BUCKET_SLACK * s->bcell, b = s->blo[a] + c * s->bcell - m;
+    const double lo = c == 0 ? -HUGE_VAL : b, hi = c == s->nb[a] - 1 ? HUGE_VAL : b + s->bcell + 2 * m;
+    return q[a] < lo ? lo - q[a] : (q[a] > hi ? q[a] - hi : 0.0);
+}
+
+static double bucket_lb2(const dfl_implicit *s, const double q[3], int i, int j, int k)
+{
+    const double o0 = slab_gap(s, q, 0, i), o1 = slab_gap(s, q, 1, j), o2 = slab_gap(s, q, 2, k);
+    return 0.0 + o0 * o0 + o1 * o1 + o2 * o2;
+}
+
 static double nearest_sample(const dfl_implicit *s, const double q[3])
 {
     double qc[3];
@@ -33,8 +60,12 @@ static double nearest_sample(const dfl_implicit *s, const double q[3])
     for (int r = 0; r <= rmax; r++) {
         for (int k = c0[2] - r; k <= c0[2] + r; k++) {
             if (k < 0 || k >= s->nb[2]) continue;
+            const double o2 = slab_gap(s, q, 2, k);
+            if (0.0 + 0.0 + 0.0 + o2 * o2 >= best2) continue; /* the plane's bound */
             for (int j = c0[1] - r; j <= c0[1] + r; j++) {
                 if (j < 0 || j >= s->nb[1]) continue;
+                const double o1 = slab_gap(s, q, 1, j);
+                if (0.0 + 0.0 + o1 * o1 + o2 * o2 >= best2) continue; /* the row's */
                 /* a row through the ring's inside holds two of its buckets
                  * (the same buckets in the same order, fewer steps) */
                 const int step = abs(j - c0[1]) < r && abs(k - c0[2]) < r ? 2 * r : 1;
@@ -42,6 +73,10 @@ static double nearest_sample(const dfl_implicit *s, const double q[3])
                     if (i < 0 || i >= s->nb[0]) continue;
                     if (abs(i - c0[0]) < r && abs(j - c0[1]) < r && abs(k - c0[2]) < r) continue;
                     size_t b = bucket_index(s, i, j, k);
+                    /* only the smallest distance is kept, so a bucket no
+                     * nearer than it changes nothing */
+                    if (s->bstart[b] == s->bstart[b + 1] || bucket_lb2(s, q, i, j, k) >= best2)
+                        continue;
                     for (size_t t = s->bstart[b]; t < s->bstart[b + 1]; t++) {
                         double d2 = dist2_to(q, s->samp + 3 * t);
                         if (d2 < best2) best2 = d2;
@@ -70,6 +105,10 @@ static void collect_starts(const dfl_implicit *s, const double q[3], start_set *
         for (int j = clo[1]; j <= chi[1]; j++)
             for (int i = clo[0]; i <= chi[0]; i++) {
                 size_t b = bucket_index(s, i, j, k);
+                /* every sample of a bucket beyond rb takes the `continue`
+                 * below (sqrt is monotone) */
+                if (s->bstart[b] == s->bstart[b + 1] || sqrt(bucket_lb2(s, q, i, j, k)) > rb)
+                    continue;
                 for (size_t t = s->bstart[b]; t < s->bstart[b + 1]; t++) {
                     const double *p = s->samp + 3 * t;
                     double d = sqrt(dist2_to(q, p));

@@ -13,7 +13,10 @@ struct dfl_imp_index {
     const dfl_implicit *s;
     size_t ns;
     double *pts, *nrm;      /* sorted by bucket: ns points and unit normals */
+    double *soa;            /* the same by coordinate: x y z of the points, then
+                               of the normals, ns each (the cap test's lanes) */
     size_t *start;          /* nb[0] nb[1] nb[2] + 1 bucket starts */
+    double *bbox;           /* per bucket: lo[3], hi[3] of its samples (exact) */
     double lo[3], cell, h;
     int nb[3];
 };
@@ -85,6 +88,26 @@ dfl_imp_index *dfl_imp_index_new(const dfl_implicit *s)
     }
     free(fill);
     free(bid);
+    if (!(ix->soa = malloc((6 * ns + 1) * sizeof *ix->soa)) ||
+        !(ix->bbox = malloc(6 * nbt * sizeof *ix->bbox))) {
+        dfl_imp_index_free(ix);
+        return NULL;
+    }
+    for (size_t b = 0; b < nbt; b++) {
+        double *bx = ix->bbox + 6 * b;
+        for (int a = 0; a < 3; a++) bx[a] = bx[3 + a] = NAN; /* empty: never looked at */
+        for (size_t t = ix->start[b]; t < ix->start[b + 1]; t++)
+            for (int a = 0; a < 3; a++) {
+                const double v = ix->pts[3 * t + a];
+                bx[a] = t == ix->start[b] ? v : fmin(bx[a], v);
+                bx[3 + a] = t == ix->start[b] ? v : fmax(bx[3 + a], v);
+            }
+    }
+    for (size_t t = 0; t < ns; t++)
+        for (int a = 0; a < 3; a++) {
+            ix->soa[a * ns + t] = ix->pts[3 * t + a];
+            ix->soa[(3 + a) * ns + t] = ix->nrm[3 * t + a];
+        }
     return ix;
 }
 
@@ -93,6 +116,8 @@ void dfl_imp_index_free(dfl_imp_index *ix)
     if (!ix) return;
     free(ix->pts);
     free(ix->nrm);
+    free(ix->soa);
+    free(ix->bbox);
     free(ix->start);
     free(ix);
 }
@@ -105,6 +130,23 @@ static double box_d2(const dfl_imp_index *ix, const double x[3], int i, int j, i
     for (int a = 0; a < 3; a++) {
         double lo = ix->lo[a] + b[a] * ix->cell, hi = lo + ix->cell;
         double o = x[a] < lo ? lo - x[a] : (x[a] > hi ? x[a] - hi : 0.0);
+        s += o * o;
+    }
+    return s;
+}
+
+/* A lower bound of d2(x, s) over the samples s of bucket b, in floating
+ * point too: per axis the gap to the samples' box is no larger in
+ * magnitude than x - s (rounding is monotone and symmetric), and squares
+ * and the same left-to-right sum are monotone (0 + o^2 is o^2).  So a
+ * bucket is passed over only when each of its samples would be, one at a
+ * time.  NaN (x not finite): no comparison holds, nothing is passed over. */
+static double tight_d2(const dfl_imp_index *ix, const double x[3], size_t b)
+{
+    const double *bx = ix->bbox + 6 * b;
+    double s = 0;
+    for (int a = 0; a < 3; a++) {
+        double o = x[a] < bx[a] ? bx[a] - x[a] : (x[a] > bx[3 + a] ? x[a] - bx[3 + a] : 0.0);
         s += o * o;
     }
     return s;
@@ -142,7 +184,8 @@ static size_t nearest(const dfl_imp_index *ix, const double x[3])
                     if (i < 0 || i >= ix->nb[0]) continue;
                     if (abs(i - c0[0]) < r && abs(j - c0[1]) < r && abs(k - c0[2]) < r) continue;
                     size_t b = bucket_id(ix, i, j, k);
-                    if (ix->start[b] == ix->start[b + 1] || box_d2(ix, x, i, j, k) >= best)
+                    if (ix->start[b] == ix->start[b + 1] || box_d2(ix, x, i, j, k) >= best ||
+                        tight_d2(ix, x, b) >= best) /* no sample would win */
                         continue;
                     for (size_t t = ix->start[b]; t < ix->start[b + 1]; t++) {
                         double e = d2(x, ix->pts + 3 * t);
@@ -189,6 +232,48 @@ int dfl_imp_square_newton(const dfl_implicit *s, const double x[3], double p[3],
     return 0;
 }
 
+/* The cap test of samples t0..t1-1 (the reference's loop: any one that
+ * fails fails the test, so the answer does not depend on the order the
+ * samples are looked at): a pass without branches over chunks of them,
+ * which vectorizes (the file is compiled without errno and trapping math,
+ * the Makefile), in the reference's operations for each sample (vector
+ * add, mul and sqrt round as the scalar ones do).  Per lane 0.0 or 1.0,
+ * whole numbers summed: exact in any order. */
+#define CAP_CHUNK 64
+static int cap_run(const dfl_imp_index *ix, size_t t0, size_t t1, const double x[3],
+                   const double p[3], double rb2, double near2)
+{
+    const size_t ns = ix->ns;
+    const double *sx = ix->soa, *sy = sx + ns, *sz = sy + ns;
+    const double *nx = sz + ns, *ny = nx + ns, *nz = ny + ns;
+    const double x0 = x[0], x1 = x[1], x2 = x[2], p0 = p[0], p1 = p[1], p2 = p[2];
+    for (size_t c0 = t0; c0 < t1; c0 += CAP_CHUNK) {
+        const int m = t1 - c0 < CAP_CHUNK ? (int)(t1 - c0) : CAP_CHUNK;
+        double fl[CAP_CHUNK];
+        const double *restrict ax = sx + c0, *restrict ay = sy + c0, *restrict az = sz + c0;
+        const double *restrict bx = nx + c0, *restrict by = ny + c0, *restrict bz = nz + c0;
+#pragma omp simd
+        for (int t = 0; t < m; t++) {
+            /* d2(x, s), d2(p, s); u, un, tt, q, |tt|, |q| and the test as in
+             * dfl_vec3_dot and dfl_vec3_norm */
+            const double u0 = x0 - ax[t], u1 = x1 - ay[t], u2 = x2 - az[t];
+            const double q0 = p0 - ax[t], q1 = p1 - ay[t], q2 = p2 - az[t];
+            const double dx = u0 * u0 + u1 * u1 + u2 * u2, Q = q0 * q0 + q1 * q1 + q2 * q2;
+            const double un = u0 * bx[t] + u1 * by[t] + u2 * bz[t];
+            const double e0 = u0 - un * bx[t], e1 = u1 - un * by[t], e2 = u2 - un * bz[t];
+            const double tl = sqrt(e0 * e0 + e1 * e1 + e2 * e2), ql = sqrt(Q);
+            const double look = (dx > rb2 ? 0.0 : 1.0) * (Q <= near2 ? 0.0 : 1.0);
+            const double ok = (e0 * q0 + e1 * q1 + e2 * q2 >= 0.5 * tl * ql ? 1.0 : 0.0) *
+                              (tl > 0 ? 1.0 : 0.0);
+            fl[t] = look * (1.0 - ok);
+        }
+        double fail = 0;
+        for (int t = 0; t < m; t++) fail += fl[t];
+        if (fail > 0) return 0;
+    }
+    return 1;
+}
+
 static int cap_test(const dfl_imp_index *ix, const double x[3], const double p[3], double ad)
 {
     const double rb = ad + 2 * ix->h, near2 = 4 * ix->h * ix->h;
@@ -200,16 +285,10 @@ static int cap_test(const dfl_imp_index *ix, const double x[3], const double p[3
         for (int j = bl[1]; j <= bh[1]; j++)
             for (int i = bl[0]; i <= bh[0]; i++) {
                 size_t b = bucket_id(ix, i, j, k);
-                if (ix->start[b] == ix->start[b + 1] || box_d2(ix, x, i, j, k) > rb * rb) continue;
-                for (size_t t = ix->start[b]; t < ix->start[b + 1]; t++) {
-                    const double *s = ix->pts + 3 * t, *n = ix->nrm + 3 * t;
-                    if (d2(x, s) > rb * rb || d2(p, s) <= near2) continue;
-                    double u[3] = {x[0] - s[0], x[1] - s[1], x[2] - s[2]};
-                    double un = dfl_vec3_dot(u, n), tt[3], q[3] = {p[0] - s[0], p[1] - s[1], p[2] - s[2]};
-                    for (int a = 0; a < 3; a++) tt[a] = u[a] - un * n[a];
-                    double tl = dfl_vec3_norm(tt), ql = dfl_vec3_norm(q);
-                    if (!(dfl_vec3_dot(tt, q) >= 0.5 * tl * ql) || !(tl > 0)) return 0;
-                }
+                if (ix->start[b] == ix->start[b + 1] || box_d2(ix, x, i, j, k) > rb * rb ||
+                    tight_d2(ix, x, b) > rb * rb) /* no sample in the ball */
+                    continue;
+                if (!cap_run(ix, ix->start[b], ix->start[b + 1], x, p, rb * rb, near2)) return 0;
             }
     return 1;
 }
