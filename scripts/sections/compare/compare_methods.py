@@ -44,8 +44,9 @@ ASSUMPTIONS = [
     "sheets that close its 2,338 open edges) the sign flips at |d| > 0, so the SDF jumps by "
     "2|d|, up to 0.1 inside the band |d| ≤ 0.05. A continuous method's band L∞ cannot fall "
     "below about half the largest jump its error points straddle, whatever its resolution; "
-    "near the sheets the PHT fit stops at its max_level whatever eps, and its band L∞ is set "
-    "by the cells there (about 0.05 at max_level 7: that floor, not the fit's tolerance).",
+    "near the sheets the PHT fit stops at its max_level whatever eps, so its band L∞ on Wuson "
+    "follows neither eps nor the level (a C1 spline fitted to Hermite data from both sides of "
+    "a jump can overshoot), while its band L1 falls with the level.",
     "Order-2 proxies with the analytic curvature skip the meshes (skip_kinds): a mesh's SDF has "
     "no curvature at an edge or vertex footpoint (its Hessian there is 1/rounding, of either "
     "sign: such proxies flipped the sign of whole cells, errors of 2|d|), and dflab refuses "
