@@ -469,6 +469,10 @@ DFL_ISA_BODY void eval3_vg(const double *cell, const double *x, double *val, dou
  * a miss). */
 #define EVAL_BLOCK 32
 
+/* Rows of at most this many bytes in all stay in a core's L2 cache once
+ * read: their prefetches (3 to 10 per point) would only cost issue slots. */
+#define ROWS_CACHED (256u << 10)
+
 /* The location grid's cells of the EVAL_BLOCK points X[j][k] (coordinate
  * j of point k; dim is the spline's, a constant where inlined) into
  * gidx[k]: index arithmetic, corrected against the grid lines so that it
@@ -507,7 +511,8 @@ DFL_ISA_BODY void grid_index_block(const dfl_pht_spline *s, const int dim,
  * cell's node and descends with branch-free child selection; the points
  * descend level by level together, so that the misses on the nodes they
  * read next (prefetched) overlap.  cells[k] gets point k's row (cell lo,
- * 1/h, coefficients), whose cache lines are prefetched too. */
+ * 1/h, coefficients), whose cache lines are prefetched too unless all rows
+ * fit in ROWS_CACHED. */
 DFL_ISA_BODY void locate_block(const dfl_pht_spline *s, const int dim, size_t n,
                                const double *pts, const double **cells)
 {
@@ -544,8 +549,10 @@ DFL_ISA_BODY void locate_block(const dfl_pht_spline *s, const int dim, size_t n,
     }
     const size_t bytes = (size_t)(2 * dim + DFL_PHT_NCOEF(dim)) * sizeof(double);
     assert(bytes == s->stride * sizeof(double));
-    for (size_t k = 0; k < n; k++) {
+    for (size_t k = 0; k < n; k++)
         cells[k] = s->cell + (size_t)(-nd[id[k]].child - 1) * s->stride;
+    if (s->ncell * bytes <= ROWS_CACHED) return;
+    for (size_t k = 0; k < n; k++) {
         const char *b = (const char *)cells[k];
         for (size_t off = 0; off < bytes; off += 64) __builtin_prefetch(b + off);
         __builtin_prefetch(b + bytes - 1);
