@@ -195,9 +195,12 @@ static int build_grid(dfl_pht_spline *s, int depth)
     if (!s->gline || !s->gnode) return -1;
     for (int j = 0; j < s->dim; j++) {
         s->ginv[j] = gn / (s->hi[j] - s->lo[j]);
-        for (int k = 0; k <= gn; k++)
+        for (int k = 0; k <= gn; k++) {
             s->gline[j * (gn + 1) + k] =
                 k == gn ? s->hi[j] : s->lo[j] + (s->hi[j] - s->lo[j]) * ((double)k / gn);
+            /* grid_index_block recomputes the lines with this product */
+            assert((double)k / gn == (double)k * (1.0 / gn));
+        }
     }
     for (size_t g = 0; g < grid_size(s); g++) {
         double glo[3], ghi[3];
@@ -341,24 +344,6 @@ static inline size_t locate(const dfl_pht_spline *s, const double *x, const doub
     return (size_t)(-nd[id].child - 1);
 }
 
-/* The location grid's cell holding x: index arithmetic, corrected against
- * the grid lines so that it agrees with the tree's comparisons. */
-DFL_ISA_BODY size_t grid_index(const dfl_pht_spline *s, const double *x)
-{
-    const int gn = s->gn, dim = s->dim;
-    size_t g = 0, mul = 1;
-    for (int j = 0; j < dim; j++) {
-        double t = (x[j] - s->lo[j]) * s->ginv[j];
-        int i = t >= 0.0 ? (t < gn ? (int)t : gn - 1) : 0;
-        const double *L = s->gline + j * (gn + 1);
-        if (i > 0 && x[j] < L[i]) i--;
-        else if (i < gn - 1 && x[j] >= L[i + 1]) i++;
-        g += (size_t)i * mul;
-        mul *= (size_t)gn;
-    }
-    return g;
-}
-
 size_t dfl_pht_spline_locate(const dfl_pht_spline *s, const double *x, const double *dir)
 {
     return locate(s, x, dir);
@@ -484,20 +469,64 @@ DFL_ISA_BODY void eval3_vg(const double *cell, const double *x, double *val, dou
  * a miss). */
 #define EVAL_BLOCK 32
 
+/* Rows of at most this many bytes in all stay in a core's L2 cache once
+ * read: their prefetches (3 to 10 per point) would only cost issue slots. */
+#define ROWS_CACHED (256u << 10)
+
+/* The location grid's cells of the EVAL_BLOCK points X[j][k] (coordinate
+ * j of point k; dim is the spline's, a constant where inlined) into
+ * gidx[k]: index arithmetic, corrected against the grid lines so that it
+ * agrees with the tree's comparisons.  Written for the vectorizer (a loop
+ * over the points with no branch: comparisons as 0/1, selects as masks),
+ * the same integers as the per-point rule
+ *     i = t >= 0 ? (t < gn ? (int)t : gn - 1) : 0   (t = (x - lo) / cell width; NaN: 0)
+ *     i - 1 if x < line i (i > 0), else i + 1 if x >= line i + 1 (i < gn - 1).
+ * Line k is recomputed as build_grid computes it, lo + (hi - lo) * (k / gn),
+ * with k / gn = k * (1 / gn) exactly (gn is a power of two). */
+DFL_ISA_BODY void grid_index_block(const dfl_pht_spline *s, const int dim,
+                                   const double (*X)[EVAL_BLOCK], int *gidx)
+{
+    const int gn = s->gn;
+    const double gnd = gn, ign = 1.0 / gnd;
+    for (int k = 0; k < EVAL_BLOCK; k++) gidx[k] = 0;
+    for (int j = 0, mul = 1; j < dim; j++, mul *= gn) {
+        const double lo = s->lo[j], span = s->hi[j] - s->lo[j], ginv = s->ginv[j];
+        for (int k = 0; k < EVAL_BLOCK; k++) {
+            const double x = X[j][k], t = (x - lo) * ginv;
+            const int ge0 = t >= 0.0, ltn = t < gnd;
+            int i = (int)(ge0 & ltn ? t : 0.0);
+            i = (i & -ltn) | ((gn - 1) & (ltn - 1)); /* t >= gn: gn - 1 */
+            i &= -ge0;                               /* t < 0, NaN: 0 */
+            const double Li = lo + span * ((double)i * ign),
+                         Li1 = lo + span * ((double)(i + 1) * ign);
+            const int dn = (i > 0) & (x < Li);
+            const int up = !dn & (i < gn - 1) & (x >= Li1);
+            gidx[k] += (i + up - dn) * mul;
+        }
+    }
+}
+
 /* Location for evaluation of n <= EVAL_BLOCK points (ties to the high
  * side, like locate without a direction): each point starts at its grid
  * cell's node and descends with branch-free child selection; the points
  * descend level by level together, so that the misses on the nodes they
  * read next (prefetched) overlap.  cells[k] gets point k's row (cell lo,
- * 1/h, coefficients), whose cache lines are prefetched too. */
-DFL_ISA_BODY void locate_block(const dfl_pht_spline *s, size_t n, const double *pts,
-                               const double **cells)
+ * 1/h, coefficients), whose cache lines are prefetched too unless all rows
+ * fit in ROWS_CACHED. */
+DFL_ISA_BODY void locate_block(const dfl_pht_spline *s, const int dim, size_t n,
+                               const double *pts, const double **cells)
 {
-    const int dim = s->dim;
     const snode *nd = s->node;
     int64_t id[EVAL_BLOCK];
+    double X[3][EVAL_BLOCK];
+    int gidx[EVAL_BLOCK];
+    for (size_t k = 0; k < EVAL_BLOCK; k++) {
+        const double *x = pts + (k < n ? k : n - 1) * (size_t)dim; /* past n: a copy */
+        for (int j = 0; j < dim; j++) X[j][k] = x[j];
+    }
+    grid_index_block(s, dim, (const double(*)[EVAL_BLOCK])X, gidx);
     for (size_t k = 0; k < n; k++) {
-        id[k] = s->gnode[grid_index(s, pts + k * (size_t)dim)];
+        id[k] = s->gnode[gidx[k]];
         __builtin_prefetch(&nd[id[k]]);
     }
     for (int more = 1; more;) {
@@ -518,9 +547,12 @@ DFL_ISA_BODY void locate_block(const dfl_pht_spline *s, size_t n, const double *
             more = 1;
         }
     }
-    const size_t bytes = s->stride * sizeof(double);
-    for (size_t k = 0; k < n; k++) {
+    const size_t bytes = (size_t)(2 * dim + DFL_PHT_NCOEF(dim)) * sizeof(double);
+    assert(bytes == s->stride * sizeof(double));
+    for (size_t k = 0; k < n; k++)
         cells[k] = s->cell + (size_t)(-nd[id[k]].child - 1) * s->stride;
+    if (s->ncell * bytes <= ROWS_CACHED) return;
+    for (size_t k = 0; k < n; k++) {
         const char *b = (const char *)cells[k];
         for (size_t off = 0; off < bytes; off += 64) __builtin_prefetch(b + off);
         __builtin_prefetch(b + bytes - 1);
@@ -530,17 +562,19 @@ DFL_ISA_BODY void locate_block(const dfl_pht_spline *s, size_t n, const double *
 /* The evaluation loop, compiled per ISA (core/isa.h): same bytes on each.
  * Points go in located blocks, software-pipelined: block b + 1 is located
  * (and its rows prefetched) before block b is evaluated.  Value + gradient
- * (the field adapter's call) skips the Hessian's terms. */
-DFL_ISA_BODY void eval_points_body(const dfl_pht_spline *s, size_t m, const double *pts,
-                                   double *val, double *grad, double *hess)
+ * (the field adapter's call) skips the Hessian's terms.  d is the
+ * spline's dimension, a constant in each of the two copies
+ * eval_points_body makes (the loops over axes unroll). */
+DFL_ISA_BODY void eval_points_dim(const dfl_pht_spline *s, const int d, size_t m,
+                                  const double *pts, double *val, double *grad, double *hess)
 {
-    const int d = s->dim, vg = val && grad && !hess;
+    const int vg = val && grad && !hess;
     const double *cells[2][EVAL_BLOCK];
-    if (m) locate_block(s, m < EVAL_BLOCK ? m : EVAL_BLOCK, pts, cells[0]);
+    if (m) locate_block(s, d, m < EVAL_BLOCK ? m : EVAL_BLOCK, pts, cells[0]);
     for (size_t i0 = 0, b = 0; i0 < m; i0 += EVAL_BLOCK, b ^= 1) {
         const size_t n = m - i0 < EVAL_BLOCK ? m - i0 : EVAL_BLOCK, i1 = i0 + n;
         if (i1 < m)
-            locate_block(s, m - i1 < EVAL_BLOCK ? m - i1 : EVAL_BLOCK, pts + i1 * (size_t)d,
+            locate_block(s, d, m - i1 < EVAL_BLOCK ? m - i1 : EVAL_BLOCK, pts + i1 * (size_t)d,
                          cells[b ^ 1]);
         const double *const *cl = cells[b];
         if (vg && d == 2) {
@@ -559,6 +593,12 @@ DFL_ISA_BODY void eval_points_body(const dfl_pht_spline *s, size_t m, const doub
             }
         }
     }
+}
+DFL_ISA_BODY void eval_points_body(const dfl_pht_spline *s, size_t m, const double *pts,
+                                   double *val, double *grad, double *hess)
+{
+    if (s->dim == 2) eval_points_dim(s, 2, m, pts, val, grad, hess);
+    else eval_points_dim(s, 3, m, pts, val, grad, hess);
 }
 DFL_ISA_KERNEL(eval_points,
                (const dfl_pht_spline *s, size_t m, const double *pts, double *val,

@@ -239,6 +239,52 @@ Test(pht_spline, eval_locates_like_the_tree)
         }
 }
 
+/* dfl_pht_eval starts each point at a node of a uniform location grid of
+ * gn^dim cells (gn a power of two, at most 2^7 in 2D, 2^5 in 3D) whose
+ * lines lo + (hi - lo) k / gn are rounded: a point on a line, or one ulp
+ * either side of it, must still get the tree's cell (ties to the high
+ * side), so batches of such points must give the bytes of the cell that
+ * dfl_pht_spline_locate picks.  The lines of every gn up to the maximum are
+ * among k / 128 (k / 32), and the box's spans are not dyadic. */
+Test(pht_spline, eval_locates_points_on_the_location_grid_lines_like_the_tree)
+{
+    enum { N = 3000 };
+    for (int dim = 2; dim <= 3; dim++)
+        for (int rule = 0; rule < DFL_PHT_SPLIT_COUNT; rule++) {
+            dfl_tmesh *m = refined(dim, rule, 57, LO, HI);
+            int nd = DFL_PHT_NDATA(dim);
+            size_t nv = dfl_tmesh_nverts(m);
+            double *data = calloc(nv * (size_t)nd, sizeof *data);
+            uint64_t rs = 123;
+            for (size_t v = 0; v < nv * (size_t)nd; v++) data[v] = dfl_rng_splitmix(&rs, -1, 1);
+            dfl_pht_resolve(m, data);
+            dfl_pht_spline *s;
+            cr_assert_eq(dfl_pht_spline_new(m, data, &s, NULL), DFL_OK);
+            const int G = dim == 2 ? 128 : 32;
+            static double x[N * 3], v[N], g[N * 3];
+            for (int i = 0; i < N * dim; i++) {
+                const int j = i % dim, k = (int)dfl_rng_splitmix(&rs, 0, G + 1 - 1e-9);
+                const double line = LO[j] + (HI[j] - LO[j]) * ((double)k / G),
+                             u = dfl_rng_splitmix(&rs, 0, 3);
+                x[i] = u < 1   ? line
+                       : u < 2 ? nextafter(line, -INFINITY)
+                               : nextafter(line, INFINITY);
+            }
+            dfl_pht_eval(s, N, x, v, g, NULL);
+            for (int i = 0; i < N; i++) {
+                double v1, g1[3];
+                dfl_pht_eval_cell(s, dfl_pht_spline_locate(s, x + i * dim, NULL), 1, x + i * dim,
+                                  &v1, g1, NULL);
+                cr_assert(memcmp(&v[i], &v1, sizeof v1) == 0 &&
+                              memcmp(g + i * dim, g1, (size_t)dim * sizeof *g1) == 0,
+                          "dim %d rule %d point %d", dim, rule, i);
+            }
+            dfl_pht_spline_free(s);
+            free(data);
+            dfl_tmesh_free(m);
+        }
+}
+
 /* A batch goes through blocks of located points (software-pipelined) and,
  * for value + gradient, a kernel without the Hessian's terms: every output
  * combination of a batch that spans several blocks and ends mid-block must
