@@ -1,5 +1,7 @@
 #include "cfg/field_cfg.h"
 
+#include <math.h>
+
 #include "cfg/proxy_cfg.h"
 #include "cfg/gridpeer_cfg.h"
 #include "cfg/pht_cfg.h"
@@ -29,13 +31,13 @@ static dfl_status exact_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field 
 
 /* One row per kind of field. */
 static const dfl_field_kind kinds[] = {
-    {"exact", exact_from_cfg},
-    {"rfunc", dfl_rfunc_field_from_cfg},
-    {"normalized", dfl_rfunc_normalized_from_cfg},
-    {"proxy", dfl_proxy_field_from_cfg},
-    {"gridpeer", dfl_gridpeer_field_from_cfg},
-    {"pht", dfl_pht_field_from_cfg},
-    {"openvdb", dfl_vdb_field_from_cfg},
+    {"exact", exact_from_cfg, NULL},
+    {"rfunc", dfl_rfunc_field_from_cfg, NULL},
+    {"normalized", dfl_rfunc_normalized_from_cfg, NULL},
+    {"proxy", dfl_proxy_field_from_cfg, NULL},
+    {"gridpeer", dfl_gridpeer_field_from_cfg, NULL},
+    {"pht", dfl_pht_field_from_cfg, dfl_pht_field_target_from_cfg},
+    {"openvdb", dfl_vdb_field_from_cfg, NULL},
 };
 #define NKINDS (sizeof kinds / sizeof kinds[0])
 
@@ -62,4 +64,22 @@ dfl_status dfl_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *ou
     dfl_status st = dfl_field_kind_from_cfg(cfg, sec, &kind, err);
     if (st != DFL_OK) return st;
     return kind->build(cfg, sec, out, err);
+}
+
+void dfl_field_target_none(dfl_field_target *out)
+{
+    out->value = NAN;
+    out->met = -1;
+    out->over = 0;
+}
+
+dfl_status dfl_field_from_cfg_target(const dfl_cfg *cfg, const char *sec, dfl_field *out,
+                                     dfl_field_target *target, dfl_err *err)
+{
+    const dfl_field_kind *kind;
+    dfl_status st = dfl_field_kind_from_cfg(cfg, sec, &kind, err);
+    if (st != DFL_OK) return st;
+    if (kind->build_target) return kind->build_target(cfg, sec, out, target, err);
+    if ((st = kind->build(cfg, sec, out, err)) == DFL_OK) dfl_field_target_none(target);
+    return st;
 }

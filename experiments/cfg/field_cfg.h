@@ -18,6 +18,13 @@
  * key and returns dfl_field_placeholder of the field's dimension; proxy
  * returns its grid with zeroed proxies (dfl_proxy_grid_alloc); exact and
  * rfunc fields are built (their build is the shape's).
+ *
+ * Targets: a kind whose build refines toward a tolerance of its own (pht:
+ * eps, the fit's estimator error per cell, capped by max_level) has a
+ * second factory, build_target, that also says whether the build met it
+ * (dfl_field_target).  eps is a target, not a promise: a study reports
+ * what the build reached through dfl_field_from_cfg_target, for any kind,
+ * without knowing which kinds have one.
  */
 #ifndef DFL_EXPERIMENTS_FIELD_CFG_H
 #define DFL_EXPERIMENTS_FIELD_CFG_H
@@ -31,10 +38,31 @@
 typedef dfl_status (*dfl_field_factory)(const dfl_cfg *cfg, const char *sec, dfl_field *out,
                                         dfl_err *err);
 
+/* A build's outcome against the kind's own tolerance.  No target (a kind
+ * without one, or a validation pass that built nothing): value NaN, met -1,
+ * over 0 (dfl_field_target_none). */
+typedef struct dfl_field_target {
+    double value;   /* the tolerance, in the units of the kind's own error
+                       estimate (pht: length); NaN: none */
+    int met;        /* 1: every unit's estimate is <= value; 0: some unit's
+                       is not (or is NaN); -1: no target */
+    size_t over;    /* units whose estimate is not <= value (pht: leaf
+                       cells); 0 when met or no target */
+} dfl_field_target;
+
+/* A factory that also fills *target on success (untouched on failure). */
+typedef dfl_status (*dfl_field_target_factory)(const dfl_cfg *cfg, const char *sec,
+                                               dfl_field *out, dfl_field_target *target,
+                                               dfl_err *err);
+
 typedef struct dfl_field_kind {
     const char *name;          /* the value of `kind` */
     dfl_field_factory build;
+    dfl_field_target_factory build_target; /* NULL: the kind has no target */
 } dfl_field_kind;
+
+/* The no-target record: value NaN, met -1, over 0.  Never fails. */
+void dfl_field_target_none(dfl_field_target *out);
 
 /* The kinds, in table order (*count receives their number). */
 const dfl_field_kind *dfl_field_kinds(size_t *count);
@@ -47,5 +75,11 @@ dfl_status dfl_field_kind_from_cfg(const dfl_cfg *cfg, const char *sec,
 /* The field [sec] describes: its kind's factory.  *out is untouched on
  * failure; release it with dfl_field_destroy. */
 dfl_status dfl_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *out, dfl_err *err);
+
+/* dfl_field_from_cfg, and the build's target into *target: the kind's
+ * build_target when it has one, else dfl_field_target_none.  *out and
+ * *target are untouched on failure. */
+dfl_status dfl_field_from_cfg_target(const dfl_cfg *cfg, const char *sec, dfl_field *out,
+                                     dfl_field_target *target, dfl_err *err);
 
 #endif

@@ -129,8 +129,8 @@ fail:
     return st;
 }
 
-dfl_status dfl_pht_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *out,
-                                  dfl_err *err)
+dfl_status dfl_pht_field_target_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *out,
+                                         dfl_field_target *target, dfl_err *err)
 {
     dfl_shape shape;
     dfl_pht_source *src;
@@ -142,16 +142,29 @@ dfl_status dfl_pht_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field
     if ((st = dfl_pht_opts_from_cfg(cfg, sec, shape.dim, &o, err))) goto done;
     if (dfl_cfg_validating(cfg)) { /* keys read and checked: no fit (io/config.h) */
         dfl_field_placeholder(shape.dim, out);
+        dfl_field_target_none(target);
         goto done;
     }
     if ((st = dfl_pht_fit_run(src, &o, &fit, err))) {
         dfl_err_prefix(err, "[%s] kind = pht", sec);
         goto done;
     }
-    st = dfl_pht_field_new(&fit.spline, out, err);
+    if ((st = dfl_pht_field_new(&fit.spline, out, err)) == DFL_OK) {
+        /* the fit's own record (pht/fit.h): converged iff no capped cell */
+        target->value = o.eps;
+        target->met = fit.converged ? 1 : 0;
+        target->over = fit.capped;
+    }
 done:
     dfl_pht_fit_free(&fit);
     dfl_pht_source_free(src);
     dfl_shape_free(&shape);
     return st;
+}
+
+dfl_status dfl_pht_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *out,
+                                  dfl_err *err)
+{
+    dfl_field_target target;
+    return dfl_pht_field_target_from_cfg(cfg, sec, out, &target, err);
 }

@@ -19,11 +19,13 @@
  *   dfl_pht_opts_from_cfg     fit options from a section (for studies)
  *   dfl_pht_source_from_cfg   the shape and its Hermite source from a section
  *   dfl_pht_field_from_cfg    the field kind's factory (one row in field_cfg.c)
+ *   dfl_pht_field_target_from_cfg  the same, with the fit's eps outcome
  */
 #ifndef DFL_EXPERIMENTS_PHT_CFG_H
 #define DFL_EXPERIMENTS_PHT_CFG_H
 
 #include "core/status.h"
+#include "cfg/field_cfg.h"
 #include "field/field.h"
 #include "geom/shape.h"
 #include "io/config.h"
@@ -43,5 +45,13 @@ dfl_status dfl_pht_source_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_shap
 /* Fits and wraps the spline as a field (the mesh is dropped). */
 dfl_status dfl_pht_field_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *out,
                                   dfl_err *err);
+
+/* dfl_pht_field_from_cfg, and the fit's outcome against eps into *target:
+ * value = eps, met = the fit's converged (1: every leaf cell's estimate
+ * <= eps; 0: max_level stopped the refinement with cells above it), over =
+ * the fit's capped (those cells).  A validation pass (no fit) gives
+ * dfl_field_target_none.  *target is untouched on failure. */
+dfl_status dfl_pht_field_target_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_field *out,
+                                         dfl_field_target *target, dfl_err *err);
 
 #endif

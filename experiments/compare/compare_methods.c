@@ -57,8 +57,13 @@
  * stays under an earlier peak, so an upper bound only for the first
  * builds), count, l1, rms, linf, eikonal_mean, eikonal_max, band_count,
  * band_l1, band_rms, band_linf, off_count, off_l1, off_rms, off_linf,
- * grad_linf, c0_jump, c1_jump, nonfinite, and the point counts of the
- * protocol (n_grid, n_surface, n_medial, n_pairs).
+ * grad_linf, c0_jump, c1_jump, nonfinite, the point counts of the
+ * protocol (n_grid, n_surface, n_medial, n_pairs), and the build's own
+ * target (field_cfg.h dfl_field_target; empty cells for a kind without
+ * one): target (its tolerance, e.g. pht's eps), target_met (1: every
+ * cell's estimate met it; 0: the build stopped short, e.g. at pht's
+ * max_level) and target_over (the cells left above it).  The row says
+ * whether eps was reached: a setting eps=1e-3 is a target, not a result.
  */
 #include <math.h>
 #include <stdio.h>
@@ -419,6 +424,21 @@ static dfl_status put_metrics(dfl_table *t, const char *pre, const dfl_metrics *
     return DFL_OK;
 }
 
+/* The target columns, every one set (empty without a target) so that the
+ * columns are the same whichever kinds a config runs. */
+static dfl_status put_target(dfl_table *t, const dfl_field_target *tg, dfl_err *err)
+{
+    dfl_status st;
+    if (tg->met < 0) {
+        if ((st = dfl_table_set_string(t, "target", "", err))) return st;
+        if ((st = dfl_table_set_string(t, "target_met", "", err))) return st;
+        return dfl_table_set_string(t, "target_over", "", err);
+    }
+    if ((st = dfl_table_set_double(t, "target", tg->value, err))) return st;
+    if ((st = dfl_table_set_int(t, "target_met", tg->met, err))) return st;
+    return dfl_table_set_int(t, "target_over", (long)tg->over, err);
+}
+
 static dfl_status row_head(dfl_table *t, const method *m, const char *kind, const char *ssec,
                            int dim, const char *v, const char *skipped, dfl_err *err)
 {
@@ -448,8 +468,9 @@ static dfl_status run_one(const dfl_cfg *cfg, const method *m, const char *ssec,
     method again;  /* marks the study's own keys read in the copy */
     if ((st = method_from_cfg(w, m->sec, &again, err))) goto done;
     dfl_field f = {0};
+    dfl_field_target tg;
     const double rss0 = rss_bytes(), t0 = omp_get_wtime();
-    if ((st = dfl_field_from_cfg(w, m->sec, &f, err))) {
+    if ((st = dfl_field_from_cfg_target(w, m->sec, &f, &tg, err))) {
         if (st == DFL_E_NUMERIC) {
             /* the method cannot represent this shape at this setting (a
              * sample or footpoint it needs is not finite): a row saying so */
@@ -504,7 +525,8 @@ static dfl_status run_one(const dfl_cfg *cfg, const method *m, const char *ssec,
     if ((st = dfl_table_set_int(t, "n_grid", (long)p->ngrid, err))) goto field;
     if ((st = dfl_table_set_int(t, "n_surface", (long)p->nsurface, err))) goto field;
     if ((st = dfl_table_set_int(t, "n_medial", (long)p->nmedial, err))) goto field;
-    st = dfl_table_set_int(t, "n_pairs", (long)p->npairs, err);
+    if ((st = dfl_table_set_int(t, "n_pairs", (long)p->npairs, err))) goto field;
+    st = put_target(t, &tg, err);
 field:
     dfl_field_destroy(&f);
 done:
