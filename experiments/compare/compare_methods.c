@@ -424,16 +424,14 @@ static dfl_status put_metrics(dfl_table *t, const char *pre, const dfl_metrics *
     return DFL_OK;
 }
 
-/* The target columns, every one set (empty without a target) so that the
- * columns are the same whichever kinds a config runs. */
+/* The target columns of a row whose build has a target (field_cfg.h); a
+ * kind without one leaves them empty.  They are set after every other
+ * column, and compare_run adds them at the end when no row has a target,
+ * so the columns before them are those of a table without them. */
 static dfl_status put_target(dfl_table *t, const dfl_field_target *tg, dfl_err *err)
 {
+    if (tg->met < 0) return DFL_OK;
     dfl_status st;
-    if (tg->met < 0) {
-        if ((st = dfl_table_set_string(t, "target", "", err))) return st;
-        if ((st = dfl_table_set_string(t, "target_met", "", err))) return st;
-        return dfl_table_set_string(t, "target_over", "", err);
-    }
     if ((st = dfl_table_set_double(t, "target", tg->value, err))) return st;
     if ((st = dfl_table_set_int(t, "target_met", tg->met, err))) return st;
     return dfl_table_set_int(t, "target_over", (long)tg->over, err);
@@ -584,6 +582,8 @@ static dfl_status compare_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_
     dfl_status st = study_from_cfg(cfg, s, err);
     if (!st) st = dfl_cfg_check_used(cfg, err);
     for (size_t j = 0; !st && j < s->shapes.n; j++) st = run_shape(cfg, s, s->shapes.w[j], t, err);
+    static const char *const tcols[] = {"target", "target_met", "target_over"};
+    for (size_t k = 0; !st && k < 3; k++) st = dfl_table_add_col(t, tcols[k], err);
     free(s);
     return st;
 }

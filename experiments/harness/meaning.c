@@ -817,6 +817,12 @@ static const column columns[] = {
     {"compare_methods", "nonfinite", "points with a non-finite value or gradient (error +inf)"},
     {"compare_methods", "n_*",
      "the protocol's counts: n_grid nodes, n_surface, n_medial points, n_pairs kept"},
+    {"compare_methods", "target",
+     "the method's own tolerance (pht: eps, length); empty: the kind has none"},
+    {"compare_methods", "target_met",
+     "1: every cell's estimate met target; 0: not (pht: max_level stopped it); empty: none"},
+    {"compare_methods", "target_over",
+     "cells whose estimate stayed above target (pht: leaf cells at max_level); empty: none"},
     /* hvb25_render (one row per frame) */
     {"hvb25_render", "field_kind", "the field traced: proxy, gridpeer, ..."},
     {"hvb25_render", "order", "proxy order (1, 2; 0: not a proxy)"},

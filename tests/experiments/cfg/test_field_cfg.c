@@ -2,6 +2,7 @@
  * kind is refused with the accepted names, and dfl_field_from_cfg hands
  * the section to the row's factory. */
 #include <criterion/criterion.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -73,6 +74,42 @@ Test(field_cfg, factories_build)
     const double y[2] = {0.5, 0.0};
     cr_expect_eq(dfl_field_eval1(&f, y, NULL), 0.0);
     dfl_field_destroy(&f);
+    dfl_cfg_free(cfg);
+}
+
+/* dfl_field_from_cfg_target: a kind without build_target (exact) builds
+ * its field with the no-target record (NaN, -1, 0); a failure (unknown
+ * kind) leaves *out and *target untouched. */
+Test(field_cfg, a_kind_without_a_target_says_none)
+{
+    dfl_field_target tg = {7.0, 5, 9};
+    dfl_field_target_none(&tg);
+    cr_expect(isnan(tg.value));
+    cr_expect_eq(tg.met, -1);
+    cr_expect_eq(tg.over, 0);
+    size_t n;
+    const dfl_field_kind *kinds = dfl_field_kinds(&n);
+    cr_expect_null(kinds[0].build_target, "exact has no target");
+    dfl_cfg *cfg = tu_cfg("f.ini", "[field]\nkind = exact\n"
+                                   "[shape]\nkind = circle\ncenter = 0 0\nradius = 1\n");
+    dfl_field f;
+    dfl_err err;
+    tg = (dfl_field_target){7.0, 5, 9};
+    cr_assert_eq(dfl_field_from_cfg_target(cfg, "field", &f, &tg, &err), DFL_OK, "%s", err.msg);
+    cr_expect(isnan(tg.value));
+    cr_expect_eq(tg.met, -1);
+    cr_expect_eq(tg.over, 0);
+    dfl_field_destroy(&f);
+    dfl_cfg_free(cfg);
+    cfg = tu_cfg("f.ini", "[field]\nkind = magic\n");
+    tg = (dfl_field_target){7.0, 5, 9};
+    memset(&f, 0xab, sizeof f);
+    const dfl_field before = f;
+    cr_expect_eq(dfl_field_from_cfg_target(cfg, "field", &f, &tg, &err), DFL_E_INPUT);
+    cr_expect_eq(memcmp(&f, &before, sizeof f), 0);
+    cr_expect_eq(tg.value, 7.0);
+    cr_expect_eq(tg.met, 5);
+    cr_expect_eq(tg.over, 9);
     dfl_cfg_free(cfg);
 }
 

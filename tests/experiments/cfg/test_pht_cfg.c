@@ -131,3 +131,65 @@ Test(pht_cfg, inside_test_cannot_miss_a_closed_shape)
     cr_expect_eq(source_of("", far, &err), DFL_E_INPUT);
     cr_expect(strstr(err.msg, "no inside") != NULL, "%s", err.msg);
 }
+
+/* dfl_pht_field_target_from_cfg: the target is eps, met iff no leaf cell's
+ * estimate is above it (the fit's converged / capped), none in a
+ * validation pass.  max_level = 0 keeps the one cell of the unit square:
+ *   - eps = 100 is met: the cell's bicubic Hermite interpolant of d takes
+ *     corner values |d| <= sqrt(1/2) - 0.3 < 0.41, gradients of norm 1 and
+ *     cross derivatives |d_xy| <= 1 / |x - c| < 1.5 there; the Hermite
+ *     basis has h00 + h01 = 1 and |h10|, |h11| <= 4/27, so |f| < 0.41 +
+ *     2 (8/27) + (8/27)^2 1.5 < 1.2 and |f - d| < 1.2 + (sqrt(1/2) + 0.3)
+ *     < 3;
+ *   - eps = 1e-300 (the smallest accepted) is not: a bicubic polynomial
+ *     is not |x - c| - r on any open set (the SDF is not a polynomial), so
+ *     the estimate at the cell's points is above 1e-300 and the one cell,
+ *     at max_level, is over it. */
+static dfl_status pht_target(const char *eps, int pass, dfl_field *f, dfl_field_target *tg,
+                             dfl_err *err)
+{
+    char text[512];
+    snprintf(text, sizeof text, "[field]\nkind = pht\neps = %s\nmax_level = 0\n%s", eps, CIRCLE);
+    dfl_cfg *cfg = tu_cfg("t.ini", text);
+    if (pass) dfl_cfg_validate_only(cfg);
+    dfl_status st = dfl_pht_field_target_from_cfg(cfg, "field", f, tg, err);
+    dfl_cfg_free(cfg);
+    return st;
+}
+
+Test(pht_cfg, target_says_whether_eps_was_met)
+{
+    dfl_field f;
+    dfl_field_target tg;
+    dfl_err err;
+    cr_assert_eq(pht_target("100", 0, &f, &tg, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(tg.value, 100.0);
+    cr_expect_eq(tg.met, 1);
+    cr_expect_eq(tg.over, 0);
+    dfl_field_destroy(&f);
+    cr_assert_eq(pht_target("1e-300", 0, &f, &tg, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(tg.value, 1e-300);
+    cr_expect_eq(tg.met, 0);
+    cr_expect_eq(tg.over, 1, "the one cell of max_level 0");
+    dfl_field_destroy(&f);
+    /* through the field table: the same record */
+    dfl_cfg *cfg = tu_cfg("t.ini", "[field]\nkind = pht\neps = 1e-300\nmax_level = 0\n"
+                                   "[shape]\nkind = circle\ncenter = 0.5 0.5\nradius = 0.3\n");
+    cr_assert_eq(dfl_field_from_cfg_target(cfg, "field", &f, &tg, &err), DFL_OK, "%s", err.msg);
+    cr_expect_eq(tg.met, 0);
+    cr_expect_eq(tg.over, 1);
+    dfl_field_destroy(&f);
+    dfl_cfg_free(cfg);
+    /* a validation pass fits nothing: no target */
+    cr_assert_eq(pht_target("1e-3", 1, &f, &tg, &err), DFL_OK, "%s", err.msg);
+    cr_expect(isnan(tg.value));
+    cr_expect_eq(tg.met, -1);
+    cr_expect_eq(tg.over, 0);
+    dfl_field_destroy(&f);
+    /* a failed build leaves the record untouched */
+    tg.value = 7.0, tg.met = 5, tg.over = 9;
+    cr_expect_eq(pht_target("-1", 0, &f, &tg, &err), DFL_E_INPUT);
+    cr_expect_eq(tg.value, 7.0);
+    cr_expect_eq(tg.met, 5);
+    cr_expect_eq(tg.over, 9);
+}
