@@ -76,11 +76,48 @@ ASSUMPTIONS = [
     "stand-in, a box with a bowl cut and a ring over it) is the min/max of exact SDFs: exact "
     "outside the union, a bound inside near the seams; that min/max field is the reference "
     "every method is measured against.",
+    "A method's own tolerance is a target, not a result: a PHT row's setting eps=… is the "
+    "eps its fit aimed at, and the fit stops refining a cell at max_level whether or not the "
+    "cell's estimate met eps. The columns target (the tolerance), target_met (1/0) and "
+    "target_over (leaf cells whose estimate stayed above it) say what the fit reached; kinds "
+    "without a tolerance leave them empty. A row whose target was not met is marked "
+    "\"[target … not met: N cells over]\" beside its setting in the tables below and listed "
+    "under them. On Wuson no eps is reachable near the sign jumps (a continuous spline errs "
+    "by |d| beside a jump of 2|d|), and smooth shapes can miss a fine eps at a small "
+    "max_level too (quick.ini's max_level = 6). target_met is the "
+    "fit's estimate (its own sample points), not the protocol's error: a met row's L∞ over the "
+    "error points can still exceed its eps.",
     "OpenVDB (kind = openvdb) is a narrow-band level set: outside |d| < band·voxel its value is "
     "the background, so its rows enter the near-surface columns only (their band, 10 voxels in methods.ini and 8 at quick.ini's coarser voxels, "
     "covers |d| ≤ 0.05 at every voxel used), never the whole-box ones. Its bytes are OpenVDB's "
     "memUsage (tree nodes, buffers, masks).",
 ]
+
+
+def _not_met(r):
+    """True when the row's build had a target and did not meet it."""
+    return (r.get("target_met") or "") == "0"
+
+
+def _setting(r):
+    """The row's setting, marked when its target was not met."""
+    s = r.get("setting", "")
+    if _not_met(r):
+        s += (f" [target {r.get('target', '')} not met: {r.get('target_over', '?')} cells "
+              "over]")
+    return s
+
+
+def _targets(rows):
+    """The measured rows whose target was not met, one line."""
+    bad = [r for r in rows if _not_met(r)]
+    if not bad:
+        return ""
+    return ("Targets not met (the build stopped before its own tolerance; see the "
+            "assumptions): " +
+            "; ".join(f"{r['method']} on {r['shape']} {r['setting']}: "
+                      f"{r.get('target_over', '?')} cells over {r.get('target', '')}"
+                      for r in bad) + ".\n\n")
 
 
 def _measured(rows):
@@ -194,7 +231,7 @@ def _regime_table(shapes, rows):
                     body.append([shape, bname, rname, "—", "—", "no method fits the budget"])
                     continue
                 w = ranked[0]
-                why = (f"{w['method']} ({w['setting']}, {dflio.fmt(_f(w, 'bytes'))} B) has "
+                why = (f"{w['method']} ({_setting(w)}, {dflio.fmt(_f(w, 'bytes'))} B) has "
                        f"{col} {_f(w, col):.3g}")
                 if len(ranked) > 1:
                     s = ranked[1]
@@ -235,7 +272,7 @@ def _aim(rows):
         near = min(lines[m], key=lambda r: abs(math.log(_f(r, "bytes") / AIM_BYTES)))
         body.append([m, f"{v:.3g}" if math.isfinite(v) else "— (out of range)",
                      f"{v / fin[best]:.3g}" if math.isfinite(v) else "—",
-                     f"{near['setting']} ({dflio.fmt(_f(near, 'bytes'))} B)",
+                     f"{_setting(near)} ({dflio.fmt(_f(near, 'bytes'))} B)",
                      f"{_f(near, 'queries_per_s'):.3g}", _continuity(near)])
     md = (f"**The torus at {AIM_BYTES / 1e6:.1f} MB, band |d| ≤ 0.05** (band L∞ interpolated "
           "log-log between each method's measured sizes; '—' outside them). Best: "
@@ -270,9 +307,11 @@ def _rates(shapes, rows):
             k = _slope(pts)
             nf = sum(int(_f(r, "nonfinite")) for r in rs if math.isfinite(_f(r, "nonfinite")))
             falls = "yes" if k < 0 and pts[-1][1] < pts[0][1] else "no"
+            unmet = [r["setting"] for r in rs if _not_met(r)]
             body.append([shape, m, str(len(pts)),
                          f"{dflio.fmt(pts[0][0])} → {dflio.fmt(pts[-1][0])}",
-                         f"{pts[0][1]:.3g} → {pts[-1][1]:.3g}", f"{k:.3g}", falls, str(nf)])
+                         f"{pts[0][1]:.3g} → {pts[-1][1]:.3g}", f"{k:.3g}", falls, str(nf),
+                         "not met at " + ", ".join(unmet) if unmet else "—"])
     if not body:
         return ""
     return ("### How the error falls with resolution\n\nNear-surface band L∞ against stored "
@@ -280,7 +319,7 @@ def _rates(shapes, rows):
             "method's settings; in 3D a uniform grid's k = −2/3 means error ∝ h², −1/3 "
             "error ∝ h).\n\n" +
             dflio.md_table(["shape", "method", "settings", "bytes", "band_linf", "k",
-                            "falls", "non-finite"], body) + "\n\n")
+                            "falls", "non-finite", "target"], body) + "\n\n")
 
 
 def render(ctx):
@@ -296,6 +335,7 @@ def render(ctx):
         md += ("Not run (the method does not apply, or its build failed): " +
                "; ".join(f"{r['method']} on {r['shape']} {r['setting']}: {r['skipped']}"
                          for r in skipped) + ".\n\n")
+    md += _targets(meas)
     md += "### Best method per regime\n\n" + _regime_table(shapes, meas) + "\n\n"
     md += _aim(meas)
     md += _rates(shapes, meas)
