@@ -316,7 +316,7 @@ Test(bspline, wrap_by_whole_periods_on_both_sides)
         for (int i = 0; i < 8; i++) {
             const double t = c.t0 + T * (i + 0.5) / 8, w = dfl_bspline_wrap(&c, t + k * T);
             cr_expect(w >= c.t0 && w < c.t1, "k %d i %d: %g", k, i, w);
-            cr_expect(fabs(w - t) <= 1e-13 * (1 + fabs(k)) * T, "k %d i %d: %.17g vs %.17g", k, i,
+            cr_expect(fabs(w - t) <= 1e-13 * (1 + abs(k)) * T, "k %d i %d: %.17g vs %.17g", k, i,
                       w, t);
         }
     dfl_bspline_free(&c);
