@@ -51,7 +51,7 @@ def _frames_png(ctx, rows):
     if not sel:
         return ""
     plt = pyplot()
-    fig, axs = plt.subplots(len(sel), 3, figsize=(8, 2.7 * len(sel)))
+    fig, axs = plt.subplots(len(sel), 3, figsize=(9, 2.7 * len(sel)), layout="constrained")
     axs = np.atleast_2d(axs)
     for i, r in enumerate(sel):
         path = ctx.path(r["frame_exr"])

@@ -89,3 +89,27 @@ Test(e2e_hvb25_render, exact_proxies_have_no_false_hits, .timeout = 60)
         free(k);
     }
 }
+
+/* The report's section renders both paper configs of Table 4's frames
+ * (scripts/sections/hvb25/hvb25_render.py): the frames figure passes the
+ * figure rules (report.py refuses one with a label over a neighbouring
+ * panel), so `make reproduce` ends with no failed section. */
+Test(e2e_hvb25_render, report_section_of_the_paper_configs, .timeout = 300)
+{
+    static const char *const cfgs[2] = {"hvb25_table4_render_sphere", "hvb25_table4_render_torus"};
+    char dir[256], args[1024];
+    e2e_tmpdir(dir, sizeof dir);
+    cr_assert(dir[0], "no temporary directory");
+    for (int k = 0; k < 2; k++) {
+        snprintf(args, sizeof args, "run configs/paper/hvb25/%s.ini --out %s/results/%s --quiet",
+                 cfgs[k], dir, cfgs[k]);
+        cr_assert_eq(e2e_dflab(dir, args), 0, "%s", cfgs[k]);
+    }
+    char *py;
+    const int rc = e2e_python_run(dir, &py, "scripts/report.py --results %s/results --out %s/REPORT.md",
+                                  dir, dir);
+    cr_expect_eq(rc, 0, "%s", py);
+    cr_expect(strstr(py, "(2 runs, 0 failed sections)") != NULL, "%s", py);
+    free(py);
+    cr_expect_eq(e2e_rmtree(dir), 0);
+}
