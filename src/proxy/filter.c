@@ -416,6 +416,15 @@ DFL_ISA_BODY void blend_block(const dfl_proxy_grid *g, const dfl_proxy_filter_op
                 }
             break;
         case DFL_PROXY_FLOAT:
+            if (ns == 8) {
+                /* order 2: a constant count, one vector conversion per cell */
+                for (size_t l = 0; l < QL; l++)
+                    for (int q = 0; q < 8; q++) {
+                        const float *cs = (const float *)g->data + cells[l][q] * 8;
+                        for (int k = 0; k < 8; k++) S[q][k][l] = cs[k];
+                    }
+                break;
+            }
             for (size_t l = 0; l < QL; l++)
                 for (int q = 0; q < 8; q++) {
                     const float *cs = (const float *)g->data + cells[l][q] * nsz;
