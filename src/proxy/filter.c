@@ -374,30 +374,31 @@ DFL_ISA_BODY void blend_block(const dfl_proxy_grid *g, const dfl_proxy_filter_op
     const size_t n = (size_t)g->res;
     double S[8][DFL_PROXY_NSCALAR_MAX][QL], XC[8][3][QL], X[3][QL], SIDE[8][QL], V[8][QL],
         G[8][3][QL], w[QL][3][2], dw[QL][3][2];
-    size_t ids[QL][8][3], cells[QL][8];
+    size_t ids[2][3][QL], cells[QL][8]; /* ids: lower, upper corner index per axis */
     const size_t bytes = (size_t)ns * dfl_proxy_storage_size(g->storage);
     for (size_t l = 0; l < QL; l++) {
         const size_t i = l < c ? l : c - 1;
         size_t i0[3], i1[3];
         blend_setup(g, o, x + 3 * i, i0, i1, w[l], dw[l]);
         for (int j = 0; j < 3; j++) X[j][l] = x[3 * i + (size_t)j];
+        for (int j = 0; j < 3; j++) ids[0][j][l] = i0[j], ids[1][j][l] = i1[j];
         for (int q = 0; q < 8; q++) {
-            size_t *id = ids[l][q];
-            id[0] = q & 1 ? i1[0] : i0[0];
-            id[1] = (q >> 1) & 1 ? i1[1] : i0[1];
-            id[2] = (q >> 2) & 1 ? i1[2] : i0[2];
-            cells[l][q] = id[0] + n * (id[1] + n * id[2]);
+            const size_t id0 = q & 1 ? i1[0] : i0[0], id1 = (q >> 1) & 1 ? i1[1] : i0[1],
+                         id2 = (q >> 2) & 1 ? i1[2] : i0[2];
+            cells[l][q] = id0 + n * (id1 + n * id2);
             /* the 64 cells' loads overlap (queries in no order miss the cache) */
             __builtin_prefetch((const char *)g->data + cells[l][q] * bytes);
         }
     }
-    /* the corner centres: two per axis and query, each corner's by its bit */
-    for (size_t l = 0; l < QL; l++)
-        for (int j = 0; j < 3; j++) {
-            const double c0 = g->lo[j] + ((double)ids[l][0][j] + 0.5) * g->h[j],
-                         c1 = g->lo[j] + ((double)ids[l][7][j] + 0.5) * g->h[j];
-            for (int q = 0; q < 8; q++) XC[q][j][l] = (q >> j) & 1 ? c1 : c0;
+    /* the corner centres: two per axis and query, each corner's row by its bit */
+    double C[2][3][QL];
+    for (int j = 0; j < 3; j++)
+        for (size_t l = 0; l < QL; l++) {
+            C[0][j][l] = g->lo[j] + ((double)ids[0][j][l] + 0.5) * g->h[j];
+            C[1][j][l] = g->lo[j] + ((double)ids[1][j][l] + 0.5) * g->h[j];
         }
+    for (int q = 0; q < 8; q++)
+        for (int j = 0; j < 3; j++) memcpy(XC[q][j], C[(q >> j) & 1][j], sizeof XC[q][j]);
     if (f16c) {
         double sc[8 * QL * DFL_PROXY_NSCALAR_MAX];
         load_cells(g, f16c, 8 * QL, &cells[0][0], sc);
