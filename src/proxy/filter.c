@@ -374,37 +374,103 @@ DFL_ISA_BODY void blend_block(const dfl_proxy_grid *g, const dfl_proxy_filter_op
     const size_t n = (size_t)g->res;
     double S[8][DFL_PROXY_NSCALAR_MAX][QL], XC[8][3][QL], X[3][QL], SIDE[8][QL], V[8][QL],
         G[8][3][QL], w[QL][3][2], dw[QL][3][2];
-    size_t ids[QL][8][3], cells[QL][8];
+    size_t ids[2][3][QL], cells[QL][8]; /* ids: lower, upper corner index per axis */
     const size_t bytes = (size_t)ns * dfl_proxy_storage_size(g->storage);
     for (size_t l = 0; l < QL; l++) {
         const size_t i = l < c ? l : c - 1;
         size_t i0[3], i1[3];
         blend_setup(g, o, x + 3 * i, i0, i1, w[l], dw[l]);
         for (int j = 0; j < 3; j++) X[j][l] = x[3 * i + (size_t)j];
+        for (int j = 0; j < 3; j++) ids[0][j][l] = i0[j], ids[1][j][l] = i1[j];
         for (int q = 0; q < 8; q++) {
-            size_t *id = ids[l][q];
-            id[0] = q & 1 ? i1[0] : i0[0];
-            id[1] = (q >> 1) & 1 ? i1[1] : i0[1];
-            id[2] = (q >> 2) & 1 ? i1[2] : i0[2];
-            cells[l][q] = id[0] + n * (id[1] + n * id[2]);
+            const size_t id0 = q & 1 ? i1[0] : i0[0], id1 = (q >> 1) & 1 ? i1[1] : i0[1],
+                         id2 = (q >> 2) & 1 ? i1[2] : i0[2];
+            cells[l][q] = id0 + n * (id1 + n * id2);
             /* the 64 cells' loads overlap (queries in no order miss the cache) */
             __builtin_prefetch((const char *)g->data + cells[l][q] * bytes);
         }
     }
-    double sc[8 * QL * DFL_PROXY_NSCALAR_MAX];
-    load_cells(g, f16c, 8 * QL, &cells[0][0], sc);
-    for (size_t l = 0; l < QL; l++) {
-        for (int q = 0; q < 8; q++) {
-            const size_t *id = ids[l][q], cell = cells[l][q];
-            const double *cs = sc + (8 * l + (size_t)q) * (size_t)ns;
-            for (int k = 0; k < ns; k++) S[q][k][l] = cs[k];
-            for (int k = ns; k < DFL_PROXY_NSCALAR_MAX; k++) S[q][k][l] = 0.0;
-            for (int j = 0; j < 3; j++) XC[q][j][l] = g->lo[j] + ((double)id[j] + 0.5) * g->h[j];
-            SIDE[q][l] = g->side ? g->side[cell] : 1;
+    /* the corner centres: two per axis and query, each corner's row by its bit */
+    double C[2][3][QL];
+    for (int j = 0; j < 3; j++)
+        for (size_t l = 0; l < QL; l++) {
+            C[0][j][l] = g->lo[j] + ((double)ids[0][j][l] + 0.5) * g->h[j];
+            C[1][j][l] = g->lo[j] + ((double)ids[1][j][l] + 0.5) * g->h[j];
+        }
+    for (int q = 0; q < 8; q++)
+        for (int j = 0; j < 3; j++) memcpy(XC[q][j], C[(q >> j) & 1][j], sizeof XC[q][j]);
+    if (f16c) {
+        double sc[8 * QL * DFL_PROXY_NSCALAR_MAX];
+        load_cells(g, f16c, 8 * QL, &cells[0][0], sc);
+        for (size_t l = 0; l < QL; l++)
+            for (int q = 0; q < 8; q++)
+                for (int k = 0; k < ns; k++) S[q][k][l] = sc[(8 * l + (size_t)q) * (size_t)ns + (size_t)k];
+    } else {
+        /* dfl_proxy_cell_load's conversions, straight into the lanes */
+        const size_t nsz = (size_t)ns;
+        switch (g->storage) {
+        case DFL_PROXY_DOUBLE:
+            for (size_t l = 0; l < QL; l++)
+                for (int q = 0; q < 8; q++) {
+                    const double *cs = (const double *)g->data + cells[l][q] * nsz;
+                    for (int k = 0; k < ns; k++) S[q][k][l] = cs[k];
+                }
+            break;
+        case DFL_PROXY_FLOAT:
+            if (ns == 8) {
+                /* order 2: a constant count, one vector conversion per cell */
+                for (size_t l = 0; l < QL; l++)
+                    for (int q = 0; q < 8; q++) {
+                        const float *cs = (const float *)g->data + cells[l][q] * 8;
+                        for (int k = 0; k < 8; k++) S[q][k][l] = cs[k];
+                    }
+                break;
+            }
+            for (size_t l = 0; l < QL; l++)
+                for (int q = 0; q < 8; q++) {
+                    const float *cs = (const float *)g->data + cells[l][q] * nsz;
+                    for (int k = 0; k < ns; k++) S[q][k][l] = cs[k];
+                }
+            break;
+        default:
+            for (size_t l = 0; l < QL; l++)
+                for (int q = 0; q < 8; q++) {
+                    const uint16_t *cs = (const uint16_t *)g->data + cells[l][q] * nsz;
+                    for (int k = 0; k < ns; k++) S[q][k][l] = imath_half_to_float(cs[k]);
+                }
         }
     }
     for (int q = 0; q < 8; q++)
+        for (int k = ns; k < DFL_PROXY_NSCALAR_MAX; k++)
+            for (size_t l = 0; l < QL; l++) S[q][k][l] = 0.0;
+    /* the sign byte: order 1 only (order 2 decodes its sign from L t) */
+    if (order == 1)
+        for (size_t l = 0; l < QL; l++)
+            for (int q = 0; q < 8; q++) SIDE[q][l] = g->side ? g->side[cells[l][q]] : 1;
+    for (int q = 0; q < 8; q++)
         run_lanes(order, pos, clip, 1, grad != NULL, S[q], XC[q], X, SIDE[q], V[q], G[q]);
+    if (!grad) {
+        /* blend's sum across queries: per lane the same products, folds,
+         * skips (a select keeping the sum) and order of additions */
+        double wv[3][2][QL], acc[QL];
+        for (size_t l = 0; l < QL; l++) {
+            acc[l] = 0;
+            for (int j = 0; j < 3; j++) wv[j][0][l] = w[l][j][0], wv[j][1][l] = w[l][j][1];
+        }
+        const int fold = !o->is_signed;
+        for (int q = 0; q < 8; q++) {
+            const int a = q & 1, b = (q >> 1) & 1, cc = (q >> 2) & 1;
+#pragma omp simd
+            for (size_t l = 0; l < QL; l++) {
+                const double W = wv[0][a][l] * wv[1][b][l] * wv[2][cc][l];
+                const double d = fold && V[q][l] < 0 ? -V[q][l] : V[q][l];
+                const double s = acc[l] + W * d;
+                acc[l] = W == 0 ? acc[l] : s;
+            }
+        }
+        for (size_t l = 0; l < c; l++) val[l] = acc[l];
+        return;
+    }
     for (size_t l = 0; l < c; l++) {
         double v = 0, gr[3] = {0, 0, 0};
         for (int q = 0; q < 8; q++) {
