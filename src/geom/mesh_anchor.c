@@ -289,25 +289,42 @@ static const aleaf *locate(const dfl_mesh_anchor *a, const double *x)
     return a->leaf + (a->node[k] & ~LEAF_BIT);
 }
 
-/* w(c) + J and a margin for x; with stop finite, the near edges are
- * refined (their ball distance D replaced by their distance from the
- * segment, largest bound first) only until the margin is below stop: the
- * margin returned is valid either way, only looser. */
-static int estimate(const dfl_mesh_anchor *a, const double *x, double stop, double *est,
-                    double *margin)
+/* The path c -> x from x's leaf anchor, shared by both estimates: the
+ * leaf, d = x - c, |d|, and w(c) + J + g . d (the crossings and the far
+ * edges' first-order term).  0 where the anchor refuses (no leaf or no
+ * anchor, an unclear crossing). */
+typedef struct apath {
+    const aleaf *l;
+    double d[3], dx, w;
+} apath;
+
+static int path_start(const dfl_mesh_anchor *a, const double *x, apath *p)
 {
     const aleaf *l = locate(a, x);
     if (!l || !(l->B < INFINITY)) return 0;
     int J;
     if (dfl_mesh_anchor_crossings(a->V, a->T, a->tl + l->t0, l->nt, l->c, x, a->tol, &J) != 0)
         return 0;
-    double d[3] = {x[0] - l->c[0], x[1] - l->c[1], x[2] - l->c[2]};
-    const double dx = sqrt(dfl_vec3_dot(d, d));
-    const double w = l->w + J + dfl_vec3_dot(l->g, d);
-    /* the far edges: their first-order term in w; in the margin the rest
-     * (H dx^2 / 2 for the leaf's, R dx for the inherited, see make_leaf)
-     * and the rounding of g . d (each term's few ulps, far below 1e-12 of
-     * its bound) */
+    p->l = l;
+    for (int j = 0; j < 3; j++) p->d[j] = x[j] - l->c[j];
+    p->dx = sqrt(dfl_vec3_dot(p->d, p->d));
+    p->w = l->w + J;
+    p->w += dfl_vec3_dot(l->g, p->d); /* the far edges' first-order term */
+    return 1;
+}
+
+/* w(c) + J + g . d and a margin for x on path p; with stop finite, the
+ * near edges are refined (their ball distance D replaced by their distance
+ * from the segment, largest bound first) only until the margin is below
+ * stop: the margin returned is valid either way, only looser. */
+static int estimate(const dfl_mesh_anchor *a, const double *x, const apath *p, double stop,
+                    double *est, double *margin)
+{
+    const aleaf *l = p->l;
+    const double dx = p->dx, w = p->w;
+    /* in the margin the far edges' rest (H dx^2 / 2 for the leaf's, R dx
+     * for the inherited, see make_leaf) and the rounding of g . d (each
+     * term's few ulps, far below 1e-12 of its bound) */
     const double T = (0.5 * l->H * dx + 1e-12 * l->Fs) * dx * (1.0 + 1e-12);
     const double lim = fabs(w - 0.5) - stop - T;
     double G = l->R;
@@ -332,7 +349,8 @@ static int estimate(const dfl_mesh_anchor *a, const double *x, double stop, doub
 
 int dfl_mesh_anchor_estimate(const dfl_mesh_anchor *a, const double *x, double *est, double *margin)
 {
-    return estimate(a, x, INFINITY, est, margin);
+    apath p;
+    return path_start(a, x, &p) && estimate(a, x, &p, INFINITY, est, margin);
 }
 
 /* The solid angle / 4 pi of the triangle of vectors u, v, t from the
@@ -373,18 +391,12 @@ static double tri_w(const double *u, const double *v, const double *t, double *e
  * coordinates (the mesh's scale S), which moves the solid angle by at
  * most the edges' field at the gap g, 2 (2 |PQ| + 2 |d|) / (4 pi g^2),
  * times that ulp; plus tri_w's own error. */
-static int estimate_near(const dfl_mesh_anchor *a, const double *x, double stop, double *est,
-                         double *margin)
+static int estimate_near(const dfl_mesh_anchor *a, const double *x, const apath *p, double stop,
+                         double *est, double *margin)
 {
-    const aleaf *l = locate(a, x);
-    if (!l || !(l->B < INFINITY)) return 0;
-    int J;
-    if (dfl_mesh_anchor_crossings(a->V, a->T, a->tl + l->t0, l->nt, l->c, x, a->tol, &J) != 0)
-        return 0;
-    double d[3] = {x[0] - l->c[0], x[1] - l->c[1], x[2] - l->c[2]};
-    const double dx = sqrt(dfl_vec3_dot(d, d));
-    double w = l->w + J;
-    w += dfl_vec3_dot(l->g, d); /* the far edges' first-order term */
+    const aleaf *l = p->l;
+    const double dx = p->dx;
+    double w = p->w;
     double m = (0.5 * l->H * dx + 1e-12 * l->Fs + l->R) * dx * (1.0 + 1e-12) + l->B;
     const nearent *ne = a->el + l->e0;
     uint32_t i = 0;
@@ -419,15 +431,17 @@ static int estimate_near(const dfl_mesh_anchor *a, const double *x, double stop,
 int dfl_mesh_anchor_estimate_near(const dfl_mesh_anchor *a, const double *x, double stop,
                                   double *est, double *margin)
 {
-    return estimate_near(a, x, stop, est, margin);
+    apath p;
+    return path_start(a, x, &p) && estimate_near(a, x, &p, stop, est, margin);
 }
 
 int dfl_mesh_anchor_decide(const dfl_mesh_anchor *a, const double *x, int *inside)
 {
     double est, m;
-    if (!estimate(a, x, 1e-9, &est, &m)) return 0;
+    apath p; /* located and crossed once for both chances */
+    if (!path_start(a, x, &p) || !estimate(a, x, &p, 1e-9, &est, &m)) return 0;
     if (!(fabs(est - 0.5) > m + 1e-9) &&
-        !(estimate_near(a, x, 1e-9, &est, &m) && fabs(est - 0.5) > m + 1e-9))
+        !(estimate_near(a, x, &p, 1e-9, &est, &m) && fabs(est - 0.5) > m + 1e-9))
         return 0;
     *inside = est > 0.5;
     return 1;
