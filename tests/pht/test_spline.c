@@ -239,6 +239,23 @@ Test(pht_spline, eval_locates_like_the_tree)
         }
 }
 
+/* A spline of random resolved data on refined(dim, rule, nref) over
+ * LO..HI (rs seeds the data and goes on to the caller's points); the caller
+ * frees the spline, *m and *data. */
+static dfl_pht_spline *random_spline(int dim, int rule, int nref, uint64_t *rs, dfl_tmesh **m,
+                                     double **data)
+{
+    *m = refined(dim, rule, nref, LO, HI);
+    const size_t n = dfl_tmesh_nverts(*m) * (size_t)DFL_PHT_NDATA(dim);
+    *data = calloc(n, sizeof **data);
+    cr_assert_not_null(*data);
+    for (size_t v = 0; v < n; v++) (*data)[v] = dfl_rng_splitmix(rs, -1, 1);
+    dfl_pht_resolve(*m, *data);
+    dfl_pht_spline *s;
+    cr_assert_eq(dfl_pht_spline_new(*m, *data, &s, NULL), DFL_OK);
+    return s;
+}
+
 /* dfl_pht_eval starts each point at a node of a uniform location grid of
  * gn^dim cells (gn a power of two, at most 2^7 in 2D, 2^5 in 3D) whose
  * lines lo + (hi - lo) k / gn are rounded: a point on a line, or one ulp
@@ -251,15 +268,10 @@ Test(pht_spline, eval_locates_points_on_the_location_grid_lines_like_the_tree)
     enum { N = 3000 };
     for (int dim = 2; dim <= 3; dim++)
         for (int rule = 0; rule < DFL_PHT_SPLIT_COUNT; rule++) {
-            dfl_tmesh *m = refined(dim, rule, 57, LO, HI);
-            int nd = DFL_PHT_NDATA(dim);
-            size_t nv = dfl_tmesh_nverts(m);
-            double *data = calloc(nv * (size_t)nd, sizeof *data);
+            dfl_tmesh *m;
+            double *data;
             uint64_t rs = 123;
-            for (size_t v = 0; v < nv * (size_t)nd; v++) data[v] = dfl_rng_splitmix(&rs, -1, 1);
-            dfl_pht_resolve(m, data);
-            dfl_pht_spline *s;
-            cr_assert_eq(dfl_pht_spline_new(m, data, &s, NULL), DFL_OK);
+            dfl_pht_spline *s = random_spline(dim, rule, 57, &rs, &m, &data);
             const int G = dim == 2 ? 128 : 32;
             static double x[N * 3], v[N], g[N * 3];
             for (int i = 0; i < N * dim; i++) {
@@ -294,15 +306,10 @@ Test(pht_spline, batches_give_the_bytes_of_single_cell_evaluation)
     enum { N = 1000 };
     for (int dim = 2; dim <= 3; dim++)
         for (int rule = 0; rule < DFL_PHT_SPLIT_COUNT; rule++) {
-            dfl_tmesh *m = refined(dim, rule, 43, LO, HI);
-            int nd = DFL_PHT_NDATA(dim);
-            size_t nv = dfl_tmesh_nverts(m);
-            double *data = calloc(nv * (size_t)nd, sizeof *data);
+            dfl_tmesh *m;
+            double *data;
             uint64_t rs = 91;
-            for (size_t v = 0; v < nv * (size_t)nd; v++) data[v] = dfl_rng_splitmix(&rs, -1, 1);
-            dfl_pht_resolve(m, data);
-            dfl_pht_spline *s;
-            cr_assert_eq(dfl_pht_spline_new(m, data, &s, NULL), DFL_OK);
+            dfl_pht_spline *s = random_spline(dim, rule, 43, &rs, &m, &data);
             static double x[N * 3], v[N], g[N * 3], H[N * 9], v1[N], g1[N * 3], H1[N * 9];
             for (int i = 0; i < N * dim; i++) {
                 int j = i % dim;
