@@ -92,11 +92,13 @@ DFL_ISA_BODY double dist_ijk(const dfl_proxy_grid *g, size_t i, size_t j, size_t
     return clipped(&pg, g->order, o->clip_kind, o->clip, x, grad);
 }
 
+/* The cell of x per axis, clamped to the grid; a NaN coordinate takes cell
+ * 0 on its axis (filter.h: its value is NaN). */
 DFL_ISA_BODY void nearest_cell(const dfl_proxy_grid *g, const double x[3], size_t idx[3])
 {
     for (int j = 0; j < 3; j++) {
         const double s = floor((x[j] - g->lo[j]) / g->h[j]);
-        idx[j] = s < 0 ? 0 : s > g->res - 1 ? (size_t)g->res - 1 : (size_t)s;
+        idx[j] = !(s >= 0) ? 0 : s > g->res - 1 ? (size_t)g->res - 1 : (size_t)s;
     }
 }
 
@@ -130,7 +132,7 @@ DFL_ISA_BODY void blend_setup(const dfl_proxy_grid *g, const dfl_proxy_filter_op
             i0[j] = 0;
             t = 0;
             dt = 0;
-        } else if (s <= 0) {
+        } else if (!(s > 0)) { /* NaN too: cell 0, the value is NaN */
             i0[j] = 0;
             t = 0;
             dt = 0;
@@ -292,22 +294,63 @@ DFL_ISA_BODY void run_lanes(const int order, const dfl_proxy_position pos, const
 #undef DFL_LANES
 }
 
-/* The scalars of cells[0..nc) (nc <= 8 QL) as double, cell after cell
- * (out[j ns + k]): dfl_proxy_cell_load per cell, or for half storage with
- * f16c one F16C block conversion of the gathered halves (store.h: the
- * same doubles). */
-DFL_ISA_BODY void load_cells(const dfl_proxy_grid *g, int f16c, size_t nc, const size_t *cells,
-                             double *out)
+/* The scalars of nb cells per query into lanes: cell q of query l
+ * (cells[l nb + q], nb <= 8) to S[q][k][l], k < nscalar, and 0 for the
+ * rest of DFL_PROXY_NSCALAR_MAX; dfl_proxy_cell_load's conversions straight
+ * into the lanes, or for half storage with f16c one F16C block conversion
+ * of the gathered halves (store.h: the same doubles). */
+DFL_ISA_BODY void load_lanes(const dfl_proxy_grid *g, int f16c, const int nb, const size_t *cells,
+                             double (*S)[DFL_PROXY_NSCALAR_MAX][QL])
 {
-    const size_t ns = (size_t)g->nscalar;
+    const int ns = g->nscalar;
+    const size_t nsz = (size_t)ns;
     if (f16c) {
         uint16_t hb[8 * QL * DFL_PROXY_NSCALAR_MAX];
+        double sc[8 * QL * DFL_PROXY_NSCALAR_MAX];
         const uint16_t *d = g->data;
-        for (size_t j = 0; j < nc; j++) memcpy(hb + j * ns, d + cells[j] * ns, ns * sizeof *hb);
-        dfl_proxy_store_half_block(1, hb, nc * ns, out);
-        return;
+        const size_t nc = (size_t)nb * QL;
+        for (size_t j = 0; j < nc; j++) memcpy(hb + j * nsz, d + cells[j] * nsz, nsz * sizeof *hb);
+        dfl_proxy_store_half_block(1, hb, nc * nsz, sc);
+        for (size_t l = 0; l < QL; l++)
+            for (int q = 0; q < nb; q++)
+                for (int k = 0; k < ns; k++)
+                    S[q][k][l] = sc[((size_t)nb * l + (size_t)q) * nsz + (size_t)k];
+    } else {
+        switch (g->storage) {
+        case DFL_PROXY_DOUBLE:
+            for (size_t l = 0; l < QL; l++)
+                for (int q = 0; q < nb; q++) {
+                    const double *cs = (const double *)g->data + cells[(size_t)nb * l + (size_t)q] * nsz;
+                    for (int k = 0; k < ns; k++) S[q][k][l] = cs[k];
+                }
+            break;
+        case DFL_PROXY_FLOAT:
+            if (ns == 8) {
+                /* order 2: a constant count, one vector conversion per cell */
+                for (size_t l = 0; l < QL; l++)
+                    for (int q = 0; q < nb; q++) {
+                        const float *cs = (const float *)g->data + cells[(size_t)nb * l + (size_t)q] * 8;
+                        for (int k = 0; k < 8; k++) S[q][k][l] = cs[k];
+                    }
+                break;
+            }
+            for (size_t l = 0; l < QL; l++)
+                for (int q = 0; q < nb; q++) {
+                    const float *cs = (const float *)g->data + cells[(size_t)nb * l + (size_t)q] * nsz;
+                    for (int k = 0; k < ns; k++) S[q][k][l] = cs[k];
+                }
+            break;
+        default:
+            for (size_t l = 0; l < QL; l++)
+                for (int q = 0; q < nb; q++) {
+                    const uint16_t *cs = (const uint16_t *)g->data + cells[(size_t)nb * l + (size_t)q] * nsz;
+                    for (int k = 0; k < ns; k++) S[q][k][l] = imath_half_to_float(cs[k]);
+                }
+        }
     }
-    for (size_t j = 0; j < nc; j++) dfl_proxy_cell_load(g, cells[j], out + j * ns);
+    for (int q = 0; q < nb; q++)
+        for (int k = ns; k < DFL_PROXY_NSCALAR_MAX; k++)
+            for (size_t l = 0; l < QL; l++) S[q][k][l] = 0.0;
 }
 
 /* The nearest filter for c <= QL queries at x, across queries: the cells'
@@ -319,36 +362,40 @@ DFL_ISA_BODY void load_cells(const dfl_proxy_grid *g, int f16c, size_t nc, const
  * one query at a time computed, operation for operation: the branches
  * become selects of values computed either way, and fmax(ball, |phi|) a
  * select (where the clip applies phi is finite and ball is not NaN, so
- * they agree); hence the same bytes. */
+ * they agree); hence the same bytes.  The cell index runs across lanes too
+ * (nearest_cell's clamp on the floored double, which is integral, so the
+ * centre lo + (i + 0.5) h is nearest_cell's); order 2 has no sign byte. */
 DFL_ISA_BODY void nearest_block(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, int f16c,
                                 size_t c, const double *x, double *val, double *grad)
 {
-    const int order = g->order, ns = g->nscalar;
+    const int order = g->order;
     const dfl_proxy_position pos = g->position;
     /* the lanes compute the bound clip (or none): off is radius 0 */
     const double clip = o->clip_kind == DFL_PROXY_CLIP_OFF ? 0.0 : o->clip;
-    double S[DFL_PROXY_NSCALAR_MAX][QL], XC[3][QL], X[3][QL], SIDE[QL], V[QL], G[3][QL];
-    double sc[QL * DFL_PROXY_NSCALAR_MAX];
-    size_t cells[QL], ids[QL][3];
-    for (size_t l = 0; l < QL; l++) {
-        const size_t i = l < c ? l : c - 1, n = (size_t)g->res;
-        nearest_cell(g, x + 3 * i, ids[l]);
-        cells[l] = ids[l][0] + n * (ids[l][1] + n * ids[l][2]);
-    }
-    load_cells(g, f16c, QL, cells, sc);
-    for (size_t l = 0; l < QL; l++) {
-        const size_t i = l < c ? l : c - 1, cell = cells[l], *id = ids[l];
-        for (int q = 0; q < ns; q++) S[q][l] = sc[l * (size_t)ns + (size_t)q];
-        for (int q = ns; q < DFL_PROXY_NSCALAR_MAX; q++) S[q][l] = 0.0;
-        for (int j = 0; j < 3; j++) {
-            XC[j][l] = g->lo[j] + ((double)id[j] + 0.5) * g->h[j];
-            X[j][l] = x[3 * i + (size_t)j];
+    double S[1][DFL_PROXY_NSCALAR_MAX][QL], XC[3][QL], X[3][QL], ID[3][QL], SIDE[QL], V[QL],
+        G[3][QL];
+    size_t cells[QL];
+    const size_t n = (size_t)g->res;
+    const double top = g->res - 1;
+    for (int j = 0; j < 3; j++) {
+        const double lo = g->lo[j], h = g->h[j];
+        for (size_t l = 0; l < QL; l++) X[j][l] = x[3 * (l < c ? l : c - 1) + (size_t)j];
+#pragma omp simd
+        for (size_t l = 0; l < QL; l++) {
+            const double s = floor((X[j][l] - lo) / h);
+            const double id = !(s >= 0) ? 0.0 : s > top ? top : s;
+            ID[j][l] = id;
+            XC[j][l] = lo + (id + 0.5) * h;
         }
-        SIDE[l] = g->side ? g->side[cell] : 1;
     }
+    for (size_t l = 0; l < QL; l++)
+        cells[l] = (size_t)ID[0][l] + n * ((size_t)ID[1][l] + n * (size_t)ID[2][l]);
+    load_lanes(g, f16c, 1, cells, S);
+    if (order == 1)
+        for (size_t l = 0; l < QL; l++) SIDE[l] = g->side ? g->side[cells[l]] : 1;
     const int sgnd = o->is_signed;
     /* the uniform choices as constants, so that the lane loop has no branch */
-    run_lanes(order, pos, clip, sgnd, grad != NULL, S, XC, X, SIDE, V, G);
+    run_lanes(order, pos, clip, sgnd, grad != NULL, S[0], XC, X, SIDE, V, G);
     for (size_t l = 0; l < c; l++) {
         val[l] = V[l];
         if (grad)
@@ -399,50 +446,7 @@ DFL_ISA_BODY void blend_block(const dfl_proxy_grid *g, const dfl_proxy_filter_op
         }
     for (int q = 0; q < 8; q++)
         for (int j = 0; j < 3; j++) memcpy(XC[q][j], C[(q >> j) & 1][j], sizeof XC[q][j]);
-    if (f16c) {
-        double sc[8 * QL * DFL_PROXY_NSCALAR_MAX];
-        load_cells(g, f16c, 8 * QL, &cells[0][0], sc);
-        for (size_t l = 0; l < QL; l++)
-            for (int q = 0; q < 8; q++)
-                for (int k = 0; k < ns; k++) S[q][k][l] = sc[(8 * l + (size_t)q) * (size_t)ns + (size_t)k];
-    } else {
-        /* dfl_proxy_cell_load's conversions, straight into the lanes */
-        const size_t nsz = (size_t)ns;
-        switch (g->storage) {
-        case DFL_PROXY_DOUBLE:
-            for (size_t l = 0; l < QL; l++)
-                for (int q = 0; q < 8; q++) {
-                    const double *cs = (const double *)g->data + cells[l][q] * nsz;
-                    for (int k = 0; k < ns; k++) S[q][k][l] = cs[k];
-                }
-            break;
-        case DFL_PROXY_FLOAT:
-            if (ns == 8) {
-                /* order 2: a constant count, one vector conversion per cell */
-                for (size_t l = 0; l < QL; l++)
-                    for (int q = 0; q < 8; q++) {
-                        const float *cs = (const float *)g->data + cells[l][q] * 8;
-                        for (int k = 0; k < 8; k++) S[q][k][l] = cs[k];
-                    }
-                break;
-            }
-            for (size_t l = 0; l < QL; l++)
-                for (int q = 0; q < 8; q++) {
-                    const float *cs = (const float *)g->data + cells[l][q] * nsz;
-                    for (int k = 0; k < ns; k++) S[q][k][l] = cs[k];
-                }
-            break;
-        default:
-            for (size_t l = 0; l < QL; l++)
-                for (int q = 0; q < 8; q++) {
-                    const uint16_t *cs = (const uint16_t *)g->data + cells[l][q] * nsz;
-                    for (int k = 0; k < ns; k++) S[q][k][l] = imath_half_to_float(cs[k]);
-                }
-        }
-    }
-    for (int q = 0; q < 8; q++)
-        for (int k = ns; k < DFL_PROXY_NSCALAR_MAX; k++)
-            for (size_t l = 0; l < QL; l++) S[q][k][l] = 0.0;
+    load_lanes(g, f16c, 8, &cells[0][0], S);
     /* the sign byte: order 1 only (order 2 decodes its sign from L t) */
     if (order == 1)
         for (size_t l = 0; l < QL; l++)

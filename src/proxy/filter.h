@@ -117,7 +117,10 @@ double dfl_proxy_proxy_dist(const dfl_proxy_grid *g, size_t c, dfl_proxy_clip ki
 
 /* val[i] (and grad[3i..3i+2] when grad is not NULL) at x[3i..3i+2], i < m.
  * Serial, allocation-free, thread-safe for a shared grid (callers
- * parallelise over chunks of points).  o must pass dfl_proxy_filter_check. */
+ * parallelise over chunks of points).  o must pass dfl_proxy_filter_check.
+ * A query with a NaN coordinate gets val NaN (its gradient is unspecified)
+ * and reads no cell outside the grid: it is located in cell 0 on that axis;
+ * infinite coordinates are clamped to the grid like far ones. */
 void dfl_proxy_filter_eval(const dfl_proxy_grid *g, const dfl_proxy_filter_opts *o, size_t m,
                            const double *x, double *val, double *grad);
 

@@ -3,8 +3,13 @@
  * derivatives of the values, exact proxies blend to the exact field. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include "core/isa.h"
 #include "core/rng.h"
 #include "core/vec.h"
 #include "proxy/analytic_inputs.h"
@@ -498,4 +503,110 @@ Test(proxy_filter, blends_are_the_corner_proxies_byte_for_byte)
                     }
                 dfl_proxy_grid_free(&g);
             }
+}
+
+/* The checks of nan_query_is_nan_and_stays_in_the_grid on one grid;
+ * returns the number of failures (printed to stderr). */
+static int nan_queries_on(const dfl_proxy_grid *g, int order, int si)
+{
+    enum { M = 19 };
+    double x[3 * M];
+    uint64_t seed = 5;
+    for (int i = 0; i < 3 * M; i++) x[i] = dfl_rng_splitmix(&seed, -1.2, 1.2);
+    x[3 * 2 + 0] = NAN;
+    x[3 * 7 + 1] = NAN;
+    x[3 * 9 + 2] = -NAN;
+    x[3 * 16 + 0] = NAN, x[3 * 16 + 1] = INFINITY;
+    x[3 * 11 + 1] = INFINITY; /* clamped: a value, NaN or not */
+    x[3 * 12 + 2] = -INFINITY;
+    int bad = 0;
+    for (int f = 0; f < DFL_PROXY_FILTER_COUNT; f++)
+        for (int ck = 0; ck < DFL_PROXY_CLIP_COUNT; ck++)
+            for (int sg = 0; sg < 2; sg++)
+                for (int wg = 0; wg < 2; wg++) {
+                    dfl_proxy_filter_opts o;
+                    dfl_proxy_filter_opts_default((dfl_proxy_filter)f, g, &o);
+                    o.clip_kind = (dfl_proxy_clip)ck;
+                    o.clip = dfl_proxy_cell_size(g);
+                    o.is_signed = sg;
+                    double v[M], gr[3 * M];
+                    dfl_proxy_filter_eval(g, &o, M, x, v, wg ? gr : NULL);
+                    for (int i = 0; i < M; i++) {
+                        const int nan = i == 2 || i == 7 || i == 9 || i == 16;
+                        if (nan && !isnan(v[i])) {
+                            fprintf(stderr, "order %d st %d filter %d clip %d signed %d grad %d "
+                                    "query %d: %g, not NaN\n", order, si, f, ck, sg, wg, i, v[i]);
+                            bad++;
+                        }
+                        if (nan && order == 1 && f == DFL_PROXY_NEAREST &&
+                            ck == DFL_PROXY_CLIP_OFF && sg && wg) {
+                            /* an order-1 proxy's gradient is its normal wherever x is
+                             * (no clip, signed: no fold): the cell the query was
+                             * located in */
+                            double y[3], g1[3];
+                            size_t id[3];
+                            for (int j = 0; j < 3; j++) {
+                                y[j] = isnan(x[3 * i + j]) ? g->lo[j] : x[3 * i + j];
+                                const double t = floor((y[j] - g->lo[j]) / g->h[j]);
+                                id[j] = t < 0 ? 0 : t > g->res - 1 ? (size_t)g->res - 1 : (size_t)t;
+                            }
+                            const size_t n = (size_t)g->res, c = id[0] + n * (id[1] + n * id[2]);
+                            (void)dfl_proxy_proxy_dist(g, c, DFL_PROXY_CLIP_OFF, 0.0, y, g1);
+                            if (memcmp(g1, gr + 3 * i, sizeof g1) != 0) {
+                                fprintf(stderr, "order 1 st %d query %d: not cell 0 on the NaN "
+                                        "axis\n", si, i);
+                                bad++;
+                            }
+                        }
+                        if (nan) continue;
+                        double g1[3];
+                        const double v1 = eval1(g, &o, x + 3 * i, wg ? g1 : NULL);
+                        if (memcmp(&v1, &v[i], sizeof v1) != 0) {
+                            fprintf(stderr, "order %d st %d filter %d clip %d query %d: %a vs "
+                                    "%a\n", order, si, f, ck, i, v[i], v1);
+                            bad++;
+                        }
+                    }
+                }
+    return bad;
+}
+
+/* filter.h: a query with a NaN coordinate gets a NaN value and reads no
+ * cell outside the grid (it is located in cell 0 on that axis: seen in an
+ * order-1 nearest gradient, the cell's normal), while the other queries of
+ * its batch get what they get alone; an infinite coordinate is clamped to
+ * the grid.  Every filter, clip kind, order, storage and sign, with the
+ * NaN on each axis at a different place in a batch longer than one block
+ * of lanes; and on every ISA this CPU runs, each in a child process with
+ * DFL_ISA set (the ISA is chosen once per process), because a NaN cast to
+ * an index differs between them: a read out of the grid crashes on one
+ * and reads a neighbour's cell on another. */
+Test(proxy_filter, nan_query_is_nan_and_stays_in_the_grid)
+{
+    static const dfl_proxy_storage sts[3] = {DFL_PROXY_DOUBLE, DFL_PROXY_FLOAT, DFL_PROXY_HALF};
+    for (int isa = 0; isa < DFL_ISA_COUNT; isa++) {
+        if (!dfl_isa_cpu_has((dfl_isa)isa)) continue;
+        fflush(NULL);
+        const pid_t pid = fork();
+        cr_assert(pid >= 0);
+        if (pid == 0) {
+            setenv("DFL_ISA", dfl_isa_name((dfl_isa)isa), 1);
+            if (dfl_isa_active() != (dfl_isa)isa) _exit(3);
+            int bad = 0;
+            for (int order = 1; order <= 2; order++)
+                for (int si = 0; si < 3; si++) {
+                    dfl_proxy_grid g;
+                    build(&torus, order, 6, sts[si], &g);
+                    bad += nan_queries_on(&g, order, si);
+                    dfl_proxy_grid_free(&g);
+                }
+            _exit(bad ? 1 : 0);
+        }
+        int st = 0;
+        cr_assert(waitpid(pid, &st, 0) == pid);
+        cr_expect(WIFEXITED(st) && WEXITSTATUS(st) == 0,
+                  "DFL_ISA=%s: %s %d (1: a check failed, 3: the ISA was not taken)",
+                  dfl_isa_name((dfl_isa)isa), WIFEXITED(st) ? "exit" : "signal",
+                  WIFEXITED(st) ? WEXITSTATUS(st) : WTERMSIG(st));
+    }
 }
