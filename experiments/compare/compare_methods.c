@@ -62,8 +62,14 @@
  * target (field_cfg.h dfl_field_target; empty cells for a kind without
  * one): target (its tolerance, e.g. pht's eps), target_met (1: every
  * cell's estimate met it; 0: the build stopped short, e.g. at pht's
- * max_level) and target_over (the cells left above it).  The row says
- * whether eps was reached: a setting eps=1e-3 is a target, not a result.
+ * max_level), target_over (the cells left above it) and target_linf_met
+ * (1: the row's own linf, over every error point of the protocol, is <=
+ * target; 0: it is not, a non-finite value included).  The row says
+ * whether eps was reached: a setting eps=1e-3 is a target, not a result;
+ * target_met is the build's verdict from its own sample points,
+ * target_linf_met the study's from its error points, and the two can
+ * disagree (a fit's estimator samples a cell at a few points; a cone
+ * point or a kink between them is where the error points find more).
  */
 #include <math.h>
 #include <stdio.h>
@@ -427,14 +433,17 @@ static dfl_status put_metrics(dfl_table *t, const char *pre, const dfl_metrics *
 /* The target columns of a row whose build has a target (field_cfg.h); a
  * kind without one leaves them empty.  They are set after every other
  * column, and compare_run adds them at the end when no row has a target,
- * so the columns before them are those of a table without them. */
-static dfl_status put_target(dfl_table *t, const dfl_field_target *tg, dfl_err *err)
+ * so the columns before them are those of a table without them.  linf is
+ * the row's measured linf (NaN or inf: not met, by the comparison). */
+static dfl_status put_target(dfl_table *t, const dfl_field_target *tg, double linf,
+                             dfl_err *err)
 {
     if (tg->met < 0) return DFL_OK;
     dfl_status st;
     if ((st = dfl_table_set_double(t, "target", tg->value, err))) return st;
     if ((st = dfl_table_set_int(t, "target_met", tg->met, err))) return st;
-    return dfl_table_set_int(t, "target_over", (long)tg->over, err);
+    if ((st = dfl_table_set_int(t, "target_over", (long)tg->over, err))) return st;
+    return dfl_table_set_int(t, "target_linf_met", linf <= tg->value, err);
 }
 
 static dfl_status row_head(dfl_table *t, const method *m, const char *kind, const char *ssec,
@@ -524,7 +533,7 @@ static dfl_status run_one(const dfl_cfg *cfg, const method *m, const char *ssec,
     if ((st = dfl_table_set_int(t, "n_surface", (long)p->nsurface, err))) goto field;
     if ((st = dfl_table_set_int(t, "n_medial", (long)p->nmedial, err))) goto field;
     if ((st = dfl_table_set_int(t, "n_pairs", (long)p->npairs, err))) goto field;
-    st = put_target(t, &tg, err);
+    st = put_target(t, &tg, r.whole.linf, err);
 field:
     dfl_field_destroy(&f);
 done:
@@ -582,8 +591,9 @@ static dfl_status compare_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_
     dfl_status st = study_from_cfg(cfg, s, err);
     if (!st) st = dfl_cfg_check_used(cfg, err);
     for (size_t j = 0; !st && j < s->shapes.n; j++) st = run_shape(cfg, s, s->shapes.w[j], t, err);
-    static const char *const tcols[] = {"target", "target_met", "target_over"};
-    for (size_t k = 0; !st && k < 3; k++) st = dfl_table_add_col(t, tcols[k], err);
+    static const char *const tcols[] = {"target", "target_met", "target_over",
+                                        "target_linf_met"};
+    for (size_t k = 0; !st && k < 4; k++) st = dfl_table_add_col(t, tcols[k], err);
     free(s);
     return st;
 }

@@ -31,8 +31,9 @@
  *     points (all stay in the boxes: the shapes lie 0.15 inside them),
  *     count = grid + surface + medial, no non-finite value anywhere;
  *   - targets: a PHT row's target is its eps, target_met is 1 exactly when
- *     target_over is 0 (pht/fit.h: capped is 0 iff converged); every other
- *     row (no kind but pht has a target) has the three cells empty.  On
+ *     target_over is 0 (pht/fit.h: capped is 0 iff converged),
+ *     target_linf_met is 1 exactly when the row's linf is <= eps; every
+ *     other row (no kind but pht has a target) has the four cells empty.  On
  *     Wuson the fit cannot meet eps: where the winding-number sign flips
  *     off the mesh (|d| > 0 on a sheet closing an open edge) the SDF jumps
  *     by 2|d|, and a continuous f errs by at least |d| on one side of the
@@ -85,8 +86,9 @@ Test(e2e_compare, quick_config_derived, .timeout = 300)
         const int dim = (int)e2e_csv_get(csv, (size_t)r, "dim");
         cr_expect_eq(dim, space ? 3 : 2, "row %ld", r);
         if (!is(csv, r, "method", "m_pht")) {
-            static const char *const tcol[] = {"target", "target_met", "target_over"};
-            for (size_t k = 0; k < 3; k++)
+            static const char *const tcol[] = {"target", "target_met", "target_over",
+                                               "target_linf_met"};
+            for (size_t k = 0; k < 4; k++)
                 cr_expect(is(csv, r, tcol[k], ""), "row %ld %s: no target, an empty cell", r,
                           tcol[k]);
         }
@@ -166,6 +168,11 @@ Test(e2e_compare, quick_config_derived, .timeout = 300)
             cr_expect_eq(e2e_csv_get(csv, (size_t)r, "target"), eps, "row %ld", r);
             cr_expect(met == 0 || met == 1, "row %ld: target_met %g", r, met);
             cr_expect_eq(met == 1, over == 0, "row %ld: met %g, over %g", r, met, over);
+            /* the study's own verdict: its linf over every error point <= eps */
+            const double lm = e2e_csv_get(csv, (size_t)r, "target_linf_met");
+            const double linf = e2e_csv_get(csv, (size_t)r, "linf");
+            cr_expect_eq(lm, linf <= eps ? 1.0 : 0.0, "row %ld: target_linf_met %g, linf %g, "
+                         "eps %g", r, lm, linf, eps);
             if (is(csv, r, "shape", "s_wuson")) {
                 pht_wuson++;
                 cr_expect_eq(met, 0, "row %ld: eps not reachable across Wuson's jumps", r);
@@ -309,4 +316,18 @@ Test(e2e_compare, skip_kinds_skips_with_the_reason, .timeout = 60)
     cr_expect_str_eq(sk1, "shape kind csg is in skip_kinds");
     free(sk0), free(sk1);
     e2e_rmtree(t.dir);
+}
+
+/* The report's marks of a row's target: not met by the build, met by the
+ * build's estimate but not by the study's L∞, met both ways, none
+ * (check_targets.py, on made-up rows). */
+Test(e2e_compare, report_marks_targets_the_build_or_the_study_missed, .timeout = 60)
+{
+    char dir[256], *py;
+    e2e_tmpdir(dir, sizeof dir);
+    cr_assert(dir[0], "no temporary directory");
+    const int rc = e2e_python_run(dir, &py, "tests/e2e/compare/check_targets.py");
+    cr_expect_eq(rc, 0, "%s", py);
+    free(py);
+    cr_expect_eq(e2e_rmtree(dir), 0);
 }
