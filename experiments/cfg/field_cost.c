@@ -3,8 +3,13 @@
  * exists. */
 #include "cfg/field_cost.h"
 
+#include <errno.h>
 #include <math.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
 
 #include "cfg/field_cfg.h"
 #include "cfg/curve_cfg.h"
@@ -69,6 +74,192 @@ int dfl_shape_dim_guess(const dfl_cfg *cfg, const char *sec)
         if (strcmp(k, "csg") != 0 || dfl_cfg_string(cfg, sec, "a", &sec, NULL)) return 3;
     }
     return 3;
+}
+
+double dfl_mesh_bytes_bound(double tris, int is_signed)
+{
+    double b = tris * DFL_MESH_TRI_BYTES + DFL_MESH_FIXED_BYTES;
+    if (is_signed) b += tris * DFL_MESH_ANCHOR_TRI_BYTES + DFL_MESH_ANCHOR_FIXED_BYTES;
+    return b;
+}
+
+/* The fewest bytes a triangle takes in a file of extension ext (header). */
+static double min_tri_bytes(const char *ext)
+{
+    if (!strcasecmp(ext, "stl")) return 36;
+    if (!strcasecmp(ext, "ac")) return 6;
+    if (!strcasecmp(ext, "obj") || !strcasecmp(ext, "off")) return 2;
+    return 1;
+}
+
+/* One pass over a text file, no allocation (header): OBJ, every line
+ * whose first word is "f" (with its '\\' continuations) gives its words
+ * but two; AC3D, every "refs k" k - 2, and with a "subdiv s" anywhere
+ * (Assimp subdivides: a k-gon becomes k quads, each further level 4 of
+ * each) 2 k 4^(s - 1) for the largest s.  0 when the file cannot be read. */
+static int scan_faces(const char *path, int ac, double *tris)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return 0;
+    double t = 0, sumk = 0, smax = 0;
+    char word[8];
+    int ch, wl = 0, nword = 0, face = 0, cont = 0;
+    double num = -1; /* the number after "refs"/"subdiv" (-1: none yet) */
+    int kw = 0;      /* 1 after "refs", 2 after "subdiv" */
+    for (;;) {
+        ch = fgetc(f);
+        const int end = ch == EOF || ch == '\n' || ch == '\r';
+        if (ch == '\\') cont = 1;
+        else if (!end && ch != ' ' && ch != '\t') cont = 0;
+        if (end || ch == ' ' || ch == '\t' || ch == '\\') {
+            if (wl > 0) { /* a word ended */
+                word[wl < 8 ? wl : 7] = '\0';
+                if (nword == 0) {
+                    face = !ac && wl == 1 && word[0] == 'f';
+                    kw = ac && wl == 4 && !memcmp(word, "refs", 4)     ? 1
+                         : ac && wl == 6 && !memcmp(word, "subdiv", 6) ? 2
+                                                                       : 0;
+                } else if (nword == 1 && kw && num >= 0) {
+                    if (kw == 1) t += fmax(num - 2, 0), sumk += num;
+                    else smax = fmax(smax, num);
+                }
+                nword++;
+                wl = 0;
+                num = -1;
+            }
+            if (end && !(cont && ch != EOF)) {
+                if (face) t += fmax(nword - 3, 0); /* "f" and k indices: k - 2 */
+                nword = 0, face = 0, kw = 0;
+            }
+            if (ch == EOF) break;
+            continue;
+        }
+        if (wl < 8) word[wl] = (char)ch;
+        if (wl == 0 && nword == 1) num = 0;
+        if (num >= 0) num = ch >= '0' && ch <= '9' ? 10 * num + (ch - '0') : -1;
+        wl++;
+    }
+    fclose(f);
+    *tris = smax > 0 ? 2 * sumk * pow(4, smax - 1) : t;
+    return 1;
+}
+
+dfl_status dfl_mesh_file_tris_bound(const char *path, double *tris, double *file_bytes,
+                                    dfl_err *err)
+{
+    struct stat sb;
+    if (stat(path, &sb) != 0)
+        return dfl_err_set(err, DFL_E_INPUT, "%s: %s", path, strerror(errno));
+    if (!S_ISREG(sb.st_mode)) return dfl_err_set(err, DFL_E_INPUT, "%s: not a regular file", path);
+    const double size = (double)sb.st_size;
+    const char *base = strrchr(path, '/'), *dot;
+    base = base ? base + 1 : path;
+    dot = strrchr(base, '.');
+    const char *ext = dot ? dot + 1 : "";
+    *file_bytes = size;
+    *tris = floor(size / min_tri_bytes(ext));
+    if (!strcasecmp(ext, "stl") && sb.st_size >= 84 && (sb.st_size - 84) % 50 == 0) {
+        /* binary: the little-endian count after the 80-byte header */
+        unsigned char h[84];
+        FILE *f = fopen(path, "rb");
+        const int ok = f && fread(h, 1, sizeof h, f) == sizeof h;
+        if (f) fclose(f);
+        const uint32_t n = ok ? (uint32_t)h[80] | (uint32_t)h[81] << 8 | (uint32_t)h[82] << 16 |
+                                    (uint32_t)h[83] << 24
+                              : 0;
+        if (ok && (double)n * 50 + 84 == size) *tris = n;
+    }
+    if (!strcasecmp(ext, "obj") || !strcasecmp(ext, "ac")) {
+        double t;
+        if (scan_faces(path, !strcasecmp(ext, "ac"), &t)) *tris = fmin(*tris, t);
+    }
+    return DFL_OK;
+}
+
+static dfl_status shape_cost(const dfl_cfg *cfg, const char *sec, int depth, dfl_cost *c,
+                             dfl_err *err);
+
+/* the mesh's structures for at most tris triangles (header) */
+static void mesh_struct_cost(const dfl_cfg *cfg, const char *sec, const char *key, double tris,
+                             dfl_cost *c)
+{
+    const char *d = "signed";
+    if (dfl_cfg_has(cfg, sec, "distance")) dfl_cfg_string(cfg, sec, "distance", &d, NULL);
+    const int is_signed = strcmp(d, "unsigned") != 0;
+    dfl_cost_add_bytes(c, sec, key, dfl_mesh_bytes_bound(tris, is_signed),
+                       "a mesh of up to %.3g triangles, its BVH%s", tris,
+                       is_signed ? " and winding anchors (signed)" : "");
+    dfl_cost_add_work(c, sec, key, DFL_COST_EXACT, tris, "%.3g triangles read and indexed", tris);
+    if (is_signed) {
+        const double nodes = 64 * tris + 262144;
+        dfl_cost_add_work(c, sec, key, DFL_COST_EXACT, 32 * nodes,
+                          "up to %.3g winding anchors built", nodes);
+    }
+}
+
+static dfl_status mesh_cost(const dfl_cfg *cfg, const char *sec, int depth, dfl_cost *c,
+                            dfl_err *err)
+{
+    if (dfl_cfg_has(cfg, sec, "file")) {
+        char path[4096];
+        double tris, size;
+        if (dfl_cfg_path_value(cfg, sec, "file", path, sizeof path, NULL) ||
+            dfl_mesh_file_tris_bound(path, &tris, &size, NULL))
+            return DFL_OK; /* the reader names it */
+        dfl_cost_add_bytes(c, sec, "file", size, "the mesh file's %.3g bytes", size);
+        mesh_struct_cost(cfg, sec, "file", tris, c);
+        return DFL_OK;
+    }
+    const char *src;
+    if (!dfl_cfg_has(cfg, sec, "polygonize") ||
+        dfl_cfg_string(cfg, sec, "polygonize", &src, NULL) || !dfl_cfg_has_section(cfg, src))
+        return DFL_OK;
+    /* the reader's grid (experiments/cfg/shape_cfg.c mesh_source) */
+    long n = 96, refine = 8;
+    double lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
+    static const double mone[3] = {-1, -1, -1}, one[3] = {1, 1, 1};
+    dfl_status st = dfl_cfg_int_opt(cfg, sec, "resolution", 96, 8, 1024, &n, err);
+    if (!st) st = dfl_cfg_int_opt(cfg, sec, "refine", 8, 0, 100, &refine, err);
+    if (!st) st = dfl_cfg_vec_opt(cfg, sec, "lo", 3, mone, lo, err);
+    if (!st) st = dfl_cfg_vec_opt(cfg, sec, "hi", 3, one, hi, err);
+    if (st) return st;
+    double ext = 0.0, cube[3], nodes = 1;
+    for (int j = 0; j < 3; j++) {
+        if (!(hi[j] > lo[j])) return DFL_OK; /* the reader names it */
+        ext = fmax(ext, hi[j] - lo[j]);
+    }
+    for (int j = 0; j < 3; j++) {
+        cube[j] = fmax(2.0, ceil((hi[j] - lo[j]) / ext * (double)(n - 1)) + 1.0) - 1;
+        nodes *= cube[j] + 1;
+    }
+    dfl_cost_add_bytes(c, sec, "resolution", 24 * nodes,
+                       "the marching-cubes lattice of %.3g nodes", nodes);
+    dfl_cost_add_work(c, sec, "resolution", dfl_shape_cost_class(cfg, src),
+                      nodes * (1 + 7 * (double)refine), "%.3g samples of the polygonized shape",
+                      nodes * (1 + 7 * (double)refine));
+    if ((st = shape_cost(cfg, src, depth + 1, c, err))) return st;
+    const double tris = 24 * (cube[0] * cube[1] + cube[1] * cube[2] + cube[2] * cube[0]);
+    mesh_struct_cost(cfg, sec, "resolution", tris, c);
+    return DFL_OK;
+}
+
+static dfl_status shape_cost(const dfl_cfg *cfg, const char *sec, int depth, dfl_cost *c,
+                             dfl_err *err)
+{
+    if (depth >= 8 || !sec || !dfl_cfg_has_section(cfg, sec)) return DFL_OK;
+    const char *k = kind_of(cfg, sec);
+    if (!strcmp(k, "mesh")) return mesh_cost(cfg, sec, depth, c, err);
+    if (strcmp(k, "csg") != 0) return DFL_OK;
+    const char *a = NULL, *b = NULL;
+    if (dfl_cfg_has(cfg, sec, "a")) dfl_cfg_string(cfg, sec, "a", &a, NULL);
+    if (dfl_cfg_has(cfg, sec, "b")) dfl_cfg_string(cfg, sec, "b", &b, NULL);
+    dfl_status st = shape_cost(cfg, a, depth + 1, c, err);
+    return st ? st : shape_cost(cfg, b, depth + 1, c, err);
+}
+
+dfl_status dfl_shape_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c, dfl_err *err)
+{
+    return shape_cost(cfg, sec, 0, c, err);
 }
 
 static dfl_status proxy_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c, dfl_err *err)
@@ -303,10 +494,14 @@ dfl_status dfl_field_cost_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_cost
     const dfl_field_kind *kind;
     dfl_status st = dfl_field_kind_from_cfg(cfg, sec, &kind, err);
     if (st) return st;
-    if (!strcmp(kind->name, "proxy")) return proxy_cost(cfg, sec, cost, err);
-    if (!strcmp(kind->name, "gridpeer")) return gridpeer_cost(cfg, sec, cost, err);
-    if (!strcmp(kind->name, "pht")) return pht_cost(cfg, sec, cost, err);
-    if (!strcmp(kind->name, "openvdb")) return vdb_cost(cfg, sec, cost, err);
     if (!strcmp(kind->name, "rfunc")) return rfunc_cost(cfg, sec, cost, err);
-    return DFL_OK;
+    if (!strcmp(kind->name, "proxy")) st = proxy_cost(cfg, sec, cost, err);
+    else if (!strcmp(kind->name, "gridpeer")) st = gridpeer_cost(cfg, sec, cost, err);
+    else if (!strcmp(kind->name, "pht")) st = pht_cost(cfg, sec, cost, err);
+    else if (!strcmp(kind->name, "openvdb")) st = vdb_cost(cfg, sec, cost, err);
+    else if (strcmp(kind->name, "exact") != 0) return DFL_OK;
+    /* the field's shape, built by its factory and held with it */
+    const char *shape = "shape";
+    if (!st) st = dfl_cfg_string_opt(cfg, sec, "shape", "shape", &shape, err);
+    return st ? st : dfl_shape_cost(cfg, shape, cost, err);
 }
