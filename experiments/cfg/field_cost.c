@@ -93,11 +93,12 @@ static double min_tri_bytes(const char *ext)
 }
 
 /* One pass over a text file, no allocation (header): OBJ, every line
- * whose first word is "f" (with its '\\' continuations) gives its words
- * but two; AC3D, every "refs k" k - 2, and with a "subdiv s" anywhere
+ * whose first word starts with 'f' ("f", and "fo" which some readers take
+ * for a face) with its backslash continuations gives its words but two;
+ * AC3D, every "refs k" k - 2, and with a "subdiv s" anywhere
  * (Assimp subdivides: a k-gon becomes k quads, each further level 4 of
  * each) 2 k 4^(s - 1) for the largest s.  0 when the file cannot be read. */
-static int scan_faces(const char *path, int ac, double *tris)
+static int scan_faces(const char *path, int ac, double *tris, int *subdiv)
 {
     FILE *f = fopen(path, "rb");
     if (!f) return 0;
@@ -115,7 +116,7 @@ static int scan_faces(const char *path, int ac, double *tris)
             if (wl > 0) { /* a word ended */
                 word[wl < 8 ? wl : 7] = '\0';
                 if (nword == 0) {
-                    face = !ac && wl == 1 && word[0] == 'f';
+                    face = !ac && word[0] == 'f';
                     kw = ac && wl == 4 && !memcmp(word, "refs", 4)     ? 1
                          : ac && wl == 6 && !memcmp(word, "subdiv", 6) ? 2
                                                                        : 0;
@@ -141,6 +142,7 @@ static int scan_faces(const char *path, int ac, double *tris)
     }
     fclose(f);
     *tris = smax > 0 ? 2 * sumk * pow(4, smax - 1) : t;
+    *subdiv = smax > 0;
     return 1;
 }
 
@@ -171,7 +173,9 @@ dfl_status dfl_mesh_file_tris_bound(const char *path, double *tris, double *file
     }
     if (!strcasecmp(ext, "obj") || !strcasecmp(ext, "ac")) {
         double t;
-        if (scan_faces(path, !strcasecmp(ext, "ac"), &t)) *tris = fmin(*tris, t);
+        int sub = 0;
+        /* a subdivided AC3D file can give more triangles than bytes */
+        if (scan_faces(path, !strcasecmp(ext, "ac"), &t, &sub)) *tris = sub ? t : fmin(*tris, t);
     }
     return DFL_OK;
 }
