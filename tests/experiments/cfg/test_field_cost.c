@@ -196,6 +196,8 @@ Test(field_cost, mesh_file_triangles_by_format)
     char acs[512];
     snprintf(acs, sizeof acs, "%ssubdiv 2\n", ac);
     cr_expect_eq(tris_of(dir, "s.ac", acs, strlen(acs), NULL), 72.0);
+    /* OFF: 2 bytes a triangle, floor(11 / 2) */
+    cr_expect_eq(tris_of(dir, "m.OFF", "OFF\n3 1 0\n0 ", 11, NULL), 5.0);
     /* any other format: a byte a triangle */
     cr_expect_eq(tris_of(dir, "m.ply", "ply\nformat binary_little_endian 1.0\n", 34, NULL), 34.0);
     double t, s;
