@@ -113,14 +113,14 @@ double dfl_mesh_bytes_bound(double tris, int is_signed);
  *             "i u v" at least 6 bytes with its separators)
  *   obj, off  2  (a polygon of k indices gives k - 2 triangles; each index
  *             at least one digit and a separator)
- * and, smaller, for OBJ and AC3D a count from one pass over the text
- * (no allocation): OBJ, every line whose first word starts with 'f' (with
- * its backslash continuations) its words but two; AC3D, k - 2 for every
- * "refs k", or
- * with a "subdiv s" anywhere (Assimp then subdivides: a k-gon becomes k
- * quads, each further level 4 of each) 2 k 4^(s - 1) summed, for the
- * largest s, in place of the size's bound, which then does not hold.
  *   other  1 (PLY's binary uchar index lists; any uncompressed format)
+ * and, when smaller, for OBJ and AC3D a count from one pass over the
+ * text (no allocation): OBJ, every line whose first word starts with 'f'
+ * (with its backslash continuations) its words but two; AC3D, k - 2 for
+ * every "refs k", or with a "subdiv s" anywhere (Assimp then subdivides:
+ * a k-gon becomes k quads, each further level 4 of each) 2 k 4^(s - 1)
+ * summed, for the largest s, in place of the size's bound, which then
+ * does not hold.
  * Formats that compress their arrays (FBX, 3MF, ZAE, a compressed .x or
  * .blend) can hold more triangles than bytes: the bound does not hold
  * for them.  DFL_E_INPUT "PATH: <why>" when the file cannot be
