@@ -201,6 +201,55 @@ static void mesh_struct_cost(const dfl_cfg *cfg, const char *sec, const char *ke
     }
 }
 
+/* The reader's polygonize grid (experiments/cfg/shape_cfg.c mesh_source):
+ * its cubes a side and nodes; 0 when a key is bad (err set) or hi <= lo
+ * (err untouched: the reader names it), else 1. */
+static int poly_grid(const dfl_cfg *cfg, const char *sec, double *cube, double *nodes,
+                     long *refine, dfl_status *st, dfl_err *err)
+{
+    long n = 96;
+    double lo[3], hi[3], ext = 0.0;
+    static const double mone[3] = {-1, -1, -1}, one[3] = {1, 1, 1};
+    *st = dfl_cfg_int_opt(cfg, sec, "resolution", 96, 8, 1024, &n, err);
+    if (!*st) *st = dfl_cfg_int_opt(cfg, sec, "refine", 8, 0, 100, refine, err);
+    if (!*st) *st = dfl_cfg_vec_opt(cfg, sec, "lo", 3, mone, lo, err);
+    if (!*st) *st = dfl_cfg_vec_opt(cfg, sec, "hi", 3, one, hi, err);
+    if (*st) return 0;
+    for (int j = 0; j < 3; j++) {
+        if (!(hi[j] > lo[j])) return 0;
+        ext = fmax(ext, hi[j] - lo[j]);
+    }
+    *nodes = 1;
+    for (int j = 0; j < 3; j++) {
+        cube[j] = fmax(2.0, ceil((hi[j] - lo[j]) / ext * (double)(n - 1)) + 1.0) - 1;
+        *nodes *= cube[j] + 1;
+    }
+    return 1;
+}
+
+dfl_status dfl_mesh_tris_bound(const dfl_cfg *cfg, const char *sec, double *tris, dfl_err *err)
+{
+    *tris = -1;
+    if (dfl_cfg_has(cfg, sec, "file")) {
+        char path[4096];
+        double size;
+        if (!dfl_cfg_path_value(cfg, sec, "file", path, sizeof path, NULL) &&
+            dfl_mesh_file_tris_bound(path, tris, &size, NULL))
+            *tris = -1; /* the reader names it */
+        return DFL_OK;
+    }
+    const char *src;
+    if (!dfl_cfg_has(cfg, sec, "polygonize") ||
+        dfl_cfg_string(cfg, sec, "polygonize", &src, NULL) || !dfl_cfg_has_section(cfg, src))
+        return DFL_OK;
+    double cube[3], nodes;
+    long refine;
+    dfl_status st;
+    if (poly_grid(cfg, sec, cube, &nodes, &refine, &st, err))
+        *tris = 24 * (cube[0] * cube[1] + cube[1] * cube[2] + cube[2] * cube[0]);
+    return st;
+}
+
 static dfl_status mesh_cost(const dfl_cfg *cfg, const char *sec, int depth, dfl_cost *c,
                             dfl_err *err)
 {
@@ -218,31 +267,17 @@ static dfl_status mesh_cost(const dfl_cfg *cfg, const char *sec, int depth, dfl_
     if (!dfl_cfg_has(cfg, sec, "polygonize") ||
         dfl_cfg_string(cfg, sec, "polygonize", &src, NULL) || !dfl_cfg_has_section(cfg, src))
         return DFL_OK;
-    /* the reader's grid (experiments/cfg/shape_cfg.c mesh_source) */
-    long n = 96, refine = 8;
-    double lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
-    static const double mone[3] = {-1, -1, -1}, one[3] = {1, 1, 1};
-    dfl_status st = dfl_cfg_int_opt(cfg, sec, "resolution", 96, 8, 1024, &n, err);
-    if (!st) st = dfl_cfg_int_opt(cfg, sec, "refine", 8, 0, 100, &refine, err);
-    if (!st) st = dfl_cfg_vec_opt(cfg, sec, "lo", 3, mone, lo, err);
-    if (!st) st = dfl_cfg_vec_opt(cfg, sec, "hi", 3, one, hi, err);
-    if (st) return st;
-    double ext = 0.0, cube[3], nodes = 1;
-    for (int j = 0; j < 3; j++) {
-        if (!(hi[j] > lo[j])) return DFL_OK; /* the reader names it */
-        ext = fmax(ext, hi[j] - lo[j]);
-    }
-    for (int j = 0; j < 3; j++) {
-        cube[j] = fmax(2.0, ceil((hi[j] - lo[j]) / ext * (double)(n - 1)) + 1.0) - 1;
-        nodes *= cube[j] + 1;
-    }
+    double cube[3], nodes, tris;
+    long refine;
+    dfl_status st;
+    if (!poly_grid(cfg, sec, cube, &nodes, &refine, &st, err)) return st;
     dfl_cost_add_bytes(c, sec, "resolution", 24 * nodes,
                        "the marching-cubes lattice of %.3g nodes", nodes);
     dfl_cost_add_work(c, sec, "resolution", dfl_shape_cost_class(cfg, src),
                       nodes * (1 + 7 * (double)refine), "%.3g samples of the polygonized shape",
                       nodes * (1 + 7 * (double)refine));
     if ((st = shape_cost(cfg, src, depth + 1, c, err))) return st;
-    const double tris = 24 * (cube[0] * cube[1] + cube[1] * cube[2] + cube[2] * cube[0]);
+    if ((st = dfl_mesh_tris_bound(cfg, sec, &tris, err))) return st;
     mesh_struct_cost(cfg, sec, "resolution", tris, c);
     return DFL_OK;
 }
@@ -414,7 +449,13 @@ dfl_status dfl_rfunc_parts_bound(const dfl_cfg *cfg, const char *sec, double *pa
     }
     if (dfl_cfg_has(cfg, sec, "triangles") && !dfl_cfg_string(cfg, sec, "triangles", &raw, NULL))
         PART("triangles", count_points(raw) / 3);
-    if (dfl_cfg_has(cfg, sec, "surface")) {
+    const char *surf = NULL;
+    if (dfl_cfg_has(cfg, sec, "surface") && !dfl_cfg_string(cfg, sec, "surface", &surf, NULL) &&
+        dfl_cfg_has_section(cfg, surf) && !strcmp(kind_of(cfg, surf), "mesh")) {
+        double t; /* a mesh's triangles as they are: no eps, no max_tris */
+        if ((st = dfl_mesh_tris_bound(cfg, surf, &t, err))) return st;
+        if (t >= 0) PART("surface", t);
+    } else if (dfl_cfg_has(cfg, sec, "surface")) {
         long max_tris;
         if ((st = dfl_cfg_int_opt(cfg, sec, "max_tris", 200000, 1, 10000000, &max_tris, err)))
             return st;
@@ -437,6 +478,12 @@ static dfl_status rfunc_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c, d
     dfl_cost_add_bytes(c, sec, key, parts * DFL_RFUNC_PART_BYTES,
                        "an R-function field of up to %.3g parts", parts);
     dfl_cost_add_work(c, sec, key, DFL_COST_CHEAP, parts, "%.3g parts set up", parts);
+    /* surface = a mesh section: the mesh shape, held while its triangles
+     * are copied */
+    const char *surf;
+    if (dfl_cfg_has(cfg, sec, "surface") && !dfl_cfg_string(cfg, sec, "surface", &surf, NULL) &&
+        dfl_cfg_has_section(cfg, surf) && !strcmp(kind_of(cfg, surf), "mesh"))
+        return dfl_shape_cost(cfg, surf, c, err);
     return DFL_OK;
 }
 

@@ -34,8 +34,9 @@
  *             of 16 for the mesh (about 120 bytes per cube the surface cuts)
  *   rfunc     DFL_RFUNC_PART_BYTES per part: the polyline's segments (a
  *             curve's bounded by dfl_polygonize_curve_segments_bound at
- *             eps), the triangles (a surface's: max_tris), the points and
- *             the region (dfl_rfunc_parts_bound)
+ *             eps), the triangles (a surface's: max_tris; a mesh
+ *             section's: dfl_mesh_tris_bound, and its shape's cost), the
+ *             points and the region (dfl_rfunc_parts_bound)
  *   exact, normalized: nothing in proportion to a key
  * Every kind built on a shape (exact, proxy, gridpeer, pht, openvdb) adds
  * its shape's own cost (dfl_shape_cost): nothing for the analytic kinds,
@@ -128,6 +129,12 @@ double dfl_mesh_bytes_bound(double tris, int is_signed);
 dfl_status dfl_mesh_file_tris_bound(const char *path, double *tris, double *file_bytes,
                                     dfl_err *err);
 
+/* The most triangles of the kind = mesh section [sec]: its file's
+ * (dfl_mesh_file_tris_bound) or its polygonize allowance (below); -1 when
+ * it cannot tell (no such file, no source: the reader names it).  Errors:
+ * a polygonize key out of the reader's range, named as the reader does. */
+dfl_status dfl_mesh_tris_bound(const dfl_cfg *cfg, const char *sec, double *tris, dfl_err *err);
+
 /* Adds to *c the bytes and build work of the shape [sec] itself:
  *   mesh, file = PATH       dfl_mesh_bytes_bound(dfl_mesh_file_tris_bound)
  *                           + the file's size; work: a triangle one EXACT
@@ -159,7 +166,8 @@ dfl_status dfl_shape_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c, dfl_
  * surface, else "vertices", "triangles", "points" or "region", the largest
  * contribution): segments of vertices (n - 1, n when closed), of a curve
  * dfl_polygonize_curve_segments_bound at eps, triangles (a surface's:
- * max_tris), points, and 1 for a region.  Reads the curve's keys as
+ * max_tris; a mesh section's: dfl_mesh_tris_bound, key "surface"), points,
+ * and 1 for a region.  Reads the curve's keys as
  * the factory does (errors alike); builds nothing else. */
 dfl_status dfl_rfunc_parts_bound(const dfl_cfg *cfg, const char *sec, double *parts,
                                  const char **key, dfl_err *err);

@@ -249,10 +249,32 @@ Test(field_cost, mesh_file_charged_with_every_field_on_it)
              path);
     c = cost_of(t);
     cr_expect_eq(c.bytes, 2 * (size + n * MB_TRI + 33554432.0));
+    /* R-functions over a mesh section's triangles: a part each, and the
+     * mesh shape read for them (not max_tris' 200000) */
+    snprintf(t, sizeof t,
+             "[field]\nkind = rfunc\nsurface = m\n[m]\nkind = mesh\nfile = %s\n"
+             "distance = unsigned\n",
+             path);
+    c = cost_of(t);
+    cr_expect_eq(c.bytes, n * DFL_RFUNC_PART_BYTES + size + n * MB_TRI + 33554432.0);
+    dfl_cfg *cfg = tu_cfg("c.ini", t);
+    double parts;
+    const char *key;
+    dfl_err err;
+    cr_expect_eq(dfl_rfunc_parts_bound(cfg, "field", &parts, &key, &err), DFL_OK);
+    cr_expect_eq(parts, n);
+    cr_expect_str_eq(key, "surface");
+    cr_expect_eq(dfl_mesh_tris_bound(cfg, "m", &parts, &err), DFL_OK);
+    cr_expect_eq(parts, n);
+    dfl_cfg_free(cfg);
     /* a file that cannot be read: nothing (the reader names it) */
     snprintf(t, sizeof t, "[field]\nkind = exact\n[shape]\nkind = mesh\nfile = %s/no.obj\n", dir);
     c = cost_of(t);
     cr_expect_eq(c.bytes, 0.0);
+    cfg = tu_cfg("c.ini", t);
+    cr_expect_eq(dfl_mesh_tris_bound(cfg, "shape", &parts, &err), DFL_OK);
+    cr_expect_eq(parts, -1.0, "unknown");
+    dfl_cfg_free(cfg);
     tmpdir_remove(dir);
 }
 
