@@ -109,3 +109,27 @@ Test(e2e_mesh_budget, wuson_rss_growth_below_the_bound, .timeout = 300)
     cr_expect_gt(wuson - base, 0.0, "the mesh is read: %.4g", wuson - base);
     e2e_rmtree(dir);
 }
+
+/* compare_methods charges the mesh with each field built on it: the exact
+ * method on Wuson alone needs the mesh's bound (170 MB with the file), so
+ * 0.1 GB refuses it at plan time; the default budget plans quick.ini. */
+Test(e2e_mesh_budget, compare_charges_the_mesh_and_quick_fits_the_default, .timeout = 120)
+{
+    char dir[256], args[1024];
+    e2e_tmpdir(dir, sizeof dir);
+    snprintf(args, sizeof args,
+             "plan configs/compare/quick.ini --set study.methods=m_exact --set "
+             "study.shapes=s_wuson --set study.memory_budget=0.1 --out %s/o",
+             dir);
+    const int rc = e2e_dflab(dir, args);
+    char *msg = e2e_err_text(dir);
+    cr_expect_eq(rc, 2, "%s", msg);
+    cr_expect(strstr(msg, "study.methods") && strstr(msg, "[m_exact]") &&
+                  strstr(msg, "memory budget of 0.1 GB"),
+              "%s", msg);
+    free(msg);
+    snprintf(args, sizeof args, "plan configs/compare/quick.ini --out %s/o", dir);
+    cr_expect_eq(e2e_dflab(dir, args), 0, "quick.ini within the default budget");
+    cr_expect_eq(e2e_count_entries(dir), 2, "out.txt and err.txt only: plan writes nothing");
+    e2e_rmtree(dir);
+}
