@@ -194,11 +194,9 @@ static void mesh_struct_cost(const dfl_cfg *cfg, const char *sec, const char *ke
                        "a mesh of up to %.3g triangles, its BVH%s", tris,
                        is_signed ? " and winding anchors (signed)" : "");
     dfl_cost_add_work(c, sec, key, DFL_COST_EXACT, tris, "%.3g triangles read and indexed", tris);
-    if (is_signed) {
-        const double nodes = 64 * tris + 262144;
-        dfl_cost_add_work(c, sec, key, DFL_COST_EXACT, 32 * nodes,
-                          "up to %.3g winding anchors built", nodes);
-    }
+    if (is_signed)
+        dfl_cost_add_work(c, sec, key, DFL_COST_EXACT, 512 * tris + 1048576,
+                          "the winding anchors of %.3g triangles built", tris);
 }
 
 /* The reader's polygonize grid (experiments/cfg/shape_cfg.c mesh_source):
@@ -246,7 +244,7 @@ dfl_status dfl_mesh_tris_bound(const dfl_cfg *cfg, const char *sec, double *tris
     long refine;
     dfl_status st;
     if (poly_grid(cfg, sec, cube, &nodes, &refine, &st, err))
-        *tris = 24 * (cube[0] * cube[1] + cube[1] * cube[2] + cube[2] * cube[0]);
+        *tris = 12 * (cube[0] * cube[1] + cube[1] * cube[2] + cube[2] * cube[0]);
     return st;
 }
 
@@ -273,7 +271,11 @@ static dfl_status mesh_cost(const dfl_cfg *cfg, const char *sec, int depth, dfl_
     if (!poly_grid(cfg, sec, cube, &nodes, &refine, &st, err)) return st;
     dfl_cost_add_bytes(c, sec, "resolution", 24 * nodes,
                        "the marching-cubes lattice of %.3g nodes", nodes);
-    dfl_cost_add_work(c, sec, "resolution", dfl_shape_cost_class(cfg, src),
+    /* an implicit surface is sampled through its defining function
+     * (field/isomesh.h dfl_shape_isomesh), any other shape by its SDF */
+    const dfl_cost_class cls =
+        !strcmp(kind_of(cfg, src), "implicit") ? DFL_COST_CHEAP : dfl_shape_cost_class(cfg, src);
+    dfl_cost_add_work(c, sec, "resolution", cls,
                       nodes * (1 + 7 * (double)refine), "%.3g samples of the polygonized shape",
                       nodes * (1 + 7 * (double)refine));
     if ((st = shape_cost(cfg, src, depth + 1, c, err))) return st;

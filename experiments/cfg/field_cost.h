@@ -138,23 +138,31 @@ dfl_status dfl_mesh_tris_bound(const dfl_cfg *cfg, const char *sec, double *tris
 /* Adds to *c the bytes and build work of the shape [sec] itself:
  *   mesh, file = PATH       dfl_mesh_bytes_bound(dfl_mesh_file_tris_bound)
  *                           + the file's size; work: a triangle one EXACT
- *                           (reading and the BVH) and, signed, 32 EXACT
- *                           per anchor node (64 n + 2^18: a budgeted
- *                           winding sum and a closest point each, 17 us
- *                           measured on Wuson's 53 k leaves)
+ *                           (reading and the BVH) and, signed, the
+ *                           anchors' 512 EXACT a triangle and 2^20 besides
+ *                           (measured: 0.88 s CPU for Wuson's 3,732
+ *                           triangles, geom/mesh_anchor.c, 236 us a
+ *                           triangle; a closed 119,400-triangle OBJ sphere
+ *                           33 s of wall time more signed than unsigned on
+ *                           2 threads, 277 us a triangle; one triangle
+ *                           0.4 s)
  *   mesh, polygonize = S    the lattice of its grid (g nodes, as the
  *                           reader sizes it: `resolution` along the
  *                           longest side of lo..hi) at 24 bytes a node (as
  *                           openvdb's mesh build), the shape S's own cost,
  *                           and dfl_mesh_bytes_bound of an allowance of 12
  *                           triangles (the 6-tetrahedron split's most) in
- *                           each cube of a surface as large as the
- *                           lattice's boundary, 24 (cx cy + cy cz + cz cx)
- *                           for cx cy cz cubes a side: a surface folded
- *                           more densely (a lattice of sheets) can exceed
- *                           it; work: a node one sample and `refine`
- *                           rounds over 7 vertices of S's class, and the
- *                           mesh's as above
+ *                           each cube of a surface half as large as the
+ *                           lattice's boundary (three sheets across the
+ *                           box), 12 (cx cy + cy cz + cz cx) for cx cy cz
+ *                           cubes a side: an allowance, not a bound (a
+ *                           surface folded more densely, a lattice of
+ *                           sheets, can exceed it; genus2_mc's 96^2 x 25
+ *                           lattice is allowed 163,020 triangles); work: a
+ *                           node one sample and `refine`
+ *                           rounds over 7 vertices of S's class (CHEAP for
+ *                           an implicit S: its defining function), and
+ *                           the mesh's as above
  *   csg                     both operands (a, b)
  *   other kinds             nothing
  * Keys the cost needs and cannot read (a missing file, a bad number) add

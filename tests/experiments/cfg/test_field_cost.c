@@ -218,14 +218,13 @@ Test(field_cost, mesh_file_charged_with_every_field_on_it)
     tmpdir_new(dir, sizeof dir);
     tmpdir_write(dir, "q.obj", QUAD_OBJ, path, sizeof path);
     const double size = (double)strlen(QUAD_OBJ), n = 2; /* a quad: 2 triangles */
-    const double anchors = 64 * n + 262144;
     /* exact, signed (the default) */
     snprintf(t, sizeof t, "[field]\nkind = exact\n[shape]\nkind = mesh\nfile = %s\n", path);
     dfl_cost c = cost_of(t);
     cr_expect_eq(c.bytes, size + n * MB_SIGNED_TRI + 33554432.0 + 67108864.0);
     cr_expect_str_eq(c.mem_sec, "shape");
     cr_expect_str_eq(c.mem_key, "file");
-    cr_expect_eq(c.evals[DFL_COST_EXACT], n + 32 * anchors);
+    cr_expect_eq(c.evals[DFL_COST_EXACT], n + 512 * n + 1048576, "reading, BVH, anchors");
     /* unsigned: no anchors */
     snprintf(t, sizeof t,
              "[field]\nkind = exact\nshape = m\n[m]\nkind = mesh\nfile = %s\ndistance = unsigned\n",
@@ -280,21 +279,26 @@ Test(field_cost, mesh_file_charged_with_every_field_on_it)
 
 Test(field_cost, mesh_polygonize_lattice_and_allowance)
 {
-    /* resolution 8 on [-1, 1]^3: 8 nodes, 7 cubes a side; 24 (3 * 49)
+    /* resolution 8 on [-1, 1]^3: 8 nodes, 7 cubes a side; 12 (3 * 49)
      * triangles; refine 8 rounds over 7 vertices per node of the sphere */
     dfl_cost c = cost_of("[field]\nkind = exact\n[shape]\nkind = mesh\npolygonize = s\n"
                          "resolution = 8\n[s]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\n");
-    const double nodes = 512, tris = 24.0 * 3 * 49;
+    const double nodes = 512, tris = 12.0 * 3 * 49;
     cr_expect_eq(c.bytes, 24 * nodes + tris * MB_SIGNED_TRI + 33554432.0 + 67108864.0);
     cr_expect_str_eq(c.mem_key, "resolution");
     cr_expect_eq(c.evals[DFL_COST_CHEAP], nodes * (1 + 7 * 8));
-    cr_expect_eq(c.evals[DFL_COST_EXACT], tris + 32 * (64 * tris + 262144));
+    cr_expect_eq(c.evals[DFL_COST_EXACT], tris + 512 * tris + 1048576);
     /* a flat box: resolution 11 along the longest side (2), the short one
      * (0.4) ceil(0.2 * 10) + 1 = 3 nodes: 10 x 10 x 2 cubes */
     c = cost_of("[field]\nkind = exact\n[shape]\nkind = mesh\npolygonize = s\nresolution = 11\n"
                 "lo = -1 -1 -0.2\nhi = 1 1 0.2\ndistance = unsigned\n"
                 "[s]\nkind = sphere\ncenter = 0 0 0\nradius = 0.5\n");
-    cr_expect_eq(c.bytes, 24 * 11.0 * 11 * 3 + 24.0 * (100 + 20 + 20) * MB_TRI + 33554432.0);
+    cr_expect_eq(c.bytes, 24 * 11.0 * 11 * 3 + 12.0 * (100 + 20 + 20) * MB_TRI + 33554432.0);
+    /* an implicit surface sampled through its defining function: CHEAP */
+    c = cost_of("[field]\nkind = exact\n[shape]\nkind = mesh\npolygonize = s\nresolution = 8\n"
+                "refine = 0\n[s]\nkind = implicit\n");
+    cr_expect_eq(c.evals[DFL_COST_CHEAP], nodes);
+    cr_expect_eq(c.evals[DFL_COST_FOOTPOINT], 0.0);
     dfl_cfg *cfg = tu_cfg("c.ini", "[field]\nkind = exact\n[shape]\nkind = mesh\npolygonize = s\n"
                                    "resolution = 7\n[s]\nkind = sphere\n");
     dfl_err err;
