@@ -97,7 +97,9 @@ static double min_tri_bytes(const char *ext)
  * for a face) with its backslash continuations gives its words but two;
  * AC3D, every "refs k" k - 2, and with a "subdiv s" anywhere
  * (Assimp subdivides: a k-gon becomes k quads, each further level 4 of
- * each) 2 k 4^(s - 1) for the largest s.  0 when the file cannot be read. */
+ * each) 2 k 4^(s - 1) for the largest s.  0 when the file cannot be read
+ * or a count after "refs" or "subdiv" is not a plain number (the size's
+ * bound then stands). */
 static int scan_faces(const char *path, int ac, double *tris, int *subdiv)
 {
     FILE *f = fopen(path, "rb");
@@ -107,6 +109,7 @@ static int scan_faces(const char *path, int ac, double *tris, int *subdiv)
     int ch, wl = 0, nword = 0, face = 0, cont = 0;
     double num = -1; /* the number after "refs"/"subdiv" (-1: none yet) */
     int kw = 0;      /* 1 after "refs", 2 after "subdiv" */
+    int unsure = 0;  /* a count that is not a plain number */
     for (;;) {
         ch = fgetc(f);
         const int end = ch == EOF || ch == '\n' || ch == '\r';
@@ -120,7 +123,9 @@ static int scan_faces(const char *path, int ac, double *tris, int *subdiv)
                     kw = ac && wl == 4 && !memcmp(word, "refs", 4)     ? 1
                          : ac && wl == 6 && !memcmp(word, "subdiv", 6) ? 2
                                                                        : 0;
-                } else if (nword == 1 && kw && num >= 0) {
+                } else if (nword == 1 && kw && num < 0) {
+                    unsure = 1; /* "refs 3x": Assimp's reading may differ */
+                } else if (nword == 1 && kw) {
                     if (kw == 1) t += fmax(num - 2, 0), sumk += num;
                     else smax = fmax(smax, num);
                 }
@@ -141,6 +146,7 @@ static int scan_faces(const char *path, int ac, double *tris, int *subdiv)
         wl++;
     }
     fclose(f);
+    if (unsure) return 0;
     *tris = smax > 0 ? 2 * sumk * pow(4, smax - 1) : t;
     *subdiv = smax > 0;
     return 1;

@@ -198,6 +198,11 @@ Test(field_cost, mesh_file_triangles_by_format)
     cr_expect_eq(tris_of(dir, "s.ac", acs, strlen(acs), NULL), 72.0);
     /* OFF: 2 bytes a triangle, floor(11 / 2) */
     cr_expect_eq(tris_of(dir, "m.OFF", "OFF\n3 1 0\n0 ", 11, NULL), 5.0);
+    /* a count that is not a plain number: the size's bound, floor(8 / 6) */
+    cr_expect_eq(tris_of(dir, "x.ac", "refs 3x\n", 8, NULL), 1.0);
+    cr_expect_eq(tris_of(dir, "y.ac", "refs 30\n", 8, NULL), 1.0, "the smaller: size");
+    cr_expect_eq(tris_of(dir, "z.ac", "refs 3\nrefs 3\n\n\n\n\n\n\n", 20, NULL), 2.0,
+                 "the smaller: refs (size: 3)");
     /* any other format: a byte a triangle */
     cr_expect_eq(tris_of(dir, "m.ply", "ply\nformat binary_little_endian 1.0\n", 34, NULL), 34.0);
     double t, s;
