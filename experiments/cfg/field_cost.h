@@ -140,12 +140,12 @@ dfl_status dfl_mesh_tris_bound(const dfl_cfg *cfg, const char *sec, double *tris
  *                           + the file's size; work: a triangle one EXACT
  *                           (reading and the BVH) and, signed, the
  *                           anchors' 512 EXACT a triangle and 2^20 besides
- *                           (measured: 0.88 s CPU for Wuson's 3,732
- *                           triangles, geom/mesh_anchor.c, 236 us a
- *                           triangle; a closed 119,400-triangle OBJ sphere
- *                           33 s of wall time more signed than unsigned on
- *                           2 threads, 277 us a triangle; one triangle
- *                           0.4 s)
+ *                           (geom/mesh_anchor.c's 0.88 s CPU for Wuson's
+ *                           3,732 triangles, 236 us a triangle; a closed
+ *                           119,400-triangle OBJ sphere signed took 33 s
+ *                           of wall time more than unsigned on 2 threads
+ *                           of a loaded machine, 277 us a triangle, 9.6 s
+ *                           in all unloaded; one triangle 0.4 s)
  *   mesh, polygonize = S    the lattice of its grid (g nodes, as the
  *                           reader sizes it: `resolution` along the
  *                           longest side of lo..hi) at 24 bytes a node (as
