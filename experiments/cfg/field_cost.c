@@ -3,8 +3,13 @@
  * exists. */
 #include "cfg/field_cost.h"
 
+#include <errno.h>
 #include <math.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
 
 #include "cfg/field_cfg.h"
 #include "cfg/curve_cfg.h"
@@ -69,6 +74,239 @@ int dfl_shape_dim_guess(const dfl_cfg *cfg, const char *sec)
         if (strcmp(k, "csg") != 0 || dfl_cfg_string(cfg, sec, "a", &sec, NULL)) return 3;
     }
     return 3;
+}
+
+double dfl_mesh_bytes_bound(double tris, int is_signed)
+{
+    double b = tris * DFL_MESH_TRI_BYTES + DFL_MESH_FIXED_BYTES;
+    if (is_signed) b += tris * DFL_MESH_ANCHOR_TRI_BYTES + DFL_MESH_ANCHOR_FIXED_BYTES;
+    return b;
+}
+
+/* The fewest bytes a triangle takes in a file of extension ext (header). */
+static double min_tri_bytes(const char *ext)
+{
+    if (!strcasecmp(ext, "stl")) return 36;
+    if (!strcasecmp(ext, "ac")) return 6;
+    if (!strcasecmp(ext, "obj") || !strcasecmp(ext, "off")) return 2;
+    return 1;
+}
+
+/* One pass over a text file, no allocation (header): OBJ, every line
+ * whose first word starts with 'f' ("f", and "fo" which some readers take
+ * for a face) with its backslash continuations gives its words but two;
+ * AC3D, every "refs k" k - 2, and with a "subdiv s" anywhere
+ * (Assimp subdivides: a k-gon becomes k quads, each further level 4 of
+ * each) 2 k 4^(s - 1) for the largest s.  0 when the file cannot be read
+ * or a count after "refs" or "subdiv" is not a plain number (the size's
+ * bound then stands). */
+static int scan_faces(const char *path, int ac, double *tris, int *subdiv)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return 0;
+    double t = 0, sumk = 0, smax = 0;
+    char word[8];
+    int ch, wl = 0, nword = 0, face = 0, cont = 0;
+    double num = -1; /* the number after "refs"/"subdiv" (-1: none yet) */
+    int kw = 0;      /* 1 after "refs", 2 after "subdiv" */
+    int unsure = 0;  /* a count that is not a plain number */
+    for (;;) {
+        ch = fgetc(f);
+        const int end = ch == EOF || ch == '\n' || ch == '\r';
+        if (ch == '\\') cont = 1;
+        else if (!end && ch != ' ' && ch != '\t') cont = 0;
+        if (end || ch == ' ' || ch == '\t' || ch == '\\') {
+            if (wl > 0) { /* a word ended */
+                word[wl < 8 ? wl : 7] = '\0';
+                if (nword == 0) {
+                    face = !ac && word[0] == 'f';
+                    kw = ac && wl == 4 && !memcmp(word, "refs", 4)     ? 1
+                         : ac && wl == 6 && !memcmp(word, "subdiv", 6) ? 2
+                                                                       : 0;
+                } else if (nword == 1 && kw && num < 0) {
+                    unsure = 1; /* "refs 3x": Assimp's reading may differ */
+                } else if (nword == 1 && kw) {
+                    if (kw == 1) t += fmax(num - 2, 0), sumk += num;
+                    else smax = fmax(smax, num);
+                }
+                nword++;
+                wl = 0;
+                num = -1;
+            }
+            if (end && !(cont && ch != EOF)) {
+                if (face) t += fmax(nword - 3, 0); /* "f" and k indices: k - 2 */
+                nword = 0, face = 0, kw = 0;
+            }
+            if (ch == EOF) break;
+            continue;
+        }
+        if (wl < 8) word[wl] = (char)ch;
+        if (wl == 0 && nword == 1) num = 0;
+        if (num >= 0) num = ch >= '0' && ch <= '9' ? 10 * num + (ch - '0') : -1;
+        wl++;
+    }
+    fclose(f);
+    if (unsure) return 0;
+    *tris = smax > 0 ? 2 * sumk * pow(4, smax - 1) : t;
+    *subdiv = smax > 0;
+    return 1;
+}
+
+dfl_status dfl_mesh_file_tris_bound(const char *path, double *tris, double *file_bytes,
+                                    dfl_err *err)
+{
+    struct stat sb;
+    if (stat(path, &sb) != 0)
+        return dfl_err_set(err, DFL_E_INPUT, "%s: %s", path, strerror(errno));
+    if (!S_ISREG(sb.st_mode)) return dfl_err_set(err, DFL_E_INPUT, "%s: not a regular file", path);
+    const double size = (double)sb.st_size;
+    const char *base = strrchr(path, '/'), *dot;
+    base = base ? base + 1 : path;
+    dot = strrchr(base, '.');
+    const char *ext = dot ? dot + 1 : "";
+    *file_bytes = size;
+    *tris = floor(size / min_tri_bytes(ext));
+    if (!strcasecmp(ext, "stl") && sb.st_size >= 84 && (sb.st_size - 84) % 50 == 0) {
+        /* binary: the little-endian count after the 80-byte header */
+        unsigned char h[84];
+        FILE *f = fopen(path, "rb");
+        const int ok = f && fread(h, 1, sizeof h, f) == sizeof h;
+        if (f) fclose(f);
+        const uint32_t n = ok ? (uint32_t)h[80] | (uint32_t)h[81] << 8 | (uint32_t)h[82] << 16 |
+                                    (uint32_t)h[83] << 24
+                              : 0;
+        if (ok && (double)n * 50 + 84 == size) *tris = n;
+    }
+    if (!strcasecmp(ext, "obj") || !strcasecmp(ext, "ac")) {
+        double t;
+        int sub = 0;
+        /* a subdivided AC3D file can give more triangles than bytes */
+        if (scan_faces(path, !strcasecmp(ext, "ac"), &t, &sub)) *tris = sub ? t : fmin(*tris, t);
+    }
+    return DFL_OK;
+}
+
+static dfl_status shape_cost(const dfl_cfg *cfg, const char *sec, int depth, dfl_cost *c,
+                             dfl_err *err);
+
+/* the mesh's structures for at most tris triangles (header) */
+static void mesh_struct_cost(const dfl_cfg *cfg, const char *sec, const char *key, double tris,
+                             dfl_cost *c)
+{
+    const char *d = "signed";
+    if (dfl_cfg_has(cfg, sec, "distance")) dfl_cfg_string(cfg, sec, "distance", &d, NULL);
+    const int is_signed = strcmp(d, "unsigned") != 0;
+    dfl_cost_add_bytes(c, sec, key, dfl_mesh_bytes_bound(tris, is_signed),
+                       "a mesh of up to %.3g triangles, its BVH%s", tris,
+                       is_signed ? " and winding anchors (signed)" : "");
+    dfl_cost_add_work(c, sec, key, DFL_COST_EXACT, tris, "%.3g triangles read and indexed", tris);
+    if (is_signed)
+        dfl_cost_add_work(c, sec, key, DFL_COST_EXACT, 512 * tris + 1048576,
+                          "the winding anchors of %.3g triangles built", tris);
+}
+
+/* The reader's polygonize grid (experiments/cfg/shape_cfg.c mesh_source):
+ * its cubes a side and nodes; 0 when a key is bad (err set) or hi <= lo
+ * (err untouched: the reader names it), else 1. */
+static int poly_grid(const dfl_cfg *cfg, const char *sec, double *cube, double *nodes,
+                     long *refine, dfl_status *st, dfl_err *err)
+{
+    long n = 96;
+    double lo[3], hi[3], ext = 0.0;
+    static const double mone[3] = {-1, -1, -1}, one[3] = {1, 1, 1};
+    *st = dfl_cfg_int_opt(cfg, sec, "resolution", 96, 8, 1024, &n, err);
+    if (!*st) *st = dfl_cfg_int_opt(cfg, sec, "refine", 8, 0, 100, refine, err);
+    if (!*st) *st = dfl_cfg_vec_opt(cfg, sec, "lo", 3, mone, lo, err);
+    if (!*st) *st = dfl_cfg_vec_opt(cfg, sec, "hi", 3, one, hi, err);
+    if (*st) return 0;
+    for (int j = 0; j < 3; j++) {
+        if (!(hi[j] > lo[j])) return 0;
+        ext = fmax(ext, hi[j] - lo[j]);
+    }
+    *nodes = 1;
+    for (int j = 0; j < 3; j++) {
+        cube[j] = fmax(2.0, ceil((hi[j] - lo[j]) / ext * (double)(n - 1)) + 1.0) - 1;
+        *nodes *= cube[j] + 1;
+    }
+    return 1;
+}
+
+dfl_status dfl_mesh_tris_bound(const dfl_cfg *cfg, const char *sec, double *tris, dfl_err *err)
+{
+    *tris = -1;
+    if (dfl_cfg_has(cfg, sec, "file")) {
+        char path[4096];
+        double size;
+        if (!dfl_cfg_path_value(cfg, sec, "file", path, sizeof path, NULL) &&
+            dfl_mesh_file_tris_bound(path, tris, &size, NULL))
+            *tris = -1; /* the reader names it */
+        return DFL_OK;
+    }
+    const char *src;
+    if (!dfl_cfg_has(cfg, sec, "polygonize") ||
+        dfl_cfg_string(cfg, sec, "polygonize", &src, NULL) || !dfl_cfg_has_section(cfg, src))
+        return DFL_OK;
+    double cube[3], nodes;
+    long refine;
+    dfl_status st;
+    if (poly_grid(cfg, sec, cube, &nodes, &refine, &st, err))
+        *tris = 12 * (cube[0] * cube[1] + cube[1] * cube[2] + cube[2] * cube[0]);
+    return st;
+}
+
+static dfl_status mesh_cost(const dfl_cfg *cfg, const char *sec, int depth, dfl_cost *c,
+                            dfl_err *err)
+{
+    if (dfl_cfg_has(cfg, sec, "file")) {
+        char path[4096];
+        double tris, size;
+        if (dfl_cfg_path_value(cfg, sec, "file", path, sizeof path, NULL) ||
+            dfl_mesh_file_tris_bound(path, &tris, &size, NULL))
+            return DFL_OK; /* the reader names it */
+        dfl_cost_add_bytes(c, sec, "file", size, "the mesh file's %.3g bytes", size);
+        mesh_struct_cost(cfg, sec, "file", tris, c);
+        return DFL_OK;
+    }
+    const char *src;
+    if (!dfl_cfg_has(cfg, sec, "polygonize") ||
+        dfl_cfg_string(cfg, sec, "polygonize", &src, NULL) || !dfl_cfg_has_section(cfg, src))
+        return DFL_OK;
+    double cube[3], nodes, tris;
+    long refine;
+    dfl_status st;
+    if (!poly_grid(cfg, sec, cube, &nodes, &refine, &st, err)) return st;
+    dfl_cost_add_bytes(c, sec, "resolution", 24 * nodes,
+                       "the marching-cubes lattice of %.3g nodes", nodes);
+    /* an implicit surface is sampled through its defining function
+     * (field/isomesh.h dfl_shape_isomesh), any other shape by its SDF */
+    const dfl_cost_class cls =
+        !strcmp(kind_of(cfg, src), "implicit") ? DFL_COST_CHEAP : dfl_shape_cost_class(cfg, src);
+    dfl_cost_add_work(c, sec, "resolution", cls,
+                      nodes * (1 + 7 * (double)refine), "%.3g samples of the polygonized shape",
+                      nodes * (1 + 7 * (double)refine));
+    if ((st = shape_cost(cfg, src, depth + 1, c, err))) return st;
+    if ((st = dfl_mesh_tris_bound(cfg, sec, &tris, err))) return st;
+    mesh_struct_cost(cfg, sec, "resolution", tris, c);
+    return DFL_OK;
+}
+
+static dfl_status shape_cost(const dfl_cfg *cfg, const char *sec, int depth, dfl_cost *c,
+                             dfl_err *err)
+{
+    if (depth >= 8 || !sec || !dfl_cfg_has_section(cfg, sec)) return DFL_OK;
+    const char *k = kind_of(cfg, sec);
+    if (!strcmp(k, "mesh")) return mesh_cost(cfg, sec, depth, c, err);
+    if (strcmp(k, "csg") != 0) return DFL_OK;
+    const char *a = NULL, *b = NULL;
+    if (dfl_cfg_has(cfg, sec, "a")) dfl_cfg_string(cfg, sec, "a", &a, NULL);
+    if (dfl_cfg_has(cfg, sec, "b")) dfl_cfg_string(cfg, sec, "b", &b, NULL);
+    dfl_status st = shape_cost(cfg, a, depth + 1, c, err);
+    return st ? st : shape_cost(cfg, b, depth + 1, c, err);
+}
+
+dfl_status dfl_shape_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c, dfl_err *err)
+{
+    return shape_cost(cfg, sec, 0, c, err);
 }
 
 static dfl_status proxy_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c, dfl_err *err)
@@ -219,7 +457,13 @@ dfl_status dfl_rfunc_parts_bound(const dfl_cfg *cfg, const char *sec, double *pa
     }
     if (dfl_cfg_has(cfg, sec, "triangles") && !dfl_cfg_string(cfg, sec, "triangles", &raw, NULL))
         PART("triangles", count_points(raw) / 3);
-    if (dfl_cfg_has(cfg, sec, "surface")) {
+    const char *surf = NULL;
+    if (dfl_cfg_has(cfg, sec, "surface") && !dfl_cfg_string(cfg, sec, "surface", &surf, NULL) &&
+        dfl_cfg_has_section(cfg, surf) && !strcmp(kind_of(cfg, surf), "mesh")) {
+        double t; /* a mesh's triangles as they are: no eps, no max_tris */
+        if ((st = dfl_mesh_tris_bound(cfg, surf, &t, err))) return st;
+        if (t >= 0) PART("surface", t);
+    } else if (dfl_cfg_has(cfg, sec, "surface")) {
         long max_tris;
         if ((st = dfl_cfg_int_opt(cfg, sec, "max_tris", 200000, 1, 10000000, &max_tris, err)))
             return st;
@@ -242,6 +486,12 @@ static dfl_status rfunc_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c, d
     dfl_cost_add_bytes(c, sec, key, parts * DFL_RFUNC_PART_BYTES,
                        "an R-function field of up to %.3g parts", parts);
     dfl_cost_add_work(c, sec, key, DFL_COST_CHEAP, parts, "%.3g parts set up", parts);
+    /* surface = a mesh section: the mesh shape, held while its triangles
+     * are copied */
+    const char *surf;
+    if (dfl_cfg_has(cfg, sec, "surface") && !dfl_cfg_string(cfg, sec, "surface", &surf, NULL) &&
+        dfl_cfg_has_section(cfg, surf) && !strcmp(kind_of(cfg, surf), "mesh"))
+        return dfl_shape_cost(cfg, surf, c, err);
     return DFL_OK;
 }
 
@@ -303,10 +553,14 @@ dfl_status dfl_field_cost_from_cfg(const dfl_cfg *cfg, const char *sec, dfl_cost
     const dfl_field_kind *kind;
     dfl_status st = dfl_field_kind_from_cfg(cfg, sec, &kind, err);
     if (st) return st;
-    if (!strcmp(kind->name, "proxy")) return proxy_cost(cfg, sec, cost, err);
-    if (!strcmp(kind->name, "gridpeer")) return gridpeer_cost(cfg, sec, cost, err);
-    if (!strcmp(kind->name, "pht")) return pht_cost(cfg, sec, cost, err);
-    if (!strcmp(kind->name, "openvdb")) return vdb_cost(cfg, sec, cost, err);
     if (!strcmp(kind->name, "rfunc")) return rfunc_cost(cfg, sec, cost, err);
-    return DFL_OK;
+    if (!strcmp(kind->name, "proxy")) st = proxy_cost(cfg, sec, cost, err);
+    else if (!strcmp(kind->name, "gridpeer")) st = gridpeer_cost(cfg, sec, cost, err);
+    else if (!strcmp(kind->name, "pht")) st = pht_cost(cfg, sec, cost, err);
+    else if (!strcmp(kind->name, "openvdb")) st = vdb_cost(cfg, sec, cost, err);
+    else if (strcmp(kind->name, "exact") != 0) return DFL_OK;
+    /* the field's shape, built by its factory and held with it */
+    const char *shape = "shape";
+    if (!st) st = dfl_cfg_string_opt(cfg, sec, "shape", "shape", &shape, err);
+    return st ? st : dfl_shape_cost(cfg, shape, cost, err);
 }

@@ -8,6 +8,9 @@
  *   dfl_field_eval_cost       the cost of one evaluation of a [field]
  *   dfl_rfunc_parts_bound     the parts of a kind = rfunc field, at most
  *   dfl_pht_fit_bytes_bound   the PHT bound below, for given fit options
+ *   dfl_shape_cost            what a [shape] itself holds and costs to build
+ *   dfl_mesh_file_tris_bound  the triangles a mesh file can hold, by its size
+ *   dfl_mesh_bytes_bound      the bytes of a mesh shape of n triangles
  *
  * Bytes are upper bounds of what the field's own buffers take:
  *   proxy     res^3 cells x DFL_PROXY_NSCALAR(order) x the storage size,
@@ -31,9 +34,13 @@
  *             of 16 for the mesh (about 120 bytes per cube the surface cuts)
  *   rfunc     DFL_RFUNC_PART_BYTES per part: the polyline's segments (a
  *             curve's bounded by dfl_polygonize_curve_segments_bound at
- *             eps), the triangles (a surface's: max_tris), the points and
- *             the region (dfl_rfunc_parts_bound)
+ *             eps), the triangles (a surface's: max_tris; a mesh
+ *             section's: dfl_mesh_tris_bound, and its shape's cost), the
+ *             points and the region (dfl_rfunc_parts_bound)
  *   exact, normalized: nothing in proportion to a key
+ * Every kind built on a shape (exact, proxy, gridpeer, pht, openvdb) adds
+ * its shape's own cost (dfl_shape_cost): nothing for the analytic kinds,
+ * a mesh's triangles, BVH and anchors (below), both operands of a CSG.
  * Work: one distance per proxy or grid-peer cell, and per PHT leaf
  * `samples` distances (the estimator) plus one Hermite footpoint, each of
  * the shape's cost class; openvdb direct: 513 per leaf meeting the range
@@ -69,12 +76,106 @@
  * measured up to 0.3 us a point) */
 #define DFL_RFUNC_EVAL_UNITS 50.0
 
+/* A mesh shape's own bytes (geom/mesh.h), n triangles:
+ *   n DFL_MESH_TRI_BYTES + DFL_MESH_FIXED_BYTES   (reading, trimesh, BVH)
+ *   + n DFL_MESH_ANCHOR_TRI_BYTES + DFL_MESH_ANCHOR_FIXED_BYTES   (signed)
+ * plus, for file = PATH, the file's size (io/meshfile.h holds its bytes
+ * while Assimp parses them).  Reading, trimesh and Embree BVH: measured
+ * as peak RSS growth of `dflab run` (smoke, a 2^3 grid of the exact field,
+ * unsigned, 2 threads, GNU time's maximum resident set size) over the same
+ * run on a sphere: Wuson (3,732 triangles, AC3D) 7.5 MB, a 20,000-triangle
+ * OBJ sheet 32.6 MB, a 125,000-triangle sheet 100 MB, a 119,400-triangle
+ * closed OBJ sphere 100.5 MB: at most 844 bytes a triangle on the large
+ * meshes (about 650 bytes a triangle and 20 MB besides between the
+ * sheets), counted as 2 KB a triangle and 32 MB (2^25).  The anchors
+ * (geom/mesh_anchor.h) are bounded by their caps, not measured: at most
+ * 64 n + 2^18 octree nodes, each with its 4-byte entry, a 112-byte leaf
+ * and a 32-byte build record (leaffar), and 256 n + 2^20 list entries of
+ * at most 24 bytes, plus per triangle 72 + 72 bytes of edges, 160 of the
+ * per-depth buffers and 16 of index arrays: 15,936 bytes a triangle
+ * (counted as 16 KB) and 63,963,136 besides (counted as 2^26); a mesh
+ * beyond the caps gets no anchors.  Measured signed runs stay well below
+ * (Wuson 20 MB in all, one triangle 42 MB, a 20,000-triangle sheet 59 MB). */
+#define DFL_MESH_TRI_BYTES 2048.0
+#define DFL_MESH_FIXED_BYTES 33554432.0
+#define DFL_MESH_ANCHOR_TRI_BYTES 16384.0
+#define DFL_MESH_ANCHOR_FIXED_BYTES 67108864.0
+
+/* The bytes above for tris triangles (>= 0), anchors when is_signed. */
+double dfl_mesh_bytes_bound(double tris, int is_signed);
+
+/* The most triangles the mesh file path can give dfl_trimesh_read, from
+ * its size in bytes (*file_bytes) and its extension (case-insensitive),
+ * without parsing it: a binary STL (84 + 50 t bytes, its header's count t
+ * agreeing) exactly t; other files size / (the fewest bytes a triangle
+ * takes in the format):
+ *   stl  36  (ASCII: a facet's three "vertex x y z" of at least 12 bytes)
+ *   ac   6   (AC3D: a surface of k refs gives k - 2 triangles, each ref
+ *             "i u v" at least 6 bytes with its separators)
+ *   obj, off  2  (a polygon of k indices gives k - 2 triangles; each index
+ *             at least one digit and a separator)
+ *   other  1 (PLY's binary uchar index lists; any uncompressed format)
+ * and, when smaller, for OBJ and AC3D a count from one pass over the
+ * text (no allocation): OBJ, every line whose first word starts with 'f'
+ * (with its backslash continuations) its words but two; AC3D, k - 2 for
+ * every "refs k", or with a "subdiv s" anywhere (Assimp then subdivides:
+ * a k-gon becomes k quads, each further level 4 of each) 2 k 4^(s - 1)
+ * summed, for the largest s, in place of the size's bound, which then
+ * does not hold.
+ * Formats that compress their arrays (FBX, 3MF, ZAE, a compressed .x or
+ * .blend) can hold more triangles than bytes: the bound does not hold
+ * for them.  DFL_E_INPUT "PATH: <why>" when the file cannot be
+ * examined (the reader then refuses it too). */
+dfl_status dfl_mesh_file_tris_bound(const char *path, double *tris, double *file_bytes,
+                                    dfl_err *err);
+
+/* The most triangles of the kind = mesh section [sec]: its file's
+ * (dfl_mesh_file_tris_bound) or its polygonize allowance (below); -1 when
+ * it cannot tell (no such file, no source: the reader names it).  Errors:
+ * a polygonize key out of the reader's range, named as the reader does. */
+dfl_status dfl_mesh_tris_bound(const dfl_cfg *cfg, const char *sec, double *tris, dfl_err *err);
+
+/* Adds to *c the bytes and build work of the shape [sec] itself:
+ *   mesh, file = PATH       dfl_mesh_bytes_bound(dfl_mesh_file_tris_bound)
+ *                           + the file's size; work: a triangle one EXACT
+ *                           (reading and the BVH) and, signed, the
+ *                           anchors' 512 EXACT a triangle and 2^20 besides
+ *                           (geom/mesh_anchor.c's 0.88 s CPU for Wuson's
+ *                           3,732 triangles, 236 us a triangle; a closed
+ *                           119,400-triangle OBJ sphere signed took 33 s
+ *                           of wall time more than unsigned on 2 threads
+ *                           of a loaded machine, 277 us a triangle, 9.6 s
+ *                           in all unloaded; one triangle 0.4 s)
+ *   mesh, polygonize = S    the lattice of its grid (g nodes, as the
+ *                           reader sizes it: `resolution` along the
+ *                           longest side of lo..hi) at 24 bytes a node (as
+ *                           openvdb's mesh build), the shape S's own cost,
+ *                           and dfl_mesh_bytes_bound of an allowance of 12
+ *                           triangles (the 6-tetrahedron split's most) in
+ *                           each cube of a surface half as large as the
+ *                           lattice's boundary (three sheets across the
+ *                           box), 12 (cx cy + cy cz + cz cx) for cx cy cz
+ *                           cubes a side: an allowance, not a bound (a
+ *                           surface folded more densely, a lattice of
+ *                           sheets, can exceed it; genus2_mc's 96^2 x 25
+ *                           lattice is allowed 163,020 triangles); work: a
+ *                           node one sample and `refine`
+ *                           rounds over 7 vertices of S's class (CHEAP for
+ *                           an implicit S: its defining function), and
+ *                           the mesh's as above
+ *   csg                     both operands (a, b)
+ *   other kinds             nothing
+ * Keys the cost needs and cannot read (a missing file, a bad number) add
+ * nothing: the factory names them.  Recursion ends at depth 8. */
+dfl_status dfl_shape_cost(const dfl_cfg *cfg, const char *sec, dfl_cost *c, dfl_err *err);
+
 /* The parts of the kind = rfunc field of [sec], at most (*parts), and the
  * key that sets their number (*key: "eps" for a curve, "max_tris" for a
  * surface, else "vertices", "triangles", "points" or "region", the largest
  * contribution): segments of vertices (n - 1, n when closed), of a curve
  * dfl_polygonize_curve_segments_bound at eps, triangles (a surface's:
- * max_tris), points, and 1 for a region.  Reads the curve's keys as
+ * max_tris; a mesh section's: dfl_mesh_tris_bound, key "surface"), points,
+ * and 1 for a region.  Reads the curve's keys as
  * the factory does (errors alike); builds nothing else. */
 dfl_status dfl_rfunc_parts_bound(const dfl_cfg *cfg, const char *sec, double *parts,
                                  const char **key, dfl_err *err);

@@ -598,8 +598,10 @@ static dfl_status compare_run(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_
     return st;
 }
 
-/* Peak: the error points of the largest shape and the largest single
- * field (fields are built one at a time); work: every field's build, the
+/* Peak: the error points of the largest shape and the larger of the
+ * largest shape's own bytes (dfl_shape_cost, held while its points are
+ * made) and the largest single field with its shape (fields are built one
+ * at a time); work: every shape's build, every field's build, the
  * reference (about 50 exact distances per point for the medial band's
  * bisection) and repeats + 2 evaluations of every point per field. */
 static dfl_status compare_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx, dfl_cost *cost,
@@ -613,8 +615,8 @@ static dfl_status compare_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
     if (!st) st = protocol_from_cfg(cfg, &s->po, &s->repeats, err);
     for (size_t i = 0; !st && i < s->methods.n; i++)
         st = method_from_cfg(cfg, s->methods.w[i], &s->m[i], err);
-    double big = 0, pts_bytes = 0;
-    char big_sec[NAME_MAX_LEN] = "";
+    double big = 0, pts_bytes = 0, shape_big = 0;
+    char big_sec[NAME_MAX_LEN] = "", shape_sec[NAME_MAX_LEN] = "";
     for (size_t j = 0; !st && j < s->shapes.n; j++) {
         const char *ssec = s->shapes.w[j];
         const int dim = dfl_shape_dim_guess(cfg, ssec);
@@ -626,6 +628,16 @@ static dfl_status compare_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
         pts_bytes = fmax(pts_bytes, m * (8.0 * (3 * dim + 4) + 2));
         const dfl_cost_class cls = dfl_shape_cost_class(cfg, ssec);
         dfl_cost_add_work(cost, "study", "shapes", cls, 50 * m, "the reference of [%s]", ssec);
+        /* the shape built once for its points and reference (each field
+         * builds its own again: dfl_field_cost_from_cfg counts that) */
+        dfl_cost sc;
+        memset(&sc, 0, sizeof sc);
+        if ((st = dfl_shape_cost(cfg, ssec, &sc, err))) break;
+        for (int k = 0; k < DFL_COST_NCLASSES; k++) cost->evals[k] += sc.evals[k];
+        if (sc.bytes > shape_big) {
+            shape_big = sc.bytes;
+            snprintf(shape_sec, sizeof shape_sec, "%s", ssec);
+        }
         const double lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
         for (size_t i = 0; !st && i < s->methods.n; i++) {
             char why[160];
@@ -657,7 +669,11 @@ static dfl_status compare_estimate(const dfl_cfg *cfg, const dfl_study_ctx *ctx,
         /* the sections and keys named are the original's (strings of the
          * copies and of s do not outlive this call) */
         dfl_cost_add_bytes(cost, "study", "shapes", pts_bytes, "the error points");
-        if (big_sec[0])
+        /* the points are held with the shape of the reference, then with
+         * one field at a time (which counts its own shape) */
+        if (shape_big > big)
+            dfl_cost_add_bytes(cost, "study", "shapes", shape_big, "the shape [%s]", shape_sec);
+        else if (big_sec[0])
             dfl_cost_add_bytes(cost, "study", "methods", big, "the largest field, of [%s]",
                                big_sec);
     }
