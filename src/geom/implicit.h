@@ -169,8 +169,8 @@ dfl_status dfl_implicit_sdf_derivs(const dfl_implicit *s, const double x[3], dfl
                                    dfl_err *err);
 
 /* The implicit surface as a dfl_shape (eval: d and n(p) per point, NaN where
- * no start converged or the point is not finite; jet: dfl_implicit_jet).  Takes ownership of *s (set to
- * NULL), also on failure. */
+ * no start converged or the point is not finite; jet: dfl_implicit_jet).
+ * Takes ownership of *s (set to NULL), also on failure. */
 dfl_status dfl_implicit_shape(dfl_implicit **s, dfl_shape *out, dfl_err *err);
 /* The implicit inside a shape made by dfl_implicit_shape (NULL otherwise). */
 const dfl_implicit *dfl_implicit_of_shape(const dfl_shape *shape);
