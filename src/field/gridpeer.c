@@ -86,7 +86,7 @@ DFL_ISA_BODY void eval_trilinear(const gridpeer *g, const double *x, double *val
         if (!(fl >= 0.0)) fl = 0.0;  /* also NaN: the value stays NaN through f */
         if (fl > n - 2) fl = n >= 2 ? n - 2 : 0;
         i0[a] = (int)fl;
-        f[a] = n >= 2 ? t - fl : 0.0;
+        f[a] = n >= 2 ? t - fl : isnan(t) ? t : 0.0; /* one cell: a constant, NaN for NaN */
     }
     const int s1 = n >= 2 ? 1 : 0;
     double v[8];

@@ -52,6 +52,13 @@
  * signed as the shape's SDF (negative inside).  Gradients are those of the
  * decoded polynomial (trilinear: of the trilinear interpolant, piecewise;
  * tricubic: of the spline).
+ * Non-finite queries: a query with a NaN coordinate gets a NaN value (its
+ * gradient is unspecified) and reads no cell outside the grid: it is
+ * located in cell 0 (trilinear0, tricubic: the first piece) on that axis;
+ * an infinite coordinate is located like a far one (the boundary cell or
+ * piece), its value that cell's polynomial there (+-inf, or NaN where
+ * inf - inf or 0 inf arises).  Either way the other queries of a batch are
+ * unaffected, and every ISA gives the same.
  * Storage: float64 keeps the doubles; float16 rounds every stored scalar to
  * the nearest IEEE half (Imath's imath_float_to_half of the value rounded to
  * float first; |v| >= 65520 would become inf, and is rejected at build).

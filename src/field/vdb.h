@@ -215,7 +215,11 @@ void dfl_vdb_voxel_centre(const dfl_vdb *g, const int ijk[3], double x[3]);
 /* Sampler s at m points pts[3 i ..] (world units): val[i] and, when grad
  * is not NULL, grad[3 i ..] (see Samplers).  box and staggered are the same
  * code (BoxSampler at the grid's index point); a grid is sampled with any
- * s.  Thread-safe, no allocation. */
+ * s.  A point with a NaN coordinate gets NaN value and gradient (the
+ * samplers are not called: they cast floor(p) to int); an index coordinate
+ * p beyond +-(2^31 - 2^20) (an infinite one too) is clamped to it, where
+ * only the tree's background is read: value +b, gradient 0, as at any
+ * point beyond the grid's nodes.  Thread-safe, no allocation. */
 void dfl_vdb_sample(const dfl_vdb *g, dfl_vdb_sampler s, size_t m, const double *pts,
                     double *val, double *grad);
 

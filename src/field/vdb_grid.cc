@@ -53,6 +53,11 @@ const int kTop = (int)Node2::DIM;      // 4096
 // so rounding in f or in the centre cannot drop a voxel with |f| < b.
 const double kSlack = 1e-9;
 const double kMaxIndex = 1073741824.0;  // 2^30: far inside OpenVDB's int32 coordinates
+// Index coordinates beyond +-(2^31 - 2^20) are clamped to it before sampling
+// (dfl_vdb_sample): the samplers' stencils (floor(p) - 1 .. floor(p) + 2,
+// the gradient's half steps) then stay in int, and far beyond every node a
+// grid within kMaxIndex (plus its 4096^3 top nodes) holds.
+const double kFarIndex = 2147483648.0 - 1048576.0;
 // At most 2^15 voxels per axis: the band search's first pass then evaluates
 // at most 256^3 block centres, whatever the box.
 const double kMaxSpan = 32768.0;
@@ -312,8 +317,24 @@ void sample_with(const dfl_vdb *g, size_t m, const double *pts, double *val, dou
     // central differences with step voxel / 2: half a unit in index space
     const double st = 0.5, den = 1.0 / (2 * st * g->voxel);
     for (size_t i = 0; i < m; i++) {
-        const double px = pts[3 * i] * inv + sh, py = pts[3 * i + 1] * inv + sh,
-                     pz = pts[3 * i + 2] * inv + sh;
+        double px = pts[3 * i] * inv + sh, py = pts[3 * i + 1] * inv + sh,
+               pz = pts[3 * i + 2] * inv + sh;
+        // OpenVDB's samplers cast floor(p) to int: undefined for NaN and
+        // beyond int's range (x86 gives INT_MIN, and an infinity then
+        // samples 0 * inf).  Within kFarIndex nothing changes; beyond it
+        // only the background is read, so a clamped coordinate samples what
+        // the far one would.
+        if (!(std::fabs(px) <= kFarIndex && std::fabs(py) <= kFarIndex &&
+              std::fabs(pz) <= kFarIndex)) {
+            if (std::isnan(px) || std::isnan(py) || std::isnan(pz)) {
+                val[i] = NAN;
+                if (grad) grad[3 * i] = grad[3 * i + 1] = grad[3 * i + 2] = NAN;
+                continue;
+            }
+            px = std::fmax(-kFarIndex, std::fmin(px, kFarIndex));
+            py = std::fmax(-kFarIndex, std::fmin(py, kFarIndex));
+            pz = std::fmax(-kFarIndex, std::fmin(pz, kFarIndex));
+        }
         val[i] = samp<Sampler>(acc, px, py, pz);
         if (!grad) continue;
         grad[3 * i] = (samp<Sampler>(acc, px + st, py, pz) - samp<Sampler>(acc, px - st, py, pz)) * den;

@@ -138,7 +138,8 @@ typedef struct dfl_footpoint {
 } dfl_footpoint;
 
 /* Closest footpoint of x with the configured backend.  DFL_E_NUMERIC if no
- * start converged. */
+ * start converged, or x has a NaN or infinite coordinate (then nothing is
+ * read: the shape's value and gradient are NaN). */
 dfl_status dfl_implicit_footpoint(const dfl_implicit *s, const double x[3], dfl_footpoint *out,
                                   dfl_err *err);
 /* The same with an explicit backend (for comparisons). */
@@ -168,8 +169,8 @@ dfl_status dfl_implicit_sdf_derivs(const dfl_implicit *s, const double x[3], dfl
                                    dfl_err *err);
 
 /* The implicit surface as a dfl_shape (eval: d and n(p) per point, NaN where
- * no start converged; jet: dfl_implicit_jet).  Takes ownership of *s (set to
- * NULL), also on failure. */
+ * no start converged or the point is not finite; jet: dfl_implicit_jet).
+ * Takes ownership of *s (set to NULL), also on failure. */
 dfl_status dfl_implicit_shape(dfl_implicit **s, dfl_shape *out, dfl_err *err);
 /* The implicit inside a shape made by dfl_implicit_shape (NULL otherwise). */
 const dfl_implicit *dfl_implicit_of_shape(const dfl_shape *shape);

@@ -290,6 +290,12 @@ static int lex_less(const double a[3], const double b[3])
 dfl_status dfl_implicit_footpoint_with(const dfl_implicit *s, dfl_foot_backend backend,
                                        const double x[3], dfl_footpoint *out, dfl_err *err)
 {
+    /* a NaN coordinate would make bucket_of cast NaN to int (undefined: on
+     * x86 INT_MIN, a read far outside the buckets), an infinite one too
+     * through q - rb = inf - inf; and no start converges to either */
+    if (!(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2])))
+        return dfl_err_set(err, DFL_E_NUMERIC, "implicit footpoint of (%g, %g, %g): not finite",
+                           x[0], x[1], x[2]);
     double q[3];
     to_local(s, x, q);
     start_set st;

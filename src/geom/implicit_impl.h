@@ -67,7 +67,8 @@ static inline void bucket_of(const dfl_implicit *s, const double q[3], int c[3])
 {
     for (int a = 0; a < 3; a++) {
         double f = floor((q[a] - s->blo[a]) / s->bcell);
-        int i = f < 0.0 ? 0 : (f >= s->nb[a] ? s->nb[a] - 1 : (int)f);
+        /* NaN too to 0: casting it to int is undefined */
+        int i = !(f >= 0.0) ? 0 : (f >= s->nb[a] ? s->nb[a] - 1 : (int)f);
         c[a] = i;
     }
 }

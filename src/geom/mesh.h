@@ -69,7 +69,7 @@ const dfl_trimesh *dfl_shape_mesh_trimesh(const dfl_shape *s);
 
 /* The clustered winding number at x (geom/mesh_bvh.h with
  * DFL_MESH_WINDING_BETA) and its error bound (*bound, may be NULL); NaN if
- * s is not a mesh shape. */
+ * s is not a mesh shape or x has a NaN or infinite coordinate. */
 double dfl_shape_mesh_winding(const dfl_shape *s, const double *x, double *bound);
 
 #endif

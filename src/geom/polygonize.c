@@ -231,8 +231,10 @@ typedef struct seg_grid {
 
 static long cell_coord(const seg_grid *g, int j, double x)
 {
-    long c = (long)floor((x - g->lo[j]) / g->h);
-    return c < 0 ? 0 : (c >= g->nc[j] ? g->nc[j] - 1 : c);
+    /* clamped as a double: the cast of NaN or of one beyond long's range
+     * is undefined (x86 gives LONG_MIN, so +inf went to cell 0) */
+    const double c = floor((x - g->lo[j]) / g->h);
+    return !(c >= 0.0) ? 0 : (c >= (double)g->nc[j] ? g->nc[j] - 1 : (long)c);
 }
 
 static size_t cell_id(const seg_grid *g, const long *c)

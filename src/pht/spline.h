@@ -22,7 +22,12 @@
  * 4^dim power-basis coefficients in the cell's local coordinates
  * u = (x - lo) / (hi - lo), is evaluated by Horner's rule.  Points outside
  * the box are evaluated with the polynomial of the nearest boundary cell
- * (smooth extrapolation, no clamping of the value).
+ * (smooth extrapolation, no clamping of the value).  A point with a NaN
+ * coordinate is located below every split on that axis (the cell at the
+ * box's low face there; no read outside the tree or its cells, on every
+ * ISA) and gets NaN value, gradient and Hessian; an infinite coordinate is
+ * located like a far point (the boundary cell; the values are its
+ * polynomial's there, +-inf or NaN).
  *
  * Function index:
  *   dfl_pht_resolve             data of hanging vertices from the base data
@@ -82,7 +87,9 @@ size_t dfl_pht_spline_bytes(const dfl_pht_spline *s);
 void dfl_pht_spline_box(const dfl_pht_spline *s, double *lo, double *hi);
 
 /* Cell index (0..ncells-1) holding x, with dfl_tmesh_locate's tie rules
- * (dir may be NULL).  Thread-safe, no allocation. */
+ * (dir may be NULL); a NaN coordinate goes below every split on its axis
+ * (as the box's low face does), an infinite one as a far point does.
+ * Thread-safe, no allocation. */
 size_t dfl_pht_spline_locate(const dfl_pht_spline *s, const double *x, const double *dir);
 /* Box of cell i into lo/hi (may be NULL), its level into *level (may be
  * NULL); returns its DFL_PHT_NCOEF(dim) coefficients (borrowed). */

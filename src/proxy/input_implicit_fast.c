@@ -24,8 +24,10 @@ struct dfl_imp_index {
 static void bucket_of(const dfl_imp_index *ix, const double q[3], int b[3])
 {
     for (int a = 0; a < 3; a++) {
-        int i = (int)floor((q[a] - ix->lo[a]) / ix->cell);
-        b[a] = i < 0 ? 0 : (i >= ix->nb[a] ? ix->nb[a] - 1 : i);
+        /* clamped as a double: the cast of NaN or of one beyond int's range
+         * is undefined (x86 gives INT_MIN, so +inf went to bucket 0) */
+        const double f = floor((q[a] - ix->lo[a]) / ix->cell);
+        b[a] = !(f >= 0.0) ? 0 : (f >= ix->nb[a] ? ix->nb[a] - 1 : (int)f);
     }
 }
 

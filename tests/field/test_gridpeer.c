@@ -7,6 +7,7 @@
 #include <criterion/criterion.h>
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -15,6 +16,7 @@
 #include "core/rng.h"
 #include "field/gridpeer.h"
 #include "util/e2e_util.h"
+#include "util/per_isa.h"
 #include "util/tmpdir.h"
 
 static dfl_gridpeer_opts opts(dfl_gridpeer_kind k, dfl_gridpeer_storage s, int n)
@@ -485,4 +487,96 @@ Test(gridpeer, tricubic_matches_scipy, .timeout = 120)
     tmpdir_remove(dir);
     dfl_field_destroy(&f);
     dfl_shape_free(&s);
+}
+
+/* The checks of nan_query_is_nan_and_stays_in_the_grid on one ISA: the
+ * number of failures (printed to stderr). */
+static int nan_queries(const void *ctx)
+{
+    (void)ctx;
+    enum { M = 23 };
+    const double c[3] = {0, 0, 0}, ax[3] = {0, 0, 1};
+    dfl_shape s;
+    if (dfl_shape_torus(c, ax, 0.6, 0.25, &s, NULL) != DFL_OK) return 1;
+    double x[3 * M];
+    uint64_t seed = 17;
+    for (int i = 0; i < 3 * M; i++) x[i] = dfl_rng_splitmix(&seed, -1.3, 1.3);
+    /* NaN on each axis (either sign), NaN with an infinity; infinities and
+     * far points of either sign on each axis */
+    x[3 * 2 + 0] = NAN;
+    x[3 * 5 + 1] = NAN;
+    x[3 * 9 + 2] = -NAN;
+    x[3 * 13 + 0] = INFINITY, x[3 * 13 + 2] = NAN;
+    x[3 * 3 + 0] = INFINITY, x[3 * 4 + 0] = 1e300;
+    x[3 * 6 + 1] = -INFINITY, x[3 * 7 + 1] = -1e300;
+    x[3 * 10 + 2] = INFINITY, x[3 * 11 + 2] = 1e300;
+    x[3 * 15 + 0] = -INFINITY, x[3 * 16 + 0] = -1e300;
+    int bad = 0;
+    for (int k = 0; k < DFL_GRIDPEER_KIND_COUNT; k++)
+        for (int st = 0; st < DFL_GRIDPEER_STORAGE_COUNT; st++)
+            for (int n = 1; n <= 6; n++) {
+                /* tricubic needs n >= 4; an odd n puts a centre on the torus'
+                 * axis, where taylor2's jets fail */
+                if ((k == DFL_GRIDPEER_TRICUBIC && n < 4) || (k == DFL_GRIDPEER_TAYLOR2 && n % 2))
+                    continue;
+                dfl_gridpeer_opts o = opts((dfl_gridpeer_kind)k, (dfl_gridpeer_storage)st, n);
+                dfl_field f;
+                if (dfl_gridpeer_new(&s, &o, &f, NULL) != DFL_OK) {
+                    fprintf(stderr, "%s n %d: not built\n", dfl_gridpeer_kind_name(k), n);
+                    bad++;
+                    continue;
+                }
+                double v[M], g[3 * M];
+                f.ops->eval(f.ctx, M, x, v, g);
+                for (int i = 0; i < M; i++) {
+                    const int nan = isnan(x[3 * i]) || isnan(x[3 * i + 1]) || isnan(x[3 * i + 2]);
+                    const int inf = !nan && !(isfinite(x[3 * i]) && isfinite(x[3 * i + 1]) &&
+                                              isfinite(x[3 * i + 2]));
+                    if (nan && !isnan(v[i])) {
+                        fprintf(stderr, "%s st %d n %d query %d: %g, not NaN\n",
+                                dfl_gridpeer_kind_name(k), st, n, i, v[i]);
+                        bad++;
+                    }
+                    if (!nan && !inf) { /* the value alone, byte for byte */
+                        double g1[3];
+                        const double v1 = dfl_field_eval1(&f, x + 3 * i, g1);
+                        if (memcmp(&v1, v + i, sizeof v1) || memcmp(g1, g + 3 * i, sizeof g1)) {
+                            fprintf(stderr, "%s st %d n %d query %d: %a vs %a alone\n",
+                                    dfl_gridpeer_kind_name(k), st, n, i, v[i], v1);
+                            bad++;
+                        }
+                    }
+                    if ((nan || inf) && k == DFL_GRIDPEER_TAYLOR1) {
+                        /* taylor1's gradient is its cell's stored gradient: the
+                         * cell is cell 0 on a NaN axis (the far low side's), the
+                         * boundary cell on an infinite one (a far point's) */
+                        double y[3], g1[3];
+                        for (int a = 0; a < 3; a++) {
+                            const double xa = x[3 * i + a];
+                            y[a] = isnan(xa) ? -1e300 : isinf(xa) ? copysign(1e300, xa) : xa;
+                        }
+                        (void)dfl_field_eval1(&f, y, g1);
+                        if (memcmp(g1, g + 3 * i, sizeof g1)) {
+                            fprintf(stderr, "taylor1 st %d n %d query %d: not cell 0 on a NaN "
+                                    "axis or the far cell on an infinite one\n", st, n, i);
+                            bad++;
+                        }
+                    }
+                }
+                dfl_field_destroy(&f);
+            }
+    dfl_shape_free(&s);
+    return bad;
+}
+
+/* gridpeer.h: a query with a NaN coordinate gets a NaN value and reads no
+ * cell outside the grid (cell 0 on that axis: seen in taylor1's gradient,
+ * its cell's), an infinite coordinate is located like a far one, and the
+ * other queries of the batch get what they get alone.  Every kind and
+ * storage, n from 1 (one cell: trilinear0 decodes a constant) up, on every
+ * ISA this CPU runs (a child per ISA: the ISA is chosen once per
+ * process). */
+Test(gridpeer, nan_query_is_nan_and_stays_in_the_grid)
+{
+    cr_assert(dfl_test_per_isa(nan_queries, NULL) >= 1);
 }

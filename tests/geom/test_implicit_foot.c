@@ -90,3 +90,45 @@ Test(implicit_foot, medial_axis_is_flagged_and_deterministic)
     dfl_implicit_free(s);
 }
 
+
+/* implicit.h: a point with a NaN or infinite coordinate has no footpoint
+ * (DFL_E_NUMERIC, nothing read: a NaN cast to a bucket index read far
+ * outside the buckets) and the shape gives it NaN value and gradient, with
+ * either backend, while the other points of a batch get what they get
+ * alone. */
+Test(implicit_foot, nan_and_infinite_points_have_no_footpoint)
+{
+    static const double odd[3] = {NAN, INFINITY, -INFINITY};
+    for (int b = 0; b < 2; b++) {
+        dfl_implicit *s = make_torus(b ? DFL_FOOT_CERES : DFL_FOOT_NEWTON);
+        for (int a = 0; a < 3; a++)
+            for (int q = 0; q < 3; q++) {
+                double x[3] = {0.3, 0.2, 0.1};
+                x[a] = odd[q];
+                dfl_footpoint f;
+                dfl_err err;
+                cr_expect_eq(dfl_implicit_footpoint(s, x, &f, &err), DFL_E_NUMERIC,
+                             "backend %d axis %d: %g", b, a, odd[q]);
+            }
+        dfl_shape sh;
+        cr_assert_eq(dfl_implicit_shape(&s, &sh, NULL), DFL_OK);
+        enum { M = 6 };
+        double x[3 * M], v[M], g[3 * M];
+        for (int i = 0; i < 3 * M; i++) x[i] = urand(-0.8, 0.8);
+        x[3 * 1 + 0] = NAN, x[3 * 2 + 1] = INFINITY, x[3 * 4 + 2] = -INFINITY;
+        dfl_shape_eval(&sh, M, x, v, g);
+        for (int i = 0; i < M; i++) {
+            if (i == 1 || i == 2 || i == 4) {
+                cr_expect(isnan(v[i]) && isnan(g[3 * i]) && isnan(g[3 * i + 1]) &&
+                              isnan(g[3 * i + 2]),
+                          "backend %d point %d: %g", b, i, v[i]);
+                continue;
+            }
+            double g1[3];
+            const double v1 = dfl_shape_eval1(&sh, x + 3 * i, g1);
+            cr_expect(memcmp(&v1, v + i, sizeof v1) == 0 && memcmp(g1, g + 3 * i, sizeof g1) == 0,
+                      "backend %d point %d", b, i);
+        }
+        dfl_shape_free(&sh);
+    }
+}

@@ -221,3 +221,44 @@ Test(mesh, accessor_and_refusal)
     cr_expect_null(s.impl);
     dfl_trimesh_free(&m);
 }
+
+/* mesh_bvh.h: a point with a NaN or infinite coordinate gets distance NaN
+ * (signed and unsigned, gradient NaN too) without a crash or a read outside
+ * the mesh's arrays, and its winding number NaN; the other points of a
+ * batch get what they get alone.  The anchors locate no leaf for it
+ * (mesh_anchor.h: not finite, no estimate, no decision, no hint). */
+Test(mesh, nan_and_infinite_points_are_nan)
+{
+    for (int dist = 0; dist < 2; dist++) {
+        dfl_shape s;
+        dfl_trimesh m;
+        cr_assert_eq(dfl_trimesh_read(WUSON, &m, NULL), DFL_OK);
+        const double c[3] = {0, 0, 0};
+        dfl_trimesh_fit(&m, c, 1.6);
+        make(&m, dist ? DFL_MESH_UNSIGNED : DFL_MESH_SIGNED, &s);
+        enum { M = 12 };
+        double x[3 * M], v[M], g[3 * M];
+        uint64_t seed = 41;
+        for (int i = 0; i < 3 * M; i++) x[i] = dfl_rng_splitmix(&seed, -1, 1);
+        static const double odd[3] = {NAN, INFINITY, -INFINITY};
+        for (int a = 0; a < 3; a++)
+            for (int q = 0; q < 3; q++) x[3 * (1 + q + 3 * (a % 3)) + a] = odd[q];
+        dfl_shape_eval(&s, M, x, v, g);
+        for (int i = 0; i < M; i++) {
+            const int fin = isfinite(x[3 * i]) && isfinite(x[3 * i + 1]) && isfinite(x[3 * i + 2]);
+            if (!fin) {
+                cr_expect(isnan(v[i]) && isnan(g[3 * i]) && isnan(g[3 * i + 1]) &&
+                              isnan(g[3 * i + 2]),
+                          "dist %d point %d: %g", dist, i, v[i]);
+                cr_expect(isnan(dfl_shape_mesh_winding(&s, x + 3 * i, NULL)), "point %d", i);
+                continue;
+            }
+            double g1[3];
+            const double v1 = dfl_shape_eval1(&s, x + 3 * i, g1);
+            cr_expect(v1 == v[i] && g1[0] == g[3 * i] && g1[1] == g[3 * i + 1] &&
+                          g1[2] == g[3 * i + 2],
+                      "dist %d point %d: batch = single", dist, i);
+        }
+        dfl_shape_free(&s);
+    }
+}

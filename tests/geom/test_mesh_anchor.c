@@ -359,7 +359,8 @@ Test(mesh_anchor, a_soup_beyond_the_caps_gets_no_anchors)
  * 1e-3 of a Wuson vertex most leaves are small, so on average its distance
  * from x exceeds x's own by less than 0.01 (a triangle chosen at random is
  * about 0.5 away; leaves over flat parts with few triangles are larger);
- * outside the root cube or not finite: none. */
+ * outside the root cube or not finite: none (and no estimate or decision:
+ * a NaN coordinate must locate no leaf). */
 Test(mesh_anchor, hint_is_a_triangle_near_x_or_none)
 {
     dfl_trimesh m;
@@ -389,6 +390,20 @@ Test(mesh_anchor, hint_is_a_triangle_near_x_or_none)
     const double out[3] = {10.0, 0.0, 0.0}, nan[3] = {0.0, NAN, 0.0};
     cr_expect_eq(dfl_mesh_anchor_hint(a, out), SIZE_MAX);
     cr_expect_eq(dfl_mesh_anchor_hint(a, nan), SIZE_MAX);
+    /* not finite: no leaf, so no estimate and no decision either (on every
+     * axis, NaN and both infinities) */
+    static const double odd[3] = {NAN, INFINITY, -INFINITY};
+    for (int j = 0; j < 3; j++)
+        for (int q = 0; q < 3; q++) {
+            double x[3] = {0.01, 0.02, 0.03}, est = 7, margin = 7;
+            int inside = 7;
+            x[j] = odd[q];
+            cr_expect_eq(dfl_mesh_anchor_hint(a, x), SIZE_MAX, "axis %d %g", j, odd[q]);
+            cr_expect_eq(dfl_mesh_anchor_estimate(a, x, &est, &margin), 0, "axis %d %g", j, odd[q]);
+            cr_expect_eq(dfl_mesh_anchor_estimate_near(a, x, INFINITY, &est, &margin), 0);
+            cr_expect_eq(dfl_mesh_anchor_decide(a, x, &inside), 0, "axis %d %g", j, odd[q]);
+            cr_expect(est == 7 && margin == 7 && inside == 7, "untouched");
+        }
     dfl_mesh_bvh_free(b);
     dfl_trimesh_free(&m);
 }

@@ -5,6 +5,7 @@
  * polynomials against their corner data. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -12,6 +13,7 @@
 #include "pht/hermite.h"
 #include "pht/pht_fixtures.h"
 #include "pht/spline.h"
+#include "util/per_isa.h"
 
 static dfl_tmesh *refined(int dim, int rule, uint64_t seed, const double *lo, const double *hi)
 {
@@ -334,4 +336,87 @@ Test(pht_spline, batches_give_the_bytes_of_single_cell_evaluation)
             free(data);
             dfl_tmesh_free(m);
         }
+}
+
+/* Equal bytes, or both NaN (an infinite coordinate's polynomial may give
+ * inf - inf). */
+static int same(double a, double b) { return memcmp(&a, &b, sizeof a) == 0 || (isnan(a) && isnan(b)); }
+
+/* The checks of nan_query_is_nan_and_stays_in_the_tree on one ISA: the
+ * number of failures (printed to stderr). */
+static int nan_queries(const void *ctx)
+{
+    (void)ctx;
+    enum { M = 75 }; /* three blocks of located points, the last one short */
+    int bad = 0;
+    for (int dim = 2; dim <= 3; dim++)
+        for (int rule = 0; rule < DFL_PHT_SPLIT_COUNT; rule++) {
+            dfl_tmesh *m;
+            double *data;
+            uint64_t rs = 29;
+            dfl_pht_spline *s = random_spline(dim, rule, 31, &rs, &m, &data);
+            double x[3 * M], v[M], g[3 * M], H[9 * M];
+            for (int i = 0; i < M * dim; i++) {
+                const int j = i % dim;
+                x[i] = LO[j] - 0.1 + (HI[j] - LO[j] + 0.2) * dfl_rng_splitmix(&rs, 0, 1);
+            }
+            /* NaN, +inf, -inf, +-1e300 on every axis, spread over the blocks;
+             * a NaN with an infinity */
+            static const double odd[5] = {NAN, INFINITY, -INFINITY, 1e300, -1e300};
+            for (int j = 0, i = 1; j < dim; j++)
+                for (int q = 0; q < 5; q++, i += 4) x[i * dim + j] = odd[q];
+            x[70 * dim] = -NAN, x[70 * dim + 1] = INFINITY;
+            x[73 * dim + dim - 1] = NAN;
+            for (int mask = 1; mask < 8; mask++) {
+                memset(v, 0, sizeof v), memset(g, 0, sizeof g), memset(H, 0, sizeof H);
+                dfl_pht_eval(s, M, x, mask & 1 ? v : NULL, mask & 2 ? g : NULL,
+                             mask & 4 ? H : NULL);
+                for (int i = 0; i < M; i++) {
+                    const double *xi = x + i * dim;
+                    int nan = 0;
+                    for (int j = 0; j < dim; j++) nan |= isnan(xi[j]);
+                    double v1, g1[3], H1[9];
+                    dfl_pht_eval_cell(s, dfl_pht_spline_locate(s, xi, NULL), 1, xi, &v1, g1, H1);
+                    int ok = !(mask & 1) || (nan ? isnan(v[i]) : same(v[i], v1));
+                    for (int j = 0; j < dim && mask & 2; j++)
+                        ok &= nan ? isnan(g[i * dim + j]) : same(g[i * dim + j], g1[j]);
+                    for (int j = 0; j < dim * dim && mask & 4; j++)
+                        ok &= nan ? isnan(H[i * dim * dim + j]) : same(H[i * dim * dim + j], H1[j]);
+                    if (!ok) {
+                        fprintf(stderr, "dim %d rule %d mask %d point %d (%g %g): %g vs %g\n", dim,
+                                rule, mask, i, xi[0], xi[1], v[i], v1);
+                        bad++;
+                    }
+                }
+            }
+            /* dfl_pht_spline_locate: NaN below every split on its axis, i.e.
+             * where the box's low face is; an infinity where a far point is */
+            for (int i = 0; i < M; i++) {
+                const double *xi = x + i * dim;
+                double y[3];
+                for (int j = 0; j < dim; j++)
+                    y[j] = isnan(xi[j]) ? LO[j] : isinf(xi[j]) ? copysign(1e300, xi[j]) : xi[j];
+                if (dfl_pht_spline_locate(s, xi, NULL) != dfl_pht_spline_locate(s, y, NULL)) {
+                    fprintf(stderr, "dim %d rule %d point %d: located elsewhere\n", dim, rule, i);
+                    bad++;
+                }
+            }
+            dfl_pht_spline_free(s);
+            free(data);
+            dfl_tmesh_free(m);
+        }
+    return bad;
+}
+
+/* spline.h: a point with a NaN coordinate gets NaN value, gradient and
+ * Hessian and reads nothing outside the tree and its cells (it is located
+ * below every split on that axis); an infinite coordinate is located like
+ * a far point (the boundary cell's polynomial); the other points of the
+ * batch get the bytes of their cell alone.  2D and 3D, both split rules,
+ * every output combination, the odd coordinates spread over three blocks
+ * of located points, on every ISA this CPU runs (a child per ISA: the
+ * location grid's index is vectorized differently per ISA). */
+Test(pht_spline, nan_query_is_nan_and_stays_in_the_tree)
+{
+    cr_assert(dfl_test_per_isa(nan_queries, NULL) >= 1);
 }
