@@ -6,14 +6,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include "core/isa.h"
 #include "core/rng.h"
 #include "core/vec.h"
 #include "proxy/analytic_inputs.h"
 #include "proxy/filter.h"
+#include "util/per_isa.h"
 
 static const ta_shape torus = {TA_TORUS, {0.05, -0.02, 0.03}, {0, 0.6, 0.8}, 0.6, 0.25};
 static const ta_shape sphere = {TA_SPHERE, {0.02, -0.03, 0.01}, {0, 0, 1}, 0.5, 0};
@@ -581,32 +579,23 @@ static int nan_queries_on(const dfl_proxy_grid *g, int order, int si)
  * DFL_ISA set (the ISA is chosen once per process), because a NaN cast to
  * an index differs between them: a read out of the grid crashes on one
  * and reads a neighbour's cell on another. */
+/* The checks above on every order and storage (one child per ISA). */
+static int nan_queries_all(const void *ctx)
+{
+    (void)ctx;
+    static const dfl_proxy_storage sts[3] = {DFL_PROXY_DOUBLE, DFL_PROXY_FLOAT, DFL_PROXY_HALF};
+    int bad = 0;
+    for (int order = 1; order <= 2; order++)
+        for (int si = 0; si < 3; si++) {
+            dfl_proxy_grid g;
+            build(&torus, order, 6, sts[si], &g);
+            bad += nan_queries_on(&g, order, si);
+            dfl_proxy_grid_free(&g);
+        }
+    return bad;
+}
+
 Test(proxy_filter, nan_query_is_nan_and_stays_in_the_grid)
 {
-    static const dfl_proxy_storage sts[3] = {DFL_PROXY_DOUBLE, DFL_PROXY_FLOAT, DFL_PROXY_HALF};
-    for (int isa = 0; isa < DFL_ISA_COUNT; isa++) {
-        if (!dfl_isa_cpu_has((dfl_isa)isa)) continue;
-        fflush(NULL);
-        const pid_t pid = fork();
-        cr_assert(pid >= 0);
-        if (pid == 0) {
-            setenv("DFL_ISA", dfl_isa_name((dfl_isa)isa), 1);
-            if (dfl_isa_active() != (dfl_isa)isa) _exit(3);
-            int bad = 0;
-            for (int order = 1; order <= 2; order++)
-                for (int si = 0; si < 3; si++) {
-                    dfl_proxy_grid g;
-                    build(&torus, order, 6, sts[si], &g);
-                    bad += nan_queries_on(&g, order, si);
-                    dfl_proxy_grid_free(&g);
-                }
-            _exit(bad ? 1 : 0);
-        }
-        int st = 0;
-        cr_assert(waitpid(pid, &st, 0) == pid);
-        cr_expect(WIFEXITED(st) && WEXITSTATUS(st) == 0,
-                  "DFL_ISA=%s: %s %d (1: a check failed, 3: the ISA was not taken)",
-                  dfl_isa_name((dfl_isa)isa), WIFEXITED(st) ? "exit" : "signal",
-                  WIFEXITED(st) ? WEXITSTATUS(st) : WTERMSIG(st));
-    }
+    cr_assert(dfl_test_per_isa(nan_queries_all, NULL) >= 1);
 }
