@@ -823,6 +823,8 @@ static const column columns[] = {
      "1: every cell's estimate met target; 0: not (pht: max_level stopped it); empty: none"},
     {"compare_methods", "target_over",
      "cells whose estimate stayed above target (pht: leaf cells at max_level); empty: none"},
+    {"compare_methods", "target_linf_met",
+     "1: linf over every error point <= target (the study's verdict); 0: not; empty: none"},
     /* hvb25_render (one row per frame) */
     {"hvb25_render", "field_kind", "the field traced: proxy, gridpeer, ..."},
     {"hvb25_render", "order", "proxy order (1, 2; 0: not a proxy)"},
