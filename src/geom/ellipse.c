@@ -111,7 +111,7 @@ static void ellipse_eval(const void *impl, size_t m, const double *pts, double *
     }
 }
 
-static const dfl_shape_ops ellipse_ops = {"ellipse", ellipse_eval, NULL, free};
+static const dfl_shape_ops ellipse_ops = {"ellipse", ellipse_eval, NULL, free, NULL};
 
 dfl_status dfl_shape_ellipse(const double c[2], double a, double b, dfl_shape *out,
                              dfl_err *err)

@@ -143,7 +143,7 @@ static dfl_status implicit_jet_op(const void *impl, const double *x, const doubl
 static void implicit_free_op(void *impl) { dfl_implicit_free(impl); }
 
 static const dfl_shape_ops implicit_ops = {"implicit", implicit_eval, implicit_jet_op,
-                                           implicit_free_op};
+                                           implicit_free_op, NULL};
 
 dfl_status dfl_implicit_shape(dfl_implicit **s, dfl_shape *out, dfl_err *err)
 {

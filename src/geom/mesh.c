@@ -40,9 +40,14 @@ static double side(const mesh_impl *mi, const double *x)
     return mi->dist == DFL_MESH_SIGNED && dfl_mesh_bvh_inside(mi->bvh, x) ? -1.0 : 1.0;
 }
 
-static void mesh_eval(const void *impl, size_t m, const double *pts, double *val, double *grad)
+/* d (with the side when sided and the mesh is signed, else |d|) and its
+ * gradient at m points.  The side s = +-1 multiplies the closest-point
+ * distance and its gradient (x - q) / d, so the unsigned output is the
+ * signed one with values < 0 and their gradients negated, bit for bit
+ * (shape.h's dfl_shape_eval_unsigned); d = 0 and NaN take no side. */
+static void eval_points(const mesh_impl *mi, int sided, size_t m, const double *pts, double *val,
+                        double *grad)
 {
-    const mesh_impl *mi = impl;
     /* a signed mesh builds its anchors anyway (the sign test): their
      * leaves also start the closest-point search near x */
     const struct dfl_mesh_anchor *anc =
@@ -61,11 +66,22 @@ static void mesh_eval(const void *impl, size_t m, const double *pts, double *val
             if (grad) tri_normal(mi, h.tri, grad + 3 * i);
             continue;
         }
-        const double s = side(mi, x);
+        const double s = sided ? side(mi, x) : 1.0;
         val[i] = s * h.d;
         if (grad)
             for (int j = 0; j < 3; j++) grad[3 * i + j] = s * (x[j] - h.q[j]) / h.d;
     }
+}
+
+static void mesh_eval(const void *impl, size_t m, const double *pts, double *val, double *grad)
+{
+    eval_points(impl, 1, m, pts, val, grad);
+}
+
+static void mesh_eval_unsigned(const void *impl, size_t m, const double *pts, double *val,
+                               double *grad)
+{
+    eval_points(impl, 0, m, pts, val, grad);
 }
 
 /* The two end points of an edge feature. */
@@ -136,7 +152,8 @@ static void mesh_free(void *impl)
     free(mi);
 }
 
-static const dfl_shape_ops mesh_ops = {"mesh", mesh_eval, mesh_jet, mesh_free};
+static const dfl_shape_ops mesh_ops = {"mesh", mesh_eval, mesh_jet, mesh_free,
+                                        mesh_eval_unsigned};
 
 dfl_status dfl_shape_mesh(dfl_trimesh *m, dfl_mesh_distance dist, dfl_shape *out, dfl_err *err)
 {

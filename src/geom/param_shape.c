@@ -96,7 +96,7 @@ static void curve_shape_free(void *impl)
 }
 
 static const dfl_shape_ops curve_ops = {"bspline_curve", curve_shape_eval, curve_shape_jet,
-                                        curve_shape_free};
+                                        curve_shape_free, NULL};
 
 dfl_status dfl_shape_param_curve(dfl_bspline *c, const dfl_foot_opts *opt, int signed_dist,
                                  dfl_shape *out, dfl_err *err)
@@ -166,7 +166,7 @@ static void surface_shape_free(void *impl)
 }
 
 static const dfl_shape_ops surface_ops = {"bspline_surface", surface_shape_eval, NULL,
-                                          surface_shape_free};
+                                          surface_shape_free, NULL};
 
 dfl_status dfl_shape_param_surface(dfl_surface_set *s, const dfl_foot_opts *opt, dfl_shape *out,
                                    dfl_err *err)

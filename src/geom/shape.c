@@ -24,6 +24,23 @@ void dfl_shape_eval(const dfl_shape *s, size_t m, const double *pts, double *val
     s->ops->eval(s->impl, m, pts, val, grad);
 }
 
+void dfl_shape_eval_unsigned(const dfl_shape *s, size_t m, const double *pts, double *val,
+                             double *grad)
+{
+    if (s->ops->eval_unsigned) {
+        s->ops->eval_unsigned(s->impl, m, pts, val, grad);
+        return;
+    }
+    s->ops->eval(s->impl, m, pts, val, grad);
+    const size_t dim = (size_t)s->dim;
+    for (size_t i = 0; i < m; i++)
+        if (val[i] < 0) {
+            val[i] = -val[i];
+            if (grad)
+                for (size_t j = 0; j < dim; j++) grad[dim * i + j] = -grad[dim * i + j];
+        }
+}
+
 dfl_status dfl_shape_jet(const dfl_shape *s, const double *x, const double *dir, int K,
                          dfl_jet *out, dfl_err *err)
 {

@@ -95,6 +95,11 @@ typedef struct dfl_shape_ops {
      * if unsupported. */
     dfl_dir_jet_fn jet;
     void (*free)(void *impl);
+    /* Optional (NULL: dfl_shape_eval_unsigned folds eval's output): what
+     * dfl_shape_eval_unsigned promises, computed without deciding the side
+     * (a signed mesh skips its winding-number test). */
+    void (*eval_unsigned)(const void *impl, size_t m, const double *pts, double *val,
+                          double *grad);
 } dfl_shape_ops;
 
 typedef struct dfl_shape {
@@ -155,6 +160,15 @@ dfl_status dfl_shape_csg(dfl_csg_op op, double k, dfl_shape *a, dfl_shape *b, df
 double dfl_shape_eval1(const dfl_shape *s, const double *x, double *grad);
 /* Batch evaluation (see dfl_shape_ops.eval). */
 void dfl_shape_eval(const dfl_shape *s, size_t m, const double *pts, double *val, double *grad);
+/* |d| and, when grad is not NULL, sgn(d) grad d, bit for bit what
+ * dfl_shape_eval gives with every value < 0 and its gradient negated (0,
+ * -0 and NaN values and their gradients as eval gives them).  For callers
+ * that need d grad d, d / (grad d . n) or the nearest surface point, all
+ * unchanged by the fold, and not the side: the shape's eval_unsigned when
+ * it has one (a signed mesh then skips its winding-number test), else eval
+ * and the fold.  Same threading and allocation rules as eval. */
+void dfl_shape_eval_unsigned(const dfl_shape *s, size_t m, const double *pts, double *val,
+                             double *grad);
 /* Jet along dir; DFL_E_INPUT if the shape has none or K is out of range. */
 dfl_status dfl_shape_jet(const dfl_shape *s, const double *x, const double *dir, int K,
                          dfl_jet *out, dfl_err *err);

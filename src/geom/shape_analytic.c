@@ -79,8 +79,8 @@ static void sphere_hess(const void *impl, const double *x, double *H)
             H[3 * i + j] = l > 0.0 ? ((i == j) - u[i] * u[j] / (l * l)) / l : 0.0;
 }
 
-static const dfl_shape_ops circle_ops = {"circle", ball_eval, ball_jet, free};
-static const dfl_shape_ops sphere_ops = {"sphere", ball_eval, ball_jet, free};
+static const dfl_shape_ops circle_ops = {"circle", ball_eval, ball_jet, free, NULL};
+static const dfl_shape_ops sphere_ops = {"sphere", ball_eval, ball_jet, free, NULL};
 
 static dfl_status make_ball(int dim, const double *c, double r, dfl_shape *out, dfl_err *err)
 {
@@ -217,8 +217,8 @@ static void cylinder_hess(const void *impl, const double *x, double *H)
     axial_hess(impl, x, 0, H);
 }
 
-static const dfl_shape_ops torus_ops = {"torus", torus_eval, torus_jet, free};
-static const dfl_shape_ops cylinder_ops = {"cylinder", cylinder_eval, cylinder_jet, free};
+static const dfl_shape_ops torus_ops = {"torus", torus_eval, torus_jet, free, NULL};
+static const dfl_shape_ops cylinder_ops = {"cylinder", cylinder_eval, cylinder_jet, free, NULL};
 
 static dfl_status make_axial(const char *name, const double c[3], const double axis[3], double R,
                              double r, const dfl_shape_ops *ops, dfl_shape *out, dfl_err *err)
@@ -296,7 +296,7 @@ static void plane_hess(const void *impl, const double *x, double *H)
     for (int j = 0; j < 9; j++) H[j] = 0.0;
 }
 
-static const dfl_shape_ops plane_ops = {"plane", plane_eval, plane_jet, free};
+static const dfl_shape_ops plane_ops = {"plane", plane_eval, plane_jet, free, NULL};
 
 dfl_status dfl_shape_plane(int dim, const double *p, const double *n, dfl_shape *out,
                            dfl_err *err)
@@ -387,7 +387,7 @@ static dfl_status box_jet(const void *impl, const double *x, const double *dir, 
     return jet_sqrt_quad(a0, a1, a2, K, out, err);
 }
 
-static const dfl_shape_ops box_ops = {"box", box_eval, box_jet, free};
+static const dfl_shape_ops box_ops = {"box", box_eval, box_jet, free, NULL};
 
 dfl_status dfl_shape_box(int dim, const double *c, const double *h, dfl_shape *out,
                          dfl_err *err)
@@ -458,7 +458,7 @@ static dfl_status segment_jet(const void *impl, const double *x, const double *d
     return jet_norm_line(n, w0, w1, K, out, err);
 }
 
-static const dfl_shape_ops segment_ops = {"segment", segment_eval, segment_jet, free};
+static const dfl_shape_ops segment_ops = {"segment", segment_eval, segment_jet, free, NULL};
 
 dfl_status dfl_shape_segment(int dim, const double *a, const double *b, dfl_shape *out,
                              dfl_err *err)
@@ -613,7 +613,7 @@ static dfl_status cone_jet(const void *impl, const double *x, const double *dir,
     return DFL_OK;
 }
 
-static const dfl_shape_ops cone_ops = {"cone", cone_eval, cone_jet, free};
+static const dfl_shape_ops cone_ops = {"cone", cone_eval, cone_jet, free, NULL};
 
 dfl_status dfl_shape_cone(const double a[3], const double b[3], double ra, double rb,
                           dfl_shape *out, dfl_err *err)

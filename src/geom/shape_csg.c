@@ -130,8 +130,8 @@ static void csg_free(void *impl)
     free(c);
 }
 
-static const dfl_shape_ops csg_ops = {"csg", csg_eval, csg_jet, csg_free};
-static const dfl_shape_ops csg_nojet_ops = {"csg", csg_eval, NULL, csg_free};
+static const dfl_shape_ops csg_ops = {"csg", csg_eval, csg_jet, csg_free, NULL};
+static const dfl_shape_ops csg_nojet_ops = {"csg", csg_eval, NULL, csg_free, NULL};
 
 dfl_status dfl_shape_csg(dfl_csg_op op, double k, dfl_shape *a, dfl_shape *b, dfl_shape *out,
                          dfl_err *err)

@@ -189,10 +189,15 @@ dfl_status dfl_curvfit_sdf(const dfl_curvfit *F, const dfl_shape *s, const doubl
     /* Newton on every node together (one batched evaluation per step); a
      * node it fails on (a small slope along n, a non-finite value, a step
      * beyond the reach) is left to bracket_root, the others go on as if it
-     * were not there */
+     * were not there.  The step f / (grad f . n) does not change when f and
+     * grad f are both negated (IEEE negation is exact, and so is a sum or a
+     * quotient of negated terms), so the unsigned evaluation gives the
+     * signed one's steps bit for bit without deciding the side: a signed
+     * mesh's winding number, most of a mesh's projection otherwise.
+     * bracket_root looks for a sign change and keeps the signed d. */
     int done = 0;
     for (int it = 0; it < 30 && !done; it++) {
-        s->ops->eval(s->impl, (size_t)np, q, f, gr);
+        dfl_shape_eval_unsigned(s, (size_t)np, q, f, gr);
         done = 1;
         for (int k = 0; k < np; k++) {
             moving[k] = 0;

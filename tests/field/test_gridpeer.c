@@ -283,7 +283,7 @@ static void tc_eval(const void *impl, size_t m, const double *pts, double *val, 
     }
 }
 static void tc_free(void *impl) { (void)impl; }
-static const dfl_shape_ops tc_ops = {"tensor_cubic", tc_eval, NULL, tc_free};
+static const dfl_shape_ops tc_ops = {"tensor_cubic", tc_eval, NULL, tc_free, NULL};
 
 /* Not-a-knot keeps every cubic per axis: the B-spline coefficients of a
  * cubic are a cubic sequence (c = p - p''/6 at the centres), whose fourth

@@ -86,7 +86,7 @@ static void poly_eval(const void *impl, size_t m, const double *pts, double *val
     }
 }
 
-static const dfl_shape_ops poly_ops = {"poly", poly_eval, NULL, NULL};
+static const dfl_shape_ops poly_ops = {"poly", poly_eval, NULL, NULL, NULL};
 
 /* q = 0.05 + 0.3 x + 0.2 y - 0.1 z + 0.04 x^2 - 0.03 y z + 0.02 z^2 (quadratic)
  * or its affine part.  The band search evaluates q at block centres up to
@@ -378,7 +378,7 @@ static void nan_eval(const void *impl, size_t m, const double *pts, double *val,
     for (size_t i = 0; i < m; i++) val[i] = pts[3 * i] > 0.3 ? NAN : pts[3 * i] - 0.2;
 }
 
-static const dfl_shape_ops nan_ops = {"nan", nan_eval, NULL, NULL};
+static const dfl_shape_ops nan_ops = {"nan", nan_eval, NULL, NULL, NULL};
 
 Test(vdb, bad_input)
 {

@@ -6,6 +6,8 @@
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "core/rng.h"
 #include "field/meshdist.h"
@@ -261,4 +263,83 @@ Test(mesh, nan_and_infinite_points_are_nan)
         }
         dfl_shape_free(&s);
     }
+}
+
+/* The fold of d and its gradient (shape.h's dfl_shape_eval_unsigned rule):
+ * values < 0 and their gradients negated, everything else as given. */
+static void fold(size_t m, double *v, double *g)
+{
+    for (size_t i = 0; i < m; i++)
+        if (v[i] < 0) {
+            v[i] = -v[i];
+            for (int j = 0; j < 3; j++) g[3 * i + j] = -g[3 * i + j];
+        }
+}
+
+/* geom/shape.h: dfl_shape_eval_unsigned is eval with values < 0 and their
+ * gradients negated, bit for bit.  A mesh computes it without the winding
+ * number (its own op): on Wuson (open rims, so the sign is the winding
+ * number's) at points of the box, near its vertices (where the sign test
+ * is hardest), on the surface (d = 0: the face normal, not negated) and
+ * at a NaN point; signed and unsigned modes, with and without gradient;
+ * and the same through the fold for a shape without the op (a sphere). */
+Test(mesh, eval_unsigned_is_the_folded_signed_eval_bit_for_bit, .timeout = 120)
+{
+    dfl_shape s;
+    wuson_shape(&s);
+    cr_assert_not_null(s.ops->eval_unsigned, "a mesh has its own unsigned evaluation");
+    const dfl_trimesh *T = dfl_shape_mesh_trimesh(&s);
+    enum { N = 6000 };
+    double *p = malloc(3 * N * sizeof *p), *v = malloc(N * sizeof *v), *g = malloc(3 * N * sizeof *g),
+           *u = malloc(N * sizeof *u), *gu = malloc(3 * N * sizeof *gu), *u2 = malloc(N * sizeof *u2);
+    cr_assert(p && v && g && u && gu && u2);
+    uint64_t r = 11;
+    for (size_t i = 0; i < N; i++) {
+        if (i % 2) {
+            for (int j = 0; j < 3; j++) p[3 * i + j] = dfl_rng_splitmix(&r, -1, 1);
+        } else {
+            const size_t k = (size_t)dfl_rng_splitmix(&r, 0, (double)T->nverts);
+            for (int j = 0; j < 3; j++)
+                p[3 * i + j] = T->verts[3 * k + j] + dfl_rng_splitmix(&r, -0.02, 0.02);
+        }
+    }
+    /* a vertex (d = 0) and a NaN point */
+    for (int j = 0; j < 3; j++) p[j] = T->verts[j], p[3 + j] = NAN;
+    dfl_shape_eval(&s, N, p, v, g);
+    dfl_shape_eval_unsigned(&s, N, p, u, gu);
+    dfl_shape_eval_unsigned(&s, N, p, u2, NULL);
+    int neg = 0;
+    for (size_t i = 0; i < N; i++) neg += v[i] < 0;
+    cr_expect(neg > N / 20, "points inside: %d", neg);
+    cr_expect_eq(v[0], 0.0, "a vertex is on the surface");
+    fold(N, v, g);
+    cr_expect(memcmp(v, u, N * sizeof *v) == 0, "values: |d| bit for bit");
+    cr_expect(memcmp(g, gu, 3 * N * sizeof *g) == 0, "gradients: sgn(d) grad d bit for bit");
+    cr_expect(memcmp(v, u2, N * sizeof *v) == 0, "values without gradient");
+    cr_expect(isnan(u[1]));
+    dfl_shape_free(&s);
+    /* unsigned mode: eval is already |d| */
+    dfl_trimesh m;
+    dfl_err err;
+    cr_assert_eq(dfl_trimesh_read(WUSON, &m, &err), DFL_OK, "%s", err.msg);
+    const double c[3] = {0, 0, 0};
+    dfl_trimesh_fit(&m, c, 1.6);
+    make(&m, DFL_MESH_UNSIGNED, &s);
+    dfl_shape_eval(&s, N, p, v, g);
+    dfl_shape_eval_unsigned(&s, N, p, u, gu);
+    cr_expect(memcmp(v, u, N * sizeof *v) == 0 && memcmp(g, gu, 3 * N * sizeof *g) == 0);
+    dfl_shape_free(&s);
+    /* a shape without the op: eval and the fold */
+    const double ctr[3] = {0.1, -0.2, 0.05};
+    cr_assert_eq(dfl_shape_sphere(ctr, 0.5, &s, &err), DFL_OK);
+    cr_assert_null(s.ops->eval_unsigned);
+    dfl_shape_eval(&s, N, p, v, g);
+    dfl_shape_eval_unsigned(&s, N, p, u, gu);
+    neg = 0;
+    for (size_t i = 0; i < N; i++) neg += v[i] < 0;
+    cr_expect(neg > N / 20, "points inside the sphere: %d", neg);
+    fold(N, v, g);
+    cr_expect(memcmp(v, u, N * sizeof *v) == 0 && memcmp(g, gu, 3 * N * sizeof *g) == 0);
+    dfl_shape_free(&s);
+    free(p), free(v), free(g), free(u), free(gu), free(u2);
 }

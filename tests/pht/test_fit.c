@@ -358,7 +358,7 @@ static dfl_status marked_jet(const void *impl, const double *x, const double *di
     return M->plane.ops->jet(M->plane.impl, x, dir, K, out, err);
 }
 
-static const dfl_shape_ops marked_ops = {"marked_plane", marked_eval, marked_jet, NULL};
+static const dfl_shape_ops marked_ops = {"marked_plane", marked_eval, marked_jet, NULL, NULL};
 
 static void marked_init(marked *M, int n, const double (*pts)[2], double bump, dfl_shape *s)
 {
@@ -520,7 +520,7 @@ static dfl_status counted_jet(const void *impl, const double *x, const double *d
     return C->circle.ops->jet(C->circle.impl, x, dir, K, out, err);
 }
 
-static const dfl_shape_ops counted_ops = {"counted_circle", counted_eval, counted_jet, NULL};
+static const dfl_shape_ops counted_ops = {"counted_circle", counted_eval, counted_jet, NULL, NULL};
 
 /* Exact distances are computed once per point a pass needs: on the uniform
  * n x n grid (one pass) every cell has 16 random points, its centre and 4

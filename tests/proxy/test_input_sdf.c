@@ -147,7 +147,7 @@ static void scaled_eval(const void *impl, size_t m, const double *pts, double *v
 
 static void scaled_free(void *impl) { free(impl); }
 
-static const dfl_shape_ops scaled_ops = {"scaled_sphere", scaled_eval, NULL, scaled_free};
+static const dfl_shape_ops scaled_ops = {"scaled_sphere", scaled_eval, NULL, scaled_free, NULL};
 
 Test(input_sdf, non_sdf_is_not_certified)
 {
