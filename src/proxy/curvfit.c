@@ -149,11 +149,11 @@ static int bracket_root(const dfl_shape *s, const double base[3], const double n
     if (!found) return -1;
     /* Illinois (regula falsi with the stale end's value halved) */
     int side = 0;
-    double t = b;
+    double t = b, ft = fb;
     for (int it = 0; it < 200; it++) {
         t = (a * fb - b * fa) / (fb - fa);
         for (int j = 0; j < 3; j++) x[j] = base[j] + t * n[j];
-        const double ft = dfl_shape_eval1(s, x, NULL);
+        ft = dfl_shape_eval1(s, x, NULL);
         if (!isfinite(ft)) return -1;
         if (ft == 0.0 || fabs(b - a) <= 1e-13 * (1.0 + fabs(t))) break;
         if ((ft <= 0.0) == (fb <= 0.0)) {
@@ -166,6 +166,13 @@ static int bracket_root(const dfl_shape *s, const double base[3], const double n
             side = 1;
         }
     }
+    /* A sign change of a continuous, 1-Lipschitz f brackets a root, and
+     * every t of the bracket then has |f(t)| <= b - a.  A larger |f| means
+     * the sign changed by a jump, not through 0: a sign of f that is not
+     * continuous (an open mesh's winding number jumps across a sheet that
+     * spans its rims, off the surface).  Illinois converges to the jump
+     * there, which is no point of the surface: no height. */
+    if (!(fabs(ft) <= fabs(b - a) + 1e-12 * (1.0 + fabs(t)))) return -1;
     *root = t;
     return 0;
 }

@@ -67,8 +67,11 @@ void dfl_curvfit_from_heights(const dfl_curvfit *F, const double *z, const doubl
  * mesh's kinks: the normal line meets a face at a grazing angle).  Where
  * Newton succeeds for every node the result is Newton's alone.  A node
  * with no sign change within the reach (its normal line misses the
- * surface: past a boundary, through a mesh's hole) or a non-finite f is
- * left out, and the least squares is solved on the nodes that remain;
+ * surface: past a boundary, through a mesh's hole), a non-finite f, or a
+ * sign change where f jumps instead of passing 0 (|f| at the converged
+ * bracket above its width plus 1e-12 (1 + |t|): an open mesh's
+ * winding-number sign flips across a sheet off the surface) is left out,
+ * and the least squares is solved on the nodes that remain;
  * DFL_E_NUMERIC when fewer than DFL_CURVFIT_MIN_NODES remain or their
  * design is singular; out is then untouched. */
 dfl_status dfl_curvfit_sdf(const dfl_curvfit *F, const dfl_shape *s, const double p[3],

@@ -199,3 +199,69 @@ Test(curvfit, nodes_whose_normal_line_misses_are_left_out)
     cr_expect_eq(dfl_curvfit_sdf(&F, &s, p, n, &c), DFL_E_NUMERIC);
     dfl_shape_free(&s);
 }
+
+/* A paraboloid z = c (x^2 + y^2) / 2 - e as f = z - c (x^2 + y^2) / 2 + e
+ * (exact heights along the vertical lines), optionally with its sign
+ * flipped above z = zj (f jumps there from +|f| to -|f|, as an open mesh's
+ * winding number does across a sheet off the surface).  The gradient
+ * (1, 0, 0) has no slope along n = +z, so Newton gives up on every node
+ * and each height comes from bracket_root. */
+typedef struct jump_para {
+    double c, e, zj; /* zj = INFINITY: no jump */
+} jump_para;
+
+static void jump_para_eval(const void *impl, size_t m, const double *pts, double *val,
+                           double *grad)
+{
+    const jump_para *J = impl;
+    for (size_t i = 0; i < m; i++) {
+        const double *x = pts + 3 * i;
+        const double g = x[2] - J->c * (x[0] * x[0] + x[1] * x[1]) / 2 + J->e;
+        val[i] = x[2] < J->zj ? g : -g;
+        if (grad) grad[3 * i] = 1, grad[3 * i + 1] = 0, grad[3 * i + 2] = 0;
+    }
+}
+
+static void jump_para_free(void *impl) { (void)impl; }
+
+static const dfl_shape_ops jump_para_ops = {"jump_paraboloid", jump_para_eval, NULL,
+                                            jump_para_free, NULL};
+
+/* curvfit.h: a sign change where f jumps instead of passing 0 is no root:
+ * the node is left out.  c = 10, e = 0.004, a 5 x 5 grid of spacing 0.005
+ * at p = 0 (offsets r <= 0.01 sqrt 2, so c r^2 / 2 <= 0.001): the surface
+ * lies at z = c r^2 / 2 - e in [-0.004, -0.003], below every node, where f
+ * = e - c r^2 / 2 > 0.  Without the jump the ladder (rungs -h/2, +h/2, -h,
+ * ...) first changes sign at -h = -0.005, below the surface: the bracket
+ * holds the root and the heights are exact, so the result is the fit of
+ * the exact heights (dfl_curvfit_from_heights of c r^2 / 2 - e).  With the
+ * jump at zj = 0.001 the rung +h/2 = 0.0025 already changes sign (f < 0
+ * above the sheet) while -h/2 does not (-0.0025 is above the surface):
+ * every node brackets the jump, where |f| = 0.001 + e - c r^2 / 2 >=
+ * 0.004, far above the converged bracket: all 25 nodes left out, fewer
+ * than DFL_CURVFIT_MIN_NODES: DFL_E_NUMERIC, out untouched (before the
+ * rule every node took the height 0.001). */
+Test(curvfit, a_sign_jump_is_no_root)
+{
+    const double p[3] = {0, 0, 0}, n[3] = {0, 0, 1};
+    dfl_curvfit F;
+    cr_assert_eq(dfl_curvfit_init(5, 0.005, &F, NULL), DFL_OK);
+    jump_para J = {10.0, 0.004, INFINITY};
+    dfl_shape s = {3, &jump_para_ops, &J};
+    double h[25], b1[3], b2[3];
+    for (int k = 0; k < F.npts; k++) {
+        const double x = F.xy[2 * k], y = F.xy[2 * k + 1];
+        h[k] = J.c * (x * x + y * y) / 2 - J.e;
+    }
+    dfl_vec3_tangent_basis(n, b1, b2);
+    dfl_curvature want, c;
+    dfl_curvfit_from_heights(&F, h, b1, b2, n, &want);
+    cr_assert_eq(dfl_curvfit_sdf(&F, &s, p, n, &c), DFL_OK);
+    cr_expect(fabs(c.k1 - want.k1) < 1e-8 && fabs(c.k2 - want.k2) < 1e-8,
+              "k1 %.17g k2 %.17g, the exact heights' fit %.17g %.17g", c.k1, c.k2, want.k1,
+              want.k2);
+    J.zj = 0.001;
+    c.k1 = 12345;
+    cr_expect_eq(dfl_curvfit_sdf(&F, &s, p, n, &c), DFL_E_NUMERIC, "k1 %g k2 %g", c.k1, c.k2);
+    cr_expect_eq(c.k1, 12345, "out untouched");
+}
