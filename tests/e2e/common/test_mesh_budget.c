@@ -110,6 +110,25 @@ Test(e2e_mesh_budget, wuson_rss_growth_below_the_bound, .timeout = 300)
     e2e_rmtree(dir);
 }
 
+/* `dflab plan` of quick.ini with only `methods` on Wuson at a 0.1 GB
+ * budget, in dir: exit 2 and one stderr text holding each of want[0..n)
+ * (the key, what it charged, the budget). */
+static void expect_quick_plan_refused(const char *dir, const char *methods, int n,
+                                      const char *const *want)
+{
+    char args[1024];
+    snprintf(args, sizeof args,
+             "plan configs/compare/quick.ini --set study.methods=%s --set "
+             "study.shapes=s_wuson --set study.memory_budget=0.1 --out %s/o",
+             methods, dir);
+    const int rc = e2e_dflab(dir, args);
+    char *msg = e2e_err_text(dir);
+    cr_expect_eq(rc, 2, "%s", msg);
+    for (int k = 0; k < n; k++)
+        cr_expect(strstr(msg, want[k]), "%s: '%s' not in %s", methods, want[k], msg);
+    free(msg);
+}
+
 /* compare_methods charges the mesh with each field built on it: the exact
  * method on Wuson alone needs the mesh's bound (170 MB with the file), so
  * 0.1 GB refuses it at plan time; the default budget plans quick.ini. */
@@ -117,17 +136,8 @@ Test(e2e_mesh_budget, compare_charges_the_mesh_and_quick_fits_the_default, .time
 {
     char dir[256], args[1024];
     e2e_tmpdir(dir, sizeof dir);
-    snprintf(args, sizeof args,
-             "plan configs/compare/quick.ini --set study.methods=m_exact --set "
-             "study.shapes=s_wuson --set study.memory_budget=0.1 --out %s/o",
-             dir);
-    const int rc = e2e_dflab(dir, args);
-    char *msg = e2e_err_text(dir);
-    cr_expect_eq(rc, 2, "%s", msg);
-    cr_expect(strstr(msg, "study.methods") && strstr(msg, "[m_exact]") &&
-                  strstr(msg, "memory budget of 0.1 GB"),
-              "%s", msg);
-    free(msg);
+    static const char *const want[] = {"study.methods", "[m_exact]", "memory budget of 0.1 GB"};
+    expect_quick_plan_refused(dir, "m_exact", 3, want);
     snprintf(args, sizeof args, "plan configs/compare/quick.ini --out %s/o", dir);
     cr_expect_eq(e2e_dflab(dir, args), 0, "quick.ini within the default budget");
     cr_expect_eq(e2e_count_entries(dir), 2, "out.txt and err.txt only: plan writes nothing");
@@ -139,16 +149,9 @@ Test(e2e_mesh_budget, compare_charges_the_mesh_and_quick_fits_the_default, .time
  * mesh's bound is charged (key [study] shapes). */
 Test(e2e_mesh_budget, compare_charges_a_shape_without_fields, .timeout = 120)
 {
-    char dir[256], args[1024];
+    char dir[256];
     e2e_tmpdir(dir, sizeof dir);
-    snprintf(args, sizeof args,
-             "plan configs/compare/quick.ini --set study.methods=m_rfunc --set "
-             "study.shapes=s_wuson --set study.memory_budget=0.1 --out %s/o",
-             dir);
-    const int rc = e2e_dflab(dir, args);
-    char *msg = e2e_err_text(dir);
-    cr_expect_eq(rc, 2, "%s", msg);
-    cr_expect(strstr(msg, "study.shapes") && strstr(msg, "the shape [s_wuson]"), "%s", msg);
-    free(msg);
+    static const char *const want[] = {"study.shapes", "the shape [s_wuson]"};
+    expect_quick_plan_refused(dir, "m_rfunc", 2, want);
     e2e_rmtree(dir);
 }
